@@ -1,0 +1,25 @@
+"""andoyer: the heavy rigid body (Hess gyroscope) in Andoyer-Deprit variables."""
+
+from andoyer._version import __version__ as __version__
+from andoyer.body import RigidBody as RigidBody
+from andoyer.charts import Singular as Singular
+from andoyer.charts import area_integral as area_integral
+from andoyer.charts import energy as energy
+from andoyer.charts import from_andoyer as from_andoyer
+from andoyer.charts import from_hess as from_hess
+from andoyer.charts import geometric_integral as geometric_integral
+from andoyer.charts import to_andoyer as to_andoyer
+from andoyer.charts import to_hess as to_hess
+
+__all__ = [
+    "__version__",
+    "RigidBody",
+    "Singular",
+    "area_integral",
+    "energy",
+    "from_andoyer",
+    "from_hess",
+    "geometric_integral",
+    "to_andoyer",
+    "to_hess",
+]

@@ -1,0 +1,252 @@
+"""The heavy rigid body about a fixed point.
+
+A body is given by its principal moments of inertia ``A, B, C`` about the fixed
+point, by ``mu`` -- the product of its weight and the distance from the fixed point
+to the centre of mass -- and by the unit vector ``r = (e1, e2, e3)`` pointing from
+the fixed point to the centre of mass in the principal axes (Eq. (1) of [1]_).
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["RigidBody", "PAPER_BODY"]
+
+#: Relative tolerance used to decide whether a body satisfies the Hess conditions (2).
+HESS_RTOL = 1e-12
+
+
+def _finite_positive(name: str, value: float) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(v) or v <= 0.0:
+        raise ValueError(f"{name} must be a finite positive moment of inertia, got {v!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class RigidBody:
+    """A heavy rigid body with a fixed point.
+
+    Parameters
+    ----------
+    A, B, C : float
+        Principal moments of inertia about the fixed point (positive, finite, obeying
+        the triangle inequalities ``A <= B + C`` etc.).
+    mu : float, default 0
+        Weight times the distance from the fixed point to the centre of mass
+        (``mu >= 0``). ``mu = 0`` is the Euler-Poinsot case.
+    r : sequence of 3 floats, default (1, 0, 0)
+        Direction of the centre of mass in the principal axes. It is normalised:
+        its length is discarded, the distance is already inside ``mu``.
+    name : str, optional
+        A label carried into the provenance of results.
+
+    Notes
+    -----
+    The Hamiltonian is :math:`H = \\tfrac12 (\\mathbf G, \\mathbf I \\mathbf G) + \\mu
+    (\\mathbf r, \\boldsymbol\\gamma)` with :math:`\\mathbf I = \\mathrm{diag}(a, b, c)
+    = \\mathrm{diag}(1/A, 1/B, 1/C)`, Eq. (1) of [1]_.
+
+    Examples
+    --------
+    >>> body = RigidBody.hess(2.5, 2.0, 2.2, mu=0.01)
+    >>> body.is_hess
+    True
+    >>> round(body.kappa, 6)
+    -0.1
+    """
+
+    A: float
+    B: float
+    C: float
+    mu: float = 0.0
+    r: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    name: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        A = _finite_positive("A", self.A)
+        B = _finite_positive("B", self.B)
+        C = _finite_positive("C", self.C)
+        # Triangle inequalities of a real mass distribution (equality: a flat body).
+        tol = 1e-12 * (A + B + C)
+        for x, y, z, nx in ((A, B, C, "A <= B + C"), (B, C, A, "B <= C + A"),
+                            (C, A, B, "C <= A + B")):
+            if x > y + z + tol:
+                raise ValueError(
+                    f"moments A={A}, B={B}, C={C} violate the triangle inequality {nx}: "
+                    "no mass distribution has them")
+        try:
+            mu = float(self.mu)
+        except (TypeError, ValueError):
+            raise ValueError(f"mu must be a real number, got {self.mu!r}") from None
+        if not math.isfinite(mu) or mu < 0.0:
+            raise ValueError(
+                f"mu (weight x distance to the centre of mass) must be finite and >= 0, "
+                f"got {mu!r}")
+        r = np.asarray(self.r, dtype=float)
+        if r.shape != (3,) or not np.all(np.isfinite(r)):
+            raise ValueError(f"r must be 3 finite numbers (e1, e2, e3), got {self.r!r}")
+        norm = float(np.linalg.norm(r))
+        if norm == 0.0:
+            if mu > 0.0:
+                raise ValueError("r = (0, 0, 0) with mu > 0: the centre of mass direction "
+                                 "is undefined; give a non-zero r or mu = 0")
+            r = np.array([1.0, 0.0, 0.0])
+            norm = 1.0
+        r = r / norm
+        object.__setattr__(self, "A", A)
+        object.__setattr__(self, "B", B)
+        object.__setattr__(self, "C", C)
+        object.__setattr__(self, "mu", mu)
+        object.__setattr__(self, "r", (float(r[0]), float(r[1]), float(r[2])))
+
+    # ------------------------------------------------------------------ properties
+    @property
+    def a(self) -> float:
+        """Inverse moment ``1/A`` (the paper's a)."""
+        return 1.0 / self.A
+
+    @property
+    def b(self) -> float:
+        """Inverse moment ``1/B`` (the paper's b)."""
+        return 1.0 / self.B
+
+    @property
+    def c(self) -> float:
+        """Inverse moment ``1/C`` (the paper's c)."""
+        return 1.0 / self.C
+
+    @property
+    def e1(self) -> float:
+        return self.r[0]
+
+    @property
+    def e2(self) -> float:
+        return self.r[1]
+
+    @property
+    def e3(self) -> float:
+        return self.r[2]
+
+    @property
+    def is_hess(self) -> bool:
+        """Whether the body satisfies the Hess conditions (2) (paper's axis order).
+
+        ``A > C > B``, ``e3 = 0`` and ``(c - b) e1^2 = (a - c) e2^2`` (Eq. (8)),
+        to relative tolerance ``HESS_RTOL``.
+        """
+        if not (self.A > self.C > self.B):
+            return False
+        if abs(self.e3) > HESS_RTOL:
+            return False
+        lhs = (self.c - self.b) * self.e1**2
+        rhs = (self.a - self.c) * self.e2**2
+        return abs(lhs - rhs) <= HESS_RTOL * (abs(lhs) + abs(rhs) + 1e-300)
+
+    @property
+    def phi0(self) -> float:
+        """Angle of the centre of mass in the G1-G2 plane, ``e1 = cos phi0, e2 = sin phi0``.
+
+        Eq. (11). For a Hess body ``tan^2 phi0 = (c - b)/(a - c)``; the paper's branch
+        gives ``phi0`` in (0, pi/2), the other branch (``branch=-1``) in (-pi/2, 0).
+        Defined for any body with ``e3 = 0`` (it is the parameter of the Hess chart (14)).
+        """
+        self._require_planar("phi0")
+        return math.atan2(self.e2, self.e1)
+
+    @property
+    def kappa(self) -> float:
+        """``kappa = (a - c)/e1^2``, equal to ``a - b`` on a Hess body (after Eq. (13))."""
+        return self.a - self.b
+
+    def _require_planar(self, what: str) -> None:
+        if abs(self.e3) > HESS_RTOL:
+            raise ValueError(
+                f"{what} needs the centre of mass in the G1-G2 principal plane (e3 = 0), "
+                f"but e3 = {self.e3!r}; build the body with RigidBody.hess(...) or r=(e1, e2, 0)")
+
+    def with_mu(self, mu: float) -> RigidBody:
+        """The same body with another ``mu`` (useful for mu -> 0 continuation)."""
+        return RigidBody(self.A, self.B, self.C, mu, self.r, self.name)
+
+    @property
+    def params(self) -> tuple[float, float, float, float, float, float, float]:
+        """``(a, b, c, mu, e1, e2, e3)``: the body as the plain floats kernels take."""
+        return (self.a, self.b, self.c, self.mu, self.e1, self.e2, self.e3)
+
+    def attrs(self) -> dict[str, float | str]:
+        """The body as flat attributes for self-describing datasets."""
+        return {"body_name": self.name, "A": self.A, "B": self.B, "C": self.C,
+                "mu": self.mu, "e1": self.e1, "e2": self.e2, "e3": self.e3,
+                "is_hess": int(self.is_hess)}
+
+    # ------------------------------------------------------------------ presets
+    @classmethod
+    def hess(cls, A: float, B: float, C: float, mu: float = 0.0, branch: int = 1,
+             name: str = "hess") -> RigidBody:
+        """A body of Hess conditions (2): ``A > C > B``, ``e3 = 0``.
+
+        ``e1 = cos phi0``, ``e2 = branch * sin phi0`` with
+        ``tan^2 phi0 = (c - b)/(a - c) = A (C - B) / (B (A - C))``.
+
+        Parameters
+        ----------
+        A, B, C : float
+            Principal moments with ``A > C > B``.
+        mu : float
+            Weight times distance to the centre of mass.
+        branch : {+1, -1}
+            Sign choice in (2); +1 gives the paper's ``phi0`` in (0, pi/2).
+        """
+        A = _finite_positive("A", A)
+        B = _finite_positive("B", B)
+        C = _finite_positive("C", C)
+        if not (A > C > B):
+            raise ValueError(
+                f"the Hess conditions (2) need A > C > B, got A={A}, B={B}, C={C}; "
+                "order the principal axes so that C is the middle moment")
+        if branch not in (1, -1):
+            raise ValueError(f"branch must be +1 or -1, got {branch!r}")
+        phi0 = math.atan(math.sqrt(A * (C - B) / (B * (A - C))))
+        return cls(A, B, C, mu, (math.cos(phi0), branch * math.sin(phi0), 0.0), name)
+
+    @classmethod
+    def paper(cls, mu: float = 0.01) -> RigidBody:
+        """The paper's body: Hess, A = 2.5, B = 2.0, C = 2.2, mu = 0.01 (Fig. 3)."""
+        return cls.hess(2.5, 2.0, 2.2, mu, name="paper")
+
+    @classmethod
+    def euler_poinsot(cls, A: float, B: float, C: float) -> RigidBody:
+        """Free rigid body (``mu = 0``)."""
+        return cls(A, B, C, 0.0, (1.0, 0.0, 0.0), "euler_poinsot")
+
+    @classmethod
+    def lagrange(cls, A: float, C: float, mu: float) -> RigidBody:
+        """Lagrange top: ``A = B``, centre of mass on the symmetry axis 3."""
+        return cls(A, A, C, mu, (0.0, 0.0, 1.0), "lagrange")
+
+    @classmethod
+    def kovalevskaya(cls, C: float = 1.0, mu: float = 1.0) -> RigidBody:
+        """Kovalevskaya top: ``A = B = 2C``, centre of mass in the equatorial plane."""
+        return cls(2.0 * C, 2.0 * C, C, mu, (1.0, 0.0, 0.0), "kovalevskaya")
+
+    @classmethod
+    def goryachev_chaplygin(cls, C: float = 1.0, mu: float = 1.0) -> RigidBody:
+        """Goryachev-Chaplygin top: ``A = B = 4C``, equatorial centre of mass (integrable
+        on the zero level of the area integral, M = 0)."""
+        return cls(4.0 * C, 4.0 * C, C, mu, (1.0, 0.0, 0.0), "goryachev_chaplygin")
+
+
+#: The body of the paper's computations (Fig. 3).
+PAPER_BODY = RigidBody.paper()

@@ -1,0 +1,93 @@
+"""Euler-Poisson chart: the regular, global description of the heavy top.
+
+State ``y = (G1, G2, G3, gamma1, gamma2, gamma3)`` in the principal axes: the angular
+momentum ``G = (A p, B q, C r)`` and the upward vertical unit vector ``gamma``
+(Eq. (1) of [1]_). The chart has no singular set; the physical phase space is the
+level ``|gamma|^2 = 1`` of the geometric integral.
+
+The Hamiltonian :math:`H = \\tfrac12(\\mathbf G, \\mathbf I\\mathbf G) + \\mu(\\mathbf r,
+\\boldsymbol\\gamma)` is written **once**, in :func:`hamiltonian_expr`, with plain
+arithmetic so that it evaluates NumPy arrays and builds SymPy expressions alike;
+every other form of H in this package is derived from it.
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring".
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from andoyer.body import RigidBody
+
+__all__ = [
+    "STATE",
+    "hamiltonian_expr",
+    "energy",
+    "area_integral",
+    "geometric_integral",
+    "as_state",
+]
+
+#: Order of the Euler-Poisson state vector; index with ``STATE.index(name)``.
+STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
+
+
+def hamiltonian_expr(G1: Any, G2: Any, G3: Any, gamma1: Any, gamma2: Any, gamma3: Any,
+                     a: Any, b: Any, c: Any, mu: Any, e1: Any, e2: Any, e3: Any) -> Any:
+    """The Hamiltonian of Eq. (1), ``H = (G, I G)/2 + mu (r, gamma)``: the one source.
+
+    Works for NumPy arrays (numeric) and SymPy symbols (derivations alike).
+    """
+    return (a * G1**2 + b * G2**2 + c * G3**2) / 2 + mu * (e1 * gamma1 + e2 * gamma2
+                                                          + e3 * gamma3)
+
+
+def as_state(y: ArrayLike, name: str = "y") -> NDArray[np.float64]:
+    """Validate an Euler-Poisson state array of shape ``(..., 6)``.
+
+    Raises
+    ------
+    ValueError
+        If the last axis is not 6 long or the array holds NaN or infinity.
+    """
+    arr = np.asarray(y, dtype=float)
+    if arr.ndim == 0 or arr.shape[-1] != 6:
+        raise ValueError(
+            f"{name} must have shape (..., 6) = (G1, G2, G3, gamma1, gamma2, gamma3), "
+            f"got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinity")
+    return arr
+
+
+def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
+    """Total energy ``H(y)`` of Eq. (1) (kinetic + potential), shape ``(...)``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody(2.0, 2.0, 1.0, mu=1.0, r=(0, 0, 1))
+    >>> float(energy(body, [0, 0, 1.0, 0, 0, 1.0]))
+    1.5
+    """
+    arr = as_state(y)
+    return np.asarray(hamiltonian_expr(*np.moveaxis(arr, -1, 0), *body.params))
+
+
+def area_integral(y: ArrayLike) -> NDArray[np.float64]:
+    """Area integral ``C1 = M = (G, gamma)``, a Casimir of (1), shape ``(...)``."""
+    arr = as_state(y)
+    return np.einsum("...i,...i->...", arr[..., :3], arr[..., 3:])
+
+
+def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
+    """Geometric integral ``C2 = |gamma|^2`` (equal to 1 on the physical level)."""
+    arr = as_state(y)
+    return np.einsum("...i,...i->...", arr[..., 3:], arr[..., 3:])

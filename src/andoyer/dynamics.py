@@ -1,0 +1,103 @@
+"""Hamiltonians and vector fields of a body in any chart (friendly layer over kernels).
+
+Charts are named ``"euler_poisson"`` (state ``(G1, G2, G3, gamma1, gamma2, gamma3)``),
+``"andoyer"`` (``(l, g, L, G, M)``) and ``"hess"`` (``(theta1, theta2, J1, J2, J3)``).
+All expressions come from the generated kernels, themselves derived from the one
+Hamiltonian of Eq. (1).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import as_andoyer, require_regular
+from andoyer.charts.euler_poisson import as_state
+from andoyer.charts.hess import as_hess
+from andoyer.kernels import _generated as K
+
+__all__ = ["CHARTS", "Chart", "hamiltonian", "vector_field", "cyclic_rate"]
+
+Chart = Literal["euler_poisson", "andoyer", "hess"]
+#: Chart name -> coordinate names.
+CHARTS: dict[str, tuple[str, ...]] = {
+    "euler_poisson": ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3"),
+    "andoyer": ("l", "g", "L", "G", "M"),
+    "hess": ("theta1", "theta2", "J1", "J2", "J3"),
+}
+
+
+def _chart_args(body: RigidBody, x: ArrayLike, chart: str
+                ) -> tuple[NDArray[np.float64], tuple[float, ...]]:
+    if chart == "euler_poisson":
+        return as_state(x), body.params
+    if chart == "andoyer":
+        arr = as_andoyer(x)
+        return arr, body.params
+    if chart == "hess":
+        arr = as_hess(x)
+        return arr, (body.a, body.b, body.c, body.mu, body.phi0)
+    raise ValueError(f"unknown chart {chart!r}; choose one of {sorted(CHARTS)}")
+
+
+def _regular_check(arr: NDArray[np.float64], chart: str, what: str) -> None:
+    if chart == "andoyer":
+        L, G, M = arr[..., 2], arr[..., 3], arr[..., 4]
+        flags = (np.abs(L) >= G) | (np.abs(M) >= G)
+    elif chart == "hess":
+        J1, J2, J3 = arr[..., 2], arr[..., 3], arr[..., 4]
+        flags = (J1 <= 0.0) | (J1 >= J2) | (np.abs(J3) >= J2)
+    else:
+        return
+    require_regular(flags.astype(int), what)
+
+
+def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
+                ) -> NDArray[np.float64]:
+    """H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody, to_andoyer, from_andoyer
+    >>> body = RigidBody.paper()
+    >>> x = [0.3, 1.0, 0.2, 1.0, 0.0]
+    >>> bool(np.isclose(hamiltonian(body, x, "andoyer"),
+    ...                 hamiltonian(body, from_andoyer(x))))
+    True
+    """
+    arr, p = _chart_args(body, x, chart)
+    fn = {"euler_poisson": K.ep_hamiltonian, "andoyer": K.andoyer_hamiltonian,
+          "hess": K.hess_hamiltonian}[chart]
+    return np.asarray(fn(*np.moveaxis(arr, -1, 0), *p), dtype=float)
+
+
+def _field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
+    arr, p = _chart_args(body, x, chart)
+    _regular_check(arr, chart, f"the {chart} vector field")
+    fn = {"euler_poisson": K.ep_field, "andoyer": K.andoyer_field, "hess": K.hess_field}[chart]
+    cols = fn(*np.moveaxis(arr, -1, 0), *p)
+    return np.stack(np.broadcast_arrays(*cols, arr[..., 0]), axis=-1)[..., :-1]
+
+
+def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
+                 ) -> NDArray[np.float64]:
+    """Time derivative of the chart coordinates, same shape as ``x``.
+
+    Euler-Poisson: the Lie-Poisson equations (1). Andoyer-Deprit: the canonical
+    equations (4) (``dM/dt = 0``). Hess chart: the canonical equations whose ``M = 0``
+    form is (16) (``dJ3/dt = 0``). The canonical charts need regular points
+    (``|L| < G``, ``|M| < G``; ``0 < J1 < J2``, ``|J3| < J2``) and raise otherwise.
+    """
+    return _field(body, x, chart)[..., : len(CHARTS[chart])]
+
+
+def cyclic_rate(body: RigidBody, x: ArrayLike, chart: Chart = "andoyer"
+                ) -> NDArray[np.float64]:
+    """``dm/dt = dH/dM`` (``= dtheta3/dt = dH/dJ3``): the quadrature for the cyclic angle."""
+    if chart == "euler_poisson":
+        raise ValueError("the cyclic angle m is a coordinate of the 'andoyer' and 'hess' "
+                         "charts; convert the state with to_andoyer or to_hess first")
+    return _field(body, x, chart)[..., -1]

@@ -1,0 +1,29 @@
+"""Numba-compiled versions of the generated kernels (compiled on first use, cached).
+
+``cache=True`` stores the machine code next to the generated module (or in Numba's
+user cache directory when that is read-only), so a second process pays no compile time.
+"""
+
+from __future__ import annotations
+
+import numba
+
+from andoyer.kernels import _generated as _g
+
+__all__ = [
+    "ep_hamiltonian",
+    "ep_field",
+    "andoyer_hamiltonian",
+    "andoyer_field",
+    "hess_hamiltonian",
+    "hess_field",
+]
+
+_jit = numba.njit(cache=True, fastmath=False, nogil=True)
+
+ep_hamiltonian = _jit(_g.ep_hamiltonian)
+ep_field = _jit(_g.ep_field)
+andoyer_hamiltonian = _jit(_g.andoyer_hamiltonian)
+andoyer_field = _jit(_g.andoyer_field)
+hess_hamiltonian = _jit(_g.hess_hamiltonian)
+hess_field = _jit(_g.hess_field)
