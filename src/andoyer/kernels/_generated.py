@@ -170,3 +170,58 @@ def hess_field(theta1, theta2, J1, J2, J3, a, b, c, mu, phi0):
         0.0,
         -x42*(-x12*(-J3*x30 + x31*x44*x9) + x13*(J3*x36 + x31*x44*x5)),
     )
+
+
+SECTION_KINDS = ('G1', 'G2', 'G3', 'gamma1', 'gamma2', 'gamma3', 'L', 'G', 'J1', 'J2', 'l', 'g', 'theta1', 'theta2')
+
+
+def section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv):
+    """Section function ``(f, w)`` of ``SECTION_KINDS[kind] = value`` (see andoyer.symbolic.sections)."""
+    if kind == 0:  # G1
+        return G1 - value, 1.0
+    elif kind == 1:  # G2
+        return G2 - value, 1.0
+    elif kind == 2:  # G3
+        return G3 - value, 1.0
+    elif kind == 3:  # gamma1
+        return gamma1 - value, 1.0
+    elif kind == 4:  # gamma2
+        return gamma2 - value, 1.0
+    elif kind == 5:  # gamma3
+        return gamma3 - value, 1.0
+    elif kind == 6:  # L
+        return G3 - value, 1.0
+    elif kind == 7:  # G
+        return -value + sqrt(G1**2 + G2**2 + G3**2), 1.0
+    elif kind == 8:  # J1
+        return (1/2)*G3 - value + (1/2)*sqrt(G1**2 + G2**2 + G3**2), 1.0
+    elif kind == 9:  # J2
+        return -value + sqrt(G1**2 + G2**2 + G3**2), 1.0
+    elif kind == 10:  # l
+        return G1*cv - G2*sv, G1*sv + G2*cv
+    elif kind == 11:  # g
+        s0 = G1**2 + G2**2
+        s1 = sqrt(G3**2 + s0)*(-G1*gamma2 + G2*gamma1)
+        s2 = G3*(G1*gamma1 + G2*gamma2) - gamma3*s0
+        return cv*s1 - s2*sv, cv*s2 + s1*sv
+    elif kind == 12:  # theta1
+        s0 = sin(phi0)
+        s1 = cos(phi0)
+        s2 = -G1*s0 + G2*s1
+        s3 = G1*s1
+        s4 = G2*s0
+        s5 = s2*(2*s3 + 2*s4)
+        s6 = s2**2 - (s3 + s4)**2
+        return cv*s5 - s6*sv, cv*s6 + s5*sv
+    elif kind == 13:  # theta2
+        s0 = cos(phi0)
+        s1 = sin(phi0)
+        s2 = G1*s0 + G2*s1
+        s3 = G1**2 + G2**2
+        s4 = G3*(G1*gamma1 + G2*gamma2) - gamma3*s3
+        s5 = -G1*s1 + G2*s0
+        s6 = sqrt(G3**2 + s3)*(-G1*gamma2 + G2*gamma1)
+        s7 = -s2*s4 + s5*s6
+        s8 = s2*s6 + s4*s5
+        return cv*s7 - s8*sv, cv*s8 + s7*sv
+    return 0.0, -1.0

@@ -21,6 +21,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
 from andoyer.symbolic import hamiltonian as sym
+from andoyer.symbolic import sections as sec
 
 __all__ = ["KERNELS", "generate_source", "write_generated", "GENERATED_PATH"]
 
@@ -74,6 +75,27 @@ def _function_source(name: str, args: Sequence[sp.Symbol], exprs: Sequence[sp.Ex
     return "\n".join(lines) + "\n"
 
 
+def _section_source() -> str:
+    """One dispatch function ``section(kind, *SECTION_ARGS) -> (f, w)`` over all kinds."""
+    printer = _Printer()
+    kinds = [*sec.SMOOTH, *sec.ANGLES]
+    args = ", ".join(str(a) for a in sec.SECTION_ARGS)
+    lines = [f"SECTION_KINDS = {tuple(kinds)!r}", "", "",
+             f"def section(kind, {args}):",
+             '    """Section function ``(f, w)`` of ``SECTION_KINDS[kind] = value`` '
+             '(see andoyer.symbolic.sections)."""']
+    for i, kind in enumerate(kinds):
+        f, w = sec.section_function(kind)
+        kw = "if" if i == 0 else "elif"
+        lines.append(f"    {kw} kind == {i}:  # {kind}")
+        reps, (fr, wr) = sp.cse([f, w], symbols=sp.numbered_symbols("s"))
+        lines += [f"        {s} = {printer.doprint(e)}" for s, e in reps]
+        wtxt = printer.doprint(wr) if wr.free_symbols else "1.0"
+        lines.append(f"        return {printer.doprint(fr)}, {wtxt}")
+    lines.append("    return 0.0, -1.0")
+    return "\n".join(lines) + "\n"
+
+
 def generate_source() -> str:
     """The text of ``_generated.py`` (runs SymPy; takes tens of seconds)."""
     head = [
@@ -91,6 +113,7 @@ def generate_source() -> str:
     ]
     body = [_function_source(name, args, build(), doc)
             for name, (args, build, doc) in KERNELS.items()]
+    body.append(_section_source())
     return "\n".join(head) + "\n\n".join(body)
 
 

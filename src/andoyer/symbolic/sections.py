@@ -1,0 +1,79 @@
+"""Section functions in Euler-Poisson variables, derived from the chart definitions.
+
+A Poincare section "coordinate = value" of any chart becomes a smooth function
+``f(y)`` of the regular Euler-Poisson state that vanishes on it, and a margin
+``w(y)`` that is positive on the true crossing:
+
+* a smooth coordinate ``q`` (``G1``, ..., ``gamma3``, ``L``, ``G``, ``J1``, ``J2``):
+  ``f = q(y) - value``, ``w = 1``;
+* an angle ``alpha`` (``l``, ``g``, ``theta1``, ``theta2``) given by a pair
+  ``(C, S) = k (cos alpha, sin alpha)`` with ``k > 0`` smooth in y:
+  ``f = S cos(value) - C sin(value) = k sin(alpha - value)`` and
+  ``w = C cos(value) + S sin(value) = k cos(alpha - value)``, so that the section is
+  ``alpha = value (mod 2 pi)`` with no spurious crossing at the wrap (where
+  ``alpha - value = pi``, f vanishes too but ``w < 0``). ``f`` increases when
+  ``alpha`` does, so the crossing direction of ``f`` is that of the angle.
+
+``theta1`` sections are taken mod 2 pi (the period of H on M = 0).
+
+The pairs come from the inverse chart maps of :mod:`andoyer.charts.andoyer_deprit`:
+``(cos l, sin l) ~ (G2, G1)`` and
+``(cos g, sin g) ~ (G3 (G1 gamma1 + G2 gamma2) - gamma3 (G1^2 + G2^2),
+G (G2 gamma1 - G1 gamma2))``.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+
+from andoyer.symbolic.hamiltonian import S
+
+__all__ = ["SMOOTH", "ANGLES", "SECTION_ARGS", "section_function", "angle_pair"]
+
+value, cv, sv = sp.symbols("value cv sv", real=True)
+#: Arguments of every generated section function: state, phi0, value, cos/sin(value).
+SECTION_ARGS = (*S.y, S.phi0, value, cv, sv)
+
+G1, G2, G3, gamma1, gamma2, gamma3 = S.y
+_G = sp.sqrt(G1**2 + G2**2 + G3**2)
+
+#: Smooth (non-angle) section coordinates as functions of y.
+SMOOTH: dict[str, sp.Expr] = {
+    "G1": G1, "G2": G2, "G3": G3, "gamma1": gamma1, "gamma2": gamma2, "gamma3": gamma3,
+    "L": G3, "G": _G, "J1": (_G + G3) / 2, "J2": _G,
+}
+ANGLES = ("l", "g", "theta1", "theta2")
+
+
+@cache
+def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
+    """``(C, S)``, a positive multiple of ``(cos alpha, sin alpha)`` for an angle of a chart."""
+    cl, sl = G2, G1
+    cg = G3 * (G1 * gamma1 + G2 * gamma2) - gamma3 * (G1**2 + G2**2)
+    sg = _G * (G2 * gamma1 - G1 * gamma2)
+    c0, s0 = sp.cos(S.phi0), sp.sin(S.phi0)
+    if name == "l":
+        return cl, sl
+    if name == "g":
+        return cg, sg
+    # l + phi0
+    cp, sp_ = cl * c0 - sl * s0, sl * c0 + cl * s0
+    if name == "theta1":  # 2 (l + phi0)
+        return cp**2 - sp_**2, 2 * sp_ * cp
+    if name == "theta2":  # g - (l + phi0)
+        return cg * cp + sg * sp_, sg * cp - cg * sp_
+    raise ValueError(f"{name!r} is not an angle of a chart; angles: {ANGLES}")
+
+
+def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:
+    """``(f, w)`` of the section ``coord = value`` as expressions in :data:`SECTION_ARGS`."""
+    if coord in SMOOTH:
+        return SMOOTH[coord] - value, sp.Integer(1)
+    if coord in ANGLES:
+        C, Sn = angle_pair(coord)
+        return Sn * cv - C * sv, C * cv + Sn * sv
+    raise ValueError(
+        f"no section for coordinate {coord!r}; choose one of "
+        f"{sorted(SMOOTH) + list(ANGLES)} (M and J3 are constants of the motion)")
