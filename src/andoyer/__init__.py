@@ -1,6 +1,7 @@
 """andoyer: the heavy rigid body (Hess gyroscope) in Andoyer-Deprit variables."""
 
 from andoyer._version import __version__ as __version__
+from andoyer.analysis.paper_check import paper_check as paper_check
 from andoyer.body import RigidBody as RigidBody
 from andoyer.charts import Singular as Singular
 from andoyer.charts import area_integral as area_integral
@@ -10,12 +11,19 @@ from andoyer.charts import from_hess as from_hess
 from andoyer.charts import geometric_integral as geometric_integral
 from andoyer.charts import to_andoyer as to_andoyer
 from andoyer.charts import to_hess as to_hess
+from andoyer.dynamics import cyclic_rate as cyclic_rate
+from andoyer.dynamics import hamiltonian as hamiltonian
+from andoyer.dynamics import vector_field as vector_field
 
 __all__ = [
     "__version__",
     "RigidBody",
     "Singular",
     "area_integral",
+    "cyclic_rate",
+    "hamiltonian",
+    "paper_check",
+    "vector_field",
     "energy",
     "from_andoyer",
     "from_hess",

@@ -8,7 +8,8 @@ Hamiltonian of Eq. (1).
 
 from __future__ import annotations
 
-from typing import Literal
+from collections.abc import Callable
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -28,6 +29,12 @@ CHARTS: dict[str, tuple[str, ...]] = {
     "andoyer": ("l", "g", "L", "G", "M"),
     "hess": ("theta1", "theta2", "J1", "J2", "J3"),
 }
+
+_HAMILTONIANS: dict[str, Callable[..., Any]] = {
+    "euler_poisson": K.ep_hamiltonian, "andoyer": K.andoyer_hamiltonian,
+    "hess": K.hess_hamiltonian}
+_FIELDS: dict[str, Callable[..., Any]] = {
+    "euler_poisson": K.ep_field, "andoyer": K.andoyer_field, "hess": K.hess_field}
 
 
 def _chart_args(body: RigidBody, x: ArrayLike, chart: str
@@ -69,15 +76,14 @@ def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
     True
     """
     arr, p = _chart_args(body, x, chart)
-    fn = {"euler_poisson": K.ep_hamiltonian, "andoyer": K.andoyer_hamiltonian,
-          "hess": K.hess_hamiltonian}[chart]
-    return np.asarray(fn(*np.moveaxis(arr, -1, 0), *p), dtype=float)
+    fn = _HAMILTONIANS[chart]
+    return np.asarray(fn(*np.moveaxis(arr, -1, 0), *p), dtype=np.float64)
 
 
 def _field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
     arr, p = _chart_args(body, x, chart)
     _regular_check(arr, chart, f"the {chart} vector field")
-    fn = {"euler_poisson": K.ep_field, "andoyer": K.andoyer_field, "hess": K.hess_field}[chart]
+    fn = _FIELDS[chart]
     cols = fn(*np.moveaxis(arr, -1, 0), *p)
     return np.stack(np.broadcast_arrays(*cols, arr[..., 0]), axis=-1)[..., :-1]
 

@@ -78,7 +78,8 @@ def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     1.5
     """
     arr = as_state(y)
-    return np.asarray(hamiltonian_expr(*np.moveaxis(arr, -1, 0), *body.params))
+    args = [*np.moveaxis(arr, -1, 0), *body.params]
+    return np.asarray(hamiltonian_expr(*args))
 
 
 def area_integral(y: ArrayLike) -> NDArray[np.float64]:

@@ -89,7 +89,10 @@ def hess_to_ep_expr(theta1: Any, theta2: Any, J1: Any, J2: Any, J3: Any, phi0: A
 
 
 def as_hess(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
-    """Validate Hess-chart coordinates ``(..., 5)``: ``J2 > 0``, ``0 <= J1 <= J2``, ``|J3| <= J2``."""
+    """Validate Hess-chart coordinates ``(..., 5)``.
+
+    Requires ``J2 > 0``, ``0 <= J1 <= J2``, ``|J3| <= J2`` (round-off excesses clipped).
+    """
     arr = np.array(x, dtype=float)
     if arr.ndim == 0 or arr.shape[-1] != 5:
         raise ValueError(f"{name} must have shape (..., 5) = (theta1, theta2, J1, J2, J3), "
@@ -133,8 +136,8 @@ def from_hess(body: RigidBody, x: ArrayLike) -> NDArray[np.float64]:
     True
     """
     arr = as_hess(x)
-    cols = hess_to_ep_expr(*np.moveaxis(arr, -1, 0), body.phi0, sin=np.sin, cos=np.cos,
-                           sqrt=np.sqrt)
+    args = [*np.moveaxis(arr, -1, 0), body.phi0]
+    cols = hess_to_ep_expr(*args, sin=np.sin, cos=np.cos, sqrt=np.sqrt)
     return np.stack(np.broadcast_arrays(*cols), axis=-1)
 
 

@@ -117,12 +117,17 @@ def H_andoyer() -> sp.Expr:
 
 @cache
 def H_hess() -> sp.Expr:
-    """H in the Hess chart: Eq. (1) composed with (15) and (5)-(6), ``e = (cos phi0, sin phi0, 0)``.
+    """H in the Hess chart: Eq. (1) composed with (15) and (5)-(6).
+
+    The centre of mass is ``e = (cos phi0, sin phi0, 0)``.
 
     Valid for any ``a, b, c``; on a Hess body it equals the paper's (theta, J) form.
     """
-    ep = hess_to_ep_expr(*S.hess, S.phi0, sin=sp.sin, cos=sp.cos, sqrt=sp.sqrt)
-    H = hamiltonian_expr(*ep, S.a, S.b, S.c, S.mu, sp.cos(S.phi0), sp.sin(S.phi0), 0)
+    theta1, theta2, J1, J2, J3 = S.hess
+    G1, G2, G3, gamma1, gamma2, gamma3 = hess_to_ep_expr(
+        theta1, theta2, J1, J2, J3, S.phi0, sin=sp.sin, cos=sp.cos, sqrt=sp.sqrt)
+    H = hamiltonian_expr(G1, G2, G3, gamma1, gamma2, gamma3, S.a, S.b, S.c, S.mu,
+                         sp.cos(S.phi0), sp.sin(S.phi0), 0)
     return _factor_radicands(H)
 
 

@@ -1,0 +1,1 @@
+"""Orbits and Poincare sections (friendly layer over the engines)."""

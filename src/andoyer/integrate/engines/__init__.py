@@ -1,0 +1,1 @@
+"""Integration engines behind one seam (:mod:`andoyer.integrate.engines.base`)."""
