@@ -19,8 +19,8 @@ Singular set
 ------------
 ``G = 0`` (everything undefined); ``L = +-G`` (``G1 = G2 = 0``: only ``l +- g`` is
 defined, we return ``l = 0``); ``|M| = G`` (``gamma`` parallel to G: ``g`` undefined,
-we return ``g = 0``). :func:`to_andoyer` flags these points in a mask (see
-:class:`Singular`) instead of returning NaN.
+we return ``g = 0`` and ``M = +-G |gamma|`` exactly). :func:`to_andoyer` flags these
+points in a mask (see :class:`Singular`) instead of returning NaN.
 
 References
 ----------
@@ -66,7 +66,7 @@ class Singular(enum.IntFlag):
     NONE = 0
     #: ``L = +G`` or ``L = -G``: ``G1 = G2 = 0``; ``l`` set to 0 (``J1 = J2`` or ``J1 = 0``).
     L_EQ_PM_G = 1
-    #: ``|M| = G``: gamma parallel to G; ``g`` set to 0 (``|J3| = J2``).
+    #: ``|M| = G``: gamma parallel to G; ``g`` set to 0, ``M`` to ``+-G |gamma|`` (``|J3| = J2``).
     M_EQ_PM_G = 2
     #: ``G = 0``: all angles set to 0, ``L = M = 0``.
     G_ZERO = 4
@@ -207,9 +207,14 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
         Only with ``with_mask=True``.
     """
     arr = as_state(y)
-    flags, G, rho, _ = _flags(arr)
+    flags, G, rho, gnorm = _flags(arr)
     G1, G2, G3, gamma1, gamma2, gamma3 = np.moveaxis(arr, -1, 0)
     M = G1 * gamma1 + G2 * gamma2 + G3 * gamma3
+    # On |M| = G the dot product misses +-G|gamma| by round-off, which from_andoyer
+    # would turn into a spurious sin I ~ sqrt(eps) (gamma off G by ~1e-8): pin M to
+    # +-G|gamma|, and to +-G where |gamma| = 1 up to round-off.
+    gunit = np.where(np.abs(gnorm - 1.0) <= 4.0 * np.finfo(float).eps, 1.0, gnorm)
+    M = np.where(flags & int(Singular.M_EQ_PM_G), np.copysign(G * gunit, M), M)
     l = np.arctan2(G1, G2)  # atan2(0, 0) = 0: the convention on L = +-G
     Gsafe = np.where(G > 0.0, G, 1.0)
     sl, cl = np.sin(l), np.cos(l)

@@ -1,0 +1,338 @@
+"""Orbits and Poincare sections: validated inputs in, self-describing datasets out.
+
+Integration is done in the Euler-Poisson variables (1), regular everywhere; initial
+states may be given in any chart. :func:`integrate_canonical` integrates the canonical
+systems (4) or (16) directly, for comparison with the paper.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.charts.euler_poisson import as_state
+from andoyer.charts.hess import from_hess
+from andoyer.integrate.engines import default_engine_name, get_engine
+from andoyer.integrate.results import provenance, states_dataset
+from andoyer.integrate.section import Section
+
+__all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL"]
+
+#: |gamma| may differ from 1 by this much (then it is renormalised); more is an error.
+GAMMA_TOL = 1e-12
+_CHARTS = ("euler_poisson", "andoyer", "hess")
+
+
+# ---------------------------------------------------------------------- validation
+def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson"
+                   ) -> NDArray[np.float64]:
+    """Euler-Poisson initial states, shape (n, 6), from states given in ``chart``.
+
+    ``chart="andoyer"`` takes ``(l, g, L, G, M)``, ``chart="hess"`` takes
+    ``(theta1, theta2, J1, J2, J3)``. Euler-Poisson states must have ``|gamma| = 1``
+    within :data:`GAMMA_TOL`; within it gamma is renormalised, beyond it
+    ``ValueError`` is raised.
+    """
+    if chart not in _CHARTS:
+        raise ValueError(f"unknown chart {chart!r}; choose one of {', '.join(_CHARTS)}")
+    if chart == "andoyer":
+        y = from_andoyer(y0)
+    elif chart == "hess":
+        y = from_hess(body, y0)
+    else:
+        y = as_state(y0, "y0").copy()
+        norm = np.linalg.norm(y[..., 3:], axis=-1)
+        bad = np.abs(norm - 1.0) > GAMMA_TOL
+        if np.any(bad):
+            worst = float(np.max(np.abs(norm - 1.0)))
+            raise ValueError(
+                f"y0: gamma must be a unit vector (|gamma| = 1 is the physical level of the "
+                f"geometric integral); max ||gamma| - 1| = {worst:.3g} exceeds {GAMMA_TOL:g}. "
+                "Normalise gamma yourself if that is what you mean.")
+        y[..., 3:] /= norm[..., None]
+    y = np.atleast_2d(y)
+    if y.ndim != 2:
+        raise ValueError(f"y0 must be one state or a list of states, got shape {y.shape}")
+    if y.shape[0] == 0:
+        raise ValueError("y0 holds no state")
+    return y
+
+
+def _check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
+    for name, v in (("rtol", rtol), ("atol", atol)):
+        if not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise ValueError(f"{name} must be a finite number, got {v!r}")
+    if not 1e-16 <= rtol <= 1e-3:
+        raise ValueError(f"rtol = {rtol:g} is out of range [1e-16, 1e-3]")
+    if not 0.0 < atol <= 1e-3:
+        raise ValueError(f"atol = {atol:g} is out of range (0, 1e-3]")
+    return float(rtol), float(atol)
+
+
+def _check_times(t: ArrayLike) -> NDArray[np.float64]:
+    arr = np.asarray(t, dtype=float)
+    if arr.ndim != 1 or arr.size < 2:
+        raise ValueError(f"t must be a 1-D array of at least 2 output times (the first is "
+                         f"the initial time), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("t contains NaN or infinity")
+    if np.any(np.diff(arr) <= 0.0):
+        raise ValueError("t must be strictly increasing")
+    return arr
+
+
+class _Progress:
+    """A plain progress line on stderr for work that lasts more than a second."""
+
+    def __init__(self, total: int, label: str, enabled: bool | None) -> None:
+        self.total, self.label, self.done = total, label, 0
+        self.t0 = time.perf_counter()
+        self.enabled = sys.stderr.isatty() if enabled is None else enabled
+        self.shown = False
+
+    def update(self, k: int) -> None:
+        self.done += k
+        elapsed = time.perf_counter() - self.t0
+        if not self.enabled or (elapsed < 1.0 and self.done < self.total):
+            return
+        frac = self.done / self.total
+        eta = elapsed / frac * (1 - frac) if frac > 0 else float("nan")
+        bar = "#" * int(30 * frac)
+        sys.stderr.write(f"\r{self.label} [{bar:<30}] {self.done}/{self.total} "
+                         f"{elapsed:5.1f}s elapsed, {eta:5.1f}s left")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\n")
+
+
+def _chunks(n: int, parts: int) -> list[slice]:
+    size = max(1, math.ceil(n / parts))
+    return [slice(i, min(n, i + size)) for i in range(0, n, size)]
+
+
+def _params(body: RigidBody) -> tuple[float, ...]:
+    phi0 = body.phi0 if abs(body.e3) <= 1e-12 else 0.0
+    return (*body.params, phi0)
+
+
+def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
+                progress: bool | None) -> list[Any]:
+    bar = _Progress(n, label, progress)
+    out = []
+    # Chunks big enough for the engines' batch and thread parallelism.
+    for sl in _chunks(n, max(1, min(20, n // 16))):
+        out.append(fn(sl))
+        bar.update(sl.stop - sl.start)
+    bar.close()
+    return out
+
+
+# ---------------------------------------------------------------------- orbits
+def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | None = None,
+              rtol: float = 1e-12, atol: float = 1e-12, chart: str = "euler_poisson",
+              progress: bool | None = None) -> xr.Dataset:
+    """Integrate the Euler-Poisson equations (1) from one or many initial states.
+
+    Parameters
+    ----------
+    body : RigidBody
+    y0 : array_like, shape (6,) or (n, 6) (or (5,)/(n, 5) in the other charts)
+        Initial states in ``chart`` coordinates.
+    t : array_like, shape (k,)
+        Output times, strictly increasing; ``t[0]`` is the initial time.
+    engine : {"heyoka", "numba", "scipy"}, optional
+        Default: heyoka where installed, else numba.
+    rtol, atol : float
+        Tolerances (heyoka has a single tolerance: it uses ``min(rtol, atol)``).
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``y0``.
+    progress : bool, optional
+        Show a progress line on stderr (default: when stderr is a terminal).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(orbit, time)``: the Euler-Poisson state, the Andoyer-Deprit and Hess
+        coordinates, the integrals ``H``, ``area``, ``geometric`` and their drifts
+        ``H_drift`` (relative to ``|H(0)|``), ``area_drift`` (relative to ``|G(0)|``)
+        and ``geometric_drift``; attrs record body, engine, tolerances and version.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = propagate(RigidBody.paper(), [0.3, 1.0, 0.2, 1.0, 0.0], [0.0, 1.0, 2.0],
+    ...                chart="andoyer", engine="scipy")
+    >>> ds.sizes["time"], bool(abs(ds.H_drift).max() < 1e-10)
+    (3, True)
+    """
+    rtol, atol = _check_tolerances(rtol, atol)
+    times = _check_times(t)
+    y = initial_states(body, y0, chart)
+    name = default_engine_name() if engine is None else engine
+    eng = get_engine(name)
+    params = _params(body)
+    parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, rtol, atol),
+                        y.shape[0], f"propagate ({name})", progress)
+    Y = np.concatenate(parts, axis=0)
+    ds = states_dataset(
+        body, Y, ("orbit", "time"), {"orbit": np.arange(Y.shape[0]), "time": times},
+        provenance(body, engine=name, rtol=rtol, atol=atol, initial_chart=chart))
+    H0 = ds.H.isel(time=0)
+    G0 = np.sqrt(ds.G1**2 + ds.G2**2 + ds.G3**2).isel(time=0)
+    ds["H_drift"] = (ds.H - H0) / xr.where(abs(H0) > 0, abs(H0), 1.0)
+    ds["area_drift"] = (ds.area - ds.area.isel(time=0)) / xr.where(G0 > 0, G0, 1.0)
+    ds["geometric_drift"] = ds.geometric - ds.geometric.isel(time=0)
+    for v in ("H_drift", "area_drift", "geometric_drift"):
+        ds[v].attrs.update(units="1", long_name=f"drift of {v.split('_')[0]} since t[0]")
+    ds.time.attrs.update(units="body time units", long_name="time")
+    return ds
+
+
+def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings: int, *,
+             engine: str | None = None, rtol: float = 1e-12, atol: float = 1e-12,
+             t_max: float | None = None, chart: str = "euler_poisson",
+             progress: bool | None = None) -> xr.Dataset:
+    """Poincare section: the first ``n_crossings`` crossings of ``section`` by each orbit.
+
+    Parameters
+    ----------
+    body : RigidBody
+    y0 : array_like
+        Initial states (see :func:`propagate`).
+    section : Section or str
+        E.g. ``Section("g", 0.0)``, ``"theta2=0"``, ``"G3=0:+"``.
+    n_crossings : int
+        Crossings wanted per orbit.
+    t_max : float, optional
+        Integrate at most to this time (default ``1000 * n_crossings``); orbits with
+        fewer crossings are NaN-padded.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(orbit, crossing)``: crossing time ``t``, all coordinates, ``count`` of
+        crossings found per orbit, and ``section_residual`` (``coord - value``, or
+        ``sin(angle - value)`` for angles), which is ``<= 1e-12`` in magnitude.
+    """
+    sec = Section.parse(section) if isinstance(section, str) else section
+    if not isinstance(sec, Section):
+        raise ValueError(f"section must be a Section or a string like 'g=0', got {section!r}")
+    if sec.chart == "hess":
+        body._require_planar(f"the Hess-chart section {sec.coord!r}")
+    if not isinstance(n_crossings, (int, np.integer)) or n_crossings < 1:
+        raise ValueError(f"n_crossings must be a positive integer, got {n_crossings!r}")
+    rtol, atol = _check_tolerances(rtol, atol)
+    t_end = 1000.0 * n_crossings if t_max is None else float(t_max)
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_max must be a positive finite time, got {t_max!r}")
+    y = initial_states(body, y0, chart)
+    name = default_engine_name() if engine is None else engine
+    eng = get_engine(name)
+    params = _params(body)
+    parts = _run_chunks(
+        lambda sl: eng.crossings(y[sl], params, sec.kind, sec.value, sec.direction,
+                                 int(n_crossings), t_end, rtol, atol),
+        y.shape[0], f"poincare ({name})", progress)
+    T = np.concatenate([p.t for p in parts], axis=0)
+    Y = np.concatenate([p.y for p in parts], axis=0)
+    count = np.concatenate([p.count for p in parts], axis=0)
+    ds = states_dataset(
+        body, Y, ("orbit", "crossing"),
+        {"orbit": np.arange(Y.shape[0]), "crossing": np.arange(int(n_crossings))},
+        provenance(body, engine=name, rtol=rtol, atol=atol, t_max=t_end,
+                   initial_chart=chart, **sec.attrs()),
+        extra={"t": (("orbit", "crossing"), T), "count": (("orbit",), count),
+               "y0": (("orbit", "component"), y)})
+    ds["section_residual"] = _section_residual(ds, sec)
+    ds.t.attrs.update(long_name="time of the crossing", units="body time units")
+    return ds
+
+
+_STORAGE = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action"}
+
+
+def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
+    var = ds[_STORAGE.get(sec.coord, sec.coord)]
+    if sec.is_angle:
+        period = 2 * np.pi
+        res = np.sin(np.mod(var - sec.value, period))
+    else:
+        res = var - sec.value
+    res.attrs.update(long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing",
+                     units="1")
+    return res
+
+
+# ---------------------------------------------------------------------- canonical charts
+def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
+                        chart: str = "hess", rtol: float = 1e-12, atol: float = 1e-12,
+                        singular_margin: float = 1e-9) -> xr.Dataset:
+    """Integrate the canonical equations (4) (``chart="andoyer"``) or the Hess-chart
+    equations ((16) at ``M = 0``) directly, for comparison with the paper.
+
+    The charts are singular at ``L = +-G`` (``J1 = 0``, ``J1 = J2``) and ``|M| = G``;
+    integration stops with ``ValueError`` when an orbit comes within
+    ``singular_margin * G`` of them (use :func:`propagate` there: it integrates the
+    regular Euler-Poisson equations). scipy's DOP853 is used.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(time,)``: the chart coordinates and the cyclic angle (``m`` or
+        ``theta3``) by quadrature, from 0 at ``t[0]``.
+    """
+    from scipy.integrate import solve_ivp
+
+    from andoyer.dynamics import CHARTS, _field
+
+    if chart not in ("andoyer", "hess"):
+        raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
+    rtol, atol = _check_tolerances(rtol, atol)
+    times = _check_times(t)
+    x = np.asarray(x0, dtype=float)
+    if x.shape != (5,):
+        raise ValueError(f"x0 must be one point of the {chart} chart, shape (5,), "
+                         f"got {x.shape}")
+    names = CHARTS[chart]
+
+    def rhs(_t: float, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        return _field(body, z[:5], chart)
+
+    def distance(_t: float, z: NDArray[np.float64]) -> float:
+        if chart == "andoyer":
+            G = z[3]
+            return float(min(G - abs(z[2]), G - abs(z[4])) / G - singular_margin)
+        J1, J2, J3 = z[2], z[3], z[4]
+        return float(min(J1, J2 - J1, J2 - abs(J3)) / J2 - singular_margin)
+
+    distance.terminal = True  # type: ignore[attr-defined]
+    sol = solve_ivp(rhs, (times[0], times[-1]), np.append(x, 0.0), method="DOP853",
+                    t_eval=times, rtol=rtol, atol=atol, events=distance)
+    if sol.status == 1:
+        raise ValueError(
+            f"the orbit reached the singular set of the {chart} chart at t = "
+            f"{sol.t_events[0][0]:.6g} (L = +-G or |M| = G); integrate it with "
+            "propagate(), which uses the regular Euler-Poisson variables")
+    if not sol.success:
+        raise RuntimeError(f"integration failed: {sol.message}")
+    cyc = "m" if chart == "andoyer" else "theta3"
+    data: dict[str, Any] = {n: (("time",), sol.y[i]) for i, n in enumerate(names)}
+    data[cyc] = (("time",), sol.y[5])
+    renamed = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action",
+               "M": "M_action", "m": "m_angle"}
+    ds = xr.Dataset(data, coords={"time": times},
+                    attrs=provenance(body, engine="scipy-DOP853", rtol=rtol, atol=atol,
+                                     equations=f"canonical equations in the {chart} chart"))
+    return ds.rename({k: v for k, v in renamed.items() if k in ds})

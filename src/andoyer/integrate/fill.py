@@ -1,0 +1,651 @@
+"""Filling a Poincare section: initial states on one energy level, and its accessible region.
+
+A section of the reduced system (M fixed) is a plane of one chart at a fixed angle:
+
+* ``g = g*`` in the Andoyer-Deprit chart (5)-(6): plane ``(l, L)``, remaining action
+  ``G`` solved from ``H(l, g*, L, G, M) = h`` (H of Eq. (7));
+* ``theta2 = theta2*`` in the Hess chart (14)-(15): plane ``(theta1, J1)``, remaining
+  action ``J2`` solved from ``H(theta1, theta2*, J1, J2, J3 = M) = h`` (H after (15)).
+
+Both charts order their coordinates ``(angle1, angle2, action1, action2, action3)`` with
+the section on ``angle2``, the plane ``(angle1, action1)`` and the solved ``action2``,
+so one solver serves both.
+
+The equation for the action is solved on its whole admissible interval and **all**
+roots are found: a scan (nodes dense near the lower end, where H has a square-root
+singularity) brackets the sign changes, every discrete extremum of the scan that does
+not change sign is refined by golden-section search (two roots closer than the scan
+step are found too), and each bracket is closed by :func:`scipy.optimize.brentq`.
+
+The accessible region is where ``min over the action of H <= h``: it is reported on a
+fine grid of the plane (``accessible``) and as the contour polylines of that minimum at
+level h (``boundary_x``, ``boundary_y``, NaN-separated).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import contourpy
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+from scipy.stats import qmc
+
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.charts.euler_poisson import STATE, energy
+from andoyer.charts.hess import from_hess
+from andoyer.dynamics import vector_field
+from andoyer.integrate.results import VARIABLE_ATTRS, provenance
+from andoyer.kernels import _generated as K
+
+__all__ = ["fill_section", "section_roots", "SECTION_PLANES", "SINGULAR_MARGIN"]
+
+TWO_PI = 2.0 * math.pi
+
+#: Roots closer than this (relative to the action) to the chart's singular set
+#: (``G = |L|``, ``G = |M|``; ``J1 = 0``, ``J1 = J2``, ``J2 = |J3|``) are skipped: there the
+#: section angle is undefined or ill-conditioned (it loses ``eps / sqrt(margin)``).
+SINGULAR_MARGIN = 1e-6
+
+#: Scan nodes per plane point: for root brackets, and for the accessible-region grid.
+_N_SCAN_ROOTS = 257
+_N_SCAN_GRID = 65
+#: Lower floor of the action, relative to its upper bound, so that H is never evaluated
+#: at G = 0 (where the chart and the kernels are undefined).
+_ACTION_FLOOR = 1e-9
+_GOLDEN_ITERATIONS = 64
+_INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+@dataclass(frozen=True)
+class _Plane:
+    """One kind of section: its chart and the storage names of the chart's coordinates."""
+
+    chart: str
+    coord: str
+    storage: tuple[str, str, str, str, str]
+    symbols: tuple[str, str, str, str, str]
+    equations: str
+
+
+#: Section coordinate -> its plane. Coordinates are ``(angle1, section angle, plane
+#: action, solved action, area constant)``.
+SECTION_PLANES: dict[str, _Plane] = {
+    "g": _Plane("andoyer", "g",
+                ("l_angle", "g_angle", "L_action", "G_action", "M_action"),
+                ("l", "g", "L", "G", "M"),
+                "H of Eq. (7) in the Andoyer-Deprit variables (5)-(6) of Kyrychenko; "
+                "section g = const, G solved from H(l, g, L, G, M) = h"),
+    "theta2": _Plane("hess", "theta2",
+                     ("theta1", "theta2", "J1", "J2", "J3"),
+                     ("theta1", "theta2", "J1", "J2", "J3"),
+                     "H in the Hess variables (14)-(15) of Kyrychenko (the Hamiltonian "
+                     "after Eq. (15)); section theta2 = const, J2 solved from "
+                     "H(theta1, theta2, J1, J2, J3 = M) = h"),
+}
+_ALIASES = {"g_angle": "g"}
+
+Method = Literal["grid", "sobol", "halton"]
+RootChoice = Literal["all", "smallest", "largest"]
+
+
+# ----------------------------------------------------------------------- the equation
+@dataclass(frozen=True)
+class _Equation:
+    """``H(p, value, q, A, M) - h`` on one section, ``A`` in ``[lo(q), act_max]``."""
+
+    plane: _Plane
+    hamiltonian: Callable[..., Any]
+    value: float
+    M: float
+    h: float
+    act_max: float
+
+    def f(self, p: Any, q: Any, A: Any) -> NDArray[np.float64]:
+        return np.asarray(self.hamiltonian(p, self.value, q, A, self.M), dtype=float) - self.h
+
+    def lower(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Lower end of the admissible action: ``max(|L|, |M|)`` resp. ``max(J1, |J3|)``."""
+        return np.maximum(np.maximum(np.abs(q), abs(self.M)), _ACTION_FLOOR * self.act_max)
+
+    def scan(self, p: NDArray[np.float64], q: NDArray[np.float64], k: int
+             ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Action nodes ``(P, k)``, quadratically dense at the lower end, and f there."""
+        lo = self.lower(q)
+        hi = np.maximum(lo, self.act_max)
+        s = np.linspace(0.0, 1.0, k) ** 2
+        A = lo[:, None] + (hi - lo)[:, None] * s
+        return A, self.f(p[:, None], q[:, None], A)
+
+    def golden_min(self, p: NDArray[np.float64], q: NDArray[np.float64],
+                   a: NDArray[np.float64], b: NDArray[np.float64], sign: float = 1.0
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Vectorised golden-section search of the minimum of ``sign * f`` on ``[a, b]``."""
+        c = b - _INV_PHI * (b - a)
+        d = a + _INV_PHI * (b - a)
+        fc, fd = sign * self.f(p, q, c), sign * self.f(p, q, d)
+        for _ in range(_GOLDEN_ITERATIONS):
+            left = fc < fd
+            b = np.where(left, d, b)
+            a = np.where(left, a, c)
+            new = np.where(left, b - _INV_PHI * (b - a), a + _INV_PHI * (b - a))
+            fnew = sign * self.f(p, q, new)
+            c, d, fc, fd = (np.where(left, new, d), np.where(left, c, new),
+                            np.where(left, fnew, fd), np.where(left, fc, fnew))
+        x = np.where(fc < fd, c, d)
+        return x, sign * np.minimum(fc, fd)
+
+    def admissible(self, q: NDArray[np.float64]) -> NDArray[np.bool_]:
+        return self.act_max * (1.0 - SINGULAR_MARGIN) > self.lower(q)
+
+    def min_over_action(self, p: NDArray[np.float64], q: NDArray[np.float64],
+                        k: int = _N_SCAN_GRID, chunk: int = 8192) -> NDArray[np.float64]:
+        """``min_A H - h`` per plane point (continuous in ``(p, q)``)."""
+        out = np.empty(p.shape, dtype=float)
+        for s in range(0, p.size, chunk):
+            ps, qs = p[s:s + chunk], q[s:s + chunk]
+            A, F = self.scan(ps, qs, k)
+            i = np.argmin(F, axis=1)
+            rows = np.arange(ps.size)
+            a = A[rows, np.maximum(i - 1, 0)]
+            b = A[rows, np.minimum(i + 1, k - 1)]
+            _, fmin = self.golden_min(ps, qs, a, b)
+            out[s:s + chunk] = np.minimum(F[rows, i], fmin)
+        return out
+
+    def brackets(self, p: NDArray[np.float64], q: NDArray[np.float64],
+                 k: int = _N_SCAN_ROOTS) -> tuple[NDArray[np.intp], NDArray[np.float64],
+                                                  NDArray[np.float64], NDArray[np.intp],
+                                                  NDArray[np.float64]]:
+        """Intervals with a sign change of f, and roots that fell exactly on scan nodes.
+
+        Returns ``(point, a, b)`` of the brackets and ``(point, A)`` of the exact roots.
+        A pair of roots inside one scan cell is found through the discrete extremum next
+        to it; three roots inside one cell (an extremum pair narrower than the scan
+        step, inside a sign change) would show as one.
+        """
+        A, F = self.scan(p, q, k)
+        ok = self.admissible(q)
+        A, F = A[ok], F[ok]
+        where_ok = np.flatnonzero(ok)
+        # Sign changes between neighbouring nodes.
+        i, j = np.nonzero(F[:, :-1] * F[:, 1:] < 0.0)
+        pts, lo, hi = [where_ok[i]], [A[i, j]], [A[i, j + 1]]
+        # Discrete extrema that do not change sign may hide two close roots.
+        Fl = np.concatenate([F[:, :1], F[:, :-1]], axis=1)
+        Fr = np.concatenate([F[:, 1:], F[:, -1:]], axis=1)
+        for sign in (1.0, -1.0):
+            g, gl, gr = sign * F, sign * Fl, sign * Fr
+            i, j = np.nonzero((g > 0.0) & (g <= gl) & (g <= gr) & (gl > 0.0) & (gr > 0.0))
+            if i.size == 0:
+                continue
+            a = A[i, np.maximum(j - 1, 0)]
+            b = A[i, np.minimum(j + 1, k - 1)]
+            x, fx = self.golden_min(p[where_ok[i]], q[where_ok[i]], a, b, sign)
+            cross = sign * fx < 0.0
+            pts += [where_ok[i[cross]], where_ok[i[cross]]]
+            lo += [a[cross], x[cross]]
+            hi += [x[cross], b[cross]]
+        i, j = np.nonzero(F == 0.0)
+        return (np.concatenate(pts), np.concatenate(lo), np.concatenate(hi),
+                where_ok[i], A[i, j])
+
+    def roots(self, p: NDArray[np.float64], q: NDArray[np.float64]
+              ) -> list[NDArray[np.float64]]:
+        """All admissible roots ``A`` of ``f(p, q, A) = 0`` per plane point, ascending."""
+        pts, lo, hi, zpts, zA = self.brackets(p, q)
+        found: list[list[float]] = [[] for _ in range(p.size)]
+        for i, a, b in zip(pts, lo, hi, strict=True):
+            pi, qi = float(p[i]), float(q[i])
+            r = brentq(lambda A, pi=pi, qi=qi: float(self.f(pi, qi, A)), float(a), float(b),
+                       xtol=1e-14 * self.act_max, rtol=4 * np.finfo(float).eps, maxiter=200)
+            found[i].append(r)
+        for i, A in zip(zpts, zA, strict=True):
+            found[i].append(float(A))
+        out = []
+        for i, rs in enumerate(found):
+            r = np.unique(np.asarray(rs, dtype=float))
+            if r.size > 1:  # brackets that share an end may return one root twice
+                r = r[np.concatenate([[True], np.diff(r) > 1e-10 * self.act_max])]
+            out.append(r[self._regular(q[i], r)])
+        return out
+
+    def _regular(self, q: float, A: NDArray[np.float64]) -> NDArray[np.bool_]:
+        margin = SINGULAR_MARGIN * A
+        ok = (A - np.abs(q) > margin) & (A - abs(self.M) > margin)
+        if self.plane.chart == "hess":
+            ok &= q > margin
+        return ok
+
+
+def _energy_kernel(body: RigidBody, plane: _Plane) -> Callable[..., Any]:
+    """H in the section's chart, from the generated kernels (derived from Eq. (1))."""
+    if plane.chart == "andoyer":
+        params = body.params
+        return lambda l, g, L, G, M: K.andoyer_hamiltonian(l, g, L, G, M, *params)
+    hparams = (body.a, body.b, body.c, body.mu, body.phi0)
+    return lambda theta1, theta2, J1, J2, J3: K.hess_hamiltonian(theta1, theta2, J1, J2, J3,
+                                                                 *hparams)
+
+
+def _action_bound(body: RigidBody, h: float) -> float:
+    """Largest action on the level h: ``H >= min(a, b, c) G^2 / 2 - mu``."""
+    return math.sqrt(2.0 * (h + body.mu) / min(body.a, body.b, body.c))
+
+
+def _default_bounds(plane: _Plane, act_max: float, M: float
+                    ) -> tuple[tuple[float, float], tuple[float, float]]:
+    if plane.chart == "andoyer":
+        return (0.0, TWO_PI), (-act_max, act_max)
+    # H is 4 pi-periodic in theta1, 2 pi-periodic on M = 0 (see andoyer.charts.hess).
+    return (0.0, TWO_PI if M == 0.0 else 2.0 * TWO_PI), (0.0, act_max)
+
+
+# ----------------------------------------------------------------------- validation
+def _parse_section(section: Any) -> tuple[_Plane, float]:
+    if isinstance(section, str):
+        coord, sep, val = section.partition("=")
+        if not sep:
+            raise ValueError(f"cannot parse section {section!r}; write e.g. 'g=0' or "
+                             "pass ('g', 0.0)")
+        coord, value = coord.strip(), val.strip()
+    elif hasattr(section, "coord") and hasattr(section, "value"):
+        coord, value = section.coord, section.value
+    else:
+        try:
+            coord, value = section
+        except (TypeError, ValueError):
+            raise ValueError(f"section must be (coord, value), e.g. ('g', 0.0), or an object "
+                             f"with .coord and .value; got {section!r}") from None
+    name = _ALIASES.get(coord, coord)
+    if name not in SECTION_PLANES:
+        raise ValueError(f"cannot fill a section of coordinate {coord!r}: choose 'g' "
+                         "(Andoyer-Deprit plane (l, L)) or 'theta2' (Hess plane (theta1, J1))")
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"section value must be a number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ValueError(f"section value must be finite, got {v!r}")
+    return SECTION_PLANES[name], math.remainder(v, TWO_PI) % TWO_PI
+
+
+def _finite(name: str, v: Any) -> float:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {v!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {x!r}")
+    return x
+
+
+def _check_bounds(bounds: Any, plane: _Plane
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+    try:
+        (x0, x1), (y0, y1) = bounds
+        x0, x1, y0, y1 = (_finite("plane_bounds", v) for v in (x0, x1, y0, y1))
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"plane_bounds must be ((x_min, x_max), (y_min, y_max)) of finite "
+                         f"numbers, got {bounds!r} ({err})") from None
+    if not (x0 < x1 and y0 < y1):
+        raise ValueError(f"plane_bounds must have min < max on both axes, got {bounds!r}")
+    if plane.chart == "hess" and y0 < 0.0:
+        raise ValueError(f"plane_bounds: J1 = (G + L)/2 >= 0, got J1 range ({y0}, {y1})")
+    return (x0, x1), (y0, y1)
+
+
+def _label(plane: _Plane, value: float, M: float) -> str:
+    return f"{plane.coord} = {value:.6g} (M = {M:.6g})"
+
+
+def _section_minimum(body: RigidBody, plane: _Plane, value: float, M: float,
+                     bounds: Any) -> float:
+    """Approximate minimum of H over the section (h-independent), for error messages."""
+    amax = float(np.max(np.abs([body.a, body.b, body.c])))
+    if M != 0.0:
+        G0 = 2.0 * abs(M)
+    elif body.mu > 0.0:
+        G0 = math.sqrt(body.mu / amax)
+    else:
+        G0 = 1.0
+    # Some admissible point has H <= H_ref, so the minimum needs G <= G_up.
+    H_ref = 0.5 * amax * G0**2 + body.mu
+    G_up = _action_bound(body, H_ref)
+    eq = _Equation(plane, _energy_kernel(body, plane), value, M, 0.0, G_up)
+    (x0, x1), (y0, y1) = bounds if bounds is not None else _default_bounds(plane, G_up, M)
+    X, Y = np.meshgrid(np.linspace(x0, x1, 121), np.linspace(y0, y1, 121), indexing="ij")
+    return float(np.min(eq.min_over_action(X.ravel(), Y.ravel())))
+
+
+def _no_intersection(body: RigidBody, plane: _Plane, value: float, M: float, h: float,
+                     bounds: Any, why: str = "") -> ValueError:
+    hmin = _section_minimum(body, plane, value, M, bounds)
+    s = plane.symbols
+    msg = (f"energy level h = {h:.10g} does not intersect the section "
+           f"{_label(plane, value, M)}: on this section H takes values in "
+           f"[{hmin:.10g}, +inf) (the minimum over the ({s[0]}, {s[2]}) plane at admissible "
+           f"{s[3]}, estimated on a grid; H grows without bound with {s[3]}), so h must "
+           f"exceed about {hmin:.6g}")
+    if why:
+        msg += f"; {why}"
+    return ValueError(msg)
+
+
+# ----------------------------------------------------------------------- sampling
+def _bbox(acc: NDArray[np.bool_], xs: NDArray[np.float64], ys: NDArray[np.float64]
+          ) -> tuple[float, float, float, float, float]:
+    """Bounding box of the accessible grid cells (one cell of margin) and its fill ratio."""
+    i = np.flatnonzero(acc.any(axis=1))
+    j = np.flatnonzero(acc.any(axis=0))
+    i0, i1 = max(i[0] - 1, 0), min(i[-1] + 1, xs.size - 1)
+    j0, j1 = max(j[0] - 1, 0), min(j[-1] + 1, ys.size - 1)
+    frac = float(acc[i0:i1 + 1, j0:j1 + 1].mean())
+    return float(xs[i0]), float(xs[i1]), float(ys[j0]), float(ys[j1]), frac
+
+
+def _has_root(eq: _Equation, p: NDArray[np.float64], q: NDArray[np.float64]
+              ) -> NDArray[np.bool_]:
+    pts, _, _, zpts, _ = eq.brackets(p, q)
+    out = np.zeros(p.size, dtype=bool)
+    out[pts] = True
+    out[zpts] = True
+    return out
+
+
+def _grid_points(eq: _Equation, box: tuple[float, float, float, float, float], n: int
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Cell-centred k x k grid over the box, k chosen so that about n points are accessible."""
+    x0, x1, y0, y1, frac = box
+    k = max(1, math.ceil(math.sqrt(n / max(frac, 1e-6))))
+    best: tuple[int, NDArray[np.float64], NDArray[np.float64]] | None = None
+    tried: set[int] = set()
+    for _ in range(8):
+        if k in tried:
+            break
+        tried.add(k)
+        gx = x0 + (np.arange(k) + 0.5) * (x1 - x0) / k
+        gy = y0 + (np.arange(k) + 0.5) * (y1 - y0) / k
+        X, Y = (a.ravel() for a in np.meshgrid(gx, gy, indexing="ij"))
+        keep = _has_root(eq, X, Y)
+        count = int(keep.sum())
+        if best is None or abs(count - n) < abs(best[0] - n) or best[0] == 0:
+            best = (count, X[keep], Y[keep])
+        if count == n:
+            break
+        k = 2 * k if count == 0 else max(1, round(k * math.sqrt(n / count)))
+    assert best is not None
+    return best[1], best[2]
+
+
+def _qmc_points(eq: _Equation, box: tuple[float, float, float, float, float], n: int,
+                method: str, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The first n accessible points of a scrambled Sobol or Halton sequence in the box."""
+    x0, x1, y0, y1, frac = box
+    engine = (qmc.Sobol if method == "sobol" else qmc.Halton)(d=2, scramble=True, rng=seed)
+    # Sobol points keep their balance in blocks of a power of 2.
+    m = 2 ** max(1, math.ceil(math.log2(1.25 * n / max(frac, 1e-6))))
+    xs: list[NDArray[np.float64]] = []
+    ys: list[NDArray[np.float64]] = []
+    got = 0
+    for _ in range(64):
+        u = engine.random(m)
+        X, Y = x0 + (x1 - x0) * u[:, 0], y0 + (y1 - y0) * u[:, 1]
+        keep = _has_root(eq, X, Y)
+        xs.append(X[keep])
+        ys.append(Y[keep])
+        got += int(keep.sum())
+        if got >= n:
+            break
+    return np.concatenate(xs)[:n], np.concatenate(ys)[:n]
+
+
+def _polylines(xs: NDArray[np.float64], ys: NDArray[np.float64], F: NDArray[np.float64]
+               ) -> NDArray[np.float64]:
+    """Contour ``F = 0`` as NaN-separated vertices, shape ``(V, 2)``."""
+    gen = contourpy.contour_generator(xs, ys, F.T, line_type="Separate")
+    lines = gen.lines(0.0)
+    parts: list[NDArray[np.float64]] = []
+    for line in lines:
+        if parts:
+            parts.append(np.full((1, 2), np.nan))
+        parts.append(np.asarray(line, dtype=float))
+    return np.concatenate(parts) if parts else np.empty((0, 2))
+
+
+# ----------------------------------------------------------------------- public API
+def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: Any
+                  ) -> list[NDArray[np.float64]]:
+    """All values of the remaining action on the level h above plane points ``(x, y)``.
+
+    Parameters
+    ----------
+    body : RigidBody
+    h, M : float
+        Energy level and area constant.
+    section : (coord, value) or object with ``.coord``, ``.value``
+        ``("g", g*)`` (plane ``(l, L)``, solves ``G``) or ``("theta2", theta2*)``
+        (plane ``(theta1, J1)``, solves ``J2``).
+    x, y : array_like, same shape
+        Plane coordinates ``(l, L)`` resp. ``(theta1, J1)``.
+
+    Returns
+    -------
+    list of ndarray
+        One ascending array of roots per point (flattened order); empty where the point
+        is inaccessible or its roots lie within :data:`SINGULAR_MARGIN` of the chart's
+        singular set.
+
+    Examples
+    --------
+    >>> body = RigidBody.paper()
+    >>> [r.round(12) for r in section_roots(body, 0.2466236515821201, 0.0, ("g", 0.0),
+    ...                                      [0.3], [0.2])]
+    [array([1.])]
+    """
+    plane, value = _parse_section(section)
+    h, M = _finite("h", h), _finite("M", M)
+    p = np.ravel(np.asarray(x, dtype=float))
+    q = np.ravel(np.asarray(y, dtype=float))
+    if p.shape != q.shape:
+        raise ValueError(f"x and y must have the same size, got {p.size} and {q.size}")
+    if h <= -body.mu:
+        return [np.empty(0) for _ in range(p.size)]
+    eq = _Equation(plane, _energy_kernel(body, plane), value, M, h, _action_bound(body, h))
+    return eq.roots(p, q)
+
+
+def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 40,
+                 method: Method = "grid", seed: int = 0,
+                 plane_bounds: Any = None, root: RootChoice = "all",
+                 boundary_grid: int = 200, tol: float = 1e-12) -> xr.Dataset:
+    """Initial states filling a Poincare section on the energy level ``H = h``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The Hess chart (``section=("theta2", .)``) needs ``e3 = 0``.
+    h : float
+        Energy level.
+    M : float
+        Area constant ``M = (G, gamma)`` (``J3`` in the Hess chart).
+    section : (coord, value) or object with ``.coord`` and ``.value``
+        ``("g", g*)``: Andoyer-Deprit plane ``(l, L)``, ``l`` in ``[0, 2 pi)``, ``L`` in
+        ``[-G_max, G_max]``; ``G`` is solved. ``("theta2", theta2*)``: Hess plane
+        ``(theta1, J1)``, ``theta1`` in ``[0, 2 pi)`` at ``M = 0`` (H is 2 pi-periodic
+        there) and ``[0, 4 pi)`` otherwise, ``J1`` in ``[0, G_max]``; ``J2`` is solved.
+        ``G_max = sqrt(2 (h + mu) / min(a, b, c))``. The value is taken mod 2 pi.
+    n : int, default 40
+        About this many plane points (more orbits with ``root="all"`` where the level
+        has several sheets above one point).
+    method : {"grid", "sobol", "halton"}
+        ``"grid"``: a square grid over the bounding box of the accessible region, sized
+        so that about n of its points are accessible. ``"sobol"``/``"halton"``: the first
+        n accessible points of a scrambled low-discrepancy sequence in that box.
+    seed : int, default 0
+        Scrambling seed of the low-discrepancy sequences.
+    plane_bounds : ((x_min, x_max), (y_min, y_max)), optional
+        Restrict the plane (default above).
+    root : {"all", "smallest", "largest"}
+        Which roots of the equation for the action give initial states: every one
+        (one orbit per root), or only the smallest/largest per plane point.
+    boundary_grid : int, default 200
+        Resolution of the accessible-region grid (``boundary_grid`` squared points).
+    tol : float, default 1e-12
+        Largest accepted ``|H(y0) - h| / max(|h|, mu)``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``orbit``: the Euler-Poisson state ``G1 .. gamma3`` and stacked ``y0``
+        (``orbit, component``); the five chart coordinates (storage names, e.g.
+        ``l_angle, g_angle, L_action, G_action, M_action``); ``residual``;
+        ``root_index`` (0 = smallest action above the point) and ``n_roots``;
+        ``point`` (index of the plane point); ``section_rate`` (d(coord)/dt, its sign
+        is the crossing direction). Dims ``plane_x, plane_y``: ``accessible`` and
+        ``H_min`` (minimum of H over the admissible action). Dim ``boundary_vertex``:
+        ``boundary_x``, ``boundary_y``, the accessible region's boundary, polylines
+        separated by NaN. Attrs: body, h, M, section, method, plane names and bounds,
+        equations, units.
+
+    Raises
+    ------
+    ValueError
+        Unknown section coordinate, ``n < 1``, unknown method or root choice, ``|M|``
+        too large for h, or an energy level that does not meet the section (the message
+        gives the energy range on the section).
+
+    Notes
+    -----
+    H is bounded below by the kinetic energy at the smallest moment minus the potential
+    bound, :math:`H \\ge \\tfrac12 \\min(a, b, c) G^2 - \\mu`, so the action is sought on
+    :math:`\\max(|L|, |M|) < G \\le G_{max}` (resp. :math:`\\max(J_1, |J_3|) < J_2 \\le
+    G_{max}`), Eqs. (1), (7), (14)-(15) of [1]_.
+
+    References
+    ----------
+    .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+       trajectories exploring".
+
+    Examples
+    --------
+    >>> body = RigidBody.paper()
+    >>> ds = fill_section(body, 0.2466, 0.0, ("g", 0.0), n=10)
+    >>> bool(ds.residual.max() <= 1e-12), bool(abs(ds.g_angle).max() == 0.0)
+    (True, True)
+    """
+    plane, value = _parse_section(section)
+    h, M = _finite("h", h), _finite("M", M)
+    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
+        raise ValueError(f"n (number of plane points) must be an integer >= 1, got {n!r}")
+    if method not in ("grid", "sobol", "halton"):
+        raise ValueError(f"unknown method {method!r}; choose 'grid', 'sobol' or 'halton'")
+    if root not in ("all", "smallest", "largest"):
+        raise ValueError(f"unknown root choice {root!r}; choose 'all', 'smallest' or "
+                         "'largest'")
+    if isinstance(boundary_grid, bool) or not isinstance(boundary_grid, numbers.Integral) \
+            or boundary_grid < 8:
+        raise ValueError(f"boundary_grid must be an integer >= 8, got {boundary_grid!r}")
+    energy_fn = _energy_kernel(body, plane)  # the Hess chart raises here if e3 != 0
+    bounds = None if plane_bounds is None else _check_bounds(plane_bounds, plane)
+    if h <= -body.mu:
+        raise _no_intersection(body, plane, value, M, h, bounds,
+                               f"H >= -mu = {-body.mu:.6g} everywhere")
+    act_max = _action_bound(body, h)
+    if abs(M) >= act_max * (1.0 - SINGULAR_MARGIN):
+        raise ValueError(
+            f"|M| = {abs(M):.6g} is too large for the energy level h = {h:.10g}: the "
+            f"actions obey |M| < {plane.symbols[3]} <= G_max = sqrt(2 (h + mu) / min(a, b, c))"
+            f" = {act_max:.6g} (H >= min(a, b, c) M^2 / 2 - mu = "
+            f"{0.5 * min(body.a, body.b, body.c) * M**2 - body.mu:.6g}); lower |M| or "
+            f"raise h")
+    eq = _Equation(plane, energy_fn, value, M, h, act_max)
+    (x0, x1), (y0, y1) = bounds if bounds is not None else _default_bounds(plane, act_max, M)
+
+    # Accessible region on a fine grid: where min over the action of H is <= h.
+    xs = np.linspace(x0, x1, boundary_grid)
+    ys = np.linspace(y0, y1, boundary_grid)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    F = eq.min_over_action(X.ravel(), Y.ravel()).reshape(X.shape)
+    acc = (F <= 0.0) & eq.admissible(Y)
+    if not acc.any():
+        raise _no_intersection(
+            body, plane, value, M, h, bounds,
+            "or the accessible region is smaller than the boundary grid: raise "
+            "boundary_grid or narrow plane_bounds")
+    box = _bbox(acc, xs, ys)
+    if method == "grid":
+        P, Q = _grid_points(eq, box, int(n))
+    else:
+        P, Q = _qmc_points(eq, box, int(n), method, int(seed))
+    roots = eq.roots(P, Q) if P.size else []
+    rows: list[tuple[int, float, int, int]] = []
+    for i, r in enumerate(roots):
+        pick = {"all": r, "smallest": r[:1], "largest": r[-1:]}[root]
+        for A in pick:
+            rows.append((i, float(A), int(np.searchsorted(r, A)), r.size))
+    if not rows:
+        raise _no_intersection(body, plane, value, M, h, bounds,
+                               "no sampled point of the plane has an admissible root; "
+                               "raise n")
+    point = np.array([r[0] for r in rows], dtype=np.intp)
+    action = np.array([r[1] for r in rows])
+    x = np.stack([P[point], np.full(point.size, value), Q[point], action,
+                  np.full(point.size, M)], axis=-1)
+    y = from_andoyer(x) if plane.chart == "andoyer" else from_hess(body, x)
+    scale = max(abs(h), body.mu)
+    residual = np.abs(energy(body, y) - h) / scale
+    if np.any(residual > tol):
+        raise RuntimeError(f"the energy residual {residual.max():.3g} exceeds tol = {tol:g} "
+                           f"on {int(np.sum(residual > tol))} states; please report this")
+    rate = vector_field(body, x, plane.chart)[:, 1]
+    lines = _polylines(xs, ys, F)
+
+    data: dict[str, Any] = {name: (("orbit",), y[:, k]) for k, name in enumerate(STATE)}
+    data["y0"] = (("orbit", "component"), y)
+    for k, name in enumerate(plane.storage):
+        data[name] = (("orbit",), x[:, k])
+    data.update(
+        residual=(("orbit",), residual),
+        root_index=(("orbit",), np.array([r[2] for r in rows])),
+        n_roots=(("orbit",), np.array([r[3] for r in rows])),
+        point=(("orbit",), point),
+        section_rate=(("orbit",), rate),
+        accessible=(("plane_x", "plane_y"), acc),
+        H_min=(("plane_x", "plane_y"), F + h),
+        boundary_x=(("boundary_vertex",), lines[:, 0]),
+        boundary_y=(("boundary_vertex",), lines[:, 1]),
+    )
+    s = plane.symbols
+    attrs = provenance(
+        body, h=h, M=M, section_coord=plane.coord, section_value=value,
+        section_chart=plane.chart, method=method, n_requested=int(n), seed=int(seed),
+        root=root, plane_x=plane.storage[0], plane_y=plane.storage[2],
+        action=plane.storage[3], action_max=act_max,
+        plane_x_min=x0, plane_x_max=x1, plane_y_min=y0, plane_y_max=y1,
+        equations=plane.equations, residual_tol=tol,
+        units="dimensionless: moments of inertia, mu, energies and actions in the "
+              "body's units; angles in rad")
+    ds = xr.Dataset(
+        data,
+        coords={"orbit": np.arange(point.size), "component": list(STATE),
+                "plane_x": ("plane_x", xs, {"name": plane.storage[0], "symbol": s[0]}),
+                "plane_y": ("plane_y", ys, {"name": plane.storage[2], "symbol": s[2]})},
+        attrs=attrs)
+    for name, (sym, long, eqn) in VARIABLE_ATTRS.items():
+        if name in ds:
+            ds[name].attrs.update(symbol=sym, long_name=long, equation=eqn)
+    ds.residual.attrs.update(long_name="|H(y0) - h| / max(|h|, mu)", units="1")
+    ds.section_rate.attrs.update(long_name=f"d{s[1]}/dt at the initial state")
+    ds.accessible.attrs.update(long_name=f"some {s[3]} puts ({s[0]}, {s[2]}) on H = h")
+    ds.H_min.attrs.update(long_name=f"minimum of H over the admissible {s[3]}")
+    ds.boundary_x.attrs.update(long_name=f"{s[0]} on the accessible boundary (NaN: new line)")
+    ds.boundary_y.attrs.update(long_name=f"{s[2]} on the accessible boundary (NaN: new line)")
+    return ds
