@@ -149,7 +149,9 @@ def _cmd_section(args: argparse.Namespace) -> int:
     ax = plot_section(ds, boundary=fill,
                       title=f"{body.name or 'body'}: H = {args.energy:.6g}, M = {args.area:g}, "
                             f"{sec.coord} = {sec.value:g}")
-    (png,) = save_figure(ax.figure, out.with_suffix(".png"))
+    fig = ax.get_figure(root=True)
+    assert fig is not None
+    (png,) = save_figure(fig, out.with_suffix(".png"))
     print(f"wrote {out} and {png}; max |section residual| "
           f"{float(abs(ds.section_residual).max()):.1e}")
     return 0

@@ -22,6 +22,7 @@ from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import as_state
 from andoyer.charts.hess import from_hess
 from andoyer.integrate.engines import default_engine_name, get_engine
+from andoyer.integrate.engines.base import Params
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import Section
 
@@ -122,9 +123,10 @@ def _chunks(n: int, parts: int) -> list[slice]:
     return [slice(i, min(n, i + size)) for i in range(0, n, size)]
 
 
-def _params(body: RigidBody) -> tuple[float, ...]:
+def _params(body: RigidBody) -> Params:
     phi0 = body.phi0 if abs(body.e3) <= 1e-12 else 0.0
-    return (*body.params, phi0)
+    a, b, c, mu, e1, e2, e3 = body.params
+    return (a, b, c, mu, e1, e2, e3, phi0)
 
 
 def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
@@ -265,11 +267,7 @@ _STORAGE = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action"}
 
 def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
     var = ds[_STORAGE.get(sec.coord, sec.coord)]
-    if sec.is_angle:
-        period = 2 * np.pi
-        res = np.sin(np.mod(var - sec.value, period))
-    else:
-        res = var - sec.value
+    res = xr.DataArray(np.sin(var - sec.value)) if sec.is_angle else var - sec.value
     res.attrs.update(long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing",
                      units="1")
     return res

@@ -84,7 +84,7 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     data["geometric"] = (dims, geometric_integral(safe) * nan)
     data["singular"] = (dims, np.where(valid, flags, -1))
     if extra:
-        data.update(extra)
+        data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
     ds = xr.Dataset(data, coords=dict(coords), attrs=dict(attrs))
     for name, (sym, long, eq) in VARIABLE_ATTRS.items():
         if name in ds:

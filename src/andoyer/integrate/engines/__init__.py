@@ -25,7 +25,8 @@ ENGINES = {
 @cache
 def _load(name: str) -> Engine:
     module, cls = ENGINES[name]
-    return getattr(importlib.import_module(module), cls)()  # type: ignore[no-any-return]
+    engine: Engine = getattr(importlib.import_module(module), cls)()
+    return engine
 
 
 def available_engines() -> list[str]:

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 __all__ = ["Engine", "Crossings"]
 
+#: (a, b, c, mu, e1, e2, e3, phi0)
 Params = tuple[float, float, float, float, float, float, float, float]
 
 

@@ -1,0 +1,613 @@
+"""The heyoka engine: Taylor integration compiled with LLVM (heyoka.py).
+
+The Euler-Poisson vector field (1) and every section function are taken from the
+SymPy expressions of :mod:`andoyer.symbolic` and converted with
+:func:`heyoka.from_sympy`; nothing is typed by hand. The body and the section enter
+as runtime parameters ``par[i]`` in the order of :data:`PARAMETERS`
+(``a, b, c, mu, e1, e2, e3, phi0, value, cv, sv``), so one compiled integrator
+serves every body, section value and initial state.
+
+Compiled integrators are built once per process and kept in a pool keyed by what
+changes the generated code (batch size, section kind, direction, tolerance); a
+thread takes one from the pool, resets time, state and parameters, and gives it
+back. heyoka's own caches make a rebuild cheap: an in-memory cache within the
+process and, since heyoka 7.10, an on-disk cache shared by all processes
+(``~/.cache/heyoka`` or ``$HEYOKA_CACHE_DIR``), so a second process skips the LLVM
+optimisation and code generation.
+
+Tolerances
+----------
+heyoka controls the local error of each Taylor step with a single ``tol``: the
+error estimate is kept below ``tol`` in absolute terms while ``||y||_inf <= 1`` and
+below ``tol ||y||_inf`` above (the Taylor order is chosen from ``tol``, about 15 at
+1e-12). The engine uses ``tol = min(rtol, atol)``, which satisfies the mixed
+criterion ``err <= atol + rtol |y|`` of the other engines for any state size
+(``|gamma| = 1`` and ``|G|`` of order one in this problem).
+
+Sections
+--------
+A crossing of ``SECTION_KINDS[kind] = value`` is a root of the section function
+``f`` (:func:`andoyer.symbolic.sections.section_function`) found by heyoka as a
+non-terminal event: the roots of the Taylor polynomial of ``f`` over each step,
+with the requested direction of ``f``. The event callback only records the event
+time and the dense-output state there (``update_d_output``; a non-terminal callback
+must not change the integrator). After the propagation, in NumPy:
+
+* the state is polished onto the section with one Newton step in time,
+  ``dt = -f/(df/dt)``, ``y += dt F(y)`` (``df/dt = grad f . F`` differentiated by
+  heyoka, evaluated by a compiled function): the event time handed to the callback
+  is rounded to a double, which leaves an error in ``|f|`` growing with t --
+  about 1e-12 at t ~ 3e4; after the step ``|f|`` is at round-off level;
+* crossings with margin ``w <= 0`` (the antipodal root of an angle section,
+  ``alpha = value + pi``) are dropped;
+* a root at ``t <= T_START`` (1e-10) is the initial state itself lying on the
+  section to round-off (heyoka reports a root at the very start of the first
+  step) and is dropped, so that "crossings after t = 0" does not depend on the
+  sign of the round-off in ``f(y0)``.
+
+An orbit stops after ``n_crossings`` accepted crossings: the propagation runs in
+chunks of steps (``max_steps``) whose length is extrapolated from the crossings
+found so far, so no Python code runs per step.
+
+Parallelism
+-----------
+Independent orbits run on a thread pool: heyoka releases the GIL while it
+integrates (event callbacks take it back briefly). With ``batch_size > 1`` a
+propagation task is one batch (SIMD) integrator over ``batch_size`` orbits; for
+crossings each thread owns one batch integrator and feeds its lanes from a shared
+queue of orbits: a lane whose orbit is done gets the next orbit at the end of a
+chunk, since lanes are independent in heyoka's batch mode (own time, step size and
+end time). Two traps are avoided this way: a terminal event in one lane of a batch
+integrator stops every lane, and ``heyoka.ensemble_propagate_until`` takes one end
+time for all orbits (and deep-copies the integrator for each one).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from functools import cache, partial
+from typing import Any, NamedTuple, TypeVar
+
+import heyoka as hy
+import numpy as np
+import sympy as sp
+from numpy.typing import NDArray
+
+from andoyer.integrate.engines.base import Params
+from andoyer.kernels._generated import SECTION_KINDS
+from andoyer.symbolic.hamiltonian import S, euler_poisson_field
+from andoyer.symbolic.sections import SECTION_ARGS, section_function
+
+__all__ = ["HeyokaEngine", "HeyokaCrossings", "PARAMETERS", "T_START", "tolerance", "warm_up"]
+
+#: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
+PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
+
+#: A root at ``t <= T_START`` is the initial state on the section, not a crossing.
+T_START = 1e-10
+
+_DIRECTIONS = {1: hy.event_direction.positive, -1: hy.event_direction.negative,
+               0: hy.event_direction.any}
+
+_NO_SECTION = -1
+_T = TypeVar("_T")
+_MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
+
+
+def tolerance(rtol: float, atol: float) -> float:
+    """heyoka's single tolerance for the other engines' ``(rtol, atol)``: ``min(rtol, atol)``."""
+    for name, v in (("rtol", rtol), ("atol", atol)):
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    return float(min(rtol, atol))
+
+
+class HeyokaCrossings(NamedTuple):
+    """Section crossings (see :class:`andoyer.integrate.engines.base.Crossings`)."""
+
+    t: NDArray[np.float64]  # (n, m), NaN-padded
+    y: NDArray[np.float64]  # (n, m, 6), NaN-padded
+    count: NDArray[np.int64]  # type: ignore[assignment]  # (n,); shadows tuple.count
+
+
+# ----------------------------------------------------------------------------- symbolic
+
+
+@cache
+def _state_vars() -> tuple[Any, ...]:
+    return tuple(hy.make_vars(*(str(s) for s in S.y)))
+
+
+@cache
+def _symbol_map() -> dict[sp.Basic, Any]:
+    """SymPy symbol -> heyoka variable (state) or runtime parameter (everything else)."""
+    smap: dict[sp.Basic, Any] = dict(zip(S.y, _state_vars(), strict=True))
+    smap.update({s: hy.par[i] for i, s in enumerate(PARAMETERS)})
+    return smap
+
+
+@cache
+def _system() -> tuple[tuple[Any, Any], ...]:
+    """The Euler-Poisson equations (1) as heyoka ``(variable, rhs)`` pairs."""
+    smap = _symbol_map()
+    return tuple((x, hy.from_sympy(e, smap))
+                 for x, e in zip(_state_vars(), euler_poisson_field(), strict=True))
+
+
+@cache
+def _section_exprs(kind: int) -> tuple[Any, Any, Any]:
+    """``(f, w, df/dt)`` of section ``kind`` as heyoka expressions.
+
+    ``f`` and ``w`` come from :func:`andoyer.symbolic.sections.section_function`;
+    ``df/dt = grad f . F`` (the Lie derivative along (1)) is differentiated by heyoka.
+    """
+    smap = _symbol_map()
+    f, w = (hy.from_sympy(sp.sympify(e), smap) for e in section_function(SECTION_KINDS[kind]))
+    fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in _system()])
+    return f, w, fdot
+
+
+_CFUNC_LOCK = threading.Lock()
+
+
+@cache
+def _section_cfunc_cached(kind: int) -> Any:
+    return hy.cfunc(list(_section_exprs(kind)), list(_state_vars()))
+
+
+def _section_cfunc(kind: int) -> Any:
+    """Compiled ``y, par -> (f, w, df/dt)`` (vectorised over columns)."""
+    with _CFUNC_LOCK:
+        return _section_cfunc_cached(kind)
+
+
+# ----------------------------------------------------------------------------- integrators
+
+
+class _Recorder:
+    """Non-terminal event callback: records (time, dense-output state) at each root."""
+
+    def __init__(self) -> None:
+        self.t: list[float] = []
+        self.y: list[NDArray[np.float64]] = []
+
+    def __call__(self, ta: Any, time: float, d_sgn: int) -> None:
+        self.t.append(time)
+        self.y.append(ta.update_d_output(time).copy())
+
+    def clear(self) -> None:
+        self.t.clear()
+        self.y.clear()
+
+
+class _BatchRecorder:
+    """Batch version: also records the lane of each root."""
+
+    def __init__(self, batch_size: int) -> None:
+        self.times = np.zeros(batch_size)
+        self.lane: list[int] = []
+        self.t: list[float] = []
+        self.y: list[NDArray[np.float64]] = []
+
+    def __call__(self, ta: Any, time: float, d_sgn: int, lane: int) -> None:
+        # Dense output is evaluated for all lanes at once; only ``lane`` is meaningful.
+        self.times[lane] = time
+        y = ta.update_d_output(self.times)
+        self.lane.append(lane)
+        self.t.append(time)
+        self.y.append(y[:, lane].copy())
+
+    def clear(self) -> None:
+        self.lane.clear()
+        self.t.clear()
+        self.y.clear()
+
+
+class _Key(NamedTuple):
+    batch_size: int
+    kind: int  # _NO_SECTION for plain propagation
+    direction: int
+    tol: float
+
+
+class _Slot(NamedTuple):
+    ta: Any
+    recorder: _Recorder | _BatchRecorder | None
+    n_pars: int
+
+
+def _build(key: _Key) -> _Slot:
+    system = list(_system())
+    common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
+    if key.kind == _NO_SECTION:
+        if key.batch_size == 1:
+            ta = hy.taylor_adaptive(system, [0.0] * 6, **common)
+        else:
+            ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)), **common)
+        return _Slot(ta, None, int(np.shape(ta.pars)[0]))
+    f = _section_exprs(key.kind)[0]
+    direction = _DIRECTIONS[key.direction]
+    if key.batch_size == 1:
+        ev = hy.nt_event(f, _Recorder(), direction=direction)
+        ta = hy.taylor_adaptive(system, [0.0] * 6, nt_events=[ev], **common)
+    else:
+        ev = hy.nt_event_batch(f, _BatchRecorder(key.batch_size), direction=direction)
+        ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)),
+                                      nt_events=[ev], **common)
+    # Events deep-copy their callback: the integrator's own copy records.
+    return _Slot(ta, ta.nt_events[0].callback, int(np.shape(ta.pars)[0]))
+
+
+_POOL: dict[_Key, list[_Slot]] = {}
+_POOL_LOCK = threading.Lock()
+
+
+@contextmanager
+def _integrator(key: _Key) -> Iterator[_Slot]:
+    """Borrow a compiled integrator for ``key`` from the process-wide pool."""
+    with _POOL_LOCK:
+        free = _POOL.setdefault(key, [])
+        slot = free.pop() if free else None
+    if slot is None:
+        slot = _build(key)
+    try:
+        yield slot
+    finally:
+        with _POOL_LOCK:
+            _POOL[key].append(slot)
+
+
+def warm_up(*, batch_size: int = 1, kind: int = _NO_SECTION, direction: int = 1,
+            tol: float = 1e-12) -> None:
+    """Build (or load from heyoka's caches) the integrator for these settings now.
+
+    ``kind = -1`` is the plain propagation integrator; a section kind also compiles
+    the functions used to polish crossings. Useful before timing, or before a
+    progress bar starts.
+    """
+    with _integrator(_Key(batch_size, kind, direction, tol)):
+        pass
+    if kind != _NO_SECTION:
+        _section_cfunc(kind)
+
+
+def _par_vector(params: Params, value: float) -> NDArray[np.float64]:
+    if len(params) != 8:
+        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
+                         f"got {len(params)} values")
+    return np.array([*map(float, params), value, math.cos(value), math.sin(value)])
+
+
+def _check(outcome: Any, what: str) -> None:
+    if outcome in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):
+        return
+    raise FloatingPointError(
+        f"heyoka stopped {what} with outcome {outcome!r} (non-finite state or step)")
+
+
+# ----------------------------------------------------------------------------- propagate
+
+
+def _propagate_scalar(key: _Key, y0: NDArray[np.float64], t: NDArray[np.float64],
+                      pars: NDArray[np.float64]) -> NDArray[np.float64]:
+    with _integrator(key) as slot:
+        ta = slot.ta
+        ta.time = float(t[0])
+        ta.state[:] = y0
+        ta.pars[:] = pars[:slot.n_pars]
+        res = ta.propagate_grid(t)
+        _check(res[0], "propagate_grid")
+        return np.array(res[-1])
+
+
+def _propagate_batch(key: _Key, y0: NDArray[np.float64], t: NDArray[np.float64],
+                     pars: NDArray[np.float64]) -> NDArray[np.float64]:
+    m = key.batch_size
+    k = y0.shape[0]
+    lanes = np.concatenate([y0, np.repeat(y0[-1:], m - k, axis=0)]) if k < m else y0
+    with _integrator(key) as slot:
+        ta = slot.ta
+        ta.set_time(np.full(m, t[0]))
+        ta.state[:] = lanes.T
+        ta.pars[:] = pars[:slot.n_pars, None]
+        out = ta.propagate_grid(np.repeat(t, m).reshape(-1, m))[-1]
+        for r in ta.propagate_res:
+            _check(r[0], "propagate_grid")
+        return np.transpose(out, (2, 0, 1))[:k]
+
+
+# ----------------------------------------------------------------------------- crossings
+
+
+class _Found(NamedTuple):
+    t: NDArray[np.float64]
+    y: NDArray[np.float64]
+
+
+def _accept(kind: int, t: Sequence[float], y: Sequence[NDArray[np.float64]],
+            pars: NDArray[np.float64]) -> _Found:
+    """Newton-polish raw event states onto the section, drop w <= 0 and t <= T_START."""
+    if len(t) == 0:
+        return _Found(np.empty(0), np.empty((0, 6)))
+    T = np.asarray(t, dtype=float)
+    Y = np.array(y, dtype=float)  # (r, 6)
+    cf = _section_cfunc(kind)
+    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, T.size))
+    f, w, fdot = cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dt = -f / fdot
+    # Expected |dt|: a few ulp of t. A larger step (a nearly tangent crossing) is not
+    # taken: the first-order update below would not be accurate.
+    dt = np.where(np.abs(dt) <= _MAX_POLISH, dt, 0.0)
+    F = _field(Y, pars)
+    Y = Y + dt[:, None] * F
+    T = T + dt
+    keep = (w > 0.0) & (T > T_START)
+    return _Found(T[keep], Y[keep])
+
+
+def _field(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function."""
+    cf = _field_cfunc()
+    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, Y.shape[0]))
+    return np.asarray(cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))).T
+
+
+@cache
+def _field_cfunc_cached() -> Any:
+    return hy.cfunc([rhs for _, rhs in _system()], list(_state_vars()))
+
+
+def _field_cfunc() -> Any:
+    with _CFUNC_LOCK:
+        return _field_cfunc_cached()
+
+
+def _chunk_steps(n_missing: int, steps: int, found: int) -> int:
+    """Steps for the next chunk: the remaining crossings times the steps per crossing."""
+    if found == 0:
+        return max(64, 2 * steps)
+    return max(8, math.ceil(n_missing * steps / found) + 2)
+
+
+def _crossings_scalar(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float64],
+                      n_crossings: int, t_max: float) -> _Found:
+    with _integrator(key) as slot:
+        ta, rec = slot.ta, slot.recorder
+        assert isinstance(rec, _Recorder)
+        rec.clear()
+        ta.time = 0.0
+        ta.state[:] = y0
+        ta.pars[:] = pars[:slot.n_pars]
+        found: list[_Found] = []
+        n_found = steps = 0
+        chunk = 64
+        while True:
+            outcome, _, _, nsteps, _, _ = ta.propagate_until(t_max, max_steps=chunk)
+            _check(outcome, "looking for crossings")
+            steps += nsteps
+            new = _accept(key.kind, rec.t, rec.y, pars)
+            rec.clear()
+            found.append(new)
+            n_found += new.t.size
+            if n_found >= n_crossings or outcome == hy.taylor_outcome.time_limit:
+                break
+            chunk = _chunk_steps(n_crossings - n_found, steps, n_found)
+    return _concat(found, n_crossings)
+
+
+class _Orbits:
+    """A thread-safe queue of orbit indices, shared by the batch workers."""
+
+    def __init__(self, n: int) -> None:
+        self._next = 0
+        self._n = n
+        self._lock = threading.Lock()
+
+    def pop(self) -> int | None:
+        with self._lock:
+            if self._next >= self._n:
+                return None
+            self._next += 1
+            return self._next - 1
+
+
+def _crossings_batch_worker(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float64],
+                            n_crossings: int, t_max: float, orbits: _Orbits,
+                            out: list[_Found | None]) -> None:
+    """Fill the lanes of one batch integrator with orbits from ``orbits`` until none is left.
+
+    A lane whose orbit is done (``n_crossings`` found or ``t_max`` reached) gets the
+    next orbit at the end of the chunk; idle lanes are held at their time by their
+    end time. Lanes are independent in heyoka's batch mode (own step size and time).
+    """
+    m = key.batch_size
+    with _integrator(key) as slot:
+        ta, rec = slot.ta, slot.recorder
+        assert isinstance(rec, _BatchRecorder)
+        rec.clear()
+        ta.pars[:] = pars[:slot.n_pars, None]
+        orbit = np.full(m, -1)
+        hi, lo = np.zeros(m), np.zeros(m)
+        state = np.empty((6, m))
+        for j in range(m):
+            i = orbits.pop()
+            if i is None:
+                break
+            orbit[j] = i
+            state[:, j] = y0[i]
+        if orbit[0] < 0:
+            return
+        state[:, orbit < 0] = y0[orbit[0]][:, None]  # idle lanes: any finite state
+        ta.state[:] = state
+        ta.set_dtime(hi, lo)
+        found: list[list[_Found]] = [[] for _ in range(m)]
+        n_found = np.zeros(m, dtype=np.int64)
+        steps = np.zeros(m, dtype=np.int64)
+        chunk = 64
+        while True:
+            active = orbit >= 0
+            t_end = np.where(active, float(t_max), np.asarray(ta.time))
+            ta.propagate_until(t_end, max_steps=chunk)
+            for j, r in enumerate(ta.propagate_res):
+                if active[j]:
+                    _check(r[0], "looking for crossings")
+                    steps[j] += r[3]
+            if rec.t:
+                lane = np.asarray(rec.lane, dtype=np.int64)
+                for j in np.flatnonzero(active).tolist():
+                    sel = np.flatnonzero(lane == j)
+                    if sel.size and n_found[j] < n_crossings:
+                        new = _accept(key.kind, [rec.t[q] for q in sel],
+                                      [rec.y[q] for q in sel], pars)
+                        found[j].append(new)
+                        n_found[j] += new.t.size
+                rec.clear()
+            time = np.asarray(ta.time)
+            refill = active & ((n_found >= n_crossings) | (time >= t_max))
+            if refill.any():
+                hi, lo = (np.array(a, dtype=float) for a in ta.dtime)
+                state = np.array(ta.state)
+                for j in np.flatnonzero(refill).tolist():
+                    out[orbit[j]] = _concat(found[j], n_crossings)
+                    found[j], n_found[j], steps[j] = [], 0, 0
+                    nxt = orbits.pop()
+                    orbit[j] = -1 if nxt is None else nxt
+                    if nxt is not None:
+                        state[:, j] = y0[nxt]
+                        hi[j] = lo[j] = 0.0
+                ta.state[:] = state
+                ta.set_dtime(hi, lo)
+            active = orbit >= 0
+            if not active.any():
+                return
+            chunk = min(_chunk_steps(n_crossings - int(n_found[j]), int(steps[j]),
+                                     int(n_found[j])) for j in np.flatnonzero(active))
+            chunk = min(chunk, 4096)
+
+
+def _concat(parts: list[_Found], n: int) -> _Found:
+    if not parts:
+        return _Found(np.empty(0), np.empty((0, 6)))
+    return _Found(np.concatenate([f.t for f in parts])[:n],
+                  np.concatenate([f.y for f in parts])[:n])
+
+
+# ----------------------------------------------------------------------------- engine
+
+
+def _run(tasks: Sequence[Callable[[], _T]], n_threads: int) -> list[_T]:
+    """Run independent tasks on up to ``n_threads`` threads (heyoka releases the GIL)."""
+    if n_threads <= 1 or len(tasks) <= 1:
+        return [task() for task in tasks]
+    with ThreadPoolExecutor(max_workers=min(n_threads, len(tasks))) as pool:
+        return list(pool.map(lambda task: task(), tasks))
+
+
+class HeyokaEngine:
+    """Taylor integration of the Euler-Poisson equations with heyoka.py.
+
+    Parameters
+    ----------
+    batch_size : int, optional
+        Orbits integrated together by one SIMD (batch-mode) integrator. Default:
+        :func:`heyoka.recommended_simd_size` (4 doubles with AVX2) whenever there are at
+        least that many orbits, else 1 (scalar integrators).
+    n_threads : int, optional
+        Threads running independent orbits or batches; default ``os.cpu_count()``.
+
+    Notes
+    -----
+    See the module docstring for the tolerance mapping and for how crossings are
+    located. The first call with new settings compiles (or loads from heyoka's
+    on-disk cache) an integrator; later calls reuse it.
+    """
+
+    name = "heyoka"
+
+    def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
+        if batch_size is not None and (int(batch_size) != batch_size or batch_size < 1):
+            raise ValueError(f"batch_size must be a positive integer, got {batch_size!r}")
+        self.batch_size = None if batch_size is None else int(batch_size)
+        self.n_threads = int(n_threads) if n_threads is not None else (os.cpu_count() or 1)
+        if self.n_threads < 1:
+            raise ValueError(f"n_threads must be >= 1, got {n_threads!r}")
+
+    def __repr__(self) -> str:
+        return f"HeyokaEngine(batch_size={self.batch_size}, n_threads={self.n_threads})"
+
+    def _batch(self, n: int) -> int:
+        if self.batch_size is not None:
+            return self.batch_size
+        simd = int(hy.recommended_simd_size())
+        return simd if n >= simd else 1
+
+    def propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64], params: Params,
+                  rtol: float, atol: float) -> NDArray[np.float64]:
+        """States at times ``t`` (k,) of the orbits from ``y0`` (n, 6): shape (n, k, 6)."""
+        y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
+        t = np.ascontiguousarray(t, dtype=float).reshape(-1)
+        pars = _par_vector(params, 0.0)
+        tol = tolerance(rtol, atol)
+        n = y0.shape[0]
+        if n == 0 or t.size == 0:
+            return np.empty((n, t.size, 6))
+        m = self._batch(n)
+        key = _Key(m, _NO_SECTION, 0, tol)
+        if m == 1:
+            rows = _run([partial(_propagate_scalar, key, y0[i], t, pars) for i in range(n)],
+                        self.n_threads)
+            return np.stack(rows)
+        blocks = _run([partial(_propagate_batch, key, y0[s:s + m], t, pars)
+                       for s in range(0, n, m)], self.n_threads)
+        return np.concatenate(blocks)
+
+    def crossings(self, y0: NDArray[np.float64], params: Params, kind: int, value: float,
+                  direction: int, n_crossings: int, t_max: float, rtol: float,
+                  atol: float) -> HeyokaCrossings:
+        """The first ``n_crossings`` crossings of ``SECTION_KINDS[kind] = value`` after t = 0."""
+        if not (0 <= int(kind) < len(SECTION_KINDS)) or int(kind) != kind:
+            raise ValueError(f"kind must be an index into SECTION_KINDS "
+                             f"(0..{len(SECTION_KINDS) - 1}), got {kind!r}")
+        if direction not in (-1, 0, 1):
+            raise ValueError(f"direction must be -1, 0 or +1, got {direction!r}")
+        if int(n_crossings) != n_crossings or n_crossings < 0:
+            raise ValueError(f"n_crossings must be a non-negative integer, got {n_crossings!r}")
+        if not (math.isfinite(t_max) and t_max > 0.0):
+            raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
+        kind, direction, n_crossings = int(kind), int(direction), int(n_crossings)
+        y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
+        pars = _par_vector(params, float(value))
+        tol = tolerance(rtol, atol)
+        n = y0.shape[0]
+        t_out = np.full((n, n_crossings), np.nan)
+        y_out = np.full((n, n_crossings, 6), np.nan)
+        count = np.zeros(n, dtype=np.int64)
+        if n == 0 or n_crossings == 0:
+            return HeyokaCrossings(t_out, y_out, count)
+        m = self._batch(n)
+        _section_cfunc(kind)  # compile once, outside the threads
+        _field_cfunc()
+        key = _Key(m, kind, direction, tol)
+        results: list[_Found | None]
+        if m == 1:
+            results = list(_run([partial(_crossings_scalar, key, y0[i], pars, n_crossings,
+                                         float(t_max)) for i in range(n)], self.n_threads))
+        else:
+            results = [None] * n
+            worker = partial(_crossings_batch_worker, key, y0, pars, n_crossings, float(t_max),
+                             _Orbits(n), results)
+            n_workers = min(self.n_threads, -(-n // m))
+            _run([worker] * n_workers, n_workers)
+        for i, r in enumerate(results):
+            assert r is not None
+            c = r.t.size
+            count[i] = c
+            t_out[i, :c] = r.t
+            y_out[i, :c] = r.y
+        return HeyokaCrossings(t_out, y_out, count)
