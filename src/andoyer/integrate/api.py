@@ -224,8 +224,8 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     Returns
     -------
     xarray.Dataset
-        Dims ``(orbit, crossing)``: crossing time ``t``, all coordinates, ``count`` of
-        crossings found per orbit, and ``section_residual`` (``coord - value``, or
+        Dims ``(orbit, crossing)``: crossing time ``t``, all coordinates,
+        ``crossings_found`` per orbit, the initial states ``y0``, and ``section_residual`` (``coord - value``, or
         ``sin(angle - value)`` for angles), which is ``<= 1e-12`` in magnitude.
     """
     sec = Section.parse(section) if isinstance(section, str) else section
@@ -255,7 +255,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         {"orbit": np.arange(Y.shape[0]), "crossing": np.arange(int(n_crossings))},
         provenance(body, engine=name, rtol=rtol, atol=atol, t_max=t_end,
                    initial_chart=chart, **sec.attrs()),
-        extra={"t": (("orbit", "crossing"), T), "count": (("orbit",), count),
+        extra={"t": (("orbit", "crossing"), T), "crossings_found": (("orbit",), count),
                "y0": (("orbit", "component"), y)})
     ds["section_residual"] = _section_residual(ds, sec)
     ds.t.attrs.update(long_name="time of the crossing", units="body time units")
