@@ -225,8 +225,9 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     -------
     xarray.Dataset
         Dims ``(orbit, crossing)``: crossing time ``t``, all coordinates,
-        ``crossings_found`` per orbit, the initial states ``y0``, and ``section_residual`` (``coord - value``, or
-        ``sin(angle - value)`` for angles), which is ``<= 1e-12`` in magnitude.
+        ``crossings_found`` per orbit, the initial states ``y0``, and
+        ``section_residual`` (``coord - value``, or ``sin(angle - value)`` for angles),
+        which is ``<= 1e-12`` in magnitude.
     """
     sec = Section.parse(section) if isinstance(section, str) else section
     if not isinstance(sec, Section):
