@@ -8,13 +8,14 @@ Agg and PDF canvases.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+
+from andoyer._atomic import atomic_path
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
 
@@ -189,13 +190,7 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], *, pdf: bool = False,
     for fmt in ("png", "pdf") if pdf else ("png",):
         final = target.with_suffix("." + fmt)
         final.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{final.name}.", suffix=".tmp", dir=final.parent)
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                fig.savefig(fh, format=fmt, dpi=dpi)
-            os.replace(tmp, final)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        with atomic_path(final) as tmp:
+            fig.savefig(tmp, format=fmt, dpi=dpi)
         out.append(final)
     return out

@@ -11,15 +11,14 @@ Regenerate with ``python -m andoyer.symbolic.codegen``.
 
 from __future__ import annotations
 
-import os
 import sys
-import tempfile
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
+from andoyer._atomic import atomic_path
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 
@@ -120,10 +119,8 @@ def generate_source() -> str:
 def write_generated(path: Path = GENERATED_PATH) -> Path:
     """Write the generated module atomically (temporary file, then rename)."""
     src = generate_source()
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".gen-", suffix=".py")
-    with os.fdopen(fd, "w") as fh:
-        fh.write(src)
-    os.replace(tmp, path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(src)
     return path
 
 
