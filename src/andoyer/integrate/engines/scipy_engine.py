@@ -3,7 +3,12 @@
 Kept as an independent check of the compiled engines in tests: the right-hand side
 and the section functions are the generated NumPy kernels
 (:mod:`andoyer.kernels._generated`) called from Python at every stage, so it is slow
-(about a second per orbit to t = 1e3 at rtol = 1e-12) and runs serially.
+(seconds per orbit to t = 1e3 at rtol = 1e-12) and runs serially. Its tolerances
+mean what they mean for the numba engine: SciPy's controller is given
+``tolerance_factor * rtol`` and ``tolerance_factor * atol``
+(:data:`andoyer.kernels.dop853.TOLERANCE_FACTOR` by default), so that the two DOP853
+engines take the same steps; below SciPy's floor ``rtol >= 100 eps`` the relative
+tolerance is raised to that floor.
 
 Crossings are SciPy events located by ``brentq`` on the dense output with a
 tolerance relative to t (``4 eps |t|``), so at large t the residual of the section
@@ -22,12 +27,15 @@ from scipy.integrate import solve_ivp
 
 from andoyer.integrate.engines.base import Params
 from andoyer.kernels._generated import ep_field, section
+from andoyer.kernels.dop853 import TOLERANCE_FACTOR
 
 __all__ = ["ScipyEngine", "ScipyCrossings"]
 
 # Events are collected over windows of integration that double in length from this,
 # so that an orbit stops soon after its n-th crossing without a terminal event.
 _FIRST_WINDOW = 100.0
+# solve_ivp raises smaller relative tolerances to this, with a warning.
+_RTOL_FLOOR = 100 * np.finfo(np.float64).eps
 
 
 class ScipyCrossings(NamedTuple):
@@ -59,7 +67,8 @@ class _SectionEvent:
         self.direction = float(direction)
 
     def fw(self, y: NDArray[np.float64]) -> tuple[float, float]:
-        f, w = section(self.kind, *y.tolist(), *self.args)
+        args = [self.kind, *y.tolist(), *self.args]
+        f, w = section(*args)
         return float(f), float(w)
 
     def __call__(self, t: float, y: NDArray[np.float64]) -> float:
@@ -73,6 +82,11 @@ def _check(sol: object, what: str) -> None:
 
 class ScipyEngine:
     """``solve_ivp(method="DOP853")`` on the generated field, one orbit after another.
+
+    Parameters
+    ----------
+    tolerance_factor : float, default :data:`andoyer.kernels.dop853.TOLERANCE_FACTOR`
+        SciPy is given ``tolerance_factor * rtol`` and ``tolerance_factor * atol``.
 
     Examples
     --------
@@ -88,8 +102,17 @@ class ScipyEngine:
 
     name = "scipy"
 
+    def __init__(self, *, tolerance_factor: float = TOLERANCE_FACTOR) -> None:
+        if not 0.0 < tolerance_factor <= 1.0:
+            raise ValueError(f"tolerance_factor must be in (0, 1], got {tolerance_factor!r}")
+        self.tolerance_factor = float(tolerance_factor)
+
     def __repr__(self) -> str:
-        return "ScipyEngine()"
+        return f"ScipyEngine(tolerance_factor={self.tolerance_factor})"
+
+    def _tolerances(self, rtol: float, atol: float) -> dict[str, float]:
+        return {"rtol": max(self.tolerance_factor * rtol, _RTOL_FLOOR),
+                "atol": self.tolerance_factor * atol}
 
     def propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64], params: Params,
                   rtol: float, atol: float) -> NDArray[np.float64]:
@@ -110,7 +133,7 @@ class ScipyEngine:
                 out[i, 1:] = y[i]
                 continue
             sol = solve_ivp(fun, (times[0], times[-1]), y[i], method="DOP853",
-                            rtol=rtol, atol=atol, dense_output=True)
+                            dense_output=True, **self._tolerances(rtol, atol))
             _check(sol, "in propagate")
             out[i, 1:] = sol.sol(times[1:]).T
             out[i, -1] = sol.y[:, -1]
@@ -138,8 +161,8 @@ class ScipyEngine:
             t, state, window = 0.0, y[i], _FIRST_WINDOW
             while count[i] < m and t < t_max:
                 t1 = min(t + window, t_max)
-                sol = solve_ivp(fun, (t, t1), state, method="DOP853", rtol=rtol, atol=atol,
-                                events=event)
+                sol = solve_ivp(fun, (t, t1), state, method="DOP853", events=event,
+                                **self._tolerances(rtol, atol))
                 _check(sol, "while locating crossings")
                 for te, ye in zip(sol.t_events[0], sol.y_events[0], strict=True):
                     c = count[i]
