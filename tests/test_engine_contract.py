@@ -4,7 +4,8 @@ The engines are those registered in :data:`andoyer.integrate.engines.ENGINES`; a
 whose package is not installed (heyoka outside Linux) is skipped, and an engine
 registered later joins every test here without edits. Each engine is checked for:
 
-* shapes, NaN padding and the initial row of the :class:`Engine` protocol;
+* shapes, NaN padding and the initial row of the :class:`Engine` protocol, and
+  ``FloatingPointError`` when the integration fails;
 * conservation of the integrals of (1): relative drift of H, of the area integral
   ``(G, gamma)`` (relative to ``|G|``) and of ``|gamma|^2`` below 1e-10 over
   t = 1e3 at rtol = atol = 1e-12 (t = 1e4 in a slow test);
@@ -125,6 +126,17 @@ def test_shapes_and_initial_row(engine: Engine, bodies: dict[str, RigidBody]) ->
         assert 0 < c < 50  # t_max cuts the orbits short: NaN padding
         assert np.all(np.isfinite(cr.t[i, :c])) and np.all(cr.t[i, :c] <= 60.0)
         assert np.all(np.isnan(cr.t[i, c:])) and np.all(np.isnan(cr.y[i, c:]))
+
+
+def test_a_non_finite_field_raises(engine: Engine, bodies: dict[str, RigidBody]) -> None:
+    """A failed integration is an error, never a silently NaN or truncated result."""
+    a, b, c, _, e1, e2, e3, phi0 = params(bodies["paper"])
+    bad: Params = (a, b, c, float("nan"), e1, e2, e3, phi0)
+    y0 = from_andoyer(X_START)
+    with pytest.raises(FloatingPointError):
+        engine.propagate(y0, np.array([0.0, 10.0]), bad, TOL, TOL)
+    with pytest.raises(FloatingPointError):
+        engine.crossings(y0, bad, KIND["G3"], 0.0, 1, 3, 100.0, TOL, TOL)
 
 
 # ------------------------------------------------------------------------ integrals

@@ -53,7 +53,11 @@ class _Field:
         self.p = tuple(float(v) for v in params[:7])
 
     def __call__(self, t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.array(ep_field(*y.tolist(), *self.p))
+        dy = ep_field(*y.tolist(), *self.p)
+        # solve_ivp would loop for ever on a NaN step size.
+        if not math.isfinite(sum(dy)):
+            raise FloatingPointError(f"scipy DOP853: non-finite field at t = {t!r}")
+        return np.array(dy)
 
 
 class _SectionEvent:
