@@ -27,6 +27,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from _rotations import Rx, Rz
 from andoyer import (
     RigidBody,
     Singular,
@@ -47,16 +48,6 @@ HESS_BODIES = ["paper_body", "hess_minus_body"]
 
 
 # --------------------------------------------------------------------------- helpers
-def Rz(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def Rx(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
 def angle_gap(a, b, period=TWO_PI):
     """Distance between angles modulo ``period``."""
     d = np.mod(np.asarray(a) - np.asarray(b), period)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from _rotations import Rx, Rz
 from andoyer import RigidBody, from_andoyer, from_hess, to_andoyer, to_hess
 from andoyer.charts.andoyer_deprit import andoyer_to_ep_expr
 from andoyer.charts.hess import hess_to_ep_expr
@@ -74,16 +75,6 @@ def rate(grad: np.ndarray, field: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``(grad . field, |grad| |field|)``: a time derivative and its natural scale."""
     return (np.einsum("...i,...i->...", grad, field),
             np.linalg.norm(grad, axis=-1) * np.linalg.norm(field, axis=-1))
-
-
-def Rz(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def Rx(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def hat(w: np.ndarray) -> np.ndarray:

@@ -102,7 +102,6 @@ __all__ = [
     "MAX_STEPS",
     "STATUS_MESSAGES",
     "KERNEL_STAMP",
-    "TOLERANCE_FACTOR",
     "propagate",
     "locate_crossings",
     "integrate_fixed",
@@ -331,16 +330,6 @@ D[3, 13] = 0.96324553959188282948394950600e+2
 D[3, 14] = -0.39177261675615439165231486172e+2
 D[3, 15] = -0.14972683625798562581422125276e+3
 
-#: Ratio of the tolerance given to the DOP853 controller to the accuracy an engine is
-#: asked for (``rtol, atol`` of the Engine contract). The controller bounds an
-#: *estimate* of each step's local error by ``atol + rtol |y|``; the integrals then
-#: drift linearly, by ~1e-13 per time unit at rtol = atol = 1e-12 for a heavy top
-#: (mu ~ 0.5, |G| ~ 1): 1e-9 at t = 1e4. With the factor the drift of H, (G, gamma)
-#: and |gamma|^2 stays below ~2e-11 over t = 1e4 at a requested 1e-12 (paper's body
-#: and mu = 0.5, 0.7 bodies, 18 orbits each), for ~1.6x the steps. 0.025 keeps a
-#: requested 1e-12 above SciPy's floor rtol >= 100 eps. The kernels never apply it:
-#: the engines do (see andoyer.integrate.engines.numba_engine).
-TOLERANCE_FACTOR = 0.025
 
 # Step-size control (Hairer; scipy.integrate._ivp.rk).
 SAFETY = 0.9

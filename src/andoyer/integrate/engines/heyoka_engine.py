@@ -78,12 +78,12 @@ import numpy as np
 import sympy as sp
 from numpy.typing import NDArray
 
-from andoyer.integrate.engines.base import Params
+from andoyer.integrate.engines.base import Crossings, Params
 from andoyer.kernels._generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
-__all__ = ["HeyokaEngine", "HeyokaCrossings", "PARAMETERS", "T_START", "tolerance", "warm_up"]
+__all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up"]
 
 #: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
 PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
@@ -107,12 +107,6 @@ def tolerance(rtol: float, atol: float) -> float:
     return float(min(rtol, atol))
 
 
-class HeyokaCrossings(NamedTuple):
-    """Section crossings (see :class:`andoyer.integrate.engines.base.Crossings`)."""
-
-    t: NDArray[np.float64]  # (n, m), NaN-padded
-    y: NDArray[np.float64]  # (n, m, 6), NaN-padded
-    count: NDArray[np.int64]  # type: ignore[assignment]  # (n,); shadows tuple.count
 
 
 # ----------------------------------------------------------------------------- symbolic
@@ -569,7 +563,7 @@ class HeyokaEngine:
 
     def crossings(self, y0: NDArray[np.float64], params: Params, kind: int, value: float,
                   direction: int, n_crossings: int, t_max: float, rtol: float,
-                  atol: float) -> HeyokaCrossings:
+                  atol: float) -> Crossings:
         """The first ``n_crossings`` crossings of ``SECTION_KINDS[kind] = value`` after t = 0."""
         if not (0 <= int(kind) < len(SECTION_KINDS)) or int(kind) != kind:
             raise ValueError(f"kind must be an index into SECTION_KINDS "
@@ -589,7 +583,7 @@ class HeyokaEngine:
         y_out = np.full((n, n_crossings, 6), np.nan)
         count = np.zeros(n, dtype=np.int64)
         if n == 0 or n_crossings == 0:
-            return HeyokaCrossings(t_out, y_out, count)
+            return Crossings(t_out, y_out, count)
         m = self._batch(n)
         _section_cfunc(kind)  # compile once, outside the threads
         _field_cfunc()
@@ -610,4 +604,4 @@ class HeyokaEngine:
             count[i] = c
             t_out[i, :c] = r.t
             y_out[i, :c] = r.y
-        return HeyokaCrossings(t_out, y_out, count)
+        return Crossings(t_out, y_out, count)

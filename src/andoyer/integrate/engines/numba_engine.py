@@ -7,7 +7,7 @@ cores) and turns a failed orbit into an exception.
 
 Tolerances. The DOP853 controller keeps the estimated local error of each component
 below ``f (atol + rtol |y|)`` with ``f = tolerance_factor``
-(:data:`andoyer.kernels.dop853.TOLERANCE_FACTOR` = 0.025 by default): at ``f = 1``
+(:data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR` = 0.025 by default): at ``f = 1``
 (SciPy's meaning of rtol, atol) the integrals drift by ~1e-9 over t = 1e4 at
 rtol = atol = 1e-12 for a heavy top; with the default the engine meets the accuracy
 contract (drift below 1e-10 over t = 1e4 at 1e-12) like the heyoka engine.
@@ -18,24 +18,21 @@ compiles the kernels (tens of seconds), later processes load them (under a secon
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numba
 import numpy as np
 from numpy.typing import NDArray
 
-from andoyer.integrate.engines.base import Params
+from andoyer.integrate.engines.base import (
+    TOLERANCE_FACTOR,
+    Crossings,
+    Params,
+    check_tolerance_factor,
+)
 from andoyer.kernels import dop853
 
-__all__ = ["NumbaEngine", "NumbaCrossings"]
+__all__ = ["NumbaEngine"]
 
 
-class NumbaCrossings(NamedTuple):
-    """Section crossings (see :class:`andoyer.integrate.engines.base.Crossings`)."""
-
-    t: NDArray[np.float64]  # (n, m), NaN-padded
-    y: NDArray[np.float64]  # (n, m, 6), NaN-padded
-    count: NDArray[np.int64]  # type: ignore[assignment]  # (n,); shadows tuple.count
 
 
 def _states(y0: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -73,7 +70,7 @@ class NumbaEngine:
     chunksize : int, default 1
         Orbits handed to a thread at a time (``numba.parallel_chunksize``); 1 balances
         orbits of unequal cost (0 would split the orbits evenly up front).
-    tolerance_factor : float, default :data:`andoyer.kernels.dop853.TOLERANCE_FACTOR`
+    tolerance_factor : float, default :data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`
         The controller is given ``tolerance_factor * rtol`` and ``tolerance_factor *
         atol`` (see the module notes); 1.0 gives SciPy's meaning of the tolerances.
 
@@ -99,16 +96,14 @@ class NumbaEngine:
     name = "numba"
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
-                 tolerance_factor: float = dop853.TOLERANCE_FACTOR) -> None:
+                 tolerance_factor: float = TOLERANCE_FACTOR) -> None:
         if int(max_steps) != max_steps or max_steps < 1:
             raise ValueError(f"max_steps must be a positive integer, got {max_steps!r}")
         if int(chunksize) != chunksize or chunksize < 0:
             raise ValueError(f"chunksize must be a non-negative integer, got {chunksize!r}")
-        if not 0.0 < tolerance_factor <= 1.0:
-            raise ValueError(f"tolerance_factor must be in (0, 1], got {tolerance_factor!r}")
         self.max_steps = int(max_steps)
         self.chunksize = int(chunksize)
-        self.tolerance_factor = float(tolerance_factor)
+        self.tolerance_factor = check_tolerance_factor(tolerance_factor)
 
     def __repr__(self) -> str:
         return (f"NumbaEngine(max_steps={self.max_steps}, chunksize={self.chunksize}, "
@@ -137,14 +132,14 @@ class NumbaEngine:
 
     def crossings(self, y0: NDArray[np.float64], params: Params, kind: int, value: float,
                   direction: int, n_crossings: int, t_max: float, rtol: float,
-                  atol: float) -> NumbaCrossings:
+                  atol: float) -> Crossings:
         """The first ``n_crossings`` crossings after t = 0 of ``SECTION_KINDS[kind] =
         value`` in ``direction`` (+1, -1, 0), integrating at most to ``t_max``."""
         y = _states(y0)
         n_crossings = int(n_crossings)
         if y.shape[0] == 0 or n_crossings == 0:
             n = y.shape[0]
-            return NumbaCrossings(np.full((n, n_crossings), np.nan),
+            return Crossings(np.full((n, n_crossings), np.nan),
                                   np.full((n, n_crossings, 6), np.nan),
                                   np.zeros(n, dtype=np.int64))
         with numba.parallel_chunksize(self.chunksize):
@@ -153,4 +148,4 @@ class NumbaEngine:
                 float(t_max), self.tolerance_factor * float(rtol),
                 self.tolerance_factor * float(atol), self.max_steps)
         _raise_on_failure(info, "while locating crossings")
-        return NumbaCrossings(tc, yc, count)
+        return Crossings(tc, yc, count)

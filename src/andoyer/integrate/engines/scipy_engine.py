@@ -6,7 +6,7 @@ and the section functions are the generated NumPy kernels
 (seconds per orbit to t = 1e3 at rtol = 1e-12) and runs serially. Its tolerances
 mean what they mean for the numba engine: SciPy's controller is given
 ``tolerance_factor * rtol`` and ``tolerance_factor * atol``
-(:data:`andoyer.kernels.dop853.TOLERANCE_FACTOR` by default), so that the two DOP853
+(:data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR` by default), so that the two DOP853
 engines take the same steps; below SciPy's floor ``rtol >= 100 eps`` the relative
 tolerance is raised to that floor.
 
@@ -19,17 +19,20 @@ unlike the numba and heyoka engines whose residual stays at round-off.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from andoyer.integrate.engines.base import Params
+from andoyer.integrate.engines.base import (
+    TOLERANCE_FACTOR,
+    Crossings,
+    Params,
+    check_tolerance_factor,
+)
 from andoyer.kernels._generated import ep_field, section
-from andoyer.kernels.dop853 import TOLERANCE_FACTOR
 
-__all__ = ["ScipyEngine", "ScipyCrossings"]
+__all__ = ["ScipyEngine"]
 
 # Events are collected over windows of integration that double in length from this,
 # so that an orbit stops soon after its n-th crossing without a terminal event.
@@ -38,12 +41,6 @@ _FIRST_WINDOW = 100.0
 _RTOL_FLOOR = 100 * np.finfo(np.float64).eps
 
 
-class ScipyCrossings(NamedTuple):
-    """Section crossings (see :class:`andoyer.integrate.engines.base.Crossings`)."""
-
-    t: NDArray[np.float64]  # (n, m), NaN-padded
-    y: NDArray[np.float64]  # (n, m, 6), NaN-padded
-    count: NDArray[np.int64]  # type: ignore[assignment]  # (n,); shadows tuple.count
 
 
 class _Field:
@@ -89,7 +86,7 @@ class ScipyEngine:
 
     Parameters
     ----------
-    tolerance_factor : float, default :data:`andoyer.kernels.dop853.TOLERANCE_FACTOR`
+    tolerance_factor : float, default :data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`
         SciPy is given ``tolerance_factor * rtol`` and ``tolerance_factor * atol``.
 
     Examples
@@ -107,9 +104,7 @@ class ScipyEngine:
     name = "scipy"
 
     def __init__(self, *, tolerance_factor: float = TOLERANCE_FACTOR) -> None:
-        if not 0.0 < tolerance_factor <= 1.0:
-            raise ValueError(f"tolerance_factor must be in (0, 1], got {tolerance_factor!r}")
-        self.tolerance_factor = float(tolerance_factor)
+        self.tolerance_factor = check_tolerance_factor(tolerance_factor)
 
     def __repr__(self) -> str:
         return f"ScipyEngine(tolerance_factor={self.tolerance_factor})"
@@ -145,7 +140,7 @@ class ScipyEngine:
 
     def crossings(self, y0: NDArray[np.float64], params: Params, kind: int, value: float,
                   direction: int, n_crossings: int, t_max: float, rtol: float,
-                  atol: float) -> ScipyCrossings:
+                  atol: float) -> Crossings:
         """The first ``n_crossings`` crossings after t = 0 of ``SECTION_KINDS[kind] =
         value`` in ``direction`` (+1, -1, 0), integrating at most to ``t_max``.
 
@@ -177,4 +172,4 @@ class ScipyEngine:
                         t_out[i, c], y_out[i, c] = te, ye
                         count[i] += 1
                 t, state, window = t1, sol.y[:, -1], 2.0 * window
-        return ScipyCrossings(t_out, y_out, count)
+        return Crossings(t_out, y_out, count)
