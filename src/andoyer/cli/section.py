@@ -1,0 +1,74 @@
+"""``andoyer section``: a filled Poincare section on an energy level, NetCDF + PNG."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from andoyer.cli._common import add_body_args, add_engine_args, body_from_args
+
+NAME = "section"
+ORDER = 40
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from andoyer.integrate.api import poincare
+    from andoyer.integrate.fill import fill_section
+    from andoyer.integrate.section import Section
+    from andoyer.io import write_netcdf
+    from andoyer.plot.section import plot_section, save_figure
+
+    body = body_from_args(args)
+    sec = Section.parse(args.section)
+    if sec.coord not in ("g", "theta2"):
+        raise ValueError("andoyer section fills the planes of 'g=...' (l, L) and "
+                         "'theta2=...' (theta1, J1) sections; use the Python API poincare() "
+                         "for other sections")
+    if args.energy is None:
+        from andoyer import from_andoyer
+        from andoyer.charts.euler_poisson import energy
+
+        args.energy = float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, args.area])))
+    fill = fill_section(body, args.energy, args.area, (sec.coord, sec.value),
+                        n=args.orbits, method=args.sampling)
+    y0 = fill["y0"].values
+    print(f"{y0.shape[0]} orbits on H = {args.energy:g}, M = {args.area:g}; "
+          f"{args.crossings} crossings each")
+    ds = poincare(body, y0, sec, args.crossings, engine=args.engine, rtol=args.rtol,
+                  atol=args.atol, progress=True)
+    ds.attrs.update(energy=args.energy, area=args.area)
+    out = Path(args.out)
+    write_netcdf(ds, out)
+    ax = plot_section(ds, boundary=fill,
+                      title=f"{body.name or 'body'}: H = {args.energy:.6g}, M = {args.area:g}, "
+                            f"{sec.coord} = {sec.value:g}")
+    fig = ax.get_figure(root=True)
+    assert fig is not None
+    (png,) = save_figure(fig, out.with_suffix(".png"))
+    print(f"wrote {out} and {png}; max |section residual| "
+          f"{float(abs(ds.section_residual).max()):.1e}")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="Poincare section on an energy level: NetCDF + PNG")
+    add_body_args(p)
+    p.add_argument("--energy", type=float, default=None,
+                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
+    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
+    p.add_argument("--section", default="theta2=0",
+                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
+                        "append ':-' for the decreasing direction (default theta2=0)")
+    p.add_argument("--orbits", type=int, default=40, help="orbits (default 40)")
+    p.add_argument("--crossings", type=int, default=300,
+                   help="crossings per orbit (default 300)")
+    p.add_argument("--sampling", choices=("grid", "sobol", "halton"), default="grid",
+                   help="initial conditions on the plane (default grid)")
+    add_engine_args(p)
+    p.add_argument("--out", default="section.nc", help="output NetCDF (PNG beside it)")
+    p.set_defaults(func=run)
