@@ -72,7 +72,7 @@ MARKERS: dict[str, dict[str, Any]] = {
 @contextmanager
 def paper_style() -> Iterator[None]:
     """Context in which figures get andoyer's rcParams (restored on exit)."""
-    with mpl.rc_context(RC):
+    with mpl.rc_context(RC):  # type: ignore[arg-type]
         yield
 
 
