@@ -1,5 +1,5 @@
 # Two commands do all the set-up on a fresh machine (Python >= 3.11, pip, make):
-#   make run    install into .venv and run the main job on defaults
+#   make run    install into .venv and run the main job on defaults (andoyer paper)
 #   make test   install into .venv (with test tools) and run lint, types and tests
 PYTHON ?= python3
 VENV ?= .venv
@@ -18,7 +18,7 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 install: $(VENV)/.installed
 
 run: install
-	$(BIN)/andoyer paper-check
+	$(BIN)/andoyer paper
 
 test: install
 	$(BIN)/ruff check src tests benchmarks

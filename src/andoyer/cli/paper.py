@@ -1,0 +1,34 @@
+"""``andoyer paper``: the main job -- the paper's figures, data and checks, rebuilt."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+NAME = "paper"
+ORDER = 10
+
+
+def run(args: argparse.Namespace) -> int:
+    from andoyer.report.paper import build_paper
+
+    index, done = build_paper(args.out, engine=args.engine, quick=args.quick,
+                              only=args.only or None, progress=True)
+    print(f"andoyer paper: {len(done)} items written to {index.parent}/; open {index}")
+    return 0
+
+
+def register(sub: Any) -> None:
+    from andoyer.report.paper import DEFAULT_OUT
+
+    p = sub.add_parser(NAME, help="rebuild the paper's figures, their data and the formula "
+                                  "check into a folder with an index.html (the main job)")
+    p.add_argument("--out", default=DEFAULT_OUT,
+                   help=f"output folder (default: {DEFAULT_OUT})")
+    p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
+                   help="integration engine (default: heyoka where installed, else numba)")
+    p.add_argument("--quick", action="store_true",
+                   help="smaller grids and shorter runs (a smoke test, not the figures)")
+    p.add_argument("--only", nargs="+", metavar="ITEM",
+                   help="build only these items (e.g. fig3 paper-check)")
+    p.set_defaults(func=run)

@@ -1,0 +1,1 @@
+"""Reports built from the analysis and plot layers: ``andoyer paper``."""

@@ -1,0 +1,79 @@
+"""Fig. 3 data and the ``andoyer paper`` report."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from andoyer import RigidBody
+from andoyer.analysis.trajectories import (
+    fig3_section,
+    fig3_trajectories,
+    separatrix_energy,
+    zoom_box,
+)
+from andoyer.cli import main
+from andoyer.dynamics import hamiltonian
+
+
+def test_fig3_trajectories_follow_unperturbed_levels_at_mu0():
+    """At mu = 0 the projected trajectories are level curves of H0 (13) at fixed J2."""
+    body = RigidBody.paper(0.0)
+    ds = fig3_trajectories(body, J1=[0.05, 0.3], t_end=200.0, dt=1.0, engine="numba")
+    x = np.stack([ds.theta1, np.zeros_like(ds.J1), ds.J1, ds.J2, np.zeros_like(ds.J1)], -1)
+    H0 = hamiltonian(body, x.reshape(-1, 5), "hess").reshape(ds.J1.shape)
+    assert np.ptp(H0, axis=1).max() < 1e-12
+    assert np.ptp(ds.J2.values, axis=1).max() < 1e-12
+    # The orbit seeded at the centre line theta1 = 2 phi0 with J1 = 0.05 J2 comes close
+    # to the saddles (J1 -> 0 at theta1 -> 0, 4 phi0): its theta1 range is wide.
+    assert float(ds.theta1[0].max() - ds.theta1[0].min()) > 2.0
+    assert ds.attrs["figure"] == "Fig. 3" and ds.attrs["body_mu"] == 0.0
+
+
+def test_fig3_section_energy_and_zoom_seeds():
+    body = RigidBody.paper()
+    sec, fill = fig3_section(body, n_orbits=6, n_zoom=3, n_crossings=5, engine="numba")
+    assert np.isclose(sec.attrs["h"], separatrix_energy(body)) and sec.attrs["h"] == body.c / 2
+    assert abs(sec.section_residual).max() < 1e-11
+    (x0, x1), (y0, y1) = zoom_box(body)
+    th, J1 = np.mod(sec.theta1.isel(crossing=0), 2 * np.pi), sec.J1.isel(crossing=0)
+    # The zoom seeds start inside the box around the saddle (4 phi0, 0).
+    y = sec.y0.values[-3:]
+    from andoyer import to_hess
+    t = to_hess(body, y)
+    assert np.all((np.mod(t[:, 0], 2 * np.pi) >= x0) & (np.mod(t[:, 0], 2 * np.pi) <= x1))
+    assert np.all((t[:, 2] >= y0) & (t[:, 2] <= y1))
+    assert np.all(np.isfinite(th)) and np.all(np.isfinite(J1))
+
+
+def test_fig3_bad_input():
+    body = RigidBody.paper()
+    with pytest.raises(ValueError, match="J1 seeds"):
+        fig3_trajectories(body, J1=[0.7])
+    with pytest.raises(ValueError, match="dt"):
+        fig3_trajectories(body, t_end=1.0, dt=2.0)
+    with pytest.raises(ValueError):
+        fig3_trajectories(RigidBody(2.5, 2.0, 2.2, 0.01, (0.0, 0.6, 0.8)))
+
+
+def test_paper_command_writes_index(tmp_path, capsys):
+    out = tmp_path / "paper"
+    assert main(["paper", "--out", str(out), "--quick", "--only", "paper-check", "fig3",
+                 "--engine", "numba"]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"index.html", "fig3.png", "fig3.pdf", "fig3-trajectories.nc",
+            "paper-check.txt", "paper-check.json"} <= names
+    html = (out / "index.html").read_text()
+    assert "fig3.png" in html and "misprint" in html and "The paper:" in html
+    from matplotlib.image import imread
+    img = imread(out / "fig3.png")
+    assert img.shape[0] > 500 and img.std() > 0.05
+    import xarray as xr
+    with xr.open_dataset(out / "fig3-trajectories.nc") as ds:
+        assert ds.attrs["figure"] == "Fig. 3"
+
+
+def test_paper_command_unknown_item(tmp_path):
+    with pytest.raises(SystemExit) as exc:
+        main(["paper", "--out", str(tmp_path), "--only", "fig9"])
+    assert exc.value.code == 2
