@@ -88,9 +88,6 @@ def _paper_check(ctx: Context) -> Result:
     with atomic_path(js) as tmp:
         tmp.write_text(json.dumps([asdict(r) for r in rows], indent=1), encoding="utf-8")
     counts = {v: sum(r.verdict == v for r in rows) for v in ("holds", "misprint", "omission")}
-    found = [f"{r.label} {r.name}: {r.nature}" + (f" Corrected: {r.corrected}"
-                                                  if r.corrected else "")
-             for r in rows if r.verdict != "holds"]
     html = _table(["place", "verdict", "formula", "what is wrong / missing", "corrected form"],
                   [[r.label, r.verdict, r.name, r.nature, r.corrected] for r in rows])
     return Result(
@@ -98,7 +95,8 @@ def _paper_check(ctx: Context) -> Result:
         f"{len(rows)} formulas printed in the paper, each typed as printed and evaluated at "
         "random points against the derivation from H = (G, IG)/2 + mu (r, gamma).",
         [f"{counts['holds']} hold, {counts['misprint']} are misprints, "
-         f"{counts['omission']} are incomplete."] + found,
+         f"{counts['omission']} are incomplete or missing (the table below gives each "
+         "one's nature and its corrected form, itself checked against the derivation)."],
         html, {k: float(v) for k, v in counts.items()})
 
 
@@ -187,9 +185,10 @@ def _write_index(out: Path, ctx: Context, done: list[tuple[Item, Result, float]]
     ]
     for item, res, seconds in done:
         images = [f for f in res.files if f.suffix == ".png"]
-        parts.append(f"<h2 id='{_esc(item.key)}'>{_esc(item.title)}</h2><div class='item'>")
-        parts.append("<div>" + "".join(f"<img src='{_esc(f.name)}' alt='{_esc(item.title)}'>"
-                                       for f in images) + "</div>")
+        parts.append(f"<h2 id='{_esc(item.key)}'>{_esc(item.title)}</h2>"
+                     + ("<div class='item'><div>" if images else "<div><div>"))
+        parts.append("".join(f"<img src='{_esc(f.name)}' alt='{_esc(item.title)}'>"
+                             for f in images) + "</div>")
         parts.append(f"<div><p class='paper'><b>The paper:</b> {_esc(res.paper)}</p>")
         if res.found:
             parts.append("<p><b>Corrected or added:</b></p><ul class='found'>"
