@@ -1,0 +1,658 @@
+"""Separatrices and heteroclinic orbits of the unperturbed (Euler-Poinsot) system.
+
+At ``mu = 0`` the reduced system at fixed ``G = G0`` is Eq. (9) of [1]_ in ``(l, L)``
+and, in the Hess chart (14) at ``M = 0``, the one-degree-of-freedom system in
+``(theta1, J1)`` at fixed ``J2`` (the paper's "unperturbed system" after Fig. 3), with
+the Hamiltonian (13)/(16) at ``mu = 0``:
+
+.. math::
+
+    H_0 = \\tfrac12 c J_2^2 + \\kappa J_1 (J_1 - J_2)
+          [\\cos(\\theta_1 - 2\\varphi_0) - \\cos 2\\varphi_0],
+    \\qquad \\kappa = a - b.
+
+(It is checked against ``andoyer.dynamics.hamiltonian(body.with_mu(0), x, "hess")``
+in the tests; nothing here is transcribed from the paper.)
+
+Heteroclinic orbits
+-------------------
+On ``theta1 = 0`` and ``theta1 = 4 phi0`` the bracket vanishes, so ``dtheta1/dt = 0``
+and ``dJ1/dt = kappa J1 (J1 - J2) sin(theta1 - 2 phi0)`` is a logistic equation. On a
+Hess body ``kappa sin 2 phi0 = -2 sigma sgn(phi0)`` with
+``sigma = sqrt((b - c)(c - a))`` (because ``sin^2 phi0 = (b - c)/(b - a)``), hence
+
+.. math::
+
+    J_1(t) = \\frac{J_2}{1 + e^{-s \\lambda (t - t_0)}}, \\qquad
+    \\lambda = 2 \\sigma J_2, \\qquad
+    \\theta_2(t) = \\theta_2(t_0) + c J_2 (t - t_0),
+
+with ``s = -sgn(phi0)`` on ``theta1 = 0`` and ``s = +sgn(phi0)`` on
+``theta1 = 4 phi0``: for the paper's branch (``phi0 > 0``) J1 *decreases* along
+``theta1 = 0`` (from the rotation about +z, ``L = +G``, to the one about -z) and
+*increases* along ``theta1 = 4 phi0``. The direction is fixed by the flow, not a choice.
+In Euler-Poisson variables ``G3 = L = J2 tanh(x/2)``,
+``sqrt(G1^2 + G2^2) = J2 / cosh(x/2)`` with ``x = s lambda (t - t0)``: the physical
+Lyapunov exponent at the rotation about the z axis is ``sigma J2 = lambda / 2``; the
+chart action ``J1 ~ (G1^2 + G2^2)`` decays at twice that rate.
+
+Separatrices and portraits
+--------------------------
+``H0(l, L) = (G0^2 s(l) + L^2 (c - s(l)))/2`` with ``s(l) = a sin^2 l + b cos^2 l``
+(Eqs. (9), (12)) is quadratic in L, so the level through the saddles,
+``h = I_mid G0^2/2`` (the rotation about the middle axis), is in closed form:
+``L^2 = G0^2 (I_mid - s(l))/(c - s(l))``. When z is the middle axis (every Hess body)
+it splits into the singular lines ``L = +-G0`` and the lines ``s(l) = c``, i.e.
+``l = +-phi0 (mod pi)``, which are ``theta1 = 0`` and ``theta1 = 4 phi0`` (mod 2 pi) in
+the Hess chart; ``theta1 = 0`` (``l = -phi0 mod pi``), the Hess invariant relation (3),
+is the separatrix the Hess solutions approach as ``mu -> 0``.
+:func:`separatrix_andoyer` / :func:`separatrix_hess` sample these curves;
+:func:`portrait_andoyer` / :func:`portrait_hess` collect what Figs. 1-2 need (H0 on a
+grid, contour levels with the separatrix level, the curves, the fixed points of
+:mod:`andoyer.analysis.fixed_points` with their types, the digits 1-4 of the uniform
+rotations), drawn by :mod:`andoyer.plot.portraits`.
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+from scipy.special import expit
+
+from andoyer.analysis.fixed_points import _theta_text
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import rotation_chain_expr
+from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.results import provenance
+
+__all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
+           "separatrix_andoyer", "separatrix_hess", "portrait_andoyer", "portrait_hess",
+           "FIG2_CAPTION"]
+
+#: The two heteroclinic lines of the Hess chart at ``mu = 0`` (theta1 mod 2 pi).
+BRANCHES = ("theta1=0", "theta1=4phi0")
+
+TWO_PI = 2.0 * math.pi
+
+
+def _positive(name: str, value: Any) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(v) or v <= 0.0:
+        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    return v
+
+
+def _sigma(body: RigidBody) -> float:
+    """``sqrt((b - c)(c - a))``; needs the z axis to be the middle axis of inertia."""
+    prod = (body.b - body.c) * (body.c - body.a)
+    if not prod > 0.0:
+        raise ValueError(
+            f"the rotation about the z axis is a saddle only when C is the middle moment "
+            f"of inertia; got A={body.A}, B={body.B}, C={body.C} ((b - c)(c - a) = "
+            f"{prod:.3g} <= 0): there is no heteroclinic orbit between L = -G and L = G")
+    return math.sqrt(prod)
+
+
+def _require_hess(body: RigidBody, what: str) -> None:
+    if not body.is_hess:
+        raise ValueError(
+            f"{what} needs a Hess body (conditions (2): A > C > B, e3 = 0, "
+            "(c - b) e1^2 = (a - c) e2^2), so that the heteroclinic lines are theta1 = 0 "
+            "and theta1 = 4 phi0; build it with RigidBody.hess(A, B, C, mu)")
+
+
+def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
+    """Rate ``lambda = 2 sigma J2`` of the unperturbed heteroclinic orbits, ``J1 ~ e^{-lambda t}``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Any body whose z axis is the middle axis of inertia (``a < c < b`` or
+        ``b < c < a``); ``mu`` is ignored (the orbits are those of ``mu = 0``).
+    J2 : float
+        ``J2 = G``, the length of the angular momentum (> 0).
+
+    Returns
+    -------
+    float
+        ``lambda = 2 sqrt((b - c)(c - a)) J2``. This is the rate of the chart action
+        ``J1`` (and the chart Jacobian's eigenvalue at the points ``(0, 0)``,
+        ``(4 phi0, J2)``, ... of the unperturbed system after Fig. 3 of [1]_); the
+        physical exponent of the rotation about z in ``(G1, G2)`` is ``lambda / 2``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> round(heteroclinic_rate(RigidBody.paper(), 1.0), 12)
+    0.099585919546
+    """
+    return 2.0 * _sigma(body) * _positive("J2", J2)
+
+
+def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
+    """``(theta1 of the line in [0, 2 pi), s)``: J1 = J2 expit(s lambda (t - t0))."""
+    if branch not in BRANCHES:
+        raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
+    phi0 = body.phi0
+    sgn = 1 if phi0 > 0.0 else -1
+    if branch == "theta1=0":
+        return 0.0, -sgn
+    return float(np.mod(4.0 * phi0, TWO_PI)), sgn
+
+
+def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1=0",
+                 t0: float = 0.0, sign: int = +1, *, theta2_0: float = 0.0) -> xr.Dataset:
+    """The unperturbed (``mu = 0``, ``M = 0``) heteroclinic orbit along a separatrix line.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (its ``mu`` is ignored: the orbit is that of ``mu = 0``).
+    J2 : float
+        ``J2 = G > 0``, constant at ``mu = 0``.
+    t : array_like, shape (k,)
+        Times (any order; large ``|t - t0|`` are fine: no overflow).
+    branch : {"theta1=0", "theta1=4phi0"}
+        ``"theta1=0"``: the line of the Hess invariant relation (3) (``l = -phi0
+        mod pi``), the separatrix the Hess solutions approach as ``mu -> 0``;
+        ``"theta1=4phi0"``: the other one (``l = +phi0 mod pi``).
+    t0 : float
+        The time at which ``J1 = J2 / 2`` (``L = 0``).
+    sign : {+1, -1}
+        Which of the two orbits of the branch: ``+1`` gives ``theta1 = 0`` (resp.
+        ``4 phi0``) in ``[0, 2 pi)``, ``-1`` the other half of the same great circle of
+        the momentum sphere, ``theta1 + 2 pi`` in the double cover ``[0, 4 pi)`` (the
+        image under the symmetry ``(G1, G2, gamma3) -> -(G1, G2, gamma3)``). It does
+        *not* choose the direction of J1: on each line that is fixed by the flow (see
+        the module notes and ``attrs["J1_direction"]``): for ``phi0 > 0`` J1
+        decreases on ``theta1 = 0`` and increases on ``theta1 = 4 phi0``.
+    theta2_0 : float, keyword-only
+        ``theta2(t0)`` (default 0).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``time``: ``theta1``, ``theta2`` (unreduced, ``theta2_0 + c J2 (t - t0)``),
+        ``J1``, ``J2``, ``J3`` (= 0), ``J2_minus_J1`` (to full relative accuracy as
+        ``J1 -> J2``), ``L_action`` and the Euler-Poisson state ``y`` (time,
+        component). Attrs: ``lambda_rate``, ``sigma``, ``branch``, ``sign``,
+        ``J1_direction``, ``t0``, the closed forms, provenance (with ``mu = 0``).
+
+    Notes
+    -----
+    ``J1(t) = J2 / (1 + exp(-s lambda (t - t0)))``, ``lambda = 2 sqrt((b-c)(c-a)) J2``;
+    ``theta1`` constant; ``theta2 = theta2_0 + c J2 (t - t0)`` (``dtheta2/dt = dH0/dJ2
+    = c J2`` where the bracket of (16) vanishes); ``J2``, ``J3 = M = 0`` constant.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = heteroclinic(RigidBody.paper(), 1.0, [-1e4, 0.0, 1e4])
+    >>> [round(float(v), 12) for v in ds.J1]
+    [1.0, 0.5, 0.0]
+    >>> ds.attrs["J1_direction"]
+    'decreasing'
+    """
+    _require_hess(body, "heteroclinic")
+    J2 = _positive("J2", J2)
+    if sign not in (1, -1):
+        raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+    times = np.atleast_1d(np.asarray(t, dtype=float))
+    if times.ndim != 1 or not np.all(np.isfinite(times)):
+        raise ValueError("t must be a 1-D array of finite times")
+    t0 = float(t0)
+    theta2_0 = float(theta2_0)
+    if not (math.isfinite(t0) and math.isfinite(theta2_0)):
+        raise ValueError("t0 and theta2_0 must be finite")
+    lam = heteroclinic_rate(body, J2)
+    line, s = _branch_angle(body, branch)
+    theta1 = line + (TWO_PI if sign == -1 else 0.0)
+
+    x = s * lam * (times - t0)
+    J1 = J2 * expit(x)
+    J2_minus_J1 = J2 * expit(-x)
+    theta2 = theta2_0 + body.c * J2 * (times - t0)
+    # Euler-Poisson state by the rotation chain with cos J = L/G = tanh(x/2) and
+    # sin J = 2 sqrt(J1 (J2 - J1))/G = 1/cosh(x/2), exact at any |x| (M = 0: I = pi/2).
+    l = theta1 / 2.0 - body.phi0
+    g = theta2 + theta1 / 2.0
+    cJ = np.tanh(x / 2.0)
+    sJ = np.exp(-np.logaddexp(x / 2.0, -x / 2.0)) * 2.0
+    cols = rotation_chain_expr(np.full_like(times, l), g, J2, cJ, sJ, 0.0, 1.0,
+                               sin=np.sin, cos=np.cos)
+    y = np.stack(np.broadcast_arrays(*cols), axis=-1)
+
+    direction = "increasing" if s > 0 else "decreasing"
+    attrs = provenance(
+        body.with_mu(0.0), engine="closed form",
+        equations="unperturbed (mu = 0, M = 0) Hess-chart system after Fig. 3 of Kyrychenko",
+        branch=branch, sign=int(sign), t0=t0, theta2_0=theta2_0, lambda_rate=lam,
+        sigma=lam / (2.0 * J2), J1_direction=direction, theta1_line=theta1,
+        closed_form=(f"J1 = J2 / (1 + exp(-({s:+d}) lambda (t - t0))), lambda = 2 sqrt((b-c)"
+                     "(c-a)) J2; theta2 = theta2_0 + c J2 (t - t0); theta1 const"),
+        body_mu_given=body.mu)
+    ds = xr.Dataset(
+        {"theta1": (("time",), np.full_like(times, theta1)),
+         "theta2": (("time",), theta2),
+         "J1": (("time",), J1),
+         "J2": (("time",), np.full_like(times, J2)),
+         "J3": (("time",), np.zeros_like(times)),
+         "J2_minus_J1": (("time",), J2_minus_J1),
+         "L_action": (("time",), J2 * cJ),
+         "y": (("time", "component"), y)},
+        coords={"time": times, "component": list(STATE)}, attrs=attrs)
+    meta = {"theta1": (r"\theta_1", "Hess-chart angle 2(l + phi0)", "rad", "(14)"),
+            "theta2": (r"\theta_2", "Hess-chart angle g - l - phi0 (unreduced)", "rad",
+                       "(14)"),
+            "J1": ("J_1", "Hess-chart action (G + L)/2", "1", "(14)"),
+            "J2": ("J_2", "Hess-chart action G", "1", "(14)"),
+            "J3": ("J_3", "Hess-chart action M (area integral)", "1", "(14)"),
+            "J2_minus_J1": ("J_2 - J_1", "J2 - J1 = (G - L)/2", "1", "(14)"),
+            "L_action": ("L", "projection of G on body axis 3", "1", "(5)"),
+            "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)")}
+    for name, (sym, long, units, eq) in meta.items():
+        ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
+    ds.time.attrs.update(long_name="time", units="body time units")
+    return ds
+
+
+
+
+# ---------------------------------------------------------------------- separatrices
+#: Caption of Fig. 2 (stored in the portrait datasets' attrs).
+FIG2_CAPTION = (
+    "Phase portrait of the unperturbed Euler-Poinsot system of a Hess body: (a) in the "
+    "Andoyer-Deprit variables (l, L), (b) in the variables (theta1, J1) of (14). Red: "
+    "separatrices (the level H0 = c G^2/2 of the saddle); bold dotted black: the "
+    "separatrix theta1 = 0 (l = -phi0 mod pi) that the Hess solutions approach as mu -> 0; "
+    "grey: the singular lines L = +-G (J1 = 0, J2) of the charts, each one physical state. "
+    "Uniform rotations: 1 about +z (L = G, J1 = J2) and 2 about -z (L = -G, J1 = 0), the "
+    "rotations the physical-pendulum motions approach; 3 about +-y (l = 0, pi); 4 about "
+    "+-x (l = pi/2, 3 pi/2). Markers: centre (circle), saddle of the chart (cross).")
+
+
+def _middle(body: RigidBody) -> tuple[str, float]:
+    """The middle axis of inertia and its inverse moment."""
+    I = {"x": body.a, "y": body.b, "z": body.c}
+    axis = sorted(I, key=I.__getitem__)[1]
+    vals = sorted(I.values())
+    if min(vals[1] - vals[0], vals[2] - vals[1]) <= 1e-12 * vals[2]:
+        raise ValueError(
+            f"separatrices need three distinct moments of inertia, got A={body.A}, "
+            f"B={body.B}, C={body.C}")
+    return axis, I[axis]
+
+
+def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
+    """Energy ``H0 = I_mid G0^2 / 2`` of the separatrix: that of the rotation about the
+    middle axis (``c G0^2/2`` when z is the middle axis, as for a Hess body).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> round(separatrix_energy(RigidBody.paper()), 12)
+    0.227272727273
+    """
+    G0 = _positive("G0", G0)
+    return 0.5 * _middle(body)[1] * G0**2
+
+
+def _s(body: RigidBody, l: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``s(l) = a sin^2 l + b cos^2 l``: H0 = (G0^2 s(l) + L^2 (c - s(l)))/2, Eq. (9)."""
+    return np.asarray(body.a * np.sin(l) ** 2 + body.b * np.cos(l) ** 2)
+
+
+Curve = tuple[NDArray[np.float64], NDArray[np.float64], str, bool, str]
+
+
+def _curves(body: RigidBody, chart: str, action: float, period: float, n: int
+            ) -> list[Curve]:
+    """Sampled separatrix curves ``(q, p, kind, hess, text)`` of one chart.
+
+    ``H0(l, L) = (G0^2 s(l) + L^2 (c - s(l)))/2`` is quadratic in L, so the level
+    ``h = I_mid G0^2/2`` is ``L^2 = G0^2 (I_mid - s(l))/(c - s(l))``. When z is the
+    middle axis (``I_mid = c``) this is ``L = +-G0`` (the singular lines) or
+    ``s(l) = c``, i.e. ``sin^2 l = (b - c)/(b - a)``: the lines ``l = +-l*`` (mod pi),
+    ``l* = |phi0|`` on a Hess body. Otherwise the two curves ``L = +-sqrt(...)`` cross at
+    the saddles ``L = 0``.
+    """
+    axis, I_mid = _middle(body)
+    G0 = action
+    hess_chart = chart == "hess"
+    phi0 = body.phi0 if hess_chart or abs(body.e3) <= 1e-12 else 0.0
+    out: list[Curve] = []
+    if axis == "z":
+        lstar = math.asin(math.sqrt((body.b - body.c) / (body.b - body.a)))
+        name = "|phi0|" if body.is_hess else "l*"
+        L = np.linspace(-G0, G0, n)
+        seen: list[float] = []
+        for lv, txt in ((lstar, name), (math.pi - lstar, f"pi - {name}"),
+                        (math.pi + lstar, f"pi + {name}"),
+                        (2 * math.pi - lstar, f"2 pi - {name}")):
+            hess = body.is_hess and abs(math.sin(lv + phi0)) < 1e-9
+            if hess_chart:
+                t1 = float(np.mod(2.0 * (lv + phi0), period))
+                t1 = 0.0 if period - t1 < 1e-12 else t1
+                if any(min(abs(t1 - o), period - abs(t1 - o)) < 1e-9 for o in seen):
+                    continue
+                seen.append(t1)
+                named = _theta_text(t1, period, body.phi0, None if body.is_hess else lstar)
+                out.append((np.full(n, t1), (G0 + L) / 2.0, "separatrix", hess,
+                            f"theta1 = {named}"))
+                if t1 == 0.0:  # the line theta1 = 0 is also theta1 = period: draw both ends
+                    out.append((np.full(n, period), (G0 + L) / 2.0, "separatrix", hess,
+                                "theta1 = 2 pi (the line theta1 = 0 again)" if period < 7.0
+                                else "theta1 = 4 pi (the line theta1 = 0 again)"))
+            else:
+                out.append((np.full(n, lv), L, "separatrix", hess, f"l = {txt}"))
+        grid = np.linspace(0.0, period, n)
+        for sgn in (+1.0, -1.0):
+            level = (G0 + sgn * G0) / 2.0 if hess_chart else sgn * G0
+            what = ("J1 = J2" if sgn > 0 else "J1 = 0") if hess_chart else (
+                "L = G0" if sgn > 0 else "L = -G0")
+            out.append((grid, np.full(n, level), "singular line", False,
+                        f"{what}: one state, the rotation about {'+' if sgn > 0 else '-'}z"))
+        return out
+    grid = np.linspace(0.0, period, n)
+    l = grid / 2.0 - phi0 if hess_chart else grid
+    s = _s(body, l)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        R = np.clip(G0**2 * (I_mid - s) / (body.c - s), 0.0, G0**2)
+    for sgn in (+1.0, -1.0):
+        L = sgn * np.sqrt(R)
+        out.append((grid, (G0 + L) / 2.0 if hess_chart else L, "separatrix", False,
+                    f"L = {'+' if sgn > 0 else '-'}G0 sqrt((I_mid - s(l))/(c - s(l))), "
+                    f"s(l) = a sin^2 l + b cos^2 l, middle axis {axis}"))
+    return out
+
+
+def _curves_dataset(body: RigidBody, chart: str, action: float, period: float,
+                    n: int) -> xr.Dataset:
+    qn, pn = ("theta1", "J1") if chart == "hess" else ("l_angle", "L_action")
+    curves = _curves(body, chart, action, period, n)
+    h = separatrix_energy(body, action)
+    ds = xr.Dataset(
+        {f"separatrix_{qn}": (("curve", "point"), np.array([c[0] for c in curves])),
+         f"separatrix_{pn}": (("curve", "point"), np.array([c[1] for c in curves])),
+         "separatrix_kind": (("curve",), np.array([c[2] for c in curves], dtype=str)),
+         "separatrix_hess": (("curve",), np.array([c[3] for c in curves])),
+         "separatrix_text": (("curve",), np.array([c[4] for c in curves], dtype=str))},
+        coords={"curve": np.arange(len(curves)), "point": np.arange(n)})
+    ds[f"separatrix_{qn}"].attrs.update(long_name=f"separatrix curve, {qn}",
+                                        units="rad")
+    ds[f"separatrix_{pn}"].attrs.update(long_name=f"separatrix curve, {pn}", units="1")
+    ds["separatrix_kind"].attrs.update(
+        long_name="'separatrix' or 'singular line' (part of the level set, one state)")
+    ds["separatrix_hess"].attrs.update(
+        long_name="1: the separatrix theta1 = 0 (l = -phi0 mod pi) that the Hess solutions "
+                  "approach as mu -> 0")
+    ds.attrs.update(separatrix_H0=h, chart=chart, angle_period=period)
+    return ds
+
+
+def _check_n(n: Any, what: str, minimum: int = 8) -> int:
+    try:
+        k = int(n)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be an integer, got {n!r}") from None
+    if k < minimum:
+        raise ValueError(f"{what} = {k} is too small: use at least {minimum}")
+    return k
+
+
+def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dataset:
+    """The separatrices of (9) in ``(l, L)`` as sampled curves, closed form.
+
+    The level set ``H0 = I_mid G0^2/2`` through the saddles. For a Hess body (z the
+    middle axis) it is the four lines ``l = +-phi0 (mod pi)`` and the singular lines
+    ``L = +-G0``; ``l = -phi0 (mod pi)`` (``theta1 = 0``) is the one the Hess
+    solutions approach as ``mu -> 0`` (``separatrix_hess``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Three distinct moments.
+    G0 : float
+        Length of the angular momentum.
+    n : int
+        Points per curve.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(curve, point)``: ``separatrix_l_angle``, ``separatrix_L_action``,
+        ``separatrix_kind``, ``separatrix_hess``, ``separatrix_text``;
+        attrs ``separatrix_H0``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = separatrix_andoyer(RigidBody.paper(), n=11)
+    >>> [str(t) for t in ds.separatrix_text.values[ds.separatrix_hess.values]]
+    ['l = pi - |phi0|', 'l = 2 pi - |phi0|']
+    """
+    G0 = _positive("G0", G0)
+    return _curves_dataset(body, "andoyer", G0, TWO_PI, _check_n(n, "n"))
+
+
+def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
+                    double_cover: bool = False) -> xr.Dataset:
+    """The separatrices of the unperturbed Hess-chart system in ``(theta1, J1)``.
+
+    For a Hess body: the lines ``theta1 = 0`` (the Hess one, drawn at both ends of
+    ``[0, 2 pi]``) and ``theta1 = 4 phi0`` (mod 2 pi), and the singular lines
+    ``J1 = 0``, ``J1 = J2``. Same variables as :func:`separatrix_andoyer` with
+    ``theta1``, ``J1``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = separatrix_hess(RigidBody.paper(), n=11)
+    >>> sorted({round(float(q), 6) for q, k in zip(ds.separatrix_theta1[:, 0].values,
+    ...         ds.separatrix_kind.values) if k == "separatrix"})
+    [0.0, 2.959523, 6.283185]
+    """
+    J2 = _positive("J2", J2)
+    _require_planar(body)
+    period = 2.0 * TWO_PI if double_cover else TWO_PI
+    return _curves_dataset(body, "hess", J2, period, _check_n(n, "n"))
+
+
+def _require_planar(body: RigidBody) -> None:
+    if abs(body.e3) > 1e-12:
+        raise ValueError("the Hess chart needs e3 = 0 (phi0 is the angle of r in the "
+                         f"G1-G2 plane); got e3 = {body.e3!r}")
+
+
+# ---------------------------------------------------------------------- portraits
+def _grid_n(n: Any) -> tuple[int, int]:
+    if np.ndim(n) == 0:
+        k = _check_n(n, "n")
+        return k, k // 2 + 1
+    try:
+        nq, npp = (int(v) for v in n)
+    except (TypeError, ValueError):
+        raise ValueError(f"n must be an int or a pair (n_angle, n_action), got {n!r}") from None
+    return _check_n(nq, "n[0]"), _check_n(npp, "n[1]", 3)
+
+
+def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
+              n_curve: int, double_cover: bool) -> xr.Dataset:
+    from andoyer.analysis.fixed_points import (
+        ROTATION_LABELS,
+        andoyer_fixed_points,
+        hess_fixed_points,
+    )
+    from andoyer.dynamics import hamiltonian
+
+    nq, npp = _grid_n(n)
+    n_levels = _check_n(n_levels, "n_levels", 2)
+    body0 = body.with_mu(0.0)
+    if chart == "hess":
+        _require_planar(body)
+        period = 2.0 * TWO_PI if double_cover else TWO_PI
+        qn, pn, an = "theta1", "J1", "J2"
+        p_lo, p_hi = 0.0, action
+        fps = hess_fixed_points(body, action, double_cover=double_cover)
+    else:
+        period = TWO_PI
+        qn, pn, an = "l_angle", "L_action", "G_action"
+        p_lo, p_hi = -action, action
+        fps = andoyer_fixed_points(body, action)
+    q = np.linspace(0.0, period, nq)
+    p = np.linspace(p_lo, p_hi, npp)
+    Q, P = np.meshgrid(q, p)  # (p, q): rows are actions
+    zeros = np.zeros_like(Q)
+    act = np.full_like(Q, action)
+    x = np.stack([Q, zeros, P, act, zeros], axis=-1)
+    H0 = hamiltonian(body0, x, "hess" if chart == "hess" else "andoyer")
+
+    h_sep = separatrix_energy(body, action)
+    lo, hi = float(H0.min()), float(H0.max())
+    regular = lo + (hi - lo) * (np.arange(n_levels) + 0.5) / n_levels
+    regular = regular[np.abs(regular - h_sep) > 0.02 * (hi - lo)]
+    # The saddles' energies (equal to h_sep to round-off; kept if ever they are not).
+    tol = 1e-12 * max(abs(hi), 1.0)
+    saddle_H = [fp.H0 for fp in fps.points
+                if fp.linear_type == "saddle" and abs(fp.H0 - h_sep) > tol]
+    levels = np.unique(np.concatenate([regular, [h_sep], saddle_H]))
+    is_sep = np.isclose(levels, h_sep, rtol=0.0, atol=tol)
+
+    curves = _curves_dataset(body, chart, action, period, n_curve)
+    pts = fps.points
+    ds = curves.copy()
+    ds = ds.assign_coords({qn: q, pn: p, "level": np.arange(len(levels)),
+                           "fixed_point": np.arange(len(pts))})
+    ds["H0"] = ((pn, qn), H0)
+    ds["levels"] = (("level",), levels)
+    ds["level_is_separatrix"] = (("level",), is_sep)
+    ev = np.array([fp.eigenvalues for fp in pts], dtype=complex).reshape(len(pts), 2)
+    ds[f"fp_{qn}"] = (("fixed_point",), np.array([fp.q for fp in pts]))
+    ds[f"fp_{pn}"] = (("fixed_point",), np.array([fp.p for fp in pts]))
+    ds["fp_type"] = (("fixed_point",), np.array([fp.linear_type for fp in pts], dtype=str))
+    ds["fp_physical_type"] = (("fixed_point",),
+                              np.array([fp.physical_type for fp in pts], dtype=str))
+    ds["fp_motion"] = (("fixed_point",), np.array([fp.motion for fp in pts], dtype=str))
+    ds["fp_real"] = (("fixed_point",), np.array([fp.real_equilibrium for fp in pts]))
+    ds["fp_label"] = (("fixed_point",), np.array([fp.label for fp in pts], dtype=np.int64))
+    ds["fp_H0"] = (("fixed_point",), np.array([fp.H0 for fp in pts]))
+    ds["fp_closed_form"] = (("fixed_point",), np.array([fp.closed_form for fp in pts],
+                                                        dtype=str))
+    ds["fp_eig_real"] = (("fixed_point", "eig"), ev.real)
+    ds["fp_eig_imag"] = (("fixed_point", "eig"), ev.imag)
+    ds[f"singular_{pn}"] = (("singular_line",), np.array([p_lo, p_hi]))
+
+    # Where the digits 1-4 go: 1, 2 on the singular lines (+z at the top, -z at the
+    # bottom) above/below the last regular point (off the separatrices), 3, 4 just above
+    # each regular fixed point.
+    span = p_hi - p_lo
+    regular_q = [fp.q for fp in pts if fp.real_equilibrium]
+    q12 = regular_q[-1] if regular_q else period / 2.0
+    ann_q: list[float] = [q12, q12]
+    ann_p: list[float] = [p_hi - 0.02 * span, p_lo + 0.02 * span]
+    ann_t: list[str] = [str(ROTATION_LABELS[("z", +1)]), str(ROTATION_LABELS[("z", -1)])]
+    ann_va: list[str] = ["top", "bottom"]
+    for fp in pts:
+        if fp.real_equilibrium:
+            ann_q.append(fp.q)
+            ann_p.append(fp.p + 0.03 * span)
+            ann_t.append(str(fp.label))
+            ann_va.append("bottom")
+    ds[f"annotation_{qn}"] = (("annotation",), np.array(ann_q))
+    ds[f"annotation_{pn}"] = (("annotation",), np.array(ann_p))
+    ds["annotation_text"] = (("annotation",), np.array(ann_t, dtype=str))
+    ds["annotation_va"] = (("annotation",), np.array(ann_va, dtype=str))
+
+    sym = {"l_angle": "$l$", "L_action": "$L$", "theta1": r"$\theta_1$", "J1": "$J_1$"}
+    ds[qn].attrs.update(long_name=f"angle {qn}", units="rad", symbol=sym[qn],
+                        equation="(5)-(6)" if chart == "andoyer" else "(14)")
+    ds[pn].attrs.update(long_name=f"action {pn}", units="1", symbol=sym[pn],
+                        equation="(5)" if chart == "andoyer" else "(14)")
+    ds["H0"].attrs.update(long_name="unperturbed Hamiltonian H0 (mu = 0)", units="1",
+                          symbol="H_0", equation="(12)-(13)" if chart == "andoyer" else
+                          "(16) at mu = 0")
+    ds["levels"].attrs.update(long_name="contour levels of H0 (the separatrix level "
+                                        "included)", units="1")
+    ds["fp_type"].attrs.update(long_name="linear type from the chart Jacobian")
+    ds["fp_real"].attrs.update(long_name="0: point of a singular line (chart artefact)")
+    ds["fp_label"].attrs.update(long_name="digit of the uniform rotation (Fig. 2)")
+    eq = "(9)" if chart == "andoyer" else "unperturbed system after Fig. 3"
+    ds.attrs = provenance(
+        body0, engine="closed form + scipy.optimize.root", chart=chart,
+        equations=f"unperturbed reduced system {eq} of Kyrychenko",
+        plane_x=qn, plane_y=pn, x_label=sym[qn], y_label=sym[pn], **{an: action},
+        angle_period=period, separatrix_H0=h_sep, body_mu_given=body.mu,
+        is_hess=int(body.is_hess), caption=FIG2_CAPTION,
+        label_convention=("1: rotation about +z (L = G, J1 = J2); 2: about -z (L = -G, "
+                          "J1 = 0) -- the rotations the pendulum motions approach; 3: about "
+                          "+-y; 4: about +-x"))
+    return ds
+
+
+def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] = (241, 121),
+                     *, n_levels: int = 14, n_curve: int = 201) -> xr.Dataset:
+    """Everything Fig. 1 / Fig. 2(a) need: the unperturbed portrait of (9) in ``(l, L)``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Three distinct moments (``mu`` ignored: ``mu = 0``).
+    G0 : float
+        Length of the angular momentum.
+    n : int or (int, int)
+        Grid ``(n_l, n_L)`` for H0 over ``[0, 2 pi] x [-G0, G0]``.
+    n_levels : int
+        Number of ordinary contour levels (the separatrix level is added).
+    n_curve : int
+        Points per separatrix curve.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``H0`` (L_action, l_angle); ``levels``, ``level_is_separatrix``; the separatrix
+        curves (:func:`separatrix_andoyer`); the fixed points ``fp_*`` with their chart
+        and physical types and Fig. 2 digits; ``singular_L_action``; the digit
+        positions ``annotation_*``; attrs ``caption``, ``label_convention``,
+        ``plane_x``/``plane_y``, axis labels and provenance.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = portrait_andoyer(RigidBody.paper(), n=(33, 17), n_curve=11)
+    >>> bool(ds.level_is_separatrix.any()), int(ds.sizes["fixed_point"])
+    (True, 12)
+    """
+    G0 = _positive("G0", G0)
+    return _portrait(body, "andoyer", G0, n, n_levels, _check_n(n_curve, "n_curve"), False)
+
+
+def portrait_hess(body: RigidBody, J2: float = 1.0, n: int | tuple[int, int] = (241, 81), *,
+                  n_levels: int = 14, n_curve: int = 201,
+                  double_cover: bool = False) -> xr.Dataset:
+    """Everything Fig. 2(b) needs: the unperturbed portrait in ``(theta1, J1)``, ``M = 0``.
+
+    As :func:`portrait_andoyer` with ``theta1 in [0, 2 pi]`` (``[0, 4 pi]`` with
+    ``double_cover``), ``J1 in [0, J2]``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = portrait_hess(RigidBody.paper(), n=(33, 9), n_curve=11)
+    >>> sorted(ds.fp_closed_form.values.tolist())[:3]
+    ['(0, 0)', '(0, J2)', '(2 phi0 + pi, J2/2)']
+    """
+    J2 = _positive("J2", J2)
+    return _portrait(body, "hess", J2, n, n_levels, _check_n(n_curve, "n_curve"),
+                     double_cover)
