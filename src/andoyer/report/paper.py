@@ -130,8 +130,117 @@ def _fig3(ctx: Context) -> Result:
         numbers={"H_max_drift": float(traj.attrs["H_max_drift"])})
 
 
+def _pre(text: str) -> str:
+    return f"<pre>{_esc(text)}</pre>"
+
+
+def _fig1(ctx: Context) -> Result:
+    from andoyer.analysis.separatrix import portrait_andoyer
+    from andoyer.plot.portraits import plot_fig1
+
+    ds = portrait_andoyer(ctx.body, 1.0)
+    files = ctx.figure(plot_fig1(ds), "fig1")
+    files.append(ctx.data(ds, "fig1-portrait"))
+    return Result(
+        files,
+        "Fig. 1: 'the phase portrait of system (12)' -- the unperturbed system (9) in "
+        "(l, L) at fixed G0; the list of its fixed points that should follow 'With any "
+        "G0 > 0 the system (4) has fixed points' is missing from the text.",
+        ["Drawn from the level curves of H0 (13) (G0 = 1), with all 12 fixed points of "
+         "the fundamental domain found numerically and matched with their closed forms "
+         "(see the table under Fig. 2).",
+         "The paper's (9) prints dL/dt with the wrong sign; the figure uses the derived "
+         "field (the level curves of H0 do not depend on it, the arrows of time do)."])
+
+
+def _fig2(ctx: Context) -> Result:
+    from andoyer.analysis.fixed_points import (
+        andoyer_fixed_points,
+        euler_poisson_equilibria,
+        format_table,
+        hess_fixed_points,
+    )
+    from andoyer.analysis.separatrix import FIG2_CAPTION, portrait_andoyer, portrait_hess
+    from andoyer.plot.portraits import plot_fig2
+
+    ds_a = portrait_andoyer(ctx.body, 1.0)
+    ds_h = portrait_hess(ctx.body, 1.0)
+    files = ctx.figure(plot_fig2(ds_a, ds_h), "fig2")
+    files.append(ctx.data(ds_h, "fig2b-portrait"))
+    fp_a = andoyer_fixed_points(ctx.body, 1.0)
+    fp_h = hess_fixed_points(ctx.body, 1.0)
+    eq = euler_poisson_equilibria(ctx.body)
+    files.append(ctx.data(fp_h.to_dataset(), "fixed-points-hess"))
+    files.append(ctx.data(fp_a.to_dataset(), "fixed-points-andoyer"))
+    tables = "\n\n".join(format_table(x) for x in (fp_a, fp_h, eq))
+    txt = ctx.out / "fixed-points.txt"
+    with atomic_path(txt) as tmp:
+        tmp.write_text(tables + "\n", encoding="utf-8")
+    files.append(txt)
+    return Result(
+        files,
+        "Fig. 2: 'Phase portrait of unperturbed Euler-Poinsot system: (a) in the variables "
+        "Andoyer-Deprit; (b) in new variables'. 'Separatrices, to which Hess' solutions are "
+        "approached with mu -> 0, are marked with a bold line and a dotted line. Uniform "
+        "rotations are noted with digits 1-4.' After Fig. 3: the unperturbed system 'has "
+        "four fixed points (0, 0), (0, J2), (4 phi0, 0), (4 phi0, J2), 0 <= theta1 < 2 pi'.",
+        [FIG2_CAPTION,
+         "All fixed points: 12 in (l, L) and 6 in (theta1, J1) with theta1 in [0, 2 pi) "
+         "(12 in the double cover [0, 4 pi)). The paper lists four; all four lie on the "
+         "charts' singular lines J1 = 0, J2 (L = -+G), where a whole line is one physical "
+         "state, the rotation about -+z (the middle axis: unstable). Their chart "
+         "eigenvalues +-2 sigma J2 are twice the physical exponent sigma G of that "
+         "rotation, sigma = sqrt((b - c)(c - a)). Missing in the paper: the centres "
+         "(2 phi0, J2/2) (rotations about +-y) and (2 phi0 + pi, J2/2) (about +-x).",
+         "The paper's phi0 = arctg(sqrt(c - b)/sqrt(a - c)) has negative radicands for "
+         f"the paper's ordering a < c < b; phi0 = atan2(e2, e1) = {ctx.body.phi0:.10f}.",
+         "Added: the equilibria G = 0 of the Euler-Poisson system: hanging "
+         "(centre-centre) and upright (saddle-saddle), eigenvalues on the symplectic leaf."],
+        _pre(tables))
+
+
+def _heteroclinic(ctx: Context) -> Result:
+    import numpy as np
+
+    from andoyer.analysis.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
+    from andoyer.integrate.api import propagate
+
+    body0 = ctx.body.with_mu(0.0)
+    lam = heteroclinic_rate(ctx.body, 1.0)
+    t = np.linspace(-60.0, 60.0, 241)
+    rows: list[list[Any]] = []
+    errs: list[float] = []
+    sets: list[xr.Dataset] = []
+    for branch in BRANCHES:
+        for sign in (+1, -1):
+            ds = heteroclinic(ctx.body, 1.0, t, branch=branch, sign=sign)
+            run = propagate(body0, ds.y.values[0], t - t[0], engine=ctx.engine,
+                            rtol=1e-13, atol=1e-13)
+            ys = np.stack([run[v].values[0] for v in
+                           ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")], -1)
+            err = float(np.max(np.abs(ys - ds.y.values)))
+            errs.append(err)
+            rows.append([branch, sign, ds.attrs["J1_direction"], f"{err:.1e}"])
+            sets.append(ds.expand_dims(orbit=[len(sets)]))
+    ctx_files = [ctx.data(xr.concat(sets, "orbit", combine_attrs="drop_conflicts"),
+                          "heteroclinic")]
+    return Result(
+        ctx_files,
+        "'The heteroclinic trajectories of the dynamic system are explored with the help "
+        "of the canonical variables' -- no formula is given.",
+        [f"Closed form (μ = 0, M = 0): θ1 ≡ 0 or 4φ0, J1(t) = J2 / (1 + exp(∓λ(t − t0))), "
+         f"λ = 2 J2 sqrt((b − c)(c − a)) = {lam:.10f} for J2 = 1, θ2 = θ2(t0) + c J2 (t − t0).",
+         f"Checked against integration of the Euler-Poisson equations (heyoka, tol 1e-13) "
+         f"from t − t0 = −60 to 60: largest state error {max(errs):.1e}."],
+        _table(["branch", "sign", "J1", "max |closed form − integration|"], rows),
+        {"lambda": lam, "max_error": max(errs)})
+
+
 ITEMS: list[Item] = [
     Item("paper-check", "Every printed formula against the derivation", _paper_check),
+    Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", _fig1),
+    Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points", _fig2),
+    Item("heteroclinic", "Heteroclinic orbits in closed form", _heteroclinic),
     Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
          "θ2 = 0", _fig3),
 ]
