@@ -1,0 +1,678 @@
+"""The physical pendulum ``G^2 = L^2, M = 0`` and its stability (Floquet multipliers).
+
+A body whose centre of mass lies in the principal plane ``Oxy`` (``e3 = 0``; Hess
+bodies included) has the invariant set ``G1 = G2 = 0, gamma3 = 0`` (Eq. (8) of [1]_:
+``G^2 = L^2`` and ``M = 0``): the body swings about its axis ``Oz``, which stays
+horizontal. With ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)`` and
+``L = G3`` the motion is the pendulum
+
+.. math::
+
+    H = \\tfrac12 c L^2 + \\mu \\sin\\vartheta, \\qquad
+    \\dot\\vartheta = c L, \\qquad \\dot L = -\\mu \\cos\\vartheta ,
+
+(``vartheta`` is the angle of the upward vertical in the body plane ``Oxy``, shifted
+by ``phi0`` so that the potential ``mu (r, gamma)`` is ``mu sin(vartheta)``). The
+Hess solution at ``M = 0`` reduces to the same pendulum in ``(theta2, J2)``
+(:mod:`andoyer.analysis.hess_solution`), so the closed forms of this module serve both:
+:func:`pendulum_solution` solves ``H = c p^2/2 + mu sin q`` with Jacobi elliptic
+functions (``scipy.special.ellipj``, parameter convention ``m = k^2``).
+
+Potential in Andoyer-Deprit variables
+-------------------------------------
+On ``L = +G`` the chart gives ``gamma1 = sin(g + l)``, ``gamma2 = cos(g + l)``, so
+``Pi = mu sin(g + l + phi0)``; on ``L = -G`` it gives ``Pi = mu sin(g - l - phi0)``
+(:func:`pendulum_potential`). The paper prints ``Pi = mu^-1 sin(g + l - phi0)``
+(:func:`paper_pendulum_potential`): ``mu^-1`` for ``mu`` and ``-phi0`` for ``+phi0``.
+Only ``g + l`` (on ``L = G``) or ``g - l`` (on ``L = -G``) is defined there; the
+chart inverse :func:`andoyer.charts.andoyer_deprit.to_andoyer` returns ``l = 0`` and
+puts the whole angle into ``g``.
+
+Stability
+---------
+The monodromy matrix ``Phi`` of the variational equations of the Euler-Poisson field
+(1) over one period is computed by heyoka's variational equations
+(``heyoka.var_ode_sys``): they are generated from the same SymPy field as the
+integrators (no Jacobian typed by hand) and the Taylor method integrates the 42
+equations at ``tol = 1e-15`` in milliseconds; :func:`monodromy` with
+``method="finite_difference"`` is the independent check (central differences of the
+flow map, compiled DOP853). On the pendulum the variational equations split exactly
+into the in-plane block ``(G3, gamma1, gamma2)`` (multipliers 1, 1, 1: the flow, the
+energy and ``|gamma|^2``) and the transverse block ``(G1, G2, gamma3)`` (multipliers
+``1`` -- the area integral M -- and a pair ``lambda, 1/lambda``). The pair is taken
+from the trace, ``lambda + 1/lambda = tr Phi_perp - 1``, which is insensitive to the
+Jordan blocks of the trivial multipliers. ``|tr| < 2``: elliptic (linearly stable);
+``> 2``: hyperbolic (unstable); ``= 2``: parabolic.
+
+On a Hess body the pair is known exactly: ``(G, r)`` obeys
+``d(G, r)/dt = -branch sigma G3 (G, r)`` with ``sigma = sqrt((b - c)(c - a))``, and
+``int G3 dt`` over a period is ``2 pi / c`` for a rotation and 0 for a libration, so
+rotations have ``lambda = exp(+-2 pi sigma / c)`` at every energy
+(:func:`hess_rotation_multiplier`) and librations ``lambda = 1`` with a Jordan block
+(the Hess librations of all ``J1`` share the period: a shear, linear divergence).
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from functools import cache
+from typing import Any, NamedTuple
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+from scipy.special import ellipj, ellipk, ellipkinc
+
+from andoyer.body import RigidBody
+from andoyer.charts.euler_poisson import STATE, as_state
+from andoyer.integrate.results import provenance, states_dataset
+
+__all__ = [
+    "MOTIONS",
+    "STABILITY",
+    "TRANSVERSE",
+    "IN_PLANE",
+    "Monodromy",
+    "Floquet",
+    "pendulum_energy",
+    "pendulum_motion",
+    "pendulum_modulus",
+    "pendulum_period",
+    "pendulum_solution",
+    "pendulum_state",
+    "pendulum_potential",
+    "paper_pendulum_potential",
+    "physical_pendulum",
+    "monodromy",
+    "physical_pendulum_monodromy",
+    "floquet_multipliers",
+    "floquet_scan",
+    "hess_rotation_multiplier",
+]
+
+#: Motion codes stored in datasets (``flag_values`` / ``flag_meanings``).
+MOTIONS = {"equilibrium": 0, "libration": 1, "separatrix": 2, "rotation": 3}
+#: Linear-stability codes of a periodic orbit.
+STABILITY = {"elliptic": 0, "parabolic": 1, "hyperbolic": 2}
+#: Euler-Poisson components transverse to the pendulum set ``G1 = G2 = gamma3 = 0``.
+TRANSVERSE = ("G1", "G2", "gamma3")
+#: Components along the pendulum set.
+IN_PLANE = ("G3", "gamma1", "gamma2")
+
+_T_IDX = [STATE.index(s) for s in TRANSVERSE]
+_EPS = float(np.finfo(float).eps)
+#: ``|h - mu| <= SEPARATRIX_RTOL * mu`` is the separatrix.
+SEPARATRIX_RTOL = 4.0 * _EPS
+
+
+def _positive(name: str, value: float) -> float:
+    v = float(value)
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return v
+
+
+def _pendulum_body(body: RigidBody, what: str) -> None:
+    if not isinstance(body, RigidBody):
+        raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
+    body._require_planar(what)
+    if body.mu <= 0.0:
+        raise ValueError(f"{what} needs mu > 0 (mu = 0 is the free body: the pendulum "
+                         "degenerates into a uniform rotation); use body.with_mu(mu)")
+
+
+# ----------------------------------------------------------------------------- the pendulum
+def pendulum_energy(c: float, mu: float, q: ArrayLike, p: ArrayLike) -> NDArray[np.float64]:
+    """``H = c p^2 / 2 + mu sin q``: the reduced Hamiltonian of both pendulums."""
+    return np.asarray(0.5 * c * np.asarray(p) ** 2 + mu * np.sin(q), dtype=float)
+
+
+def _excess(c: float, mu: float, q: float, p: float) -> float:
+    """``h + mu`` (energy above the bottom ``q = -pi/2``) without cancellation."""
+    phi = math.remainder(q + 0.5 * math.pi, 2.0 * math.pi)
+    return 0.5 * c * p * p + 2.0 * mu * math.sin(0.5 * phi) ** 2
+
+
+def pendulum_motion(mu: float, h: float) -> str:
+    """``"equilibrium"``, ``"libration"``, ``"separatrix"`` or ``"rotation"`` at energy ``h``.
+
+    Raises ``ValueError`` below the minimum ``h = -mu``.
+    """
+    mu = _positive("mu", mu)
+    if not math.isfinite(h) or h < -mu * (1.0 + SEPARATRIX_RTOL):
+        raise ValueError(f"energy h = {h!r} is below the pendulum's minimum -mu = {-mu:g}")
+    if h <= -mu:
+        return "equilibrium"
+    if abs(h - mu) <= SEPARATRIX_RTOL * mu:
+        return "separatrix"
+    return "libration" if h < mu else "rotation"
+
+
+def pendulum_modulus(mu: float, h: float) -> float:
+    """Parameter ``m = k^2`` of the elliptic functions (scipy's convention).
+
+    ``m = (h + mu) / (2 mu)`` for a libration (``k = sin`` of half the amplitude in
+    ``q + pi/2``), ``m = 2 mu / (h + mu)`` for a rotation, 1 on the separatrix.
+    """
+    motion = pendulum_motion(mu, h)
+    if motion in ("libration", "equilibrium"):
+        return max(0.0, (h + mu) / (2.0 * mu))
+    if motion == "separatrix":
+        return 1.0
+    return 2.0 * mu / (h + mu)
+
+
+def pendulum_period(c: float, mu: float, h: float) -> float:
+    """Period of ``H = c p^2/2 + mu sin q`` at energy ``h``, via ``scipy.special.ellipk``.
+
+    Libration (``-mu < h < mu``): ``T = 4 K(m) / sqrt(c mu)``, ``m = (h + mu)/(2 mu)``
+    (``2 pi / sqrt(c mu)`` at the bottom); rotation (``h > mu``):
+    ``T = 4 K(m) / sqrt(2 c (h + mu))``, ``m = 2 mu / (h + mu)`` (the time for ``q`` to
+    advance by ``2 pi``); ``inf`` on the separatrix ``h = mu``.
+
+    Examples
+    --------
+    >>> round(pendulum_period(1.0, 1.0, -1.0), 12) == round(2 * math.pi, 12)
+    True
+    """
+    c = _positive("c", c)
+    motion = pendulum_motion(mu, h)
+    m = pendulum_modulus(mu, h)
+    if motion == "separatrix":
+        return math.inf
+    if motion == "rotation":
+        return float(4.0 * ellipk(m) / math.sqrt(2.0 * c * (h + mu)))
+    return float(4.0 * ellipk(m) / math.sqrt(c * mu))
+
+
+def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Closed-form solution of ``dq/dt = c p``, ``dp/dt = -mu cos q`` from ``(q0, p0)`` at ``t[0]``.
+
+    With ``phi = q + pi/2`` (``H = c p^2/2 - mu cos phi + const``), ``omega0 = sqrt(c mu)``
+    and the Jacobi functions of ``scipy.special.ellipj`` (parameter ``m = k^2``):
+
+    * libration, ``k^2 = (h + mu)/(2 mu) < 1``:
+      ``sin(phi/2) = k sn(u, m)``, ``p = (2 k omega0 / c) cn(u, m)``, ``u = omega0 t + u0``;
+    * rotation, ``k^2 > 1``, ``m = 1/k^2``:
+      ``phi = 2 s am(u, m)``, ``p = s (2 k omega0 / c) dn(u, m)``, ``u = k omega0 t + u0``,
+      ``s = sign(p)``;
+    * separatrix: ``phi = 2 s gd(omega0 t + u0)``, ``p = s (2 omega0 / c) sech(...)``.
+
+    ``u0`` is fixed by the initial state through ``scipy.special.ellipkinc`` of the
+    amplitude ``atan2(sn, cn)`` (quadrant-correct). ``q`` is returned unwrapped
+    (continuous in ``t``); ``(q, p)(t[0]) = (q0, p0)`` to round-off.
+
+    Examples
+    --------
+    >>> q, p = pendulum_solution(1.0, 1.0, -math.pi / 2, 0.1, [0.0, 2 * math.pi])
+    >>> bool(abs(p[1] - 0.1) < 1e-4)      # small oscillations have period ~ 2 pi
+    True
+    """
+    c = _positive("c", c)
+    mu = _positive("mu", mu)
+    q0, p0 = float(q0), float(p0)
+    if not (math.isfinite(q0) and math.isfinite(p0)):
+        raise ValueError(f"initial state (q0, p0) = ({q0!r}, {p0!r}) is not finite")
+    times = np.asarray(t, dtype=float)
+    tau = times - times.flat[0] if times.size else times
+    omega0 = math.sqrt(c * mu)
+    e = _excess(c, mu, q0, p0)  # h + mu
+    h = e - mu
+    phi0 = math.remainder(q0 + 0.5 * math.pi, 2.0 * math.pi)
+    offset = q0 - phi0  # q = phi + offset, offset = -pi/2 + 2 pi n
+    motion = pendulum_motion(mu, h)
+    if motion == "equilibrium" or e == 0.0:
+        return np.full(tau.shape, q0), np.zeros(tau.shape)
+    if motion == "separatrix":
+        s = 1.0 if p0 > 0 else -1.0
+        if p0 == 0.0:  # on the saddle itself
+            return np.full(tau.shape, q0), np.zeros(tau.shape)
+        x = omega0 * tau + math.asinh(math.tan(0.5 * s * phi0))
+        phi = 2.0 * s * np.arctan(np.sinh(x))
+        p = s * 2.0 * omega0 / c / np.cosh(x)
+        return phi + offset, p
+    if motion == "libration":
+        m = e / (2.0 * mu)
+        k = math.sqrt(m)
+        sn0 = math.sin(0.5 * phi0) / k
+        cn0 = c * p0 / (2.0 * k * omega0)
+        u = omega0 * tau + ellipkinc(math.atan2(sn0, cn0), m)
+        sn, cn, dn, _ = ellipj(u, m)
+        phi = 2.0 * np.arctan2(k * sn, dn)
+        return phi + offset, 2.0 * k * omega0 / c * cn
+    m = 2.0 * mu / e
+    k = 1.0 / math.sqrt(m)
+    s = 1.0 if p0 > 0 else -1.0
+    half = 0.5 * s * (q0 + 0.5 * math.pi)  # the amplitude am(u0), unreduced
+    u = k * omega0 * tau + ellipkinc(half, m)
+    _, _, dn, am = ellipj(u, m)
+    q = 2.0 * s * am - 0.5 * math.pi
+    q = q + (q0 - q.flat[0]) if q.size else q  # remove the round-off of F then am
+    return q, s * 2.0 * k * omega0 / c * dn
+
+
+# ----------------------------------------------------------------------------- physical pendulum
+def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArray[np.float64]:
+    """Euler-Poisson states on the physical pendulum: ``G = (0, 0, L)``,
+    ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)``; shape ``(..., 6)``.
+
+    ``mu (r, gamma) = mu sin(vartheta)``; on ``L > 0`` (``L = G``), ``vartheta = g + l + phi0``.
+    """
+    body._require_planar("the physical pendulum")
+    th, LL = np.broadcast_arrays(np.asarray(vartheta, dtype=float), np.asarray(L, dtype=float))
+    z = np.zeros(th.shape)
+    a = th - body.phi0
+    return np.stack([z, z, LL, np.sin(a), np.cos(a), z], axis=-1)
+
+
+def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int = 1
+                       ) -> NDArray[np.float64]:
+    """``Pi = mu (r, gamma)`` on the physical pendulum in Andoyer-Deprit variables.
+
+    ``mu sin(g + l + phi0)`` on ``L = +G`` and ``mu sin(g - l - phi0)`` on ``L = -G``
+    (derived from (5)-(6) at ``L = +-G, M = 0``; the paper's printed form after (11),
+    ``mu^-1 sin(g + l - phi0)``, is wrong: see :func:`paper_pendulum_potential`).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody, from_andoyer
+    >>> body = RigidBody.paper()
+    >>> y = from_andoyer([0.4, 1.3, 1.0, 1.0, 0.0])          # L = G, M = 0
+    >>> pi = body.mu * (body.e1 * y[3] + body.e2 * y[4])
+    >>> bool(np.isclose(pendulum_potential(body, 0.4, 1.3), pi))
+    True
+    """
+    body._require_planar("the physical-pendulum potential")
+    if L_sign not in (1, -1):
+        raise ValueError(f"L_sign must be +1 (L = G) or -1 (L = -G), got {L_sign!r}")
+    l_, g_ = np.asarray(l, dtype=float), np.asarray(g, dtype=float)
+    if L_sign == 1:
+        return np.asarray(body.mu * np.sin(g_ + l_ + body.phi0))
+    return np.asarray(body.mu * np.sin(g_ - l_ - body.phi0))
+
+
+def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
+                             ) -> NDArray[np.float64]:
+    """The potential on the physical pendulum as printed after (11): ``mu^-1 sin(g + l - phi0)``.
+
+    Kept to show that it is wrong (``mu^-1`` for ``mu``, ``-phi0`` for ``+phi0``);
+    use :func:`pendulum_potential`.
+    """
+    body._require_planar("the physical-pendulum potential")
+    return np.asarray(np.sin(np.asarray(g, dtype=float) + np.asarray(l, dtype=float)
+                             - body.phi0) / body.mu)
+
+
+def _initial_bottom(body: RigidBody, h: float) -> tuple[float, float]:
+    """``(vartheta0, L0)``: the bottom ``vartheta = 3 pi/2`` with ``L0 > 0`` at energy ``h``."""
+    e = h + body.mu
+    if not (math.isfinite(h) and e >= 0.0):
+        raise ValueError(f"energy h = {h!r} is below the physical pendulum's minimum "
+                         f"-mu = {-body.mu:g} (the body hanging at rest)")
+    return 1.5 * math.pi, math.sqrt(2.0 * e / body.c)
+
+
+def physical_pendulum(body: RigidBody, vartheta0: float, L0: float, t: ArrayLike
+                      ) -> xr.Dataset:
+    """The physical-pendulum motion in closed form (Jacobi elliptic functions).
+
+    Parameters
+    ----------
+    body : RigidBody
+        ``e3 = 0`` (the centre of mass in the plane ``Oxy``), ``mu > 0``.
+    vartheta0, L0 : float
+        Initial angle (``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)``) and
+        ``L = G3`` at ``t[0]``.
+    t : array_like, shape (k,)
+        Output times, strictly increasing.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(time,)``: ``vartheta`` (unwrapped), the Euler-Poisson state, the chart
+        coordinates (on the singular set ``L = +-G``: ``l = 0``, the whole angle in
+        ``g``; flags in ``singular``), ``H``. Attrs: ``h``, ``motion``, ``period``,
+        ``modulus`` (``m = k^2``), provenance.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = physical_pendulum(RigidBody.paper(), 4.0, 0.1, [0.0, 10.0])
+    >>> ds.attrs["motion"], bool(abs(ds.H - ds.H[0]).max() < 1e-15)
+    ('libration', True)
+    """
+    _pendulum_body(body, "the physical pendulum")
+    times = _times(t)
+    q, p = pendulum_solution(body.c, body.mu, vartheta0, L0, times)
+    y = pendulum_state(body, q, p)
+    h = float(pendulum_energy(body.c, body.mu, vartheta0, L0))
+    motion = pendulum_motion(body.mu, h)
+    attrs = provenance(
+        body, method="closed form (Jacobi elliptic functions, scipy.special.ellipj)",
+        h=h, motion=motion, period=pendulum_period(body.c, body.mu, h),
+        modulus=pendulum_modulus(body.mu, h), modulus_convention="m = k^2 (scipy)",
+        equations="physical pendulum G1 = G2 = gamma3 = 0 (G^2 = L^2, M = 0, Eq. (8)): "
+                  "H = c L^2/2 + mu sin(vartheta)")
+    ds = states_dataset(body, y, ("time",), {"time": times}, attrs,
+                        extra={"vartheta": (("time",), q)})
+    ds["vartheta"].attrs.update(
+        symbol="\\vartheta", units="rad", equation="(8), (11)",
+        long_name="pendulum angle: gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0); "
+                  "g + l + phi0 on L = G")
+    ds.time.attrs.update(units="body time units", long_name="time")
+    return ds
+
+
+def _times(t: ArrayLike) -> NDArray[np.float64]:
+    arr = np.asarray(t, dtype=float)
+    if arr.ndim != 1 or arr.size < 1 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"t must be a 1-D array of finite output times, got shape {arr.shape}")
+    if np.any(np.diff(arr) <= 0.0):
+        raise ValueError("t must be strictly increasing")
+    return arr
+
+
+# ----------------------------------------------------------------------------- monodromy
+class Monodromy(NamedTuple):
+    """Monodromy matrix ``Phi[i, j] = d y_i(T) / d y_j(0)`` of the Euler-Poisson flow (1)."""
+
+    matrix: NDArray[np.float64]
+    period: float
+    y0: NDArray[np.float64]
+    y_end: NDArray[np.float64]
+    method: str
+
+
+_VAR_LOCK = threading.Lock()
+
+
+@cache
+def _variational_integrator_cached(tol: float) -> Any:
+    import heyoka as hy
+
+    from andoyer.symbolic.hamiltonian import S, euler_poisson_field
+
+    state = hy.make_vars(*(str(s) for s in S.y))
+    smap: dict[Any, Any] = dict(zip(S.y, state, strict=True))
+    smap.update({s: hy.par[i] for i, s in enumerate(S.body)})
+    system = [(x, hy.from_sympy(e, smap))
+              for x, e in zip(state, euler_poisson_field(), strict=True)]
+    vsys = hy.var_ode_sys(system, hy.var_args.vars, order=1)
+    # compact_mode: the 42 equations compile in about a second instead of ten.
+    return hy.taylor_adaptive(vsys, [0.0] * 6, tol=tol, compact_mode=True)
+
+
+def _variational_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float,
+                           tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    import heyoka as hy
+
+    with _VAR_LOCK:
+        ta = _variational_integrator_cached(tol)
+        ta.time = 0.0
+        ta.state[:6] = y0
+        ta.state[ta.get_vslice(order=1)] = np.eye(6).ravel()  # row-major d y_i / d y0_j
+        ta.pars[:] = body.params
+        outcome = ta.propagate_until(T)[0]
+        if outcome != hy.taylor_outcome.time_limit:
+            raise FloatingPointError(f"heyoka stopped with outcome {outcome!r}")
+        return (np.array(ta.state[ta.get_vslice(order=1)]).reshape(6, 6),
+                np.array(ta.state[:6]))
+
+
+def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: float,
+                  engine: str, rtol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    from andoyer.integrate.engines import get_engine
+
+    eng = get_engine(engine)
+    params = (*body.params, body.phi0)
+    starts = np.concatenate([y0 + step * np.eye(6), y0 - step * np.eye(6), y0[None]])
+    out = eng.propagate(starts, np.array([0.0, T]), params, rtol, rtol)[:, -1, :]
+    Phi = (out[:6] - out[6:12]).T / (2.0 * step)  # column j = d y(T) / d y0_j
+    return Phi, out[12]
+
+
+def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variational",
+              tol: float = 1e-15, step: float = 1e-6, engine: str = "numba") -> Monodromy:
+    """Monodromy matrix of the Euler-Poisson flow (1) over ``[0, T]`` from ``y0``.
+
+    Parameters
+    ----------
+    body : RigidBody
+    y0 : array_like, shape (6,)
+        Start of the (periodic) orbit.
+    T : float
+        Its period (> 0).
+    method : {"variational", "finite_difference"}
+        ``"variational"``: heyoka's first-order variational equations
+        (``heyoka.var_ode_sys``), Taylor tolerance ``tol``. ``"finite_difference"``:
+        central differences ``(y_T(y0 + step e_j) - y_T(y0 - step e_j)) / (2 step)``
+        with the compiled DOP853 of ``engine`` at ``rtol = atol = tol`` (use a loose
+        ``tol`` such as 1e-13: the error is about ``step^2 |D^3 y_T| + tol / step``).
+
+    Returns
+    -------
+    Monodromy
+        ``matrix[i, j] = d y_i(T) / d y_j(0)``, the period, ``y0`` and ``y(T)``.
+    """
+    y = as_state(y0, "y0")
+    if y.shape != (6,):
+        raise ValueError(f"y0 must be one Euler-Poisson state, shape (6,), got {y.shape}")
+    T = _positive("T (the period)", T)
+    if not math.isfinite(T):
+        raise ValueError("T must be finite (a separatrix has no period)")
+    tol = _positive("tol", tol)
+    if method == "variational":
+        Phi, yT = _variational_monodromy(body, y, T, tol)
+    elif method == "finite_difference":
+        Phi, yT = _fd_monodromy(body, y, T, _positive("step", step), engine, max(tol, 1e-14))
+    else:
+        raise ValueError(f"method must be 'variational' or 'finite_difference', got {method!r}")
+    return Monodromy(Phi, T, y, yT, method)
+
+
+def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "variational",
+                                tol: float = 1e-15, step: float = 1e-6,
+                                engine: str = "numba") -> Monodromy:
+    """Monodromy of the physical-pendulum orbit of energy ``h`` over one period.
+
+    The orbit starts at the bottom, ``vartheta = 3 pi / 2`` (``gamma = -r``), with
+    ``L > 0``; the period is the closed form :func:`pendulum_period`.
+    """
+    _pendulum_body(body, "the physical pendulum")
+    if pendulum_motion(body.mu, h) in ("separatrix", "equilibrium"):
+        raise ValueError(f"h = {h!r}: the separatrix (h = mu) and the equilibrium "
+                         "(h = -mu) are not periodic orbits of finite period here")
+    th0, L0 = _initial_bottom(body, h)
+    y0 = pendulum_state(body, th0, L0)
+    return monodromy(body, y0, pendulum_period(body.c, body.mu, h), method=method, tol=tol,
+                     step=step, engine=engine)
+
+
+class Floquet(NamedTuple):
+    """Floquet multipliers of a physical-pendulum orbit."""
+
+    trace: float                 #: ``lambda + 1/lambda = tr Phi_perp - 1``
+    multipliers: NDArray[np.complex128]  #: ``(lambda, 1/lambda)``, ``|lambda| >= 1``
+    stability: str               #: ``"elliptic"``, ``"parabolic"`` or ``"hyperbolic"``
+    leaf_matrix: NDArray[np.float64]  #: 2x2 transverse monodromy on the leaf ``dM = 0``
+    shear: float                 #: ``|leaf_matrix - lambda I|`` (Jordan block if > 0)
+    monodromy: Monodromy
+
+
+def _leaf_basis(y: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Orthonormal basis (3, 2) of transverse variations with ``dM = 0``.
+
+    ``dM = gamma1 dG1 + gamma2 dG2 + G3 dgamma3`` on the pendulum set.
+    """
+    row = np.array([y[3], y[4], y[2]])
+    _, _, vt = np.linalg.svd(row[None, :])
+    return np.asarray(vt[1:].T)
+
+
+def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational",
+                        tol: float = 1e-15, parabolic_tol: float = 1e-6) -> Floquet:
+    """Floquet multipliers of the physical-pendulum orbit of energy ``h`` in the full system.
+
+    The six multipliers are ``1, 1, 1`` (in-plane: flow, energy, ``|gamma|^2``), ``1``
+    (area integral) and ``lambda, 1/lambda`` with ``lambda + 1/lambda = tr Phi_perp - 1``
+    (module notes). ``|trace| < 2 - parabolic_tol``: elliptic; ``> 2 + parabolic_tol``:
+    hyperbolic; else parabolic.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody.paper()
+    >>> f = floquet_multipliers(body, 5 * body.mu)           # a rotation
+    >>> f.stability, bool(np.isclose(f.multipliers[0].real, hess_rotation_multiplier(body)))
+    ('hyperbolic', True)
+    """
+    mono = physical_pendulum_monodromy(body, h, method=method, tol=tol)
+    P = mono.matrix[np.ix_(_T_IDX, _T_IDX)]
+    s = float(np.trace(P) - 1.0)
+    root = np.sqrt(complex(0.25 * s * s - 1.0))
+    lam = 0.5 * s + root if s >= 0 else 0.5 * s - root
+    pair = np.array([lam, 1.0 / lam], dtype=complex)
+    if abs(s) > 2.0 + parabolic_tol:
+        stability = "hyperbolic"
+    elif abs(s) < 2.0 - parabolic_tol:
+        stability = "elliptic"
+    else:
+        stability = "parabolic"
+        pair = np.array([np.sign(s), np.sign(s)], dtype=complex)
+    B = _leaf_basis(mono.y0)
+    leaf = B.T @ P @ B
+    shear = float(np.linalg.norm(leaf - pair[0].real * np.eye(2), 2)) if stability == \
+        "parabolic" else 0.0
+    return Floquet(s, pair, stability, leaf, shear, mono)
+
+
+def hess_rotation_multiplier(body: RigidBody) -> float:
+    """``exp(2 pi sigma / c)``, ``sigma = sqrt((b - c)(c - a))``: the multiplier of every
+    physical-pendulum rotation of a Hess body (and the ``mu -> 0`` limit of any body with
+    the middle axis ``Oz``).
+
+    Exact: along the pendulum ``d(G, r)/dt = -branch sigma G3 (G, r)`` and
+    ``int G3 dt = 2 pi / c`` over one rotation.
+    """
+    prod = (body.b - body.c) * (body.c - body.a)
+    if prod <= 0.0:
+        raise ValueError("Oz is not the middle axis of inertia ((b - c)(c - a) <= 0): "
+                         "rotations about it are not hyperbolic in the mu -> 0 limit")
+    return math.exp(2.0 * math.pi * math.sqrt(prod) / body.c)
+
+
+def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
+                 tol: float = 1e-15, parabolic_tol: float = 1e-6) -> xr.Dataset:
+    """Floquet multipliers of the physical-pendulum orbits over a range of energies.
+
+    Parameters
+    ----------
+    body : RigidBody
+        ``e3 = 0``, ``mu > 0``.
+    h : array_like, shape (n,)
+        Energies (``> -mu``, ``!= mu``): librations below ``mu``, rotations above.
+    method, tol, parabolic_tol
+        As in :func:`floquet_multipliers`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``H`` (the energies). Variables: ``H_over_mu``, ``period``, ``motion`` and
+        ``stability`` (codes, CF ``flag_values``/``flag_meanings``), ``floquet_trace``
+        (``lambda + 1/lambda``), ``multiplier_re``/``multiplier_im`` (dim ``pair``:
+        ``lambda``, ``1/lambda``), ``abs_multiplier`` (``max |lambda|``),
+        ``floquet_exponent`` (``log max|lambda| / T``), ``shear``, ``return_error``
+        (``max |y(T) - y(0)|``, the check of the closed-form period) and
+        ``monodromy`` (``H, row, col``). Attrs: provenance, method, tolerance and, for a
+        Hess body, ``hess_rotation_multiplier``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody.paper()
+    >>> ds = floquet_scan(body, [-0.5 * body.mu, 3 * body.mu])
+    >>> [str(s) for s in ds.stability.attrs["flag_meanings"].split()]
+    ['elliptic', 'parabolic', 'hyperbolic']
+    >>> ds.stability.values.tolist()
+    [1, 2]
+    """
+    _pendulum_body(body, "the physical pendulum")
+    energies = np.atleast_1d(np.asarray(h, dtype=float))
+    if energies.ndim != 1 or energies.size == 0:
+        raise ValueError(f"h must be a 1-D array of energies, got shape {energies.shape}")
+    n = energies.size
+    out: dict[str, NDArray[Any]] = {
+        k: np.empty(n) for k in ("period", "trace", "abs", "exponent", "shear", "ret")}
+    motion = np.empty(n, dtype=np.int8)
+    stab = np.empty(n, dtype=np.int8)
+    lam = np.empty((n, 2), dtype=complex)
+    mats = np.empty((n, 6, 6))
+    for i, hi in enumerate(energies):
+        f = floquet_multipliers(body, float(hi), method=method, tol=tol,
+                                parabolic_tol=parabolic_tol)
+        T = f.monodromy.period
+        motion[i] = MOTIONS[pendulum_motion(body.mu, float(hi))]
+        stab[i] = STABILITY[f.stability]
+        lam[i] = f.multipliers
+        mats[i] = f.monodromy.matrix
+        amax = float(np.max(np.abs(f.multipliers)))
+        out["period"][i] = T
+        out["trace"][i] = f.trace
+        out["abs"][i] = amax
+        out["exponent"][i] = math.log(amax) / T
+        out["shear"][i] = f.shear
+        out["ret"][i] = float(np.max(np.abs(f.monodromy.y_end - f.monodromy.y0)))
+    dims = ("H",)
+    ds = xr.Dataset(
+        {"H_over_mu": (dims, energies / body.mu), "period": (dims, out["period"]),
+         "motion": (dims, motion), "stability": (dims, stab),
+         "floquet_trace": (dims, out["trace"]),
+         "multiplier_re": (("H", "pair"), lam.real), "multiplier_im": (("H", "pair"), lam.imag),
+         "abs_multiplier": (dims, out["abs"]), "floquet_exponent": (dims, out["exponent"]),
+         "shear": (dims, out["shear"]), "return_error": (dims, out["ret"]),
+         "monodromy": (("H", "row", "col"), mats)},
+        coords={"H": energies, "pair": ["lambda", "1/lambda"], "row": list(STATE),
+                "col": list(STATE)})
+    attrs = provenance(
+        body, method=("heyoka variational equations (var_ode_sys)" if method == "variational"
+                      else "central finite differences of the flow map"),
+        tolerance=tol, parabolic_tol=parabolic_tol,
+        orbit="physical pendulum G1 = G2 = gamma3 = 0 from the bottom vartheta = 3 pi/2, L > 0",
+        trivial_multipliers="1, 1, 1 in-plane (flow, energy, |gamma|^2); 1 transverse (area M)")
+    if body.is_hess:
+        attrs["hess_rotation_multiplier"] = hess_rotation_multiplier(body)
+    ds.attrs.update(attrs)
+    ds.H.attrs.update(symbol="H", long_name="energy of the pendulum orbit", units="1",
+                      equation="(1)")
+    ds.H_over_mu.attrs.update(symbol="H/\\mu", long_name="energy over mu (libration < 1 < "
+                              "rotation)", units="1")
+    ds.period.attrs.update(symbol="T", long_name="period (closed form, elliptic K)",
+                           units="body time units")
+    ds.motion.attrs.update(long_name="motion of the pendulum",
+                           flag_values=np.array(list(MOTIONS.values()), dtype=np.int8),
+                           flag_meanings=" ".join(MOTIONS))
+    ds.stability.attrs.update(long_name="linear stability of the orbit in the full system",
+                              flag_values=np.array(list(STABILITY.values()), dtype=np.int8),
+                              flag_meanings=" ".join(STABILITY))
+    ds.floquet_trace.attrs.update(symbol="\\lambda + 1/\\lambda", units="1",
+                                  long_name="trace of the transverse monodromy minus 1")
+    for v in ("multiplier_re", "multiplier_im"):
+        ds[v].attrs.update(symbol="\\lambda", units="1", long_name=f"non-trivial Floquet "
+                           f"multipliers, {'real' if v.endswith('re') else 'imaginary'} part")
+    ds.abs_multiplier.attrs.update(symbol="|\\lambda|", units="1",
+                                   long_name="largest modulus of the multipliers")
+    ds.floquet_exponent.attrs.update(symbol="\\log|\\lambda|/T", units="1/body time units",
+                                     long_name="largest Floquet (Lyapunov) exponent")
+    ds.shear.attrs.update(units="1", long_name="norm of (leaf monodromy - lambda I) when "
+                          "parabolic: > 0 is a Jordan block (linear divergence)")
+    ds.return_error.attrs.update(units="1", long_name="max |y(T) - y(0)| (period check)")
+    ds.monodromy.attrs.update(symbol="\\Phi", units="1",
+                              long_name="monodromy matrix d y_row(T) / d y_col(0)")
+    return ds
