@@ -527,3 +527,9 @@ def test_integrals_in_chart_variables(general_body, y):
     assert float(geometric_integral(y2)) == pytest.approx(1.0, abs=8 * EPS)
     assert float(energy(body, y2)) == pytest.approx(float(energy(body, y)),
                                                    abs=1e-12 * (G**2 / 1.3 + 0.7))
+
+
+def test_to_andoyer_signed_zero_on_singular_line():
+    """l = 0 on L = +-G also when G1, G2 are negative zeros (atan2(-0., -0.) = -pi)."""
+    x = to_andoyer([-0.0, -0.0, 1.0, 0.6, 0.8, 0.0])
+    assert x[0] == 0.0 and np.isclose(x[2], 1.0)

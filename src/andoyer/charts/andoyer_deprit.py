@@ -215,7 +215,8 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
     # +-G|gamma|, and to +-G where |gamma| = 1 up to round-off.
     gunit = np.where(np.abs(gnorm - 1.0) <= 4.0 * np.finfo(float).eps, 1.0, gnorm)
     M = np.where(flags & int(Singular.M_EQ_PM_G), np.copysign(G * gunit, M), M)
-    l = np.arctan2(G1, G2)  # atan2(0, 0) = 0: the convention on L = +-G
+    # The convention on L = +-G exactly is l = 0; atan2(-0., -0.) = -pi, hence the where.
+    l = np.where(rho == 0.0, 0.0, np.arctan2(G1, G2))
     Gsafe = np.where(G > 0.0, G, 1.0)
     sl, cl = np.sin(l), np.cos(l)
     # gamma in the invariant-plane frame: Rx(J) Rz(l) gamma, with cos J = L/G.
