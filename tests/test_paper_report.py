@@ -59,10 +59,12 @@ def test_fig3_bad_input():
 def test_paper_command_writes_index(tmp_path, capsys):
     out = tmp_path / "paper"
     assert main(["paper", "--out", str(out), "--quick", "--only", "paper-check", "fig3",
+                 "solutions", "heteroclinic",
                  "--engine", "numba"]) == 0
     names = {p.name for p in out.iterdir()}
     assert {"index.html", "fig3.png", "fig3.pdf", "fig3-trajectories.nc",
-            "paper-check.txt", "paper-check.json"} <= names
+            "paper-check.txt", "paper-check.json", "solutions.png", "hess-periods.nc",
+            "heteroclinic.nc"} <= names
     html = (out / "index.html").read_text()
     assert "fig3.png" in html and "misprint" in html and "The paper:" in html
     from matplotlib.image import imread
@@ -71,6 +73,15 @@ def test_paper_command_writes_index(tmp_path, capsys):
     import xarray as xr
     with xr.open_dataset(out / "fig3-trajectories.nc") as ds:
         assert ds.attrs["figure"] == "Fig. 3"
+    # The closed forms agree with the integrations the report ran.
+    with xr.open_dataset(out / "hess-periods.nc") as ds:
+        T = ds.T_integrated.values
+        assert np.all(np.isfinite(T)) and T.size >= 4
+    import json
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["items"]["heteroclinic"]["numbers"]["max_error"] < 1e-11
+    assert summary["items"]["solutions"]["numbers"]["max_rel_period_error"] < 1e-9
+    assert summary["body"]["body_name"] == "paper"
 
 
 def test_paper_command_unknown_item(tmp_path):

@@ -236,11 +236,122 @@ def _heteroclinic(ctx: Context) -> Result:
         {"lambda": lam, "max_error": max(errs)})
 
 
+def _hess_periods(ctx: Context, Ms: tuple[float, ...], n: int, n_check: int) -> xr.Dataset:
+    """Periods of the Hess solution vs energy: closed form and integrated crossings."""
+    import math
+
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from andoyer.analysis.hess_solution import cubic_roots, energy_minimum, period
+    from andoyer.charts.hess import from_hess
+    from andoyer.integrate import Section, poincare
+
+    body, mu, c = ctx.body, ctx.body.mu, ctx.body.c
+    h = np.linspace(-0.98 * mu, 5.0 * mu, n)
+    T = np.full((len(Ms), n), np.nan)
+    hc = np.full((len(Ms), n_check), np.nan)
+    Tc = np.full((len(Ms), n_check), np.nan)
+    for i, M in enumerate(Ms):
+        Jstar, hmin = energy_minimum(body, M)
+        for j, hj in enumerate(h):
+            if hj > hmin and abs(hj - mu) > 1e-9 * mu:
+                T[i, j] = period(body, float(hj), M)
+        for j, hj in enumerate(np.linspace(hmin + 0.1 * mu, 4.2 * mu, n_check)):
+            hj = float(hj) if abs(hj - mu) > 0.05 * mu else float(hj) + 0.1 * mu
+            # Start at the bottom theta2 = 3 pi/2 of the reduced system, J1 = J2/2.
+            def excess(J: float, hj: float = hj, M: float = M) -> float:
+                return c * J * J / 2 - mu * math.sqrt(max(1.0 - M * M / (J * J), 0.0)) - hj
+
+            J2 = brentq(excess, max(Jstar, 1e-12), 10.0)
+            Tj = period(body, hj, M)
+            _, ub, uc = cubic_roots(body, hj, M)
+            x0 = np.array([0.0, 1.5 * np.pi, J2 / 2, J2, M])
+            sec = poincare(body, from_hess(body, x0), Section("G", math.sqrt(0.5 * (ub + uc)),
+                           1), 3, t_max=5 * Tj, engine=ctx.engine, rtol=1e-13, atol=1e-13)
+            dt = float(np.mean(np.diff(sec.t.values[0])))
+            # On an M = 0 libration |G| = |J2| repeats every half period (G = 0 passage).
+            half = M == 0.0 and hj < mu
+            hc[i, j], Tc[i, j] = hj, 2 * dt if half else dt
+    ds = xr.Dataset(
+        {"T_elliptic": (("M", "h"), T), "h_check": (("M", "check"), hc),
+         "T_integrated": (("M", "check"), Tc)},
+        coords={"M": list(Ms), "h": h},
+        attrs={"body_mu": mu, "equations": "reduced Hamiltonian on theta1 = 0 of (16)"})
+    ds.T_elliptic.attrs.update(long_name="period by complete elliptic integrals K(m)")
+    ds.T_integrated.attrs.update(long_name="period from crossings of G = const of the "
+                                 "integrated Euler-Poisson orbit")
+    return ds
+
+
+def _solutions(ctx: Context) -> Result:
+    import numpy as np
+
+    from andoyer.analysis.hess_solution import reduced_hamiltonian
+    from andoyer.analysis.pendulum import floquet_scan, hess_rotation_multiplier
+    from andoyer.plot.solutions import plot_solutions
+
+    body, mu = ctx.body, ctx.body.mu
+    periods = _hess_periods(ctx, (0.0, 0.05), 60 if ctx.quick else 160,
+                            2 if ctx.quick else 5)
+    rel = np.abs(periods.T_integrated / _interp_period(ctx, periods) - 1.0)
+    th = np.linspace(0.0, 2 * np.pi, 181)
+    J = np.linspace(-1.2, 1.2, 121) * np.sqrt(2 * 3 * mu / body.c)
+    H = reduced_hamiltonian(body, th[:, None], J[None, :], 0.0)
+    portrait = xr.Dataset({"H": (("theta2", "J2"), H),
+                           "levels": ("level", mu * np.array([-0.8, -0.5, -0.2, 0.3, 0.7,
+                                                              1.4, 2.0, 2.8]))},
+                          coords={"theta2": th, "J2": J}, attrs={"separatrix": mu})
+    other = RigidBody(body.A, body.B, body.C, mu, (0.6, 0.8, 0.0), "r = (0.6, 0.8, 0)")
+    energies = mu * np.linspace(-0.95, 5.0, 13 if ctx.quick else 37)
+    energies = energies[np.abs(energies - mu) > 0.02 * mu]
+    floq = xr.concat([floquet_scan(b, energies).expand_dims(body=[b.name])
+                      for b in (body, other)], "body", combine_attrs="drop_conflicts")
+    files = ctx.figure(plot_solutions(periods, portrait, floq), "solutions")
+    files.append(ctx.data(periods, "hess-periods"))
+    files.append(ctx.data(floq, "pendulum-floquet"))
+    lam = hess_rotation_multiplier(body)
+    return Result(
+        files,
+        "'When e1 sin l + e2 cos l = 0 we have the Hess' condition, and when G^2 = L^2 and "
+        "M = 0 -- physical pendulum.' 'On the Hess' solution Pi = mu sin g, on solution, "
+        "which describes the physical pendulum motion Pi = mu^-1 sin(g + l - phi0).' No "
+        "periods, solutions or stability are given.",
+        ["Hess solution (theta1 = 0): the reduced Hamiltonian is H = c J2^2/2 + "
+         "mu sqrt(J2^2 - M^2) sin(theta2)/J2, a pendulum at M = 0; periods through K(m) "
+         "(closed form also for M != 0, from the roots of a cubic), checked against "
+         f"integrated crossing times to {float(rel.max()):.1e} (relative).",
+         "Every M = 0 libration passes through G = 0, where all charts fail: the orbit is "
+         "integrated in Euler-Poisson variables, and the chart values jump (theta1, theta2, "
+         "J1, J2, m) -> (theta1 + 2 pi, pi - theta2, J1 - J2, -J2, m + pi) with J1, J2 "
+         "taken signed (panel (b) draws the signed-J2 picture).",
+         "Potential: Pi = mu sin g on the Hess solution holds only on theta1 = 0 at M = 0. "
+         "On the physical pendulum Pi = mu sin(g + l + phi0) on L = G and mu sin(g - l - "
+         "phi0) on L = -G, not the printed mu^-1 sin(g + l - phi0).",
+         f"Stability (added): the pendulum rotations of the Hess body are unstable at every "
+         f"energy, multiplier exp(2 pi sigma / c) = {lam:.6f}; its librations are parabolic "
+         "(a Jordan block: a 1:1 resonance of the transverse and pendulum frequencies). "
+         "For a non-Hess centre of mass r = (0.6, 0.8, 0) the librations have alternating "
+         "stable and unstable tongues."],
+        numbers={"max_rel_period_error": float(rel.max()), "rotation_multiplier": lam})
+
+
+def _interp_period(ctx: Context, periods: xr.Dataset) -> xr.DataArray:
+    from andoyer.analysis.hess_solution import period
+
+    out = periods.T_integrated * 0.0
+    for i, M in enumerate(periods.M.values):
+        for j, hj in enumerate(periods.h_check.values[i]):
+            out[i, j] = period(ctx.body, float(hj), float(M))
+    return out
+
+
 ITEMS: list[Item] = [
     Item("paper-check", "Every printed formula against the derivation", _paper_check),
     Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", _fig1),
     Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points", _fig2),
     Item("heteroclinic", "Heteroclinic orbits in closed form", _heteroclinic),
+    Item("solutions", "The Hess solution and the physical pendulum", _solutions),
     Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
          "θ2 = 0", _fig3),
 ]
@@ -360,6 +471,13 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
         done.append((item, res, dt))
         if progress:
             print(f" {dt:.1f} s", file=sys.stderr, flush=True)
+    summary = {"andoyer_version": __version__, "body": ctx.body.attrs(),
+               "engine": ctx.engine or "default", "quick": quick,
+               "items": {i.key: {"title": i.title, "seconds": round(dt, 3),
+                                 "numbers": r.numbers, "files": [f.name for f in r.files]}
+                         for i, r, dt in done}}
+    with atomic_path(ctx.out / "summary.json") as tmp:
+        tmp.write_text(json.dumps(summary, indent=1), encoding="utf-8")
     index = _write_index(ctx.out, ctx, done)
     if progress:
         print(f"wrote {index} ({time.perf_counter() - t_all:.1f} s in all)", file=sys.stderr)
