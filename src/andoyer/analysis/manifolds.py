@@ -1,0 +1,813 @@
+"""Stable and unstable manifolds of the rotation orbits and the splitting of separatrices.
+
+For ``mu > 0`` the permanent rotations about the middle axis z become the hyperbolic
+periodic orbits ``P+`` (``L = +G``) and ``P-`` (``L = -G``) of
+:mod:`andoyer.analysis.periodic`. At ``mu = 0`` their invariant manifolds coincide
+along the heteroclinic orbits of the Hess chart (14), the lines ``theta1 = 0`` and
+``theta1 = 4 phi0`` of the unperturbed system after Fig. 3 of [1]_
+(:mod:`andoyer.analysis.separatrix`). For ``mu > 0``:
+
+* on ``theta1 = 0`` the manifolds still coincide: that line is the Hess invariant
+  relation (3), invariant for every ``mu`` -- the Hess solutions;
+* on ``theta1 = 4 phi0`` they split, by an amount ``mu M(theta2) + O(mu^2)`` with the
+  Melnikov function of :mod:`andoyer.analysis.melnikov`, exponentially small in
+  ``rho = c J2 / lambda`` for the paper's body.
+
+Where the manifolds are grown and compared
+------------------------------------------
+The Hess chart is singular on ``P+-`` themselves, so the local manifolds are grown on
+the sections ``Sigma+- = {psi = psi0}`` of :class:`~andoyer.analysis.periodic.
+RotationSection` in the regular coordinates ``(x1, x2) = (G1, G2)/|G|``: from the fixed
+point ``p`` along the unit eigenvector ``v`` of the section map, one *fundamental
+domain* ``q(s) = p + delta Lambda^s v``, ``0 <= s <= 1`` (``Lambda`` the expanding
+multiplier of the map, or of its inverse for the stable manifold): every orbit of the
+manifold branch crosses it exactly once (up to ``O(delta^2)`` at the ends). Its points
+are carried by the flow (forwards for ``W^u``, backwards for ``W^s``) to the middle
+section
+
+.. math::
+
+    \\Sigma_0 = \\{L = G_3 = 0\\},
+
+which every heteroclinic orbit crosses once, transversally (``dL/dt != 0`` there), far
+from the chart's singular set (``J1 = J2/2``). On ``Sigma_0`` the Andoyer-Deprit angle
+``g`` and the action ``G`` are Darboux coordinates of the section of the energy level
+(``dl ^ dL + dg ^ dG = dg ^ dG`` on ``L = 0``; ``l`` is fixed by ``H = h``), so areas
+measured in ``(g, G)`` are the symplectic areas (lobe areas are fluxes). Each manifold
+branch meets ``Sigma_0`` in a closed curve that is a graph ``G = G^{u,s}(g)`` over
+the phase ``g``; the curve is resolved by inserting fundamental-domain points where two
+neighbours are farther apart than ``max_gap`` or the curve turns by more than
+``max_angle`` (fundamental-domain refinement). The transverse error of a seed,
+``O(delta^2)``, is contracted by ``Lambda^{-n}`` during the ``n ~ ln(1/delta)/ln
+Lambda`` turns near the orbit.
+
+Splitting
+---------
+* distance along the transverse line ``g = const`` of ``Sigma_0``:
+  ``Delta G(g) = G^u(g) - G^s(g)``, with fresh points on both manifolds (the
+  fundamental-domain parameter is solved for the phase ``g``; no interpolation);
+* ``Delta E(g)`` of ``E = H0 - c G^2/2 = ((a - c) G1^2 + (b - c) G2^2)/2`` (the
+  paper's ``2T - c G^2`` after (12), halved), the quantity the Melnikov integral
+  predicts: ``Delta E = mu M + O(mu^2)`` and ``Delta G = -Delta E / (c G) (1 + O(mu))``;
+* heteroclinic points: zeros of ``Delta G``, located by root finding on the
+  trigonometric interpolant of ``Delta G`` on a phase grid, then refined on fresh
+  points (Brent's method in ``g``); on a Hess body at ``M = 0`` the reversor
+  ``(G1, G2, G3, gamma1, gamma2, gamma3) -> (G1, G2, -G3, gamma1, gamma2, -gamma3)``
+  (time reversal composed with the symmetry ``G3, gamma3 -> -G3, -gamma3``) fixes the
+  line ``g = pi/2, 3 pi/2`` of ``Sigma_0`` and maps ``W^u(P-)`` onto ``W^s(P+)``, so
+  the primary heteroclinic points lie exactly there;
+* splitting angle ``atan(G^u') - atan(G^s')`` at each heteroclinic point (``(g, G)``
+  plane), and the lobe area between consecutive points (shoelace on the lobe polygon).
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.analysis.melnikov import heteroclinic_line
+from andoyer.analysis.periodic import (
+    DEFAULT_TOL,
+    Crossing,
+    RotationOrbit,
+    RotationSection,
+    continue_rotation_orbit,
+    flow_to_section,
+    middle_axis_rate,
+    section_state,
+)
+from andoyer.analysis.separatrix import BRANCHES
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import to_andoyer
+from andoyer.charts.euler_poisson import STATE, energy
+from andoyer.charts.hess import to_hess
+from andoyer.integrate.results import provenance
+
+__all__ = [
+    "Stability",
+    "ManifoldBranch",
+    "ManifoldCurve",
+    "manifold_branch",
+    "grow_manifold",
+    "splitting_at",
+    "measure_splitting",
+    "separatrix_splitting",
+    "euler_poinsot_excess",
+]
+
+Stability = Literal["unstable", "stable"]
+TWO_PI = 2.0 * math.pi
+
+
+def euler_poinsot_excess(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
+    """``E = H0 - c |G|^2 / 2``: zero on the unperturbed separatrices and on ``P+-``.
+
+    ``H0`` is the energy (1) at ``mu = 0``; ``E = ((a - c) G1^2 + (b - c) G2^2)/2``
+    (after Eq. (12)), ``kappa J1 (J1 - J2) [cos(theta1 - 2 phi0) - cos 2 phi0]`` in the
+    Hess chart (13)-(14). Its bracket with ``H0`` vanishes, so along the full flow
+    ``dE/dt = mu {E, H1}``: the integrand of the Melnikov function.
+    """
+    y = np.asarray(y, dtype=float)
+    return np.asarray(energy(body.with_mu(0.0), y)
+                      - 0.5 * body.c * np.einsum("...i,...i->...", y[..., :3], y[..., :3]))
+
+
+# ----------------------------------------------------------------------------- branches
+@dataclass(frozen=True)
+class ManifoldBranch:
+    """One branch of ``W^u`` or ``W^s`` of a rotation orbit, seeded on its section.
+
+    Attributes
+    ----------
+    orbit : RotationOrbit
+        The hyperbolic periodic orbit (fixed point ``p`` of the section map).
+    stability : {"unstable", "stable"}
+    branch : str
+        The heteroclinic line it follows at ``mu = 0`` (``"theta1=0"`` or
+        ``"theta1=4phi0"``).
+    sheet : {+1, -1}
+        ``+1``: ``theta1`` on that line in ``[0, 2 pi)``; ``-1``: ``theta1 + 2 pi``
+        (the other half of the momentum great circle).
+    vector : ndarray (2,)
+        Unit eigenvector in ``(x1, x2)``, oriented along the branch.
+    factor : float
+        Expansion of the fundamental domain, ``Lambda_u`` or ``1/Lambda_s``.
+    delta : float
+        Distance of the fundamental domain from ``p`` (in ``(x1, x2)``).
+    theta1_line : float
+        ``theta1`` of the unperturbed line in ``[0, 4 pi)``.
+    crossing_direction : int
+        Sign of ``dL/dt`` where the branch crosses ``Sigma_0``.
+    """
+
+    orbit: RotationOrbit
+    stability: Stability
+    branch: str
+    sheet: int
+    vector: NDArray[np.float64]
+    factor: float
+    delta: float
+    theta1_line: float
+    crossing_direction: int
+
+    @property
+    def body(self) -> RigidBody:
+        return self.orbit.body
+
+    @property
+    def h(self) -> float:
+        return self.orbit.h
+
+    def seed(self, s: float) -> NDArray[np.float64]:
+        """The state ``q(s) = p + delta factor^s v`` on the orbit's section."""
+        x = self.orbit.x + self.delta * self.factor ** float(s) * self.vector
+        return np.asarray(section_state(self.body, x, self.h, self.orbit.M,
+                                        self.orbit.section))
+
+    def trace(self, s: float) -> Crossing:
+        """Carry the seed ``q(s)`` by the flow to its crossing of ``Sigma_0 = {L = 0}``."""
+        sigma = middle_axis_rate(self.body)
+        G = float(np.linalg.norm(self.orbit.y[:3]))
+        t_max = 20.0 * self.orbit.period + 60.0 / (sigma * G)
+        return flow_to_section(self.body, self.seed(s), "L", self.crossing_direction,
+                               backward=self.stability == "stable", t_max=t_max,
+                               tol=self.orbit.tol, long_double=self.orbit.long_double)
+
+    def attrs(self) -> dict[str, Any]:
+        return {"stability": self.stability, "branch": self.branch, "sheet": self.sheet,
+                "rotation_sign": self.orbit.section.sign,
+                "section_psi0": self.orbit.section.psi0,
+                "fundamental_domain_delta": self.delta,
+                "fundamental_domain_factor": self.factor,
+                "theta1_line": self.theta1_line, "energy": self.h, "area": self.orbit.M,
+                "multiplier_u": float(self.orbit.multipliers[0]),
+                "multiplier_s": float(self.orbit.multipliers[1]),
+                "period": self.orbit.period, "heyoka_tol": self.orbit.tol}
+
+
+def _line(body: RigidBody, h: float, branch: str, sheet: int) -> tuple[float, int]:
+    """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``."""
+    return heteroclinic_line(body, math.sqrt(2.0 * h / body.c), branch, sheet)
+
+
+def manifold_branch(body: RigidBody, h: float, stability: Stability,
+                    branch: str = "theta1=4phi0", *, sheet: int = 1, psi0: float = 0.0,
+                    delta: float = 1e-5, orbit: RotationOrbit | None = None,
+                    mu_steps: int = 4, tol: float = DEFAULT_TOL,
+                    long_double: bool = False) -> ManifoldBranch:
+    """The branch of ``W^u`` / ``W^s`` that follows a heteroclinic line, ready to grow.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (the lines ``theta1 = 0``, ``4 phi0`` are the separatrices);
+        the area constant is ``M = 0``.
+    h : float
+        Energy level (e.g. :func:`~andoyer.analysis.periodic.rotation_energy`).
+    stability : {"unstable", "stable"}
+        ``"unstable"``: ``W^u`` of the rotation the line leaves; ``"stable"``: ``W^s`` of
+        the rotation it reaches (at ``mu = 0`` ``J1`` increases along ``theta1 = 4 phi0``
+        for ``phi0 > 0``: from ``L = -G`` to ``L = +G``).
+    branch : {"theta1=0", "theta1=4phi0"}
+    sheet : {+1, -1}
+        Which of the two orbits of the line (``theta1`` or ``theta1 + 2 pi``).
+    psi0 : float
+        Section ``psi = psi0`` on which the fundamental domain is seeded.
+    delta : float
+        Distance of the fundamental domain from the fixed point in ``(x1, x2)``.
+    orbit : RotationOrbit, optional
+        The periodic orbit (default: continued in ``mu`` from 0 in ``mu_steps`` steps).
+    tol, long_double :
+        heyoka tolerance and precision.
+
+    Returns
+    -------
+    ManifoldBranch
+
+    Examples
+    --------
+    >>> from andoyer.analysis.periodic import rotation_energy
+    >>> body = RigidBody.hess(2.5, 1.0, 1.6, mu=0.01)
+    >>> wu = manifold_branch(body, rotation_energy(body), "unstable", delta=1e-4)
+    >>> wu.orbit.section.sign, round(wu.factor, 4)        # leaves L = -G; exp(2 pi sigma/c)
+    (-1, 18.5443)
+    >>> curve = grow_manifold(wu)
+    >>> bool(np.ptp(curve.g) > 2 * np.pi)                  # one fundamental domain: a full turn
+    True
+    """
+    if not body.is_hess:
+        raise ValueError("manifold_branch follows the heteroclinic lines theta1 = 0 and "
+                         "theta1 = 4 phi0 of a Hess body; build it with RigidBody.hess(A, B, "
+                         "C, mu)")
+    if stability not in ("unstable", "stable"):
+        raise ValueError(f"stability must be 'unstable' or 'stable', got {stability!r}")
+    if branch not in BRANCHES:
+        raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
+    if sheet not in (1, -1):
+        raise ValueError(f"sheet must be +1 or -1, got {sheet!r}")
+    if not (math.isfinite(delta) and 0.0 < delta < 0.1):
+        raise ValueError(f"delta must lie in (0, 0.1), got {delta!r}")
+    theta1_line, j1_dir = _line(body, h, branch, sheet)
+    # J1 increasing: the line leaves L = -G (J1 = 0) and reaches L = +G (J1 = J2).
+    leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
+    rot = leaves if stability == "unstable" else reaches
+    if orbit is None:
+        orbits, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, rot),
+                                            steps=mu_steps, tol=tol, long_double=long_double)
+        orbit = orbits[-1]
+    elif orbit.section.sign != rot or orbit.body != body or orbit.M != 0.0:
+        raise ValueError(f"orbit must be the rotation L = {'+' if rot > 0 else '-'}G of this "
+                         "body on M = 0")
+    k = 0 if stability == "unstable" else 1
+    lam = float(orbit.multipliers[k])
+    if lam < 0.0:
+        raise ValueError(f"multiplier {lam:.6g} < 0 (inverse hyperbolic orbit): a fundamental "
+                         "domain would alternate between the branches; not supported")
+    factor = lam if stability == "unstable" else 1.0 / lam
+    v = orbit.eigenvectors[:, k].copy()
+    trial = ManifoldBranch(orbit, stability, branch, sheet, v, factor, float(delta),
+                           theta1_line, -rot if stability == "unstable" else rot)
+    # Orient v: the traced point must arrive near the line's l = theta1/2 - phi0 (mod 2 pi).
+    l_line = theta1_line / 2.0 - body.phi0
+    l_seen = float(to_andoyer(trial.trace(0.5).y)[0])
+    if abs(math.remainder(l_seen - l_line, TWO_PI)) > math.pi / 2:
+        trial = replace(trial, vector=-v)
+    return trial
+
+
+# ----------------------------------------------------------------------------- curves
+@dataclass(frozen=True)
+class ManifoldCurve:
+    """A manifold branch traced on ``Sigma_0``: fundamental-domain samples sorted by ``s``."""
+
+    branch: ManifoldBranch
+    s: NDArray[np.float64]
+    y: NDArray[np.float64]
+    t: NDArray[np.float64]
+
+    @property
+    def g(self) -> NDArray[np.float64]:
+        """Phase ``g`` on ``Sigma_0``, unwrapped along the curve."""
+        return np.unwrap(to_andoyer(self.y)[:, 1])
+
+    @property
+    def G(self) -> NDArray[np.float64]:
+        return np.asarray(np.linalg.norm(self.y[:, :3], axis=-1))
+
+    def point_at_phase(self, g: float, *, stol: float = 1e-14) -> Crossing:
+        """A fresh point of the manifold on ``Sigma_0`` with phase ``g`` (mod 2 pi).
+
+        The fundamental-domain parameter ``s`` is found by Brent's method on
+        ``remainder(g(s) - g, 2 pi)`` inside the bracket of two neighbouring samples, to
+        ``stol`` in ``s`` (the phase to about ``2 pi stol``); each evaluation integrates
+        a fresh orbit. The evaluated point nearest the phase is returned.
+        """
+        from scipy.optimize import brentq
+
+        gs = self.g
+        r = np.remainder(gs - g + math.pi, TWO_PI) - math.pi
+        # A sign change of r between two close samples, not its jump at r = +-pi.
+        cand = np.flatnonzero((np.sign(r[:-1]) != np.sign(r[1:]))
+                              & (np.abs(r[:-1]) < 1.0) & (np.abs(r[1:]) < 1.0))
+        if cand.size == 0:
+            raise ValueError(f"phase g = {g:.6g} is not covered by the traced curve")
+        # Prefer the bracket nearest the middle of the fundamental domain.
+        i = int(cand[np.argmin(np.abs(self.s[cand] - 0.5))])
+        best: list[tuple[float, Crossing]] = []
+
+        def f(s: float) -> float:
+            cr = self.branch.trace(s)
+            miss = math.remainder(float(to_andoyer(cr.y)[1]) - g, TWO_PI)
+            best.append((abs(miss), cr))
+            return miss
+
+        brentq(f, float(self.s[i]), float(self.s[i + 1]), xtol=stol, rtol=1e-15,
+               maxiter=100)
+        return min(best, key=lambda item: item[0])[1]
+
+    def dataset(self) -> xr.Dataset:
+        """The curve on ``Sigma_0`` with arclength, chart coordinates and checks."""
+        b = self.branch
+        body = b.body
+        x = to_andoyer(self.y)
+        xh = to_hess(body, self.y)
+        g = self.g
+        G = self.G
+        arclength = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(g), np.diff(G)))])
+        ds = xr.Dataset(
+            {"s": (("point",), self.s),
+             "g_angle": (("point",), np.mod(g, TWO_PI)),
+             "g_unwrapped": (("point",), g),
+             "G_action": (("point",), G),
+             "l_angle": (("point",), x[:, 0]),
+             "L_action": (("point",), x[:, 2]),
+             "theta1": (("point",), xh[:, 0]),
+             "theta2": (("point",), xh[:, 1]),
+             "J1": (("point",), xh[:, 2]),
+             "E": (("point",), euler_poinsot_excess(body, self.y)),
+             "H": (("point",), energy(body, self.y)),
+             "arclength": (("point",), arclength),
+             "flight_time": (("point",), self.t),
+             "y": (("point", "component"), self.y)},
+            coords={"point": np.arange(self.s.size), "component": list(STATE)},
+            attrs=provenance(body, engine="heyoka (Taylor)",
+                             method="fundamental domain q(s) = p + delta Lambda^s v on the "
+                                    "section psi = psi0, carried by the flow to L = 0; "
+                                    "adaptive insertion",
+                             plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
+                             **b.attrs()))
+        meta = {
+            "s": ("s", "fundamental-domain parameter", "1", ""),
+            "g_angle": ("g", "Andoyer-Deprit angle g on L = 0", "rad", "(5)-(6)"),
+            "g_unwrapped": ("g", "g unwrapped along the curve", "rad", "(5)-(6)"),
+            "G_action": ("G", "length of the angular momentum", "1", "(5)"),
+            "l_angle": ("l", "Andoyer-Deprit angle l", "rad", "(5)-(6)"),
+            "L_action": ("L", "L = G3 (zero on the section)", "1", "(5)"),
+            "theta1": ("\\theta_1", "Hess-chart angle 2(l + phi0)", "rad", "(14)"),
+            "theta2": ("\\theta_2", "Hess-chart angle g - l - phi0", "rad", "(14)"),
+            "J1": ("J_1", "Hess-chart action (G + L)/2", "1", "(14)"),
+            "E": ("H_0 - c G^2/2", "Euler-Poinsot excess ((a-c)G1^2 + (b-c)G2^2)/2", "1",
+                  "(12)-(13)"),
+            "H": ("H", "energy (check: constant)", "1", "(1)"),
+            "arclength": ("", "arclength in the (g, G) plane", "1", ""),
+            "flight_time": ("t", "time from the seed to Sigma_0 (negative: backwards)",
+                            "body time units", ""),
+            "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)"),
+        }
+        for name, (sym, long, units, eq) in meta.items():
+            ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
+        return ds
+
+
+def _needs_point(g: NDArray[np.float64], G: NDArray[np.float64], max_gap: float,
+                 max_angle: float) -> NDArray[np.bool_]:
+    """Segments ``i -> i + 1`` to split: too long, or the curve turns too much at an end."""
+    dg, dG = np.diff(g), np.diff(G)
+    split = np.hypot(dg, dG) > max_gap
+    if g.size >= 3:
+        ang = np.abs(np.angle(np.exp(1j * np.diff(np.arctan2(dG, dg)))))
+        turn = ang > max_angle
+        split[:-1] |= turn
+        split[1:] |= turn
+    return split
+
+
+def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float = 0.15,
+                  max_angle: float = 0.1, max_points: int = 2000, s_margin: float = 0.05,
+                  min_ds: float = 1e-9) -> ManifoldCurve:
+    """Trace one fundamental domain of a branch on ``Sigma_0``, refined adaptively.
+
+    Parameters
+    ----------
+    branch : ManifoldBranch
+    n_initial : int
+        Initial number of equal steps in ``s`` on ``[-s_margin, 1 + s_margin]`` (the
+        margin makes the closed curve overlap itself).
+    max_gap : float
+        Largest distance between neighbouring points in the ``(g, G)`` plane.
+    max_angle : float
+        Largest turn of the curve (radians) at a point of the ``(g, G)`` plane.
+    max_points : int
+        Stop refining (with a ``RuntimeWarning``) beyond this many points.
+    min_ds : float
+        Do not split fundamental-domain intervals shorter than this.
+
+    Returns
+    -------
+    ManifoldCurve
+    """
+    import warnings
+
+    if int(n_initial) != n_initial or n_initial < 4:
+        raise ValueError(f"n_initial must be an integer >= 4, got {n_initial!r}")
+    for name, v in (("max_gap", max_gap), ("max_angle", max_angle)):
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    s = np.linspace(-s_margin, 1.0 + s_margin, int(n_initial) + 1)
+    crossings = [branch.trace(si) for si in s]
+    y = np.stack([c.y for c in crossings])
+    t = np.array([c.t for c in crossings])
+    while True:
+        g = np.unwrap(to_andoyer(y)[:, 1])
+        G = np.linalg.norm(y[:, :3], axis=-1)
+        split = _needs_point(g, G, max_gap, max_angle) & (np.diff(s) > min_ds)
+        if not split.any():
+            break
+        if s.size + int(split.sum()) > max_points:
+            warnings.warn(f"manifold not resolved within max_points = {max_points}",
+                          RuntimeWarning, stacklevel=2)
+            break
+        new_s = 0.5 * (s[:-1] + s[1:])[split]
+        new = [branch.trace(si) for si in new_s]
+        s = np.concatenate([s, new_s])
+        y = np.concatenate([y, np.stack([c.y for c in new])])
+        t = np.concatenate([t, [c.t for c in new]])
+        order = np.argsort(s)
+        s, y, t = s[order], y[order], t[order]
+    return ManifoldCurve(branch, s, y, t)
+
+
+# ----------------------------------------------------------------------------- splitting
+def splitting_at(wu: ManifoldCurve, ws: ManifoldCurve, g: float) -> dict[str, Any]:
+    """Fresh points of both manifolds on the line ``g = const`` of ``Sigma_0``.
+
+    Returns a dict with ``Delta_G = G^u - G^s``, ``Delta_E = E^u - E^s``, the states
+    ``y_u``, ``y_s`` and their phases.
+    """
+    cu = wu.point_at_phase(g)
+    cs = ws.point_at_phase(g)
+    body = wu.branch.body
+    Gu, Gs = float(np.linalg.norm(cu.y[:3])), float(np.linalg.norm(cs.y[:3]))
+    return {"Delta_G": Gu - Gs,
+            "Delta_E": float(euler_poinsot_excess(body, cu.y) - euler_poinsot_excess(body,
+                                                                                     cs.y)),
+            "G_u": Gu, "G_s": Gs, "y_u": cu.y, "y_s": cs.y, "t_u": cu.t, "t_s": cs.t}
+
+
+def _trig_interp(values: NDArray[np.float64], g: NDArray[np.floating[Any]],
+                 derivative: int = 0) -> NDArray[np.float64]:
+    """Trigonometric interpolant of samples on ``2 pi k / n`` (n even), at ``g``."""
+    n = values.size
+    c = np.fft.rfft(values) / n
+    k = np.arange(c.size)
+    w = np.full(c.size, 2.0)
+    w[0] = 1.0
+    if n % 2 == 0:
+        w[-1] = 1.0
+    coef = w * c * (1j * k) ** derivative
+    return np.asarray(np.real(np.exp(1j * np.outer(g, k)) @ coef))
+
+
+def _shoelace(xs: NDArray[np.float64], ys: NDArray[np.float64]) -> float:
+    return 0.5 * float(np.dot(xs, np.roll(ys, -1)) - np.dot(ys, np.roll(xs, -1)))
+
+
+def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32,
+                      locate: bool | None = None, gtol: float = 1e-13,
+                      noise: float = 1e-11) -> tuple[xr.Dataset, xr.Dataset]:
+    """Splitting of ``W^u`` and ``W^s`` on ``Sigma_0`` as a function of the phase ``g``.
+
+    Parameters
+    ----------
+    wu, ws : ManifoldCurve
+        The unstable and the stable manifold of the same heteroclinic line.
+    n_phase : int
+        Even number of equally spaced phases ``g_k = 2 pi k / n_phase`` at which fresh
+        points are computed; ``Delta G`` between them is the trigonometric interpolant
+        (the splitting is analytic and periodic in ``g``).
+    locate : bool, optional
+        Locate the heteroclinic points (default: when ``max |Delta G| > noise``).
+    gtol : float
+        Tolerance in ``g`` of the located heteroclinic points.
+    noise : float
+        Below this ``max |Delta G|`` the manifolds are taken to coincide.
+
+    Returns
+    -------
+    splitting : xarray.Dataset
+        Dim ``phase``: ``Delta_G``, ``Delta_E``, ``G_u``, ``G_s``.
+    intersections : xarray.Dataset
+        Dim ``intersection``: ``g`` and ``G`` of each heteroclinic point, the distance
+        ``state_distance`` between the two manifolds' states there, ``Delta_G``
+        (residual), ``angle`` (splitting angle in the ``(g, G)`` plane), and
+        ``lobe_area`` of the lobe that starts there (signed: ``int Delta G dg``).
+    """
+    from scipy.optimize import brentq
+
+    if int(n_phase) != n_phase or n_phase < 8 or n_phase % 2:
+        raise ValueError(f"n_phase must be an even integer >= 8, got {n_phase!r}")
+    if wu.branch.branch != ws.branch.branch or wu.branch.sheet != ws.branch.sheet:
+        raise ValueError("wu and ws must follow the same heteroclinic line and sheet")
+    if (wu.branch.stability, ws.branch.stability) != ("unstable", "stable"):
+        raise ValueError("give the unstable manifold first, then the stable one")
+    phases = TWO_PI * np.arange(n_phase) / n_phase
+    rows = [splitting_at(wu, ws, float(g)) for g in phases]
+    dG = np.array([r["Delta_G"] for r in rows])
+    Gu = np.array([r["G_u"] for r in rows])
+    Gs = np.array([r["G_s"] for r in rows])
+    body = wu.branch.body
+    split = xr.Dataset(
+        {"Delta_G": (("phase",), dG),
+         "Delta_E": (("phase",), [r["Delta_E"] for r in rows]),
+         "G_u": (("phase",), Gu), "G_s": (("phase",), Gs)},
+        coords={"phase": phases},
+        attrs=provenance(body, engine="heyoka (Taylor)", branch=wu.branch.branch,
+                         sheet=wu.branch.sheet, energy=wu.branch.h,
+                         plane="Sigma_0 = {L = G3 = 0}, Darboux coordinates (g, G)",
+                         heyoka_tol=wu.branch.orbit.tol,
+                         delta_u=wu.branch.delta, delta_s=ws.branch.delta))
+    split.phase.attrs.update(symbol="g", long_name="phase: Andoyer-Deprit angle g on L = 0",
+                             units="rad", equation="(5)-(6)")
+    for name, sym, long in (
+            ("Delta_G", "\\Delta G", "G^u - G^s on the line g = const of L = 0"),
+            ("Delta_E", "\\Delta E", "E^u - E^s, E = H0 - c G^2/2"),
+            ("G_u", "G^u", "G on the unstable manifold"),
+            ("G_s", "G^s", "G on the stable manifold")):
+        split[name].attrs.update(symbol=sym, long_name=long, units="1", equation="(12)-(13)")
+    split["Delta_E"].attrs["units"] = "energy units"
+
+    coincide = float(np.max(np.abs(dG))) <= noise
+    split.attrs["max_abs_Delta_G"] = float(np.max(np.abs(dG)))
+    split.attrs["manifolds_coincide"] = int(coincide)
+    if locate is None:
+        locate = not coincide
+    rec: dict[str, list[Any]] = {k: [] for k in (
+        "g", "G", "state_distance", "Delta_G", "angle", "lobe_area", "y_u", "y_s")}
+    if locate:
+        # Candidates: sign changes of the interpolant on a fine grid shifted off the
+        # sample phases (a zero on a symmetry line would fall on a node).
+        step = TWO_PI / (64 * n_phase)
+        dense = step * (np.arange(64 * n_phase + 1) + 0.381966)
+        vals = _trig_interp(dG, dense)
+        idx = np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)
+        zeros = []
+        cache: dict[float, dict[str, Any]] = {}
+
+        def f(g: float) -> float:
+            r = splitting_at(wu, ws, g)
+            cache[g] = r
+            return float(r["Delta_G"])
+
+        for i in idx:
+            lo, hi = float(dense[i]), float(dense[i + 1])
+            # Widen the bracket until the fresh values change sign.
+            while f(lo) * f(hi) > 0.0:
+                if hi - lo > TWO_PI / n_phase:
+                    raise RuntimeError("could not bracket a heteroclinic point: the "
+                                       "interpolated splitting is not accurate; raise "
+                                       "n_phase")
+                lo, hi = lo - (hi - lo), hi + (hi - lo)
+            z = brentq(f, lo, hi, xtol=gtol, rtol=1e-15)
+            zeros.append(z % TWO_PI)
+            r = cache.get(z) or splitting_at(wu, ws, z)
+            slope_s = float(_trig_interp(Gs, np.array([z]), 1)[0])
+            slope_u = float(_trig_interp(Gu, np.array([z]), 1)[0])
+            rec["g"].append(z % TWO_PI)
+            rec["G"].append(0.5 * (r["G_u"] + r["G_s"]))
+            rec["state_distance"].append(float(np.linalg.norm(r["y_u"] - r["y_s"])))
+            rec["Delta_G"].append(r["Delta_G"])
+            rec["angle"].append(math.atan(slope_u) - math.atan(slope_s))
+            rec["y_u"].append(r["y_u"])
+            rec["y_s"].append(r["y_s"])
+        order = np.argsort(zeros)
+        zs = np.asarray(zeros)[order]
+        for key in rec:
+            if key != "lobe_area":
+                rec[key] = [rec[key][i] for i in order]
+        for k, z0 in enumerate(zs):
+            z1 = zs[(k + 1) % zs.size] + (TWO_PI if k + 1 == zs.size else 0.0)
+            gg = np.linspace(z0, z1, 2049)
+            upper = _trig_interp(Gu, gg)
+            lower = _trig_interp(Gs, gg)
+            # The lobe polygon: along W^u from z_k to z_{k+1}, back along W^s; the
+            # shoelace area is signed with Delta G (counter-clockwise positive).
+            poly_g = np.concatenate([gg, gg[::-1]])
+            poly_G = np.concatenate([upper, lower[::-1]])
+            rec["lobe_area"].append(-_shoelace(poly_g, poly_G))
+    n_int = len(rec["g"])
+    inter = xr.Dataset(
+        {"g": (("intersection",), np.asarray(rec["g"], dtype=float)),
+         "G": (("intersection",), np.asarray(rec["G"], dtype=float)),
+         "state_distance": (("intersection",), np.asarray(rec["state_distance"], dtype=float)),
+         "Delta_G": (("intersection",), np.asarray(rec["Delta_G"], dtype=float)),
+         "angle": (("intersection",), np.asarray(rec["angle"], dtype=float)),
+         "lobe_area": (("intersection",), np.asarray(rec["lobe_area"], dtype=float)),
+         "y_u": (("intersection", "component"),
+                 np.asarray(rec["y_u"], dtype=float).reshape(n_int, 6)),
+         "y_s": (("intersection", "component"),
+                 np.asarray(rec["y_s"], dtype=float).reshape(n_int, 6))},
+        coords={"intersection": np.arange(n_int), "component": list(STATE)},
+        attrs={**split.attrs, "gtol": gtol})
+    for name, sym, long, units in (
+            ("g", "g", "phase of the heteroclinic point on L = 0", "rad"),
+            ("G", "G", "G of the heteroclinic point", "1"),
+            ("state_distance", "|y^u - y^s|", "distance of the two manifolds' states", "1"),
+            ("Delta_G", "\\Delta G", "residual G^u - G^s at the located point", "1"),
+            ("angle", "\\alpha", "splitting angle atan(G^u') - atan(G^s') in (g, G)", "rad"),
+            ("lobe_area", "A", "signed area int Delta G dg of the lobe from this point to "
+                               "the next (shoelace)", "action units"),
+            ("y_u", "y^u", "state on W^u", "1"), ("y_s", "y^s", "state on W^s", "1")):
+        inter[name].attrs.update(symbol=sym, long_name=long, units=units)
+    return split, inter
+
+
+# ----------------------------------------------------------------------------- driver
+def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
+                         G: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
+                         psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
+                         tol: float = DEFAULT_TOL, long_double: bool = False,
+                         grow: dict[str, Any] | None = None, progress: bool | None = None,
+                         ) -> dict[str, xr.Dataset]:
+    """Measure the separatrix splitting for several ``mu`` and compare it with Melnikov.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (its own ``mu`` is ignored).
+    mu : sequence of float
+        Increasing values ``mu > 0``.
+    G : float
+        The energy level is ``h = c G^2 / 2`` (the rotation about z with ``|G| = G`` at
+        ``mu = 0``); the Melnikov prediction uses ``J2 = G``.
+    branch, sheet :
+        The heteroclinic line (``"theta1=0"``, the Hess solutions, does not split).
+    psi0, delta :
+        Fundamental domains on ``psi = psi0`` at distance ``delta`` from the orbits.
+    n_phase : int
+        Phases of the splitting grid (even).
+    tol, long_double :
+        heyoka tolerance and precision.
+    grow : dict, optional
+        Keyword arguments of :func:`grow_manifold`.
+    progress : bool, optional
+        Progress line on stderr (default: when stderr is a terminal).
+
+    Returns
+    -------
+    dict of xarray.Dataset
+        * ``"splitting"`` (mu, phase): measured ``Delta_G``, ``Delta_E``; the first-order
+          predictions ``Delta_G_melnikov = -mu M(g - theta1/2)/(c G)``,
+          ``Delta_E_melnikov = mu M``; per ``mu``: ``amplitude`` (max over the phase of
+          ``|Delta G|``), ``amplitude_melnikov``, ``relative_error``
+          (``max |Delta G - prediction| / amplitude_melnikov``).
+        * ``"intersections"`` (mu, intersection): heteroclinic points ``g``, ``G``,
+          ``state_distance``, ``Delta_G``, ``angle``, ``lobe_area`` and their
+          first-order predictions ``angle_melnikov``, ``lobe_area_melnikov`` (NaN-padded).
+        * ``"melnikov"``: :func:`~andoyer.analysis.melnikov.melnikov_function` at the
+          phases of the grid.
+        * ``"orbit_leaves"``, ``"orbit_reaches"`` (mu): the periodic orbits the line
+          leaves and reaches, continued from ``mu = 0`` (:func:`~andoyer.analysis.
+          periodic.orbits_dataset`).
+        * ``"curve_unstable"``, ``"curve_stable"`` (point): the manifold curves on
+          ``Sigma_0`` at the largest ``mu`` (:meth:`ManifoldCurve.dataset`).
+
+    Examples
+    --------
+    >>> out = separatrix_splitting(RigidBody.hess(2.5, 1.0, 1.6), [0.01], n_phase=8,
+    ...                            delta=1e-4)                      # doctest: +SKIP
+    >>> float(out["splitting"].relative_error[0]) < 0.05            # doctest: +SKIP
+    True
+    """
+    from andoyer.analysis.melnikov import melnikov_function
+    from andoyer.analysis.periodic import orbits_dataset
+    from andoyer.integrate.api import _Progress
+
+    mus = np.atleast_1d(np.asarray(mu, dtype=float))
+    if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
+        raise ValueError("mu must be a non-empty list of finite values > 0")
+    if np.any(np.diff(mus) <= 0):
+        raise ValueError("mu must be increasing")
+    if not body.is_hess:
+        raise ValueError("separatrix_splitting needs a Hess body (RigidBody.hess(A, B, C))")
+    G = float(G)
+    if not (math.isfinite(G) and G > 0.0):
+        raise ValueError(f"G must be finite and > 0, got {G!r}")
+    h = 0.5 * body.c * G * G
+    theta1_line, j1_dir = _line(body, h, branch, sheet)
+    leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
+    bar = _Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
+    # Both rotation orbits, continued in mu once through every requested value.
+    path = np.concatenate([[0.0], mus])
+    orb_u, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, leaves), mu=path,
+                                       tol=tol, long_double=long_double)
+    bar.update(1)
+    orb_s, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, reaches), mu=path,
+                                       tol=tol, long_double=long_double)
+    bar.update(1)
+    splits, inters = [], []
+    curves: dict[str, xr.Dataset] = {}
+    for k, m in enumerate(mus):
+        bm = body.with_mu(float(m))
+        common: dict[str, Any] = {"sheet": sheet, "psi0": psi0, "delta": delta, "tol": tol,
+                                  "long_double": long_double}
+        wu = grow_manifold(manifold_branch(bm, h, "unstable", branch, orbit=orb_u[k + 1],
+                                           **common), **(grow or {}))
+        ws = grow_manifold(manifold_branch(bm, h, "stable", branch, orbit=orb_s[k + 1],
+                                           **common), **(grow or {}))
+        bar.update(1)
+        sp, it = measure_splitting(wu, ws, n_phase=n_phase)
+        bar.update(2)
+        splits.append(sp)
+        inters.append(it)
+        if k == mus.size - 1:
+            curves = {"curve_unstable": wu.dataset(), "curve_stable": ws.dataset()}
+    bar.close()
+
+    phases = splits[0].phase.values
+    # The Melnikov phase: theta2 = g - theta1/2 where the unperturbed line crosses L = 0.
+    mel = melnikov_function(body, phases - theta1_line / 2.0, J2=G, branch=branch,
+                            sheet=sheet)
+    dG = np.stack([sp.Delta_G.values for sp in splits])
+    dE = np.stack([sp.Delta_E.values for sp in splits])
+    pred_E = mus[:, None] * mel["M"].values[None, :]
+    pred_G = -pred_E / (body.c * G)
+    amp = np.max(np.abs(dG), axis=1)
+    amp_pred = np.max(np.abs(pred_G), axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
+    attrs = provenance(body.with_mu(float(mus[-1])), engine="heyoka (Taylor)",
+                       branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
+                       delta=delta, heyoka_tol=tol, long_double=int(long_double),
+                       n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
+                       melnikov_amplitude=mel.attrs["amplitude"],
+                       plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
+                       relation="Delta_E = mu M(theta2_0) + O(mu^2); Delta_G = -Delta_E/(c G)"
+                                " (1 + O(mu)); theta2_0 = g - theta1_line/2")
+    attrs["body_mu"] = "see the mu coordinate"
+    splitting = xr.Dataset(
+        {"Delta_G": (("mu", "phase"), dG),
+         "Delta_E": (("mu", "phase"), dE),
+         "Delta_G_melnikov": (("mu", "phase"), pred_G),
+         "Delta_E_melnikov": (("mu", "phase"), pred_E),
+         "amplitude": (("mu",), amp),
+         "amplitude_melnikov": (("mu",), amp_pred),
+         "relative_error": (("mu",), rel)},
+        coords={"mu": mus, "phase": phases}, attrs=attrs)
+    for name, sym, long, units in (
+            ("Delta_G", "\\Delta G", "measured G^u - G^s on the line g = const of L = 0", "1"),
+            ("Delta_E", "\\Delta E", "measured E^u - E^s, E = H0 - c G^2/2", "energy units"),
+            ("Delta_G_melnikov", "-\\mu M/(c G)", "first-order prediction of Delta G", "1"),
+            ("Delta_E_melnikov", "\\mu M", "first-order prediction of Delta E",
+             "energy units"),
+            ("amplitude", "max|\\Delta G|", "measured splitting amplitude", "1"),
+            ("amplitude_melnikov", "max|\\mu M/(c G)|", "predicted splitting amplitude", "1"),
+            ("relative_error", "", "max over the phase |Delta G - prediction| / predicted "
+                                   "amplitude", "1")):
+        splitting[name].attrs.update(symbol=sym, long_name=long, units=units)
+    splitting.mu.attrs.update(symbol="\\mu", long_name="weight x distance of the centre of "
+                              "mass", units="1", equation="(1)")
+    splitting.phase.attrs.update(splits[0].phase.attrs)
+
+    n_max = max([it.sizes["intersection"] for it in inters] + [0])
+    data: dict[str, Any] = {}
+    for name in ("g", "G", "state_distance", "Delta_G", "angle", "lobe_area"):
+        arr = np.full((mus.size, n_max), np.nan)
+        for k, it in enumerate(inters):
+            arr[k, :it.sizes["intersection"]] = it[name].values
+        data[name] = (("mu", "intersection"), arr)
+    # A pure harmonic A cos(g + c): slope A at its zeros, lobe area 2 A.
+    data["angle_melnikov"] = (("mu",), np.arctan(amp_pred))
+    data["lobe_area_melnikov"] = (("mu",), 2.0 * amp_pred)
+    intersections = xr.Dataset(data, coords={"mu": mus, "intersection": np.arange(n_max)},
+                               attrs={**attrs, "gtol": inters[0].attrs.get("gtol", np.nan)})
+    for name in ("g", "G", "state_distance", "Delta_G", "angle", "lobe_area"):
+        intersections[name].attrs.update(inters[0][name].attrs)
+    intersections["angle_melnikov"].attrs.update(
+        symbol="atan(max|\\mu M/(c G)|)", long_name="first-order splitting angle", units="rad")
+    intersections["lobe_area_melnikov"].attrs.update(
+        symbol="2 max|\\mu M/(c G)|", long_name="first-order lobe area |int Delta G dg|",
+        units="action units")
+    return {"splitting": splitting, "intersections": intersections, "melnikov": mel,
+            "orbit_leaves": orbits_dataset(orb_u), "orbit_reaches": orbits_dataset(orb_s),
+            **curves}

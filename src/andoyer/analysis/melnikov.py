@@ -1,0 +1,326 @@
+"""The Melnikov function of the heteroclinic orbits of the Hess chart, for ``mu H1``.
+
+At ``M = 0`` the Hess-chart Hamiltonian (16) is ``H = H0(theta1, J1; J2) + mu H1`` with
+
+.. math::
+
+    H_0 = \\tfrac12 c J_2^2 + \\kappa J_1 (J_1 - J_2)[\\cos(\\theta_1 - 2\\varphi_0)
+          - \\cos 2\\varphi_0], \\qquad
+    H_1 = [J_1 \\sin(\\theta_1 + \\theta_2) + (J_2 - J_1) \\sin\\theta_2] / J_2 .
+
+At ``mu = 0`` the lines ``theta1 = 0`` and ``theta1 = 4 phi0`` carry the heteroclinic
+orbits of :func:`andoyer.analysis.separatrix.heteroclinic` between the rotations
+``L = -G`` (``J1 = 0``) and ``L = +G`` (``J1 = J2``), with ``theta2 = theta2_0 + c J2 t``.
+
+Which quantity splits
+---------------------
+``E = H0 - c J2^2 / 2`` (:func:`andoyer.analysis.manifolds.euler_poinsot_excess`) is a
+first integral of the unperturbed flow that vanishes on the separatrices *and* on the
+periodic orbits ``P+-`` of every ``mu`` (there ``G1 = G2 = 0``). Along the full flow
+``dE/dt = mu {E, H1}``, an integrand that decays exponentially at both ends of a
+heteroclinic orbit. Integrating from ``P-`` to a point of ``W^u`` and from a point of
+``W^s`` to ``P+``, and replacing the perturbed orbits by the unperturbed one
+(error ``O(mu^2)``):
+
+.. math::
+
+    \\Delta E(\\theta_2^0) = E^u - E^s = \\mu M(\\theta_2^0) + O(\\mu^2), \\qquad
+    M(\\theta_2^0) = \\int_{-\\infty}^{\\infty} \\{E, H_1\\}(x_0(t))\\, dt,
+
+``x0`` the unperturbed heteroclinic orbit with ``L = 0`` and ``theta2 = theta2^0`` at
+``t = 0``. (The full bracket ``{H0, H1} = {E, H1} + c J2 {J2, H1}`` does not decay:
+``{J2, H1} = -dH1/dtheta2`` oscillates on ``P+-``; ``{E, H1}`` is its part that does,
+the ``(theta1, J1)`` bracket of the energy-reduced system.)
+
+On the section ``L = 0`` at fixed phase ``g`` the energy relation
+``c G^2/2 + E + mu H1 = h`` turns this into the distance along ``g = const``:
+``Delta G = -Delta E / (c G) (1 + O(mu))``, and ``theta2^0 = g - theta1/2``.
+
+Closed form
+-----------
+On the line ``theta1 = const``: ``{E, H1} = dH0/dtheta1 dH1/dJ1 =
+-(dJ1/dt / J2) [sin(theta1 + theta2) - sin theta2]`` (the other terms carry the vanishing
+bracket ``cos(theta1 - 2 phi0) - cos 2 phi0``), ``J1 / J2 = 1/(1 + e^{-s lambda t})``
+(``s = +1`` where J1 increases), ``lambda = 2 sigma J2``. With
+``int (lambda/4) sech^2(lambda t / 2) e^{i omega t} dt = pi rho / sinh(pi rho)`` (residues
+at ``t = i pi (2k + 1) / lambda``), ``omega = c J2``:
+
+.. math::
+
+    M(\\theta_2^0) = -s\\, \\frac{\\pi\\rho}{\\sinh \\pi\\rho}
+        [\\sin(\\theta_1 + \\theta_2^0) - \\sin\\theta_2^0]
+      = -2 s\\, \\frac{\\pi\\rho}{\\sinh \\pi\\rho} \\sin\\frac{\\theta_1}{2}\\,
+        \\cos\\Big(\\theta_2^0 + \\frac{\\theta_1}{2}\\Big),
+    \\qquad \\rho = \\frac{c J_2}{\\lambda} = \\frac{c}{2\\sigma}.
+
+It vanishes identically on ``theta1 = 0`` (the Hess solutions, which do not split). On
+``theta1 = 4 phi0`` of a Hess body ``sin 2 phi0 = 2 sigma / (b - a)``, so
+``Delta G = 2 pi mu cos g / ((b - a) J2 sinh(pi rho))`` (``phi0 > 0``): about
+``7.4e-5 mu`` for the paper's body (``rho = 4.564``, ``pi rho / sinh(pi rho) = 1.7e-5``).
+
+The numerical route evaluates ``{E, H1} = grad E . X_{H1}`` in the Euler-Poisson
+variables (``grad E = I G - c G``; ``X_{H1}`` the field (1) of ``mu = 1`` minus that of
+``mu = 0``) along the states of :func:`~andoyer.analysis.separatrix.heteroclinic` and
+integrates with the trapezoidal rule on the real line, which converges geometrically for
+this integrand (analytic in a strip, decaying exponentially) [2]_; ``method="quad"``
+uses :func:`scipy.integrate.quad` instead.
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+.. [2] L. N. Trefethen and J. A. C. Weideman, "The exponentially convergent trapezoidal
+   rule", SIAM Review 56 (2014) 385-458.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.analysis.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
+from andoyer.body import RigidBody
+from andoyer.charts.euler_poisson import as_state
+from andoyer.dynamics import vector_field
+from andoyer.integrate.results import provenance
+
+__all__ = [
+    "heteroclinic_line",
+    "melnikov_integrand",
+    "melnikov_closed_form",
+    "melnikov_quadrature",
+    "melnikov_function",
+    "predicted_splitting",
+    "melnikov_rho",
+]
+
+TWO_PI = 2.0 * math.pi
+#: The integrand is below ``exp(-TAIL)`` times its maximum beyond the truncation time.
+TAIL = 46.0
+
+
+def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
+                      ) -> tuple[float, int]:
+    """``(theta1 of the line in [0, 4 pi), s)``: ``s = +1`` where J1 increases along it.
+
+    Read from :func:`~andoyer.analysis.separatrix.heteroclinic` (the direction is fixed
+    by the flow: for ``phi0 > 0`` J1 increases on ``theta1 = 4 phi0``).
+
+    Examples
+    --------
+    >>> theta1, s = heteroclinic_line(RigidBody.paper(), 1.0, "theta1=4phi0")
+    >>> round(theta1 / RigidBody.paper().phi0, 12), s
+    (4.0, 1)
+    """
+    if branch not in BRANCHES:
+        raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
+    het = heteroclinic(body, J2, [0.0], branch, sign=sheet)
+    return float(het.attrs["theta1_line"]), (1 if het.attrs["J1_direction"] == "increasing"
+                                              else -1)
+
+
+def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
+    """``rho = c J2 / lambda = c / (2 sigma)``: frequency of theta2 over the rate of J1.
+
+    Examples
+    --------
+    >>> round(melnikov_rho(RigidBody.paper()), 6)
+    4.564355
+    """
+    return body.c * J2 / heteroclinic_rate(body, J2)
+
+
+def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
+    """``{E, H1}(y) = grad E . X_{H1}`` in the Euler-Poisson variables, shape ``(...)``.
+
+    ``E = H0 - c |G|^2/2`` so ``grad_G E = I G - c G``, ``grad_gamma E = 0``;
+    ``X_{H1}`` is the Lie-Poisson field (1) of ``H1 = (r, gamma)``, the difference of the
+    fields at ``mu = 1`` and ``mu = 0`` (the field is affine in ``mu``).
+    """
+    arr = as_state(y)
+    X1 = vector_field(body.with_mu(1.0), arr) - vector_field(body.with_mu(0.0), arr)
+    G = arr[..., :3]
+    gradE = G * np.array([body.a, body.b, body.c]) - body.c * G
+    return np.asarray(np.einsum("...i,...i->...", gradE, X1[..., :3]))
+
+
+def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
+                         branch: str = "theta1=4phi0", sheet: int = 1
+                         ) -> NDArray[np.float64]:
+    """``M(theta2_0) = -s pi rho / sinh(pi rho) [sin(theta1 + theta2_0) - sin theta2_0]``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    theta2_0 : array_like
+        ``theta2`` where the unperturbed heteroclinic orbit crosses ``L = 0``.
+    J2 : float
+        ``J2 = G`` of the level (``h = c J2^2 / 2``).
+    branch : {"theta1=0", "theta1=4phi0"}
+    sheet : {+1, -1}
+        ``theta1`` of the line, or ``theta1 + 2 pi``.
+
+    Examples
+    --------
+    >>> body = RigidBody.hess(2.5, 1.0, 1.6)
+    >>> float(melnikov_closed_form(body, 0.3, branch="theta1=0"))
+    0.0
+    """
+    theta1, s = heteroclinic_line(body, J2, branch, sheet)
+    rho = melnikov_rho(body, J2)
+    # pi rho / sinh(pi rho), without overflow for large rho.
+    x = math.pi * rho
+    factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
+    th = np.asarray(theta2_0, dtype=float)
+    return np.asarray(-s * factor * (np.sin(theta1 + th) - np.sin(th)))
+
+
+def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
+                        branch: str = "theta1=4phi0", sheet: int = 1,
+                        method: str = "trapezoid", points_per_period: int = 32
+                        ) -> NDArray[np.float64]:
+    """``M(theta2_0) = int {E, H1}(x0(t)) dt`` by numerical quadrature.
+
+    The integrand is evaluated in Euler-Poisson variables (:func:`melnikov_integrand`)
+    on the closed-form unperturbed orbit of
+    :func:`~andoyer.analysis.separatrix.heteroclinic`, over ``|t| <= T`` with
+    ``T = (TAIL + ln(2 lambda)) / lambda``, beyond which it is below
+    ``exp(-TAIL) ~ 1e-20``.
+
+    Parameters
+    ----------
+    method : {"trapezoid", "quad"}
+        ``"trapezoid"``: the trapezoidal rule with ``points_per_period`` nodes per period
+        of ``theta2`` (or of ``e^{-lambda t}`` if that is shorter): geometric
+        convergence, one vectorised call of the closed-form orbit. ``"quad"``:
+        :func:`scipy.integrate.quad` (adaptive Gauss-Kronrod; slow, a check).
+
+    Examples
+    --------
+    >>> body = RigidBody.hess(2.5, 1.0, 1.6)
+    >>> q = melnikov_quadrature(body, [0.0, 1.0])
+    >>> bool(np.allclose(q, melnikov_closed_form(body, [0.0, 1.0]), rtol=0, atol=1e-14))
+    True
+    """
+    if method not in ("trapezoid", "quad"):
+        raise ValueError(f"method must be 'trapezoid' or 'quad', got {method!r}")
+    if int(points_per_period) != points_per_period or points_per_period < 8:
+        raise ValueError(f"points_per_period must be an integer >= 8, got "
+                         f"{points_per_period!r}")
+    heteroclinic_line(body, J2, branch, sheet)
+    lam = heteroclinic_rate(body, J2)
+    omega = body.c * J2
+    T = (TAIL + math.log(2.0 * lam + 1.0)) / lam
+    th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+    out = np.empty(th.shape)
+
+    def f(t: ArrayLike, phase: float) -> NDArray[np.float64]:
+        ds = heteroclinic(body, J2, t, branch, sign=sheet, theta2_0=phase)
+        return melnikov_integrand(body, ds.y.values)
+
+    for i, phase in np.ndenumerate(th):
+        if method == "trapezoid":
+            h = min(TWO_PI / omega, TWO_PI / lam) / points_per_period
+            n = math.ceil(T / h)
+            t = h * np.arange(-n, n + 1)
+            out[i] = h * float(np.sum(f(t, float(phase))))
+        else:
+            from scipy.integrate import quad
+
+            val, _ = quad(lambda t, p=float(phase): float(f([t], p)[0]), -T, T,
+                          epsabs=1e-15, epsrel=1e-12, limit=4000)
+            out[i] = val
+    return out.reshape(np.shape(theta2_0))
+
+
+def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 1.0,
+                        branch: str = "theta1=4phi0", sheet: int = 1
+                        ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """First-order splitting on ``L = 0`` at phase ``g``: ``(Delta E, Delta G)``.
+
+    ``Delta E = mu M(g - theta1/2)``, ``Delta G = -Delta E / (c G)`` (see the module
+    notes), with the closed-form ``M``.
+    """
+    theta1, _ = heteroclinic_line(body, G, branch, sheet)
+    dE = float(mu) * melnikov_closed_form(body, np.asarray(g, dtype=float) - theta1 / 2.0,
+                                          J2=G, branch=branch, sheet=sheet)
+    return dE, -dE / (body.c * G)
+
+
+def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
+                      J2: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
+                      n: int = 64, quadrature: bool = True) -> xr.Dataset:
+    """The Melnikov function of a heteroclinic line as a dataset of the phase.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    theta2_0 : array_like, optional
+        Phases (``theta2`` at ``L = 0``); default ``n`` equal steps of ``[0, 2 pi)``.
+    J2, branch, sheet :
+        As in :func:`melnikov_closed_form`.
+    quadrature : bool
+        Also compute ``M_quadrature`` (trapezoidal rule).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``theta2_0``: ``M`` (closed form), ``M_quadrature``, ``g`` (the phase on
+        ``L = 0``), ``Delta_G_per_mu = -M/(c J2)``. Attrs ``rho``, ``lambda_rate``,
+        ``amplitude`` (of ``M``), ``theta1_line``, ``J1_direction``.
+
+    Examples
+    --------
+    >>> ds = melnikov_function(RigidBody.paper(), n=8, quadrature=False)
+    >>> f"{ds.attrs['amplitude']:.4e}"
+    '3.3829e-05'
+    """
+    if theta2_0 is None:
+        if int(n) != n or n < 1:
+            raise ValueError(f"n must be a positive integer, got {n!r}")
+        th = TWO_PI * np.arange(int(n)) / int(n)
+    else:
+        th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+        if th.ndim != 1 or not np.all(np.isfinite(th)):
+            raise ValueError("theta2_0 must be a 1-D array of finite phases")
+    theta1, s = heteroclinic_line(body, J2, branch, sheet)
+    rho = melnikov_rho(body, J2)
+    x = math.pi * rho
+    factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
+    M = melnikov_closed_form(body, th, J2=J2, branch=branch, sheet=sheet)
+    data: dict[str, Any] = {"M": (("theta2_0",), M),
+                            "g": (("theta2_0",), np.mod(th + theta1 / 2.0, TWO_PI)),
+                            "Delta_G_per_mu": (("theta2_0",), -M / (body.c * J2))}
+    if quadrature:
+        data["M_quadrature"] = (("theta2_0",), melnikov_quadrature(
+            body, th, J2=J2, branch=branch, sheet=sheet))
+    ds = xr.Dataset(data, coords={"theta2_0": th}, attrs=provenance(
+        body.with_mu(0.0), engine="closed form and trapezoidal rule",
+        equations="M(theta2_0) = int {E, H1} dt along the unperturbed heteroclinic orbit, "
+                  "E = H0 - c J2^2/2",
+        closed_form="M = -s pi rho/sinh(pi rho) [sin(theta1 + theta2_0) - sin(theta2_0)], "
+                    "rho = c J2/lambda",
+        branch=branch, sheet=sheet, J2=J2, theta1_line=theta1,
+        J1_direction="increasing" if s > 0 else "decreasing", rho=rho,
+        lambda_rate=heteroclinic_rate(body, J2),
+        amplitude=abs(2.0 * factor * math.sin(theta1 / 2.0)),
+        pi_rho_over_sinh=factor))
+    ds.theta2_0.attrs.update(symbol="\\theta_2^0", long_name="theta2 where the unperturbed "
+                             "heteroclinic orbit crosses L = 0", units="rad", equation="(14)")
+    ds["M"].attrs.update(symbol="M", long_name="Melnikov function, closed form",
+                         units="energy units x time", equation="(16)")
+    ds["g"].attrs.update(symbol="g", long_name="phase g = theta2_0 + theta1/2 on L = 0",
+                         units="rad", equation="(15)")
+    ds["Delta_G_per_mu"].attrs.update(symbol="-M/(c J_2)", long_name="first-order "
+                                      "splitting Delta G / mu on L = 0", units="1")
+    if quadrature:
+        ds["M_quadrature"].attrs.update(symbol="M", long_name="Melnikov function, trapezoidal "
+                                        "rule on the closed-form orbit",
+                                        units="energy units x time", equation="(16)")
+    return ds
