@@ -31,3 +31,12 @@ __all__ = [
     "to_andoyer",
     "to_hess",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """``andoyer.explore``: the browser explorer, imported on first use (it loads Panel)."""
+    if name == "explore":
+        import importlib
+
+        return importlib.import_module("andoyer.explore")
+    raise AttributeError(f"module 'andoyer' has no attribute {name!r}")

@@ -1,0 +1,49 @@
+"""``andoyer explore``: the interactive section explorer in the browser (a local web app)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from andoyer.cli._common import add_body_args, add_engine_args, body_from_args
+
+NAME = "explore"
+ORDER = 45
+
+
+def run(args: argparse.Namespace) -> int:
+    from andoyer.explore.ui import serve
+    from andoyer.integrate.section import Section
+
+    body = body_from_args(args)
+    section = Section.parse(args.section)
+
+    def started(url: str) -> None:
+        print(f"andoyer explore: serving on {url}", flush=True)
+        print("press Ctrl-C to stop", flush=True)
+
+    serve(body, port=args.port, show=not args.no_browser, on_start=started, h=args.energy,
+          M=args.area, section=section, n_crossings=args.crossings, engine=args.engine,
+          rtol=args.rtol, atol=args.atol)
+    print("andoyer explore: stopped")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="interactive Poincare-section explorer in the browser",
+                       description="Serve the explorer on http://127.0.0.1:PORT/ and block "
+                                   "until Ctrl-C: click on the section plane to seed orbits.")
+    add_body_args(p)
+    p.add_argument("--energy", type=float, default=None,
+                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
+    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
+    p.add_argument("--section", default="theta2=0",
+                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
+                        "append ':-' for the decreasing direction (default theta2=0)")
+    p.add_argument("--crossings", type=int, default=500,
+                   help="crossings per orbit (default 500)")
+    add_engine_args(p)
+    p.add_argument("--port", type=int, default=0, help="port (default 0: a free port)")
+    p.add_argument("--no-browser", action="store_true",
+                   help="do not open the page in a web browser")
+    p.set_defaults(func=run)

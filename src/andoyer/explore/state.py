@@ -1,0 +1,658 @@
+"""The explorer's logic, free of any GUI: settings, seeds, orbits and the section plane.
+
+Everything the browser app (:mod:`andoyer.explore.ui`) shows is computed here, so it
+can be tested without a browser:
+
+* :class:`Settings`: body, energy h, area constant M, section, crossings, engine;
+* :func:`plane_view`: the accessible region of the section plane on ``H = h`` (from
+  :func:`andoyer.integrate.fill_section`) and the unperturbed separatrices
+  (:func:`unperturbed_separatrices`);
+* :func:`seed`: the state through a clicked plane point, its missing action solved
+  from ``H = h`` (:func:`andoyer.integrate.fill.section_roots`);
+* :func:`crossing_stages`: the orbit's section points in growing stages, each stage
+  a :func:`andoyer.integrate.poincare` call from ``t = 0``, so that the points shown
+  are those of one ``poincare()`` call (see the function's Notes);
+* :class:`Session`: the orbits on screen, one colour each, and their removal.
+
+The planes are those of :mod:`andoyer.integrate.fill`: ``g = const`` in the
+Andoyer-Deprit variables (5)-(6), plane ``(l, L)``, ``G`` solved; ``theta2 = const``
+in the Hess variables (14), plane ``(theta1, J1)``, ``J2`` solved. On ``M = 0`` the
+Hess plane shows ``theta1`` mod 2 pi, as :func:`andoyer.plot.section.plot_section`
+and the paper's Fig. 3 do (H is 2 pi-periodic in theta1 there).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import numbers
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.charts.euler_poisson import STATE, energy
+from andoyer.charts.hess import from_hess
+from andoyer.dynamics import vector_field
+from andoyer.integrate.engines import ENGINES
+from andoyer.integrate.section import Section
+
+__all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage", "Orbit",
+           "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",
+           "plane_view", "seed", "crossing_stages", "plane_coordinates",
+           "unperturbed_separatrices", "integral_drifts", "initial_charts", "FIRST_STAGE",
+           "STAGE_GROWTH", "orbit_indicators", "chaos_underlay", "UNDERLAY_N",
+           "UNDERLAY_T_END"]
+
+TWO_PI = 2.0 * math.pi
+
+#: Crossings of the first stage of an orbit (what the responsiveness target is about).
+FIRST_STAGE = 100
+#: Each later stage asks for this many times the crossings of the one before.
+STAGE_GROWTH = 4
+#: Largest number of crossings per orbit a click may ask for.
+MAX_CROSSINGS = 200_000
+
+#: Orbit colours, distinct and none of the colours that mean something else in
+#: :data:`andoyer.plot.style.COLOURS` (red separatrices, black boundary, grey orbits).
+PALETTE: tuple[str, ...] = (
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf",
+    "#393b79", "#637939", "#8c6d31", "#7b4173", "#aec7e8", "#ffbb78", "#98df8a", "#c5b0d5",
+    "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5",
+)
+
+RootChoice = Literal["smallest", "largest", "all"]
+
+
+@dataclass(frozen=True)
+class Plane:
+    """A section plane: chart, storage names of its axes and of the solved action."""
+
+    coord: str              # section coordinate: "theta2" or "g"
+    chart: Literal["hess", "andoyer"]
+    x: str                  # storage name of the horizontal axis
+    y: str                  # storage name of the vertical axis
+    action: str             # storage name of the action solved from H = h
+    symbols: tuple[str, str, str, str]  # x, y, action, section coordinate (plain text)
+
+
+#: Section coordinate -> its plane.
+PLANES: dict[str, Plane] = {
+    "theta2": Plane("theta2", "hess", "theta1", "J1", "J2", ("θ1", "J1", "J2", "θ2")),
+    "g": Plane("g", "andoyer", "l_angle", "L_action", "G_action", ("l", "L", "G", "g")),
+}
+
+
+def default_energy(body: RigidBody, M: float = 0.0) -> float:
+    """The energy ``andoyer section`` uses by default: H at ``(l, g, L, G, M) =
+    (0.3, 0, 0.3, 1, M)`` (Eq. (7)).
+
+    Examples
+    --------
+    >>> round(default_energy(RigidBody.paper()), 10)
+    0.2465679623
+    """
+    if not abs(M) < 1.0:
+        raise ValueError(f"default_energy needs |M| < 1 (it sits at G = 1), got M = {M!r}")
+    return float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, M])))
+
+
+def _finite(name: str, v: Any) -> float:
+    if isinstance(v, bool):
+        raise ValueError(f"{name} must be a real number, got {v!r}")
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {v!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {x!r}")
+    return x
+
+
+@dataclass(frozen=True)
+class Settings:
+    """What the explorer shows: a body, an energy level, a section and how orbits run.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The Hess plane (``section`` on ``theta2``) needs ``e3 = 0``.
+    h : float
+        Energy level ``H = h`` (H of Eq. (1)).
+    M : float, default 0
+        Area constant ``M = (G, gamma)`` (``J3`` in the Hess chart).
+    section : Section or str, default ``"theta2=0:+"``
+        ``theta2 = const`` (plane ``(theta1, J1)``) or ``g = const`` (plane ``(l, L)``),
+        with its crossing direction.
+    n_crossings : int, default 500
+        Section points per orbit.
+    engine : {"heyoka", "numba", "scipy"}, optional
+        Integration engine (default: heyoka where installed).
+    root : {"smallest", "largest", "all"}, default "smallest"
+        Which solutions of ``H = h`` for the missing action a click seeds (one orbit
+        each with ``"all"``).
+    rtol, atol : float, default 1e-12
+        Integration tolerances.
+
+    Examples
+    --------
+    >>> s = Settings(RigidBody.paper(), 0.25)
+    >>> s.plane.x, s.plane.y, s.plane.action, s.x_period == 2 * math.pi
+    ('theta1', 'J1', 'J2', True)
+    """
+
+    body: RigidBody
+    h: float
+    M: float = 0.0
+    section: Section = field(default_factory=lambda: Section("theta2", 0.0, 1))
+    n_crossings: int = 500
+    engine: str | None = None
+    root: RootChoice = "smallest"
+    rtol: float = 1e-12
+    atol: float = 1e-12
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.body, RigidBody):
+            raise ValueError(f"body must be a RigidBody, got {type(self.body).__name__}")
+        sec = Section.parse(self.section) if isinstance(self.section, str) else self.section
+        if not isinstance(sec, Section):
+            raise ValueError(f"section must be a Section or a string like 'theta2=0', "
+                             f"got {self.section!r}")
+        if sec.coord not in PLANES:
+            raise ValueError(f"the explorer shows the planes of 'theta2=...' sections "
+                             f"(theta1, J1) and 'g=...' sections (l, L), not {sec.coord!r}")
+        if sec.coord == "theta2":
+            self.body._require_planar("the Hess plane (theta1, J1) of a theta2 section")
+        object.__setattr__(self, "section", sec)
+        object.__setattr__(self, "h", _finite("h (energy)", self.h))
+        object.__setattr__(self, "M", _finite("M (area constant)", self.M))
+        n = self.n_crossings
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral) \
+                or not 1 <= n <= MAX_CROSSINGS:
+            raise ValueError(f"crossings per orbit must be an integer in [1, {MAX_CROSSINGS}],"
+                             f" got {n!r}")
+        object.__setattr__(self, "n_crossings", int(n))
+        if self.engine is not None and self.engine not in ENGINES:
+            raise ValueError(f"unknown engine {self.engine!r}; choose one of "
+                             f"{', '.join(ENGINES)}")
+        if self.root not in ("smallest", "largest", "all"):
+            raise ValueError(f"root must be 'smallest', 'largest' or 'all', got {self.root!r}")
+        for name in ("rtol", "atol"):
+            v = _finite(name, getattr(self, name))
+            if not 0.0 < v <= 1e-3:
+                raise ValueError(f"{name} must be in (0, 1e-3], got {v!r}")
+
+    @property
+    def plane(self) -> Plane:
+        return PLANES[self.section.coord]
+
+    @property
+    def x_period(self) -> float:
+        """Period of the plane's angle as shown: 2 pi, but 4 pi for theta1 when M != 0."""
+        return TWO_PI if (self.plane.coord == "g" or self.M == 0.0) else 2.0 * TWO_PI
+
+    def attrs(self) -> dict[str, Any]:
+        """Flat attributes for datasets (the body's are added by ``provenance``)."""
+        return {"h": self.h, "M": self.M, **self.section.attrs(),
+                "n_crossings": self.n_crossings, "root_choice": self.root,
+                "rtol": self.rtol, "atol": self.atol, "plane_x": self.plane.x,
+                "plane_y": self.plane.y, "solved_action": self.plane.action}
+
+
+def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: float = 0.0,
+                  section: Section | str = "theta2=0", n_crossings: int = 500,
+                  engine: str | None = None, root: RootChoice = "smallest",
+                  rtol: float = 1e-12, atol: float = 1e-12) -> Settings:
+    """:class:`Settings` with the explorer's defaults: the paper's body and, without
+    ``h``, :func:`default_energy` (which needs ``|M| < 1``)."""
+    body = RigidBody.paper() if body is None else body
+    if h is None:
+        if not abs(M) < 1.0:
+            raise ValueError(f"give the energy h: the default level sits at G = 1, which "
+                             f"needs |M| < 1, got M = {M!r}")
+        h = default_energy(body, M)
+    sec = Section.parse(section) if isinstance(section, str) else section
+    return Settings(body, h, M, sec, n_crossings, engine, root, rtol, atol)
+
+
+# --------------------------------------------------------------------------- the plane
+def plane_coordinates(settings: Settings, ds: xr.Dataset
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The plane coordinates of section points (a :func:`poincare` dataset), as shown.
+
+    ``theta1`` is reduced mod :attr:`Settings.x_period` (mod 2 pi on ``M = 0``).
+    """
+    p = settings.plane
+    x = np.asarray(ds[p.x].values, dtype=float)
+    y = np.asarray(ds[p.y].values, dtype=float)
+    if p.coord == "theta2":
+        x = np.mod(x, settings.x_period)
+    return x, y
+
+
+def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: float,
+                             n: int = 401) -> list[tuple[NDArray[np.float64],
+                                                         NDArray[np.float64]]]:
+    """Separatrices of the unperturbed (mu = 0) motion on the plane, at the level's G0.
+
+    Parameters
+    ----------
+    body : RigidBody
+    h : float
+        Energy level; the curves are those of :mod:`andoyer.analysis.separatrix` at
+        ``G0 = sqrt(2 h / I_mid)`` (``I_mid`` the middle of ``a, b, c``), the G of the
+        unperturbed separatrix on ``H0 = h``.
+    plane : Plane
+        :data:`PLANES` entry.
+    period : float
+        Period of the horizontal axis: 2 pi, or 4 pi for ``theta1`` when ``M != 0``.
+    n : int
+        Points per curve.
+
+    Returns
+    -------
+    list of (x, y) arrays
+        The separatrix curves (the chart's singular lines ``L = +-G0``, ``J1 = 0, J2``,
+        also part of that level set, are left out); empty when ``h <= 0`` or the body
+        has two equal moments (no hyperbolic rotation).
+
+    Notes
+    -----
+    With ``mu = 0`` the level ``H0 = I_mid G0^2 / 2`` of Eq. (9) is, for z the middle
+    axis (every Hess body), the lines ``l = +-phi0 (mod pi)``, i.e. ``theta1 = 0`` and
+    ``theta1 = 4 phi0`` in the Hess chart (14); otherwise two curves ``L(l)`` through
+    the saddles.
+
+    Examples
+    --------
+    >>> body = RigidBody.paper()
+    >>> lines = unperturbed_separatrices(body, 0.25, PLANES["theta2"], 2 * math.pi)
+    >>> sorted(round(float(x[0]), 6) for x, _ in lines) == sorted(
+    ...     [0.0, round(4 * body.phi0, 6), round(2 * math.pi, 6)])
+    True
+    """
+    from andoyer.analysis import separatrix as sep
+
+    if h <= 0.0:
+        return []
+    try:
+        I_mid = 2.0 * sep.separatrix_energy(body, 1.0)
+    except ValueError:  # two equal moments: no separatrix
+        return []
+    G0 = math.sqrt(2.0 * h / I_mid)
+    if plane.chart == "hess":
+        ds = sep.separatrix_hess(body, G0, n, double_cover=period > 1.5 * TWO_PI)
+    else:
+        ds = sep.separatrix_andoyer(body, G0, n)
+    x = ds[f"separatrix_{plane.x}"].values
+    y = ds[f"separatrix_{plane.y}"].values
+    keep = ds.separatrix_kind.values == "separatrix"
+    return [(x[k], y[k]) for k in np.flatnonzero(keep)]
+
+
+@dataclass(frozen=True)
+class PlaneView:
+    """The static content of the section plane for one :class:`Settings`."""
+
+    settings: Settings
+    x_range: tuple[float, float]
+    y_range: tuple[float, float]
+    boundary_x: NDArray[np.float64]     # accessible-region boundary, NaN-separated
+    boundary_y: NDArray[np.float64]
+    accessible: NDArray[np.bool_]       # (plane_x, plane_y) grid
+    separatrices: list[tuple[NDArray[np.float64], NDArray[np.float64]]]
+    fill: xr.Dataset                    # the fill_section dataset it came from
+
+
+def plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView:
+    """The accessible region of the plane on ``H = h`` and the unperturbed separatrices.
+
+    Raises ``ValueError`` (with the energy range of the section) when the level does
+    not meet the section, and for ``|M|`` too large for ``h``.
+
+    Examples
+    --------
+    >>> v = plane_view(Settings(RigidBody.paper(), 0.25), boundary_grid=40)
+    >>> v.x_range == (0.0, 2 * math.pi), bool(v.accessible.any())
+    (True, True)
+    """
+    from andoyer.integrate.fill import fill_section
+
+    p = settings.plane
+    sec = settings.section
+    bounds = None
+    if p.coord == "theta2":
+        # Plane of theta1 in [0, x_period): fill_section's own default, made explicit.
+        act = math.sqrt(2.0 * (settings.h + settings.body.mu)
+                        / min(settings.body.a, settings.body.b, settings.body.c)) \
+            if settings.h > -settings.body.mu else 1.0
+        bounds = ((0.0, settings.x_period), (0.0, act))
+    fill = fill_section(settings.body, settings.h, settings.M, (sec.coord, sec.value), n=1,
+                        plane_bounds=bounds, boundary_grid=boundary_grid)
+    a = fill.attrs
+    seps = unperturbed_separatrices(settings.body, settings.h, p, settings.x_period)
+    return PlaneView(settings, (float(a["plane_x_min"]), float(a["plane_x_max"])),
+                     (float(a["plane_y_min"]), float(a["plane_y_max"])),
+                     fill.boundary_x.values, fill.boundary_y.values,
+                     fill.accessible.values, seps, fill)
+
+
+# --------------------------------------------------------------------------- seeds
+class OutsideRegionError(ValueError):
+    """A clicked point where no value of the missing action puts the state on ``H = h``."""
+
+
+@dataclass(frozen=True)
+class Seed:
+    """The initial state through a clicked plane point, on the level ``H = h``."""
+
+    x: float                 # plane point (theta1, J1) or (l, L)
+    y: float
+    action: float            # the solved action: J2 resp. G
+    root_index: int          # 0 = smallest solution above the point
+    n_roots: int             # solutions above the point
+    y0: NDArray[np.float64]  # Euler-Poisson state (6,)
+    chart_point: NDArray[np.float64]  # (theta1, theta2, J1, J2, J3) or (l, g, L, G, M)
+    section_rate: float      # d(section coordinate)/dt at the seed
+    residual: float          # |H(y0) - h| / max(|h|, mu)
+
+    def crosses_in(self, direction: int) -> bool:
+        """Whether the orbit crosses the section at the seed in ``direction`` (+1, -1, 0)."""
+        return direction == 0 or direction * self.section_rate > 0.0
+
+
+def seed(settings: Settings, x: float, y: float) -> list[Seed]:
+    """States through the plane point ``(x, y)`` on ``H = h``: the missing action solved.
+
+    Parameters
+    ----------
+    settings : Settings
+    x, y : float
+        ``(theta1, J1)`` on a ``theta2`` section, ``(l, L)`` on a ``g`` section; the
+        angle is taken mod :attr:`Settings.x_period`.
+
+    Returns
+    -------
+    list of Seed
+        One seed, or one per solution with ``settings.root == "all"``, ascending.
+
+    Raises
+    ------
+    OutsideRegionError
+        When no admissible action solves ``H = h`` above the point (outside the
+        accessible region, or within :data:`andoyer.integrate.fill.SINGULAR_MARGIN` of
+        the chart's singular set).
+
+    Examples
+    --------
+    >>> s = Settings(RigidBody.paper(), default_energy(RigidBody.paper()), section="g=0")
+    >>> (sd,) = seed(s, 0.3, 0.3)
+    >>> round(sd.action, 12), sd.residual <= 1e-12
+    (1.0, True)
+    """
+    from andoyer.integrate.fill import section_roots
+
+    x, y = _finite("x", x), _finite("y", y)
+    p = settings.plane
+    x = float(np.mod(x, settings.x_period))
+    sec = settings.section
+    if p.chart == "hess" and not y > 0.0:
+        raise OutsideRegionError(
+            f"J1 = (G + L)/2 = {y:.6g} is outside the Hess chart (J1 > 0); click above the "
+            "axis J1 = 0")
+    roots = section_roots(settings.body, settings.h, settings.M, (sec.coord, sec.value),
+                          [x], [y])[0]
+    if roots.size == 0:
+        raise OutsideRegionError(
+            f"({p.symbols[0]}, {p.symbols[1]}) = ({x:.6g}, {y:.6g}) is outside the accessible "
+            f"region of H = {settings.h:.10g}, M = {settings.M:.6g}: no {p.symbols[2]} puts "
+            f"this point on the energy level (or it lies on the chart's singular set); "
+            f"click inside the boundary")
+    pick = {"smallest": [0], "largest": [roots.size - 1],
+            "all": list(range(roots.size))}[settings.root]
+    out = []
+    for k in pick:
+        pt = np.array([x, sec.value, y, roots[k], settings.M])
+        y0 = from_hess(settings.body, pt) if p.chart == "hess" else from_andoyer(pt)
+        rate = float(vector_field(settings.body, pt, p.chart)[1])
+        scale = max(abs(settings.h), settings.body.mu, np.finfo(float).tiny)
+        res = float(abs(energy(settings.body, y0) - settings.h) / scale)
+        out.append(Seed(x, y, float(roots[k]), k, int(roots.size), y0, pt, rate, res))
+    return out
+
+
+def initial_charts(settings: Settings, y0: NDArray[np.float64]) -> dict[str, dict[str, float]]:
+    """The state ``y0`` in the three charts: Euler-Poisson, Andoyer-Deprit (5)-(6) and,
+    for ``e3 = 0``, Hess (14). Angles in ``[0, 2 pi)`` (theta1 in ``[0, 4 pi)``)."""
+    from andoyer.charts.andoyer_deprit import to_andoyer
+    from andoyer.charts.hess import to_hess
+
+    out = {"Euler-Poisson": dict(zip(STATE, map(float, y0), strict=True)),
+           "Andoyer-Deprit": dict(zip(("l", "g", "L", "G", "M"),
+                                      map(float, to_andoyer(y0)), strict=True))}
+    if abs(settings.body.e3) <= 1e-12:
+        out["Hess"] = dict(zip(("theta1", "theta2", "J1", "J2", "J3"),
+                               map(float, to_hess(settings.body, y0)), strict=True))
+    return out
+
+
+# --------------------------------------------------------------------------- orbits
+@dataclass(frozen=True)
+class Stage:
+    """Section points of one orbit computed so far: ``[start, stop)`` are new."""
+
+    start: int
+    stop: int
+    x: NDArray[np.float64]   # plane coordinates of the new points
+    y: NDArray[np.float64]
+    ds: xr.Dataset           # the poincare() dataset of all crossings so far
+    done: bool
+
+
+def crossing_stages(settings: Settings, y0: NDArray[np.float64], *,
+                    first: int = FIRST_STAGE, growth: int = STAGE_GROWTH
+                    ) -> Iterator[Stage]:
+    """The section points of the orbit from ``y0`` in stages of growing length.
+
+    Parameters
+    ----------
+    settings : Settings
+        Section, crossings ``N = settings.n_crossings``, engine and tolerances.
+    y0 : ndarray, shape (6,)
+        Euler-Poisson initial state.
+    first : int
+        Crossings of the first stage.
+    growth : int
+        Each stage asks for ``growth`` times the crossings of the one before (up to N).
+
+    Yields
+    ------
+    Stage
+        New points ``[start, stop)``; ``done`` on the last stage (N crossings, or fewer
+        if the orbit reached ``t_max`` first).
+
+    Notes
+    -----
+    Every stage is one call ``poincare(body, y0, section, n_k, t_max=1000 N)`` from
+    ``t = 0``: ``t_max`` is what one ``poincare(body, y0, section, N)`` call uses, the
+    engines are deterministic and their step sequence does not depend on how many
+    crossings are asked for, so the first ``n_k`` crossings of a stage are those of the
+    single call, bit for bit (``tests/test_explore.py`` checks it for every engine).
+    Restarting from the last crossing instead would change the step sequence, and the
+    points by ~1e-11 already on a regular orbit (more on a chaotic one). The price is
+    the recomputed prefixes: less than ``(2 growth - 1)/(growth - 1)`` times one call
+    (7/3 for growth 4; 2 for the default 100, 400, 500 crossings), a few tens of
+    milliseconds with heyoka for 500 crossings.
+    """
+    from andoyer.integrate.api import poincare
+
+    if first < 1 or growth < 2:
+        raise ValueError(f"need first >= 1 and growth >= 2, got {first}, {growth}")
+    N = settings.n_crossings
+    t_max = 1000.0 * N
+    n = min(first, N)
+    start = 0
+    while True:
+        ds = poincare(settings.body, y0, settings.section, n, engine=settings.engine,
+                      rtol=settings.rtol, atol=settings.atol, t_max=t_max, progress=False)
+        ds = ds.isel(orbit=0)
+        found = int(ds.crossings_found)
+        x, y = plane_coordinates(settings, ds)
+        done = found < n or n >= N
+        yield Stage(start, found, x[start:found], y[start:found], ds, done)
+        if done:
+            return
+        start = found
+        n = min(N, n * growth)
+
+
+def integral_drifts(ds: xr.Dataset, h: float, M: float, mu: float) -> dict[str, float]:
+    """Largest drift of the integrals over the section points of one orbit.
+
+    ``H``: ``max |H - h| / max(|h|, mu)``; ``area``: ``max |(G, gamma) - M| / |G|``;
+    ``geometric``: ``max ||gamma|^2 - 1|``. NaN when there are no points.
+    """
+    if int(np.sum(np.isfinite(ds.H.values))) == 0:
+        return {"H": math.nan, "area": math.nan, "geometric": math.nan}
+    G = np.sqrt(ds.G1**2 + ds.G2**2 + ds.G3**2)
+    scale = max(abs(h), mu, np.finfo(float).tiny)
+    return {"H": float(np.nanmax(np.abs(ds.H.values - h))) / scale,
+            "area": float(np.nanmax(np.abs((ds.area - M) / G).values)),
+            "geometric": float(np.nanmax(np.abs(ds.geometric.values - 1.0)))}
+
+
+#: Grid and integration time of the chaos-map underlay (a few seconds on two cores).
+UNDERLAY_N = 48
+UNDERLAY_T_END = 300.0
+
+
+def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float = 1000.0
+                     ) -> dict[str, float]:
+    """FLI, MEGNO ``<Y>`` and the finite-time Lyapunov exponent of one orbit at ``t_end``
+    (:func:`andoyer.analysis.chaos.indicators`), and the relative energy drift."""
+    from andoyer.analysis.chaos import indicators
+
+    engine = "scipy" if settings.engine == "scipy" else "heyoka"
+    ds = indicators(settings.body, y0, _finite("t_end", t_end), engine=engine,
+                    tol=min(settings.rtol, settings.atol)).isel(orbit=0, time=-1)
+    return {"fli": float(ds.fli), "megno": float(ds.megno), "mle": float(ds.mle),
+            "H_drift": float(ds.H_drift), "t_end": float(t_end)}
+
+
+def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
+                   t_end: float = UNDERLAY_T_END) -> xr.Dataset:
+    """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.chaos_map`), on the
+    same box, for the underlay of the section plane."""
+    from andoyer.analysis.chaos import chaos_map
+
+    sec = settings.section
+    return chaos_map(settings.body, settings.h, settings.M, (sec.coord, sec.value), n=n,
+                     t_end=t_end, indicator="fli", progress=False,
+                     tol=min(settings.rtol, settings.atol), root="smallest"
+                     if settings.root == "smallest" else "largest",
+                     plane_bounds=(view.x_range, view.y_range))
+
+
+@dataclass
+class Orbit:
+    """One seeded orbit on screen."""
+
+    id: int
+    colour: str
+    seed: Seed
+    settings: Settings
+    x: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
+    y: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
+    ds: xr.Dataset | None = None
+    status: str = "queued"     # queued, running, done, failed
+
+
+class Session:
+    """The orbits on screen for one :class:`Settings`: ids, colours, points, removal.
+
+    Changed on the app's event loop only, except :meth:`new_id` (safe from any thread)
+    and reads of :attr:`removed` (a worker stops an orbit found there).
+
+    Examples
+    --------
+    >>> body = RigidBody.paper()
+    >>> s = Session(Settings(body, default_energy(body)))
+    >>> o1 = s.add(seed(s.settings, 1.0, 0.5)[0])
+    >>> o2 = s.add(seed(s.settings, 2.0, 0.5)[0])
+    >>> o1.colour != o2.colour, [o.id for o in s.orbits.values()]
+    (True, [1, 2])
+    >>> s.remove(1); list(s.orbits), sorted(s.removed)
+    ([2], [1])
+    """
+
+    def __init__(self, settings: Settings) -> None:
+        self.settings = settings
+        self.orbits: dict[int, Orbit] = {}
+        self.removed: set[int] = set()
+        # next() of itertools.count is atomic in CPython: workers may reserve ids.
+        self._ids = itertools.count(1)
+
+    def new_id(self) -> int:
+        """A fresh orbit id (thread-safe), for :meth:`add`."""
+        return next(self._ids)
+
+    def _colour(self, orbit_id: int) -> str:
+        used = {o.colour for o in self.orbits.values()}
+        free = [c for c in PALETTE if c not in used]
+        return free[0] if free else PALETTE[(orbit_id - 1) % len(PALETTE)]
+
+    def add(self, sd: Seed, settings: Settings | None = None, *,
+            orbit_id: int | None = None) -> Orbit:
+        """A new orbit through ``sd``, with a colour no other orbit on screen has (while
+        fewer than ``len(PALETTE)`` orbits are shown)."""
+        oid = self.new_id() if orbit_id is None else int(orbit_id)
+        if oid in self.orbits or oid in self.removed:
+            raise ValueError(f"orbit id {oid} is already used")
+        orbit = Orbit(oid, self._colour(oid), sd, settings or self.settings)
+        self.orbits[oid] = orbit
+        return orbit
+
+    def extend(self, orbit_id: int, stage: Stage) -> bool:
+        """Append a stage's new points; False if the orbit was removed meanwhile."""
+        orbit = self.orbits.get(orbit_id)
+        if orbit is None:
+            return False
+        if stage.start != orbit.x.size:
+            raise ValueError(f"orbit {orbit_id}: stage starts at crossing {stage.start}, "
+                             f"but {orbit.x.size} points are shown")
+        orbit.x = np.concatenate([orbit.x, stage.x])
+        orbit.y = np.concatenate([orbit.y, stage.y])
+        orbit.ds = stage.ds
+        orbit.status = "done" if stage.done else "running"
+        return True
+
+    def remove(self, orbit_id: int) -> None:
+        """Remove one orbit (unknown ids are ignored: it may be gone already)."""
+        if self.orbits.pop(orbit_id, None) is not None:
+            self.removed.add(orbit_id)
+
+    def clear(self, settings: Settings | None = None) -> None:
+        """Remove every orbit; optionally switch to new settings."""
+        self.removed.update(self.orbits)
+        self.orbits.clear()
+        if settings is not None:
+            self.settings = settings
+
+    def points(self) -> dict[str, NDArray[Any]]:
+        """All section points on screen: ``x, y, orbit, crossing, colour`` columns."""
+        parts = list(self.orbits.values())
+        if not parts:
+            return {"x": np.empty(0), "y": np.empty(0), "orbit": np.empty(0, dtype=np.int64),
+                    "crossing": np.empty(0, dtype=np.int64),
+                    "colour": np.empty(0, dtype=object)}
+        return {"x": np.concatenate([o.x for o in parts]),
+                "y": np.concatenate([o.y for o in parts]),
+                "orbit": np.concatenate([np.full(o.x.size, o.id) for o in parts]),
+                "crossing": np.concatenate([np.arange(o.x.size) for o in parts]),
+                "colour": np.concatenate([np.full(o.x.size, o.colour, dtype=object)
+                                          for o in parts])}

@@ -1,0 +1,974 @@
+"""The interactive explorer in the browser: a Panel app over a Bokeh section plane.
+
+The page shows the section plane of :mod:`andoyer.explore.state` (accessible region,
+unperturbed separatrices), the seeded orbits' section points as they arrive, the list
+of orbits and a side panel for the selected orbit (its initial state in the three
+charts, the drift of the integrals, a time plot, its chaos indicator when
+:mod:`andoyer.analysis.chaos` provides one), and exports of what is on screen.
+
+Threads
+-------
+Nothing slow runs on the server's event loop. A click only queues a job on the
+session's worker thread (one per browser session, so clicks made while orbits run
+wait their turn, in order); the worker solves the seed, integrates the orbit in
+stages (:func:`andoyer.explore.state.crossing_stages`) and hands each stage back to the
+event loop with ``Document.add_next_tick_callback``, the thread-safe way to change a
+Bokeh document; only there is the :class:`~andoyer.explore.state.Session` or any
+model changed. A second worker computes the side panel (time plot, indicator), so it
+never waits behind long orbits. A change of body, h, M or section starts a new
+*generation*: queued and running jobs of the old one stop at their next stage and
+their results are dropped.
+
+In Jupyter (no server session) the same callbacks run directly on the worker and the
+Bokeh panes are pushed with :func:`panel.io.push_notebook`.
+
+Test hook
+---------
+Bokeh models carry names: ``andoyer-plane`` (figure), ``andoyer-points`` (section
+points: ``x, y, orbit, crossing, colour``), ``andoyer-orbits`` (one row per orbit: the
+seed, its Euler-Poisson state ``G1 .. gamma3``, status, crossings), ``andoyer-boundary``,
+``andoyer-separatrix``, ``andoyer-status`` (the visible message; CSS class
+``andoyer-level-error`` on errors) and ``andoyer-state`` (a hidden Div holding JSON:
+settings, generation, pending jobs, the level of the last message and the number of
+error messages shown so far). A browser test reads them through
+``Bokeh.documents[0].get_model_by_name(...)``.
+"""
+
+from __future__ import annotations
+
+import html
+import importlib.util
+import io
+import json
+import logging
+import math
+import queue
+import socket
+import threading
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from functools import partial
+from typing import Any
+
+import numpy as np
+import panel as pn
+from bokeh.events import DoubleTap, Event, Tap
+from bokeh.layouts import column
+from bokeh.models.annotations.labels import Title
+from bokeh.models.ranges import Range1d
+from bokeh.models.sources import ColumnDataSource
+from bokeh.models.tickers import FixedTicker
+from bokeh.models.widgets.markups import Div
+from bokeh.models.widgets.tables import (
+    DataTable,
+    HTMLTemplateFormatter,
+    NumberFormatter,
+    TableColumn,
+)
+from bokeh.plotting import figure
+
+from andoyer.body import RigidBody
+from andoyer.explore.state import (
+    PLANES,
+    UNDERLAY_N,
+    UNDERLAY_T_END,
+    OutsideRegionError,
+    PlaneView,
+    Seed,
+    Session,
+    Settings,
+    Stage,
+    chaos_underlay,
+    crossing_stages,
+    initial_charts,
+    integral_drifts,
+    make_settings,
+    orbit_indicators,
+    plane_view,
+    seed,
+)
+from andoyer.integrate.engines import ENGINES
+from andoyer.integrate.section import Section
+
+__all__ = ["Explorer", "app", "serve", "ServerHandle"]
+
+log = logging.getLogger("andoyer.explore")
+
+_BODIES = {"paper (Hess, A=2.5, B=2, C=2.2)": "paper", "Hess (A > C > B)": "hess",
+           "general (A, B, C, r)": "general"}
+_SECTIONS = {"θ2 = const: plane (θ1, J1)": "theta2", "g = const: plane (l, L)": "g"}
+_DIRECTIONS = {"increasing (+)": 1, "decreasing (−)": -1, "both": 0}
+_LEVEL_COLOURS = {"info": "#1b5e20", "busy": "#0d47a1", "warning": "#8a5a00",
+                  "error": "#b71c1c"}
+_TIME_COORDS = ("theta1", "theta2", "J1", "J2", "l_angle", "g_angle", "L_action",
+                "G_action", "G1", "G2", "G3", "gamma1", "gamma2", "gamma3", "H")
+_TIME_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
+_ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6: "3π",
+                 7: "7π/2", 8: "4π"}
+
+
+def _chaos_module() -> Any | None:
+    """:mod:`andoyer.analysis.chaos` where this version has it (optional)."""
+    if importlib.util.find_spec("andoyer.analysis.chaos") is None:
+        return None
+    return importlib.import_module("andoyer.analysis.chaos")
+
+
+@dataclass(frozen=True)
+class _Job:
+    generation: int   # the plane's settings it belongs to
+    epoch: int        # "clear all" presses before it
+    settings: Settings
+
+
+class Explorer:
+    """One explorer page: controls, the section plane, the orbits and the side panel.
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        Default: the paper's Hess body (``RigidBody.paper()``).
+    boundary_grid : int, default 160
+        Resolution of the accessible-region grid.
+    **settings
+        ``h, M, section, n_crossings, engine, root, rtol, atol`` of
+        :func:`andoyer.explore.state.make_settings` (default h: the energy of
+        ``andoyer section``; section ``"theta2=0"``; 500 crossings).
+
+    Attributes
+    ----------
+    panel : panel.viewable.Viewable
+        The page (display it in Jupyter, or ``.servable()``).
+    session : Session
+        The orbits on screen.
+    """
+
+    def __init__(self, body: RigidBody | None = None, *, boundary_grid: int = 160,
+                 **settings: Any) -> None:
+        self.settings = make_settings(body, **settings)
+        self.session = Session(self.settings)
+        self.view: PlaneView | None = None
+        self.boundary_grid = int(boundary_grid)
+        self._generation = 0
+        self._epoch = 0
+        self._level = "info"
+        self._errors = 0  # error messages shown so far (the test hook reports it)
+        self._pending = 0
+        self._selected: int | None = None
+        self._last_tap: tuple[float, float] | None = None
+        self._side_token = 0
+        self._lock = threading.RLock()
+        self._closed = False
+        self._doc = pn.state.curdoc
+        self._work = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore")
+        self._side = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore-side")
+        self._chaos = _chaos_module()
+        self._build_plane()
+        self._build_controls()
+        self._build_side()
+        self.panel = pn.Row(self.controls, self.main, self.side_panel,
+                            sizing_mode="stretch_width")
+        if self._doc is not None and self._doc.session_context is not None:
+            self._doc.on_session_destroyed(lambda _ctx: self.close())
+        self._submit_view(self.settings, warm_up=True)
+        self._status("computing the accessible region …", "busy")
+
+    # ------------------------------------------------------------------ building
+    def _build_plane(self) -> None:
+        s = self.settings
+        self.points = ColumnDataSource(
+            {"x": [], "y": [], "orbit": [], "crossing": [], "colour": []},
+            name="andoyer-points")
+        self.orbits = ColumnDataSource(self._orbit_columns(), name="andoyer-orbits")
+        self.boundary = ColumnDataSource({"x": [], "y": []}, name="andoyer-boundary")
+        self.separatrix = ColumnDataSource({"x": [], "y": []}, name="andoyer-separatrix")
+        self.region = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []},
+                                       name="andoyer-region")
+        fig = figure(name="andoyer-plane", width=660, height=520,
+                     x_range=Range1d(start=0.0, end=2.0 * math.pi),
+                     y_range=Range1d(start=0.0, end=1.0),
+                     tools="pan,wheel_zoom,box_zoom,reset", toolbar_location="above",
+                     x_axis_label=s.plane.symbols[0], y_axis_label=s.plane.symbols[1],
+                     output_backend="canvas")
+        fig.image_rgba(image="image", x="x", y="y", dw="dw", dh="dh", source=self.region)
+        fig.line("x", "y", source=self.boundary, color="black", line_width=1.2,
+                 legend_label="accessible-region boundary")
+        fig.line("x", "y", source=self.separatrix, color="#c0392b", line_width=1.2,
+                 line_dash="dashed", legend_label="unperturbed separatrices (μ = 0)")
+        fig.scatter("x", "y", source=self.points, color="colour", size=2.6, line_width=0)
+        seeds = fig.scatter("seed_x", "seed_y", source=self.orbits, color="colour", size=11,
+                            marker="star", line_color="black", line_width=0.6)
+        seeds.selection_glyph = seeds.glyph.clone(size=16, line_width=1.2)
+        seeds.nonselection_glyph = seeds.glyph.clone()
+        legend = fig.legend[0]
+        legend.orientation = "horizontal"
+        legend.label_text_font_size = "9pt"
+        legend.border_line_alpha = 0.0
+        fig.add_layout(legend, "below")
+        # Two quick clicks at different places arrive as Tap + DoubleTap: both seed.
+        fig.on_event(Tap, self._on_tap)
+        fig.on_event(DoubleTap, self._on_tap)
+        self.fig = fig
+        self.status = Div(text="", name="andoyer-status", width=660,
+                          css_classes=["andoyer-status"])
+        self.state_div = Div(text="{}", name="andoyer-state", visible=False)
+        colour = HTMLTemplateFormatter(
+            template='<span style="color:<%= value %>;font-size:150%">●</span>')
+        num = NumberFormatter(format="0.000000")
+        self.table = DataTable(
+            source=self.orbits, name="andoyer-orbit-table", width=660, height=170,
+            index_position=None, selectable=True,
+            columns=[TableColumn(field="id", title="orbit", width=45),
+                     TableColumn(field="colour", title="", formatter=colour, width=30),
+                     TableColumn(field="seed_x", title="x", formatter=num),
+                     TableColumn(field="seed_y", title="y", formatter=num),
+                     TableColumn(field="action", title="solved action", formatter=num),
+                     TableColumn(field="crossings", title="crossings", width=70),
+                     TableColumn(field="status", title="status", width=180)])
+        self.orbits.selected.on_change("indices", self._on_select)
+        self.plane_pane = pn.pane.Bokeh(column(self.status, fig, self.table, self.state_div))
+        self.main = pn.Column(self.plane_pane)
+
+    def _build_controls(self) -> None:
+        s = self.settings
+        b = s.body
+        mode = "paper" if b.name == "paper" else ("hess" if b.is_hess else "general")
+        w = pn.widgets
+        self.w_body = _widget(w.Select, "body", options=_BODIES,
+                               value=mode, css_classes=["andoyer-body"])
+        self.w_A = _widget(w.FloatInput, "A", value=b.A, step=0.1, start=1e-9, width=85)
+        self.w_B = _widget(w.FloatInput, "B", value=b.B, step=0.1, start=1e-9, width=85)
+        self.w_C = _widget(w.FloatInput, "C", value=b.C, step=0.1, start=1e-9, width=85)
+        self.w_mu = _widget(w.FloatInput, "μ (weight × distance)", value=b.mu, step=0.005,
+                                 start=0.0, css_classes=["andoyer-mu"])
+        self.w_r = _widget(w.TextInput, "r = (e1, e2, e3) (general body)",
+                               value=", ".join(f"{v:.12g}" for v in b.r))
+        self.w_h = _widget(w.FloatInput, "h (energy)", value=s.h, step=0.005,
+                                css_classes=["andoyer-h"])
+        self.w_M = _widget(w.FloatInput, "M (area constant)", value=s.M, step=0.05,
+                                css_classes=["andoyer-M"])
+        self.w_section = _widget(w.Select, "section", options=_SECTIONS,
+                                  value=s.section.coord)
+        self.w_value = _widget(w.FloatInput, "section value (rad)", value=s.section.value,
+                                    step=0.1)
+        self.w_direction = _widget(w.Select, "crossing direction", options=_DIRECTIONS,
+                                    value=s.section.direction)
+        self.w_crossings = _widget(w.IntInput, "crossings per orbit", value=s.n_crossings,
+                                      step=100, start=1, css_classes=["andoyer-crossings"])
+        self.w_engine = _widget(w.Select, "engine", options=["default", *ENGINES],
+                                 value=s.engine or "default")
+        self.w_root = _widget(w.Select, "solutions of H = h above a click",
+                               options=["smallest", "largest", "all"], value=s.root)
+        self.w_underlay = _widget(w.Checkbox, f"chaos-map underlay (FLI, {UNDERLAY_N}² "
+                                  f"orbits to t = {UNDERLAY_T_END:g})", value=False,
+                                  disabled=self._chaos is None)
+        self.w_clear = _widget(w.Button, "clear all orbits", button="warning")
+        self.w_remove = _widget(w.Button, "remove selected orbit", button="default")
+        self.w_nc = _widget(w.FileDownload, "NetCDF of the orbits", button="primary",
+                            callback=self._download_netcdf, filename="andoyer-explore.nc")
+        self.w_png = _widget(w.FileDownload, "PNG of the plane", button="primary",
+                             callback=self._download_png, filename="andoyer-explore.png")
+        for wid in (self.w_body, self.w_A, self.w_B, self.w_C, self.w_mu, self.w_r,
+                    self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
+                    self.w_crossings, self.w_engine, self.w_root):
+            wid.param.watch(self._on_control, "value")
+        self.w_underlay.param.watch(self._on_underlay, "value")
+        self.w_clear.on_click(lambda _e: self._guard(self._clear_orbits))
+        self.w_remove.on_click(lambda _e: self._guard(self._remove_selected))
+        self._sync_body_widgets()
+        self.controls = pn.Column(
+            pn.pane.Markdown("### andoyer explore\nClick inside the boundary to seed an orbit "
+                             "on the energy level."),
+            self.w_body, pn.Row(self.w_A, self.w_B, self.w_C), self.w_mu, self.w_r,
+            self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
+            self.w_crossings, self.w_engine, self.w_root, self.w_underlay,
+            pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=300)
+
+    def _build_side(self) -> None:
+        self.info = pn.pane.HTML("<i>no orbit selected</i>", width=340,
+                                 css_classes=["andoyer-info"])
+        self.w_coords = _widget(
+            pn.widgets.MultiChoice, "time plot of", options=list(_TIME_COORDS),
+            value=[self.settings.plane.x, self.settings.plane.y])
+        self.w_span = _widget(pn.widgets.FloatInput, "time span", value=100.0, step=50.0,
+                                            start=1e-3)
+        self.w_coords.param.watch(lambda _e: self._guard(self._request_side), "value")
+        self.w_span.param.watch(lambda _e: self._guard(self._request_side), "value")
+        self.series = ColumnDataSource({"xs": [], "ys": [], "name": [], "colour": []},
+                                       name="andoyer-timeseries")
+        tfig = figure(name="andoyer-timeplot", width=340, height=260, x_axis_label="t",
+                      tools="pan,wheel_zoom,box_zoom,reset", toolbar_location="above")
+        tfig.multi_line("xs", "ys", source=self.series, color="colour", legend_field="name")
+        tfig.legend.label_text_font_size = "8pt"
+        self.tfig = tfig
+        self.w_indicator = _widget(
+            pn.widgets.Button, "FLI / MEGNO of the selected orbit",
+            disabled=self._chaos is None)
+        self.w_indicator_t = _widget(pn.widgets.FloatInput, "indicator time", value=1000.0,
+                                     step=500.0, start=1e-3)
+        self.w_indicator.on_click(lambda _e: self._guard(self._request_indicator))
+        self.indicator = pn.pane.HTML("" if self._chaos is not None else
+                                      "<small>FLI/MEGNO: not available in this version "
+                                      "(no andoyer.analysis.chaos)</small>", width=340)
+        self.time_pane = pn.pane.Bokeh(tfig)
+        self.side_panel = pn.Column(pn.pane.Markdown("#### selected orbit"), self.info,
+                                    self.w_coords, self.w_span, self.time_pane,
+                                    self.w_indicator_t, self.w_indicator, self.indicator,
+                                    width=360)
+
+    # ------------------------------------------------------------------ threads
+    def _schedule(self, fn: Callable[[], None]) -> None:
+        """Run ``fn`` on the event loop (server), or now under the lock (Jupyter)."""
+        if self._closed:
+            return
+        doc = self._doc
+        if doc is not None and doc.session_context is not None:
+            try:
+                doc.add_next_tick_callback(lambda: self._guard(fn))
+            except Exception:  # noqa: BLE001 - the session is gone: nothing to update
+                self.close()
+            return
+        with self._lock:
+            self._guard(fn)
+        try:  # a notebook: send the changed Bokeh models through Panel's comms
+            pn.io.push_notebook(self.plane_pane, self.time_pane)
+        except Exception:  # noqa: BLE001 - no notebook comm (plain Python): nothing to push
+            pass
+
+    def _guard(self, fn: Callable[[], None]) -> None:
+        """Run a UI callback; any error becomes a visible message, never a dead page."""
+        try:
+            fn()
+        except ValueError as exc:
+            self._status(str(exc), "error")
+        except Exception as exc:  # noqa: BLE001 - shown to the user, logged in full
+            log.exception("andoyer explore: callback failed")
+            self._status(f"{type(exc).__name__}: {exc}", "error")
+
+    def _background(self, pool: ThreadPoolExecutor, fn: Callable[[], None]) -> None:
+        """Run ``fn`` on a worker; its exceptions become messages on the page."""
+        def run() -> None:
+            try:
+                fn()
+            except OutsideRegionError as exc:
+                msg = str(exc)
+                self._schedule(lambda: self._status(msg, "warning"))
+            except ValueError as exc:
+                msg = str(exc)
+                self._schedule(lambda: self._status(msg, "error"))
+            except Exception as exc:  # noqa: BLE001 - shown to the user, logged in full
+                log.exception("andoyer explore: background job failed")
+                msg = f"{type(exc).__name__}: {exc}"
+                self._schedule(lambda: self._status(msg, "error"))
+        if not self._closed:
+            pool.submit(run)
+
+    def wait(self, timeout: float | None = 60.0) -> None:
+        """Block until the work queued so far is done (for scripts, notebooks, tests)."""
+        for pool in (self._work, self._side, self._work):
+            if not self._closed:
+                pool.submit(lambda: None).result(timeout)
+
+    def close(self) -> None:
+        """Stop the workers (queued jobs are dropped, a running stage finishes)."""
+        self._closed = True
+        self._generation += 1
+        self._work.shutdown(wait=False, cancel_futures=True)
+        self._side.shutdown(wait=False, cancel_futures=True)
+
+    # ------------------------------------------------------------------ status
+    def _status(self, text: str, level: str = "info") -> None:
+        self.status.text = (f'<div style="color:{_LEVEL_COLOURS[level]};font-size:110%;'
+                            f'padding:2px 4px"><b>{level}</b>: {html.escape(text)}</div>')
+        self.status.css_classes = ["andoyer-status", f"andoyer-level-{level}"]
+        self._level = level
+        self._errors += level == "error"
+        self._publish_state()
+
+    def _publish_state(self) -> None:
+        s = self.settings
+        state = {"generation": self._generation, "pending": self._pending,
+                 "h": s.h, "M": s.M, "section": f"{s.section.coord}={s.section.value!r}",
+                 "direction": s.section.direction, "n_crossings": s.n_crossings,
+                 "engine": s.engine, "body": s.body.attrs(), "view_ready":
+                 self.view is not None and self.view.settings == s,
+                 "n_orbits": len(self.session.orbits), "selected": self._selected,
+                 "level": self._level, "errors": self._errors}
+        self.state_div.text = json.dumps(state)
+
+    # ------------------------------------------------------------------ the plane
+    def _submit_view(self, settings: Settings, warm_up: bool = False) -> None:
+        gen = self._generation
+        with self._lock:
+            self._pending += 1
+
+        def job() -> None:
+            try:
+                view = plane_view(settings, self.boundary_grid)
+                self._schedule(lambda: self._show_view(gen, view))
+                if warm_up:
+                    # Compile (or load from heyoka's cache) the engine now, not at the
+                    # first click: a few crossings of the fill's own seed.
+                    from andoyer.integrate.api import poincare
+
+                    poincare(settings.body, view.fill.y0.values[:1], settings.section, 2,
+                             engine=settings.engine, rtol=settings.rtol, atol=settings.atol,
+                             progress=False)
+            finally:
+                self._schedule(self._job_done)
+        self._background(self._work, job)
+
+    def _job_done(self) -> None:
+        with self._lock:
+            self._pending = max(0, self._pending - 1)
+        self._publish_state()
+
+    def _show_view(self, gen: int, view: PlaneView) -> None:
+        if gen != self._generation:
+            return
+        self.view = view
+        s = view.settings
+        (x0, x1), (y0, y1) = view.x_range, view.y_range
+        acc = view.accessible.T  # (plane_y, plane_x): rows are y
+        rgba = np.where(acc, np.uint32(0), np.uint32(0xFFE6E6E6)).astype(np.uint32)
+        self.region.data = {"image": [rgba], "x": [x0], "y": [y0], "dw": [x1 - x0],
+                            "dh": [y1 - y0]}
+        self.boundary.data = {"x": view.boundary_x, "y": view.boundary_y}
+        xs: list[np.ndarray] = []
+        ys: list[np.ndarray] = []
+        for x, y in view.separatrices:
+            xs += [x, np.array([np.nan])]
+            ys += [y, np.array([np.nan])]
+        self.separatrix.data = {"x": np.concatenate(xs) if xs else np.empty(0),
+                                "y": np.concatenate(ys) if ys else np.empty(0)}
+        pad = 0.02 * (y1 - y0)
+        self.fig.x_range.update(start=x0, end=x1, reset_start=x0, reset_end=x1)
+        self.fig.y_range.update(start=y0 - pad, end=y1 + pad, reset_start=y0 - pad,
+                                reset_end=y1 + pad)
+        self.fig.xaxis.axis_label = s.plane.symbols[0]
+        self.fig.yaxis.axis_label = s.plane.symbols[1]
+        k = np.arange(math.ceil(x0 / (math.pi / 2) - 1e-9),
+                      math.floor(x1 / (math.pi / 2) + 1e-9) + 1)
+        ticks = [float(v * math.pi / 2) for v in k]
+        self.fig.xaxis.ticker = FixedTicker(ticks=ticks)
+        self.fig.xaxis.major_label_overrides = {
+            t: _ANGLE_LABELS.get(int(v), f"{int(v)}π/2") for t, v in zip(ticks, k,
+                                                                          strict=True)}
+        arrow = {1: "+", -1: "−", 0: "±"}[s.section.direction]
+        title = self.fig.title
+        if isinstance(title, Title):
+            title.text = (f"{s.body.name or 'body'}: h = {s.h:.10g}, M = {s.M:.6g}, "
+                          f"{s.plane.symbols[3]} = {s.section.value:.6g} ({arrow})")
+        self._status("ready: click inside the boundary to seed an orbit "
+                     f"({s.plane.symbols[2]} is solved from H = h)", "info")
+        if self.w_underlay.value:
+            self._request_underlay()
+
+    # ------------------------------------------------------------------ clicks
+    def _on_tap(self, event: Event) -> None:
+        x, y = getattr(event, "x", None), getattr(event, "y", None)
+        sx, sy = getattr(event, "sx", None), getattr(event, "sy", None)
+        if x is None or y is None:
+            return
+        if isinstance(event, DoubleTap) and self._last_tap is not None and sx is not None \
+                and sy is not None and math.dist(self._last_tap, (sx, sy)) <= 6.0:
+            return  # the second click of a double click: one seed, not two
+        if sx is not None and sy is not None:
+            self._last_tap = (float(sx), float(sy))
+        self._guard(lambda: self._seed_click(float(x), float(y)))
+
+    def _seed_click(self, x: float, y: float) -> None:
+        """Queue an orbit through the plane point ``(x, y)`` (also the API for tests)."""
+        job = _Job(self._generation, self._epoch, self.settings)
+        with self._lock:
+            self._pending += 1
+            ahead = self._pending - 1
+        p = job.settings.plane
+        self._status(f"seeding at ({p.symbols[0]}, {p.symbols[1]}) = ({x:.6g}, {y:.6g})"
+                     + (f"; {ahead} job(s) ahead in the queue" if ahead else ""), "busy")
+
+        def work() -> None:
+            try:
+                self._run_click(job, x, y)
+            finally:
+                self._schedule(self._job_done)
+        self._background(self._work, work)
+
+    def _live(self, job: _Job) -> bool:
+        return job.generation == self._generation and job.epoch == self._epoch
+
+    def _run_click(self, job: _Job, x: float, y: float) -> None:
+        if not self._live(job):
+            return
+        seeds = seed(job.settings, x, y)
+        ids = [self.session.new_id() for _ in seeds]
+        self._schedule(lambda: self._add_orbits(job, ids, seeds))
+        for oid, sd in zip(ids, seeds, strict=True):
+            for stage in crossing_stages(job.settings, sd.y0):
+                if not self._live(job) or oid in self.session.removed:
+                    return
+                self._schedule(partial(self._add_stage, job, oid, stage))
+
+    def _add_orbits(self, job: _Job, ids: list[int], seeds: list[Seed]) -> None:
+        if not self._live(job):
+            return
+        s = job.settings
+        notes = []
+        for oid, sd in zip(ids, seeds, strict=True):
+            self.session.add(sd, job.settings, orbit_id=oid)
+            if not sd.crosses_in(s.section.direction):
+                notes.append(f"orbit {oid} crosses {s.plane.symbols[3]} = "
+                             f"{s.section.value:.4g} at the click in the other direction: "
+                             "its section points do not start at the click")
+        if seeds[0].n_roots > 1 and s.root != "all":
+            notes.append(f"{seeds[0].n_roots} values of {s.plane.symbols[2]} solve H = h "
+                         f"here; seeded the {s.root} (choose 'all' to seed every one)")
+        self._refresh_orbit_table()
+        self._select(ids[-1])
+        if notes:
+            self._status("; ".join(notes), "warning")
+
+    def _add_stage(self, job: _Job, oid: int, stage: Stage) -> None:
+        if not self._live(job) or not self.session.extend(oid, stage):
+            return
+        o = self.session.orbits[oid]
+        self.points.stream({"x": stage.x, "y": stage.y, "orbit": np.full(stage.x.size, oid),
+                            "crossing": np.arange(stage.start, stage.stop),
+                            "colour": [o.colour] * stage.x.size})
+        self._refresh_orbit_table()
+        if oid == self._selected:
+            self._show_info()
+        if stage.done:
+            drift = integral_drifts(stage.ds, o.settings.h, o.settings.M,
+                                    o.settings.body.mu)
+            short = (f" (t_max = {1000.0 * o.settings.n_crossings:g} reached first)"
+                     if stage.stop < o.settings.n_crossings else "")
+            self._status(f"orbit {oid}: {stage.stop} crossings{short}; max drift of H "
+                         f"{drift['H']:.1e}", "info")
+        else:
+            self._status(f"orbit {oid}: {stage.stop} of {o.settings.n_crossings} crossings …",
+                         "busy")
+
+    def _orbit_columns(self) -> dict[str, list[Any]]:
+        cols: dict[str, list[Any]] = {k: [] for k in (
+            "id", "colour", "seed_x", "seed_y", "action", "crossings", "status",
+            "G1", "G2", "G3", "gamma1", "gamma2", "gamma3")}
+        for o in self.session.orbits.values():
+            cols["id"].append(o.id)
+            cols["colour"].append(o.colour)
+            cols["seed_x"].append(o.seed.x)
+            cols["seed_y"].append(o.seed.y)
+            cols["action"].append(o.seed.action)
+            cols["crossings"].append(int(o.x.size))
+            cols["status"].append(o.status)
+            for k, name in enumerate(("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")):
+                cols[name].append(float(o.seed.y0[k]))
+        return cols
+
+    def _refresh_orbit_table(self) -> None:
+        self.orbits.data = self._orbit_columns()
+        ids = list(self.session.orbits)
+        want = [ids.index(self._selected)] if self._selected in ids else []
+        if list(self.orbits.selected.indices) != want:
+            self.orbits.selected.indices = want
+        self._publish_state()
+
+    def _refresh_points(self) -> None:
+        self.points.data = self.session.points()
+
+    def _select(self, oid: int | None) -> None:
+        self._selected = oid
+        ids = list(self.session.orbits)
+        want = [ids.index(oid)] if oid in ids else []
+        if list(self.orbits.selected.indices) != want:
+            self.orbits.selected.indices = want
+        self._show_info()
+        self._request_side()
+        self._publish_state()
+
+    def _on_select(self, _attr: str, _old: Any, new: list[int]) -> None:
+        ids = list(self.session.orbits)
+        oid = ids[new[0]] if new and new[0] < len(ids) else None
+        if oid != self._selected:
+            self._guard(lambda: self._select(oid))
+
+    def _clear_orbits(self) -> None:
+        self._epoch += 1
+        self.session.clear()
+        self._refresh_points()
+        self._refresh_orbit_table()
+        self._select(None)
+        self._status("all orbits cleared", "info")
+
+    def _remove_selected(self) -> None:
+        if self._selected is None:
+            self._status("select an orbit in the table first", "warning")
+            return
+        oid = self._selected
+        self.session.remove(oid)
+        self._refresh_points()
+        self._refresh_orbit_table()
+        self._select(None)
+        self._status(f"orbit {oid} removed", "info")
+
+    # ------------------------------------------------------------------ controls
+    def _sync_body_widgets(self) -> None:
+        mode = self.w_body.value
+        for wid in (self.w_A, self.w_B, self.w_C):
+            wid.disabled = mode == "paper"
+        self.w_r.disabled = mode != "general"
+
+    def _settings_from_widgets(self) -> Settings:
+        mode = self.w_body.value
+        mu = _number(self.w_mu)
+        if mode == "paper":
+            body = RigidBody.paper(mu)
+        else:
+            A, B, C = _number(self.w_A), _number(self.w_B), _number(self.w_C)
+            if mode == "hess":
+                body = RigidBody.hess(A, B, C, mu)
+            else:
+                from andoyer.cli._common import floats
+
+                r = floats(self.w_r.value or "", 3, "r = (e1, e2, e3)")
+                body = RigidBody(A, B, C, mu, (r[0], r[1], r[2]), "general")
+        section = Section(self.w_section.value, _number(self.w_value),
+                          self.w_direction.value)
+        engine = None if self.w_engine.value == "default" else self.w_engine.value
+        return Settings(body, _number(self.w_h), _number(self.w_M), section,
+                        int(_number(self.w_crossings)), engine, self.w_root.value)
+
+    def _on_control(self, event: Any) -> None:
+        self._guard(lambda: self._apply_controls(event))
+
+    def _apply_controls(self, event: Any) -> None:
+        if event.obj is self.w_body:
+            self._sync_body_widgets()
+            if event.new == "paper":
+                paper = RigidBody.paper()
+                self.w_A.value, self.w_B.value, self.w_C.value = paper.A, paper.B, paper.C
+        try:
+            new = self._settings_from_widgets()
+        except ValueError as exc:
+            self._status(f"{exc} (the page keeps the previous settings)", "error")
+            return
+        old = self.settings
+        same_plane = (new.body, new.h, new.M, new.section) == (old.body, old.h, old.M,
+                                                                 old.section)
+        self.settings = new
+        if same_plane and self.view is not None:
+            self.session.settings = new
+            self._status("new clicks use the changed settings; the orbits on screen keep "
+                         "theirs", "info")
+            return
+        if event.obj is self.w_section:
+            coords = [PLANES[new.section.coord].x, PLANES[new.section.coord].y]
+            self.w_coords.value = coords
+        self._generation += 1
+        n = len(self.session.orbits)
+        self.session.clear(new)
+        self.view = None
+        self._refresh_points()
+        self._refresh_orbit_table()
+        self._select(None)
+        self.region.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
+        self.boundary.data = {"x": [], "y": []}
+        self.separatrix.data = {"x": [], "y": []}
+        self._status("computing the accessible region …"
+                     + (f" ({n} orbit(s) of the previous level cleared)" if n else ""), "busy")
+        self._submit_view(new)
+
+    # ------------------------------------------------------------------ side panel
+    def _show_info(self) -> None:
+        o = self.session.orbits.get(self._selected) if self._selected is not None else None
+        if o is None:
+            self.info.object = "<i>no orbit selected</i>"
+            return
+        charts = initial_charts(o.settings, o.seed.y0)
+        rows = []
+        for chart, values in charts.items():
+            cells = "".join(f"<tr><td>{html.escape(k)}</td><td style='text-align:right'>"
+                            f"{v:.12g}</td></tr>" for k, v in values.items())
+            rows.append(f"<b>{chart}</b><table style='font-size:85%'>{cells}</table>")
+        drift = ""
+        if o.ds is not None:
+            d = integral_drifts(o.ds, o.settings.h, o.settings.M, o.settings.body.mu)
+            drift = (f"<b>drift at the section points</b><br>|H − h|/max(|h|, μ) ≤ "
+                     f"{d['H']:.1e}<br>|(G, γ) − M|/|G| ≤ {d['area']:.1e}<br>"
+                     f"||γ|² − 1| ≤ {d['geometric']:.1e}")
+        self.info.object = (f"<div><b style='color:{o.colour}'>● orbit {o.id}</b> "
+                            f"({o.status}, {o.x.size} crossings; {o.settings.plane.symbols[2]}"
+                            f" = {o.seed.action:.12g}, solution {o.seed.root_index + 1} of "
+                            f"{o.seed.n_roots})<br>{''.join(rows)}{drift}</div>")
+
+    def _request_side(self) -> None:
+        self._side_token += 1
+        token = self._side_token
+        span = _number(self.w_span)
+        if not (math.isfinite(span) and span > 0):
+            raise ValueError(f"time span must be a positive number, got {span!r}")
+        o = self.session.orbits.get(self._selected) if self._selected is not None else None
+        if o is None:
+            self.series.data = {"xs": [], "ys": [], "name": [], "colour": []}
+            return
+        coords = list(self.w_coords.value)
+        settings, y0 = o.settings, o.seed.y0
+
+        def job() -> None:
+            from andoyer.integrate.api import propagate
+
+            if token != self._side_token:
+                return
+            t = np.linspace(0.0, float(span), 2001)
+            ds = propagate(settings.body, y0, t, engine=settings.engine, rtol=settings.rtol,
+                           atol=settings.atol, progress=False).isel(orbit=0)
+            shown = [c for c in coords if c in ds]
+            data = {"xs": [t for _ in shown],
+                    "ys": [np.asarray(ds[c].values, dtype=float) for c in shown],
+                    "name": shown, "colour": [_TIME_COLOURS[k % len(_TIME_COLOURS)]
+                                              for k in range(len(shown))]}
+            missing = sorted(set(coords) - set(shown))
+
+            def show() -> None:
+                if token == self._side_token:
+                    self.series.data = data
+                    if missing:
+                        self._status(f"no {', '.join(missing)} for this body (the Hess "
+                                     "chart needs e3 = 0)", "warning")
+            self._schedule(show)
+        self._background(self._side, job)
+
+    def _request_indicator(self) -> None:
+        o = self.session.orbits.get(self._selected) if self._selected is not None else None
+        if self._chaos is None:
+            self._status("FLI/MEGNO need andoyer.analysis.chaos", "warning")
+            return
+        if o is None:
+            self._status("select an orbit in the table first", "warning")
+            return
+        t_end = _number(self.w_indicator_t)
+        settings, y0, oid = o.settings, o.seed.y0, o.id
+
+        def job() -> None:
+            ind = orbit_indicators(settings, y0, t_end)
+            text = (f"<b>orbit {oid}</b>, t = {t_end:g}: FLI = {ind['fli']:.4g}, "
+                    f"MEGNO ⟨Y⟩ = {ind['megno']:.4g} (2: regular, grows: chaotic), "
+                    f"λ ≈ {ind['mle']:.3g}")
+
+            def show() -> None:
+                self.indicator.object = text
+            self._schedule(show)
+        self.indicator.object = "computing …"
+        self._background(self._side, job)
+
+    def _on_underlay(self, _event: Any) -> None:
+        self._guard(self._request_underlay)
+
+    def _request_underlay(self) -> None:
+        if not self.w_underlay.value:
+            if self.view is not None:
+                self._show_view(self._generation, self.view)
+            return
+        if self._chaos is None:
+            self._status("the chaos-map underlay needs andoyer.analysis.chaos", "warning")
+            return
+        view, gen = self.view, self._generation
+        if view is None:
+            return  # drawn when the plane is ready (_show_view asks again)
+
+        def job() -> None:
+            img = _underlay_image(chaos_underlay(view.settings, view))
+
+            def show() -> None:
+                if gen == self._generation and self.w_underlay.value:
+                    self.region.data = img
+                    self._status("chaos map drawn: FLI from pale (regular) to red "
+                                 "(chaotic)", "info")
+            self._schedule(show)
+        self._status("computing the chaos map …", "busy")
+        self._background(self._side, job)
+
+    # ------------------------------------------------------------------ exports
+    def netcdf(self) -> bytes:
+        """NetCDF bytes of the orbits on screen (:func:`~andoyer.explore.export.orbits_dataset`)."""
+        from andoyer.explore.export import netcdf_bytes, orbits_dataset
+
+        return netcdf_bytes(orbits_dataset(self.session))
+
+    def png(self) -> bytes:
+        """PNG bytes of the plane as on screen (:func:`~andoyer.explore.export.plane_figure`)."""
+        from andoyer.explore.export import orbits_dataset, plane_figure, png_bytes
+
+        if self.view is None:
+            raise ValueError("the plane is not ready yet: wait for the accessible region")
+        return png_bytes(plane_figure(orbits_dataset(self.session), self.view))
+
+    def _download(self, make: Callable[[], bytes]) -> io.BytesIO:
+        try:
+            data = make()
+        except Exception as exc:  # noqa: BLE001 - a message on the page, not a dead button
+            log.exception("andoyer explore: export failed")
+            self._status(f"export failed: {exc}", "error")
+            data = b""
+        return io.BytesIO(data)
+
+    def _download_netcdf(self) -> io.BytesIO:
+        return self._download(self.netcdf)
+
+    def _download_png(self) -> io.BytesIO:
+        return self._download(self.png)
+
+
+def _widget(cls: Any, label: str, *, button: str | None = None, **kwargs: Any) -> Any:
+    """A Panel widget with a label (``label=`` since Panel 1.9, ``name=`` before)."""
+    kwargs["label" if "label" in cls.param else "name"] = label
+    if button is not None:
+        kwargs["color" if "color" in cls.param else "button_type"] = button
+    return cls(**kwargs)
+
+
+def _number(widget: Any) -> float:
+    """A numeric widget's value, or a ValueError naming the empty field."""
+    v = widget.value
+    if v is None:
+        label = getattr(widget, "label", "") or widget.name
+        raise ValueError(f"{label} is empty: type a number")
+    return float(v)
+
+
+def _underlay_image(ds: Any) -> dict[str, list[Any]]:
+    """The FLI of a :func:`chaos_underlay` map as an RGBA image, pale to red."""
+    z = np.asarray(ds.fli.values, dtype=float)  # dims (plane y, plane x): rows are y
+    ok = np.isfinite(z)
+    lo, hi = np.nanpercentile(z, [5, 95]) if ok.any() else (0.0, 1.0)
+    u = np.clip((np.where(ok, z, lo) - lo) / max(hi - lo, 1e-300), 0.0, 1.0)
+    r = np.full(z.shape, 250, dtype=np.uint32)
+    g = (245 - 190 * u).astype(np.uint32)
+    b = (235 - 215 * u).astype(np.uint32)
+    alpha = np.where(ok, 190, 0).astype(np.uint32)
+    img = (alpha << 24) | (b << 16) | (g << 8) | r
+    xs = np.asarray(ds[ds.fli.dims[1]].values, dtype=float)
+    ys = np.asarray(ds[ds.fli.dims[0]].values, dtype=float)
+    dx, dy = xs[1] - xs[0], ys[1] - ys[0]  # cell centres
+    return {"image": [img], "x": [xs[0] - dx / 2], "y": [ys[0] - dy / 2],
+            "dw": [xs[-1] - xs[0] + dx], "dh": [ys[-1] - ys[0] + dy]}
+
+
+# ---------------------------------------------------------------------- entry points
+def app(body: RigidBody | None = None, **kwargs: Any) -> Any:
+    """The explorer as a Panel object: display it in Jupyter, or ``.servable()``.
+
+    Parameters are those of :class:`Explorer`. In a notebook run
+    ``pn.extension()`` first, then ``andoyer.explore.app()`` (or ``andoyer.explore()``)
+    as the last expression of a cell.
+    """
+    return Explorer(body, **kwargs).panel
+
+
+@dataclass
+class ServerHandle:
+    """A running explorer server on a background thread (see :func:`serve`)."""
+
+    url: str
+    port: int
+    _stop: Callable[[], None]
+
+    def stop(self) -> None:
+        """Stop the server and its thread."""
+        self._stop()
+
+
+def _free_port(address: str) -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+        sock.bind((address, 0))
+        return int(sock.getsockname()[1])
+
+
+def _make_server(factory: Callable[[], Any], port: int, address: str, loop: Any) -> Any:
+    return pn.serve({"/": factory}, port=port, address=address, show=False, start=False,
+                    loop=loop, verbose=False, title="andoyer explore", location=False,
+                    websocket_origin=[f"{address}:{port}", f"localhost:{port}"])
+
+
+def serve(body: RigidBody | None = None, *, port: int = 0, address: str = "127.0.0.1",
+          show: bool = False, threaded: bool = False,
+          on_start: Callable[[str], None] | None = None, **kwargs: Any) -> ServerHandle | None:
+    """Serve the explorer on ``http://address:port/`` (one :class:`Explorer` per page).
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        Passed with ``**kwargs`` to :class:`Explorer`.
+    port : int, default 0
+        0 picks a free port.
+    address : str, default "127.0.0.1"
+        Loopback only by default.
+    show : bool
+        Open the page in the default web browser.
+    threaded : bool
+        Run the server on a background thread and return a :class:`ServerHandle`;
+        otherwise block until interrupted (Ctrl-C) and return None.
+    on_start : callable, optional
+        Called with the page's address once the server listens.
+    """
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ValueError(f"port must be an integer in [0, 65535], got {port!r}")
+    settings = {k: v for k, v in kwargs.items() if k != "boundary_grid"}
+    make_settings(body, **settings)  # bad input fails here, not in every page
+
+    def factory() -> Any:
+        return Explorer(body, **kwargs).panel
+
+    from tornado.ioloop import IOLoop
+
+    if not threaded:
+        p = port or _free_port(address)
+        server = _make_server(factory, p, address, IOLoop(make_current=False))
+        url = f"http://{address}:{server.port}/"
+        server.start()
+        if on_start is not None:
+            on_start(url)
+        if show:
+            server.io_loop.add_callback(server.show, "/")
+        try:
+            server.io_loop.start()
+        except KeyboardInterrupt:
+            pass
+        finally:
+            server.stop()
+        return None
+
+    ready: queue.Queue[Any] = queue.Queue()
+
+    def run() -> None:
+        try:
+            loop = IOLoop(make_current=False)
+            p = port or _free_port(address)
+            server = _make_server(factory, p, address, loop)
+            server.start()
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller's thread
+            ready.put(exc)
+            return
+        ready.put((server, loop))
+        loop.start()
+        server.stop()
+        loop.close()
+
+    thread = threading.Thread(target=run, name="andoyer-explore-server", daemon=True)
+    thread.start()
+    got = ready.get(timeout=60)
+    if isinstance(got, BaseException):
+        raise got
+    server, loop = got
+    url = f"http://{address}:{server.port}/"
+
+    def stop() -> None:
+        loop.add_callback(loop.stop)
+        thread.join(timeout=10)
+
+    if on_start is not None:
+        on_start(url)
+    if show:
+        loop.add_callback(server.show, "/")
+    return ServerHandle(url, int(server.port), stop)

@@ -1,0 +1,175 @@
+"""The explorer in a real browser: headless Chromium driven by Playwright.
+
+The app is served on a free loopback port; the test clicks on the section plane (three
+clicks in a row, so the later ones wait in the queue), waits until the orbits' points
+are drawn, checks them against ``poincare()`` from the same initial states, changes the
+energy in its input field, checks that the plane is recomputed and a new click lands on
+the new level, and saves a screenshot. Any error on the page (the status line, or a
+JavaScript exception) fails the test.
+
+Needs Debian's ``chromium`` (``/usr/bin/chromium`` or ``$ANDOYER_CHROMIUM``): no browser is
+downloaded. Without it the test is skipped, unless ``ANDOYER_REQUIRE_BROWSER=1`` (CI),
+where it fails. ``ANDOYER_SCREENSHOT=path`` also writes the screenshot there (the
+README's ``docs/explore.png`` is made so).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from andoyer import RigidBody, energy
+from andoyer.integrate import Section, poincare
+
+CHROMIUM = os.environ.get("ANDOYER_CHROMIUM", "/usr/bin/chromium")
+REQUIRE = os.environ.get("ANDOYER_REQUIRE_BROWSER", "") not in ("", "0")
+#: Without the background-networking switches Chromium's connections are refused on a
+#: closed network; as root it needs --no-sandbox.
+ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+CROSSINGS = 300
+CLICKS = [(1.0, 0.5), (2.0, 0.2), (0.4, 0.25)]
+
+pytestmark = pytest.mark.timeout(120)
+
+
+def _need_browser() -> Any:
+    """The Playwright module, or skip (fail under ANDOYER_REQUIRE_BROWSER=1)."""
+    def missing(why: str) -> None:
+        if REQUIRE:
+            pytest.fail(f"{why}, and ANDOYER_REQUIRE_BROWSER is set")
+        pytest.skip(f"{why}: install Debian's chromium (apt-get install chromium) or set "
+                    "ANDOYER_CHROMIUM to run the browser test")
+
+    if not (Path(CHROMIUM).is_file() or shutil.which(CHROMIUM)):
+        missing(f"no Chromium at {CHROMIUM}")
+    try:
+        from playwright import sync_api
+    except ImportError:
+        missing("the Python package playwright is not installed")
+    return sync_api
+
+
+# JavaScript run in the page: the test hook of andoyer.explore.ui (named Bokeh models).
+_MODEL = "name => Bokeh.documents[0].get_model_by_name(name)"
+_STATE = f"(() => {{ const m = ({_MODEL})('andoyer-state'); " \
+         "return m ? JSON.parse(m.text) : null; })()"
+_TO_PAGE = """([x, y]) => {
+  const fig = Bokeh.documents[0].get_model_by_name('andoyer-plane');
+  const view = [...Bokeh.index.all_views()].find(v => v.model === fig);
+  const rect = view.canvas_view.el.getBoundingClientRect();
+  return [rect.left + view.frame.x_scale.compute(x), rect.top + view.frame.y_scale.compute(y)];
+}"""
+
+
+def _wait(page: Any, condition: str, timeout: float = 60_000) -> dict[str, Any]:
+    """Wait until ``condition`` (JS over ``s``, the app's state) holds; fail as soon as
+    the page has shown an error message (the app counts them in ``s.errors``)."""
+    handle = page.wait_for_function(
+        f"() => {{ if (!window.Bokeh || Bokeh.documents.length === 0) return false; "
+        f"const s = {_STATE}; return s !== null && (s.errors > 0 || ({condition})) && s; }}",
+        timeout=timeout)
+    state: dict[str, Any] = handle.json_value()
+    if state["errors"] > 0:
+        status = page.evaluate(f"() => ({_MODEL})('andoyer-status').text")
+        pytest.fail(f"the page showed an error: {status}")
+    return state
+
+
+def _column(page: Any, source: str, name: str) -> np.ndarray:
+    return np.asarray(page.evaluate(
+        f"() => Array.from(({_MODEL})('{source}').data['{name}'])"), dtype=float)
+
+
+def _click(page: Any, x: float, y: float) -> None:
+    px, py = page.evaluate(_TO_PAGE, [x, y])
+    page.mouse.click(px, py)
+
+
+def test_explore_in_chromium(tmp_path: Path) -> None:
+    sync_api = _need_browser()
+    from andoyer.explore.ui import serve
+
+    body = RigidBody.paper()
+    server = serve(body, threaded=True, n_crossings=CROSSINGS)
+    page_errors: list[str] = []
+    try:
+        with sync_api.sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            try:
+                page = browser.new_page(viewport={"width": 1400, "height": 960})
+                page.on("pageerror", lambda exc: page_errors.append(str(exc)))
+                page.goto(server.url)
+                state = _wait(page, "s.view_ready && s.pending === 0")
+                h0 = state["h"]
+
+                # Three clicks in a row: the second and third are queued behind the first.
+                for x, y in CLICKS:
+                    _click(page, x, y)
+                _wait(page, f"s.n_orbits === {len(CLICKS)} && s.pending === 0 && "
+                            f"({_MODEL})('andoyer-points').data.x.length === "
+                            f"{len(CLICKS) * CROSSINGS}")
+                ids = _column(page, "andoyer-orbits", "id")
+                assert list(ids) == [1, 2, 3]
+                seeds = np.stack([_column(page, "andoyer-orbits", v) for v in
+                                  ("seed_x", "seed_y")], axis=1)
+                # A click lands where it was made (to a fraction of a pixel).
+                np.testing.assert_allclose(seeds, CLICKS, atol=0.01)
+                colours = page.evaluate(
+                    f"() => Array.from(({_MODEL})('andoyer-orbits').data.colour)")
+                assert len(set(colours)) == len(CLICKS)
+                y0 = np.stack([_column(page, "andoyer-orbits", v) for v in
+                               ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")], axis=1)
+                np.testing.assert_allclose(energy(body, y0), h0, rtol=0, atol=1e-12)
+
+                # The drawn points are those of one poincare() call, bit for bit.
+                px, py = (_column(page, "andoyer-points", v) for v in ("x", "y"))
+                orbit = _column(page, "andoyer-points", "orbit")
+                for k, oid in enumerate(ids):
+                    ref = poincare(body, y0[k], Section("theta2", 0.0, 1), CROSSINGS)
+                    rx = np.mod(ref.theta1.values[0], 2 * math.pi)
+                    ry = ref.J1.values[0]
+                    mine = orbit == oid
+                    assert mine.sum() == CROSSINGS
+                    np.testing.assert_array_equal(px[mine], rx)
+                    np.testing.assert_array_equal(py[mine], ry)
+
+                # Change the energy in its field: the plane is recomputed for the new level.
+                before = _column(page, "andoyer-boundary", "y")
+                h1 = round(h0 + 0.01, 6)
+                field = page.locator(".andoyer-h input")
+                field.fill(str(h1))
+                field.press("Enter")
+                state = _wait(page, f"s.h === {h1} && s.view_ready && s.pending === 0")
+                assert state["n_orbits"] == 0
+                after = _column(page, "andoyer-boundary", "y")
+                assert after.size > 0 and not np.array_equal(np.nan_to_num(before),
+                                                             np.nan_to_num(after[:before.size]))
+                assert np.nanmax(after) > np.nanmax(before)  # more energy, larger region
+                assert _column(page, "andoyer-points", "x").size == 0
+                _click(page, *CLICKS[0])
+                _wait(page, f"s.n_orbits === 1 && s.pending === 0 && "
+                            f"({_MODEL})('andoyer-points').data.x.length === {CROSSINGS}")
+                y1 = np.stack([_column(page, "andoyer-orbits", v) for v in
+                               ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")], axis=1)
+                np.testing.assert_allclose(energy(body, y1), h1, rtol=0, atol=1e-12)
+
+                shot = tmp_path / "explore.png"
+                page.screenshot(path=str(shot))
+                assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+                if os.environ.get("ANDOYER_SCREENSHOT"):
+                    shutil.copyfile(shot, os.environ["ANDOYER_SCREENSHOT"])
+                state = json.loads(page.evaluate(f"() => ({_MODEL})('andoyer-state').text"))
+                assert state["errors"] == 0 and state["level"] != "error"
+            finally:
+                browser.close()
+    finally:
+        server.stop()
+    assert not page_errors, f"JavaScript errors on the page: {page_errors}"
