@@ -1,0 +1,575 @@
+"""Chaos indicators of the heavy top: FLI, MEGNO, maximal Lyapunov exponent, chaos maps.
+
+All three come from one integration of the Euler-Poisson equations (1) with their
+first-order variational equations (:mod:`andoyer.integrate.variational`, built by
+heyoka from ``H = (G, IG)/2 + mu (r, gamma)``), for a tangent vector ``w`` with
+``w(0) = w0``, ``|w0| = 1``:
+
+* **FLI** (fast Lyapunov indicator, Froeschle, Lega & Gonczi 1997):
+  :math:`\\mathrm{FLI}(t) = \\sup_{0 \\le s \\le t} \\ln \\|w(s)\\|`, the supremum taken
+  over the output times (``fli``); ``log_norm`` is :math:`\\ln\\|w(t)\\|` itself. On
+  a regular orbit ``|w|`` grows linearly (shear between neighbouring tori), so FLI grows
+  like ``ln t``; on a chaotic one exponentially, ``FLI ~ lambda t``.
+* **MEGNO** (Cincotta & Simo 2000):
+  :math:`Y(t) = \\frac{2}{t}\\int_0^t s\\,\\frac{\\dot w\\cdot w}{w\\cdot w}\\,ds` and its
+  mean :math:`\\langle Y\\rangle(t) = \\frac1t\\int_0^t Y(s)\\,ds`. ``<Y> -> 2`` on a
+  quasi-periodic orbit (linear growth), ``-> 0`` on a stable periodic orbit when the
+  tangent vector is iso-energetic (bounded growth; see below), and
+  ``<Y> ~ lambda t / 2`` on a chaotic orbit. The integrals are extra
+  state variables of the heyoka system (no Python per step); the mean is taken with
+  the weights shifted by ``delta = 1e-6`` (see :mod:`andoyer.integrate.variational`;
+  a relative change ``O(delta / t)``), ``Y`` itself is exact.
+* **maximal Lyapunov exponent** (finite-time): :math:`\\lambda(t) = \\ln\\|w(t)\\| / t`.
+  The tangent vector is renormalised continuously (the system integrates ``w/|w|`` and
+  ``ln |w|``), so nothing overflows. ``2 <Y>/t`` is the MEGNO-slope estimate of it.
+
+The tangent space
+-----------------
+``|gamma|^2``, ``(G, gamma)`` and ``H`` are first integrals of (1), so for each of them
+``grad I(y(t)) . w(t)`` is constant along the linearised flow: a tangent vector that
+starts orthogonal to a gradient stays so, and no projection is needed while
+integrating. The default initial vector (``tangent="leaf"``) is orthogonal to the two
+Casimir gradients: ``w`` stays tangent to the symplectic leaf ``|gamma| = 1``,
+``(G, gamma) = M`` of the reduced two-degree-of-freedom system, so the Casimir
+directions (which, being conserved, could add at most a linear shear) never enter.
+It keeps a component across the energy levels, whose shear makes ``|w|`` grow
+linearly on every regular orbit, tori and periodic orbits alike: ``<Y> -> 2`` there,
+quickly. ``tangent="energy"`` is also orthogonal to ``grad H``: ``w`` stays tangent
+to the energy level, and the MEGNO has its iso-energetic limits, 2 on a torus (more
+slowly: the shear between tori of one level is weaker) and 0 on a stable periodic
+orbit. Either way the initial vector is the orthogonal projection of one fixed generic
+vector, the same for every state, so a map is deterministic and smooth in its
+initial conditions.
+
+References
+----------
+.. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
+   trajectories exploring" (Eqs. (1), (5)-(7), (14)-(15)).
+.. [2] C. Froeschle, E. Lega, R. Gonczi, "Fast Lyapunov indicators. Application to
+   asteroidal motion", Celest. Mech. Dyn. Astron. 67, 41-62 (1997).
+.. [3] P. M. Cincotta, C. Simo, "Simple tools to study global dynamics in
+   non-axisymmetric galactic potentials - I", Astron. Astrophys. Suppl. 147, 205 (2000).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any, Literal
+
+import heyoka as hy
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.body import RigidBody
+from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
+from andoyer.charts.hess import from_hess
+from andoyer.integrate.api import _params, _Progress, initial_states
+from andoyer.integrate.fill import fill_section, section_roots
+from andoyer.integrate.results import VARIABLE_ATTRS, provenance
+from andoyer.integrate.variational import (
+    ENGINES,
+    MEGNO_DELTA,
+    VARIATIONAL_STATE,
+    propagate_variational,
+)
+
+__all__ = ["indicators", "chaos_map", "initial_tangent", "INDICATORS", "TANGENT_SPACES"]
+
+#: Indicators a chaos map can hold.
+INDICATORS = ("fli", "megno")
+#: Admissible initial tangent spaces.
+TANGENT_SPACES = ("energy", "leaf")
+
+Indicator = Literal["fli", "megno", "both"]
+Tangent = Literal["energy", "leaf"]
+
+# The fixed generic vectors whose projections are the initial tangent vectors (the second
+# is used where the first is nearly normal to the tangent space).
+_GENERIC = np.array([[1.0, math.sqrt(2), math.sqrt(3), math.sqrt(5), math.sqrt(7),
+                      math.sqrt(11)],
+                     [math.sqrt(13), -math.sqrt(3), math.sqrt(2), -1.0, math.sqrt(5),
+                      -math.sqrt(7)]])
+_MIN_PROJECTION = 0.05
+_IX = {name: i for i, name in enumerate(VARIATIONAL_STATE)}
+
+_ATTRS: dict[str, dict[str, str]] = {
+    "fli": {"long_name": "fast Lyapunov indicator sup_s ln|w(s)| (sup over output times)",
+            "symbol": "FLI", "units": "1",
+            "definition": "Froeschle, Lega & Gonczi (1997); w(0) unit tangent vector"},
+    "log_norm": {"long_name": "ln of the tangent-vector norm", "symbol": "ln|w|",
+                 "units": "1"},
+    "megno": {"long_name": "mean MEGNO <Y>", "symbol": "<Y>", "units": "1",
+              "definition": "Cincotta & Simo (2000); -> 2 quasi-periodic, -> 0 stable "
+                            "periodic, ~ lambda t / 2 chaotic"},
+    "megno_y": {"long_name": "MEGNO Y", "symbol": "Y", "units": "1",
+                "definition": "Y(t) = (2/t) int_0^t s (w'.w)/(w.w) ds"},
+    "mle": {"long_name": "finite-time maximal Lyapunov exponent ln|w(t)|/t",
+            "symbol": "lambda", "units": "1 / body time unit"},
+}
+
+
+# ----------------------------------------------------------------------------- tangent
+
+
+def _gradients(body: RigidBody, y: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Gradients of ``(G, gamma)``, ``|gamma|^2`` and ``H`` at states ``y``, (n, 3, 6).
+
+    ``grad H`` by complex-step differentiation of the one H of Eq. (1) (exact to
+    round-off, nothing transcribed); the Casimirs' gradients are
+    ``grad (G, gamma) = (gamma, G)`` and ``grad |gamma|^2 = (0, 2 gamma)``.
+    """
+    G, gamma = y[:, :3], y[:, 3:]
+    rows = [np.concatenate([gamma, G], axis=1),
+            np.concatenate([np.zeros_like(gamma), 2.0 * gamma], axis=1)]
+    step = 1e-30
+    grad = np.empty_like(y)
+    for k in range(len(STATE)):
+        z = y.astype(complex)
+        z[:, k] += 1j * step
+        G1, G2, G3, gamma1, gamma2, gamma3 = z.T
+        grad[:, k] = np.imag(hamiltonian_expr(G1, G2, G3, gamma1, gamma2, gamma3,
+                                              *body.params)) / step
+    rows.append(grad)
+    return np.stack(rows, axis=1)
+
+
+def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
+                    direction: ArrayLike | None = None) -> NDArray[np.float64]:
+    """Unit initial tangent vectors at Euler-Poisson states ``y``, shape (n, 6).
+
+    Parameters
+    ----------
+    body : RigidBody
+    y : array_like, shape (6,) or (n, 6)
+        Euler-Poisson states.
+    tangent : {"leaf", "energy"}
+        ``"leaf"`` (default): orthogonal to ``grad (G, gamma)`` and ``grad |gamma|^2``
+        (tangent to the symplectic leaf); ``"energy"``: also orthogonal to ``grad H``
+        (tangent to the energy level of the reduced system).
+    direction : array_like, shape (6,) or (n, 6), optional
+        The vector to project (default: a fixed generic vector).
+
+    Returns
+    -------
+    ndarray
+        The normalised orthogonal projections.
+
+    Raises
+    ------
+    ValueError
+        If ``direction`` is (nearly) normal to the tangent space at some state.
+
+    Examples
+    --------
+    >>> body = RigidBody.paper()
+    >>> y = from_andoyer([0.3, 0.0, 0.3, 1.0, 0.0])
+    >>> w = initial_tangent(body, y)
+    >>> bool(abs(np.linalg.norm(w) - 1) < 1e-15), bool(abs(w[0, 3:] @ y[3:]) < 1e-15)
+    (True, True)
+    """
+    if tangent not in TANGENT_SPACES:
+        raise ValueError(f"unknown tangent space {tangent!r}; choose 'energy' or 'leaf'")
+    Y = np.atleast_2d(np.asarray(y, dtype=float))
+    if Y.ndim != 2 or Y.shape[1] != len(STATE):
+        raise ValueError(f"y must have shape (6,) or (n, 6), got {np.shape(y)}")
+    N = _gradients(body, Y)  # (n, 3, 6): the Casimirs' gradients, then grad H
+    if direction is not None:
+        k = 2 if tangent == "leaf" else 3
+        V = np.broadcast_to(np.asarray(direction, dtype=float), Y.shape)
+        W = V - _project(N[:, :k], V)
+        norm = np.linalg.norm(W, axis=1)
+        if np.any(norm <= 1e-8 * np.linalg.norm(V, axis=1)):
+            raise ValueError("direction is normal to the tangent space at some state: its "
+                             "projection vanishes; choose another direction")
+        return W / norm[:, None]
+    # The iso-energetic part: a fixed generic vector projected onto the energy level.
+    iso = np.empty_like(Y)
+    todo = np.ones(Y.shape[0], dtype=bool)
+    for v in _GENERIC:
+        v = np.broadcast_to(v / np.linalg.norm(v), Y.shape)
+        W = v - _project(N, v)
+        norm = np.linalg.norm(W, axis=1)
+        take = todo & (norm > _MIN_PROJECTION)
+        iso[take] = W[take] / norm[take, None]
+        todo &= ~take
+    if np.any(todo):
+        raise RuntimeError("no generic vector projects onto the tangent space; "
+                           "please report this state")
+    if tangent == "energy":
+        return iso
+    # "leaf": add the unit normal to the energy level within the leaf, so that the shear
+    # between energy levels is excited by the same amount at every state (with a generic
+    # vector alone its energy component would vanish on curves of the map, and so would
+    # the linear growth on the tori there).
+    gH = N[:, 2]
+    normal = gH - _project(N[:, :2], gH)
+    size = np.linalg.norm(normal, axis=1)
+    ok = size > 1e-12 * np.maximum(np.linalg.norm(gH, axis=1), 1e-300)
+    out = iso.copy()  # at a relative equilibrium (grad H in the Casimirs' span): iso only
+    out[ok] = (iso[ok] + normal[ok] / size[ok, None]) / math.sqrt(2.0)
+    return out
+
+
+def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Orthogonal projection of the rows of ``V`` (n, 6) onto the span of ``N`` (n, k, 6)."""
+    P = np.linalg.pinv(np.swapaxes(N, 1, 2))  # (n, k, 6): batched least squares
+    return np.einsum("nki,nk->ni", N, np.einsum("nkj,nj->nk", P, V))
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def _check_engine(engine: str | None) -> Any:
+    name = "heyoka" if engine is None else engine
+    if name not in ENGINES:
+        raise ValueError(f"engine {name!r} cannot integrate the variational equations; "
+                         f"choose one of {', '.join(ENGINES)} (heyoka for maps)")
+    return name
+
+
+def _check_positive(name: str, v: Any) -> float:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a positive number, got {v!r}") from None
+    if not (math.isfinite(x) and x > 0.0):
+        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    return x
+
+
+def _check_int(name: str, v: Any, lo: int) -> int:
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral) or v < lo:
+        raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
+    return int(v)
+
+
+def _check_tol(tol: Any) -> float:
+    t = _check_positive("tol", tol)
+    if not 1e-16 <= t <= 1e-3:
+        raise ValueError(f"tol = {t:g} is out of range [1e-16, 1e-3]")
+    return t
+
+
+def _derived(x: NDArray[np.float64], t: NDArray[np.float64], scale: float
+             ) -> dict[str, NDArray[np.float64]]:
+    """Indicators from the integrated variables ``x`` (..., k, 15) at times ``t`` (k,)."""
+    rho = x[..., _IX["log_norm"]] * scale
+    num = x[..., _IX["megno_num"]] * scale**2
+    integral = x[..., _IX["megno_int"]] * scale**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y = np.where(t > 0.0, 2.0 * (num - MEGNO_DELTA * rho) / t, 0.0)
+        mle = np.where(t > 0.0, rho / t, np.nan)
+    mean = integral / (t + MEGNO_DELTA)
+    fli = np.fmax.accumulate(rho, axis=-1)
+    return {"log_norm": rho, "fli": fli, "megno_y": y, "megno": mean, "mle": mle}
+
+
+# ----------------------------------------------------------------------------- single orbits
+
+
+def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times: int = 101,
+               t: ArrayLike | None = None, chart: str = "euler_poisson",
+               tangent: Tangent = "leaf", w0: ArrayLike | None = None,
+               tol: float = 1e-12, engine: str | None = "heyoka") -> xr.Dataset:
+    """FLI, MEGNO and the maximal Lyapunov exponent of orbits as functions of time.
+
+    Parameters
+    ----------
+    body : RigidBody
+    y0 : array_like, shape (6,) or (n, 6) (or (5,)/(n, 5) in the other charts)
+        Initial states in ``chart`` coordinates.
+    t_end : float, default 1000
+        Final time (body time units).
+    n_times : int, default 101
+        Output times ``linspace(0, t_end, n_times)`` (ignored when ``t`` is given).
+        The FLI's supremum is taken over them.
+    t : array_like, optional
+        Increasing output times starting at 0.
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``y0``.
+    tangent : {"leaf", "energy"}
+        Space of the initial tangent vector (see the module docstring).
+    w0 : array_like, shape (6,) or (n, 6), optional
+        A direction to project onto that space instead of the fixed generic vector.
+    tol : float, default 1e-12
+        Tolerance of the Taylor integrator (DOP853 gets ``0.025 tol``).
+    engine : {"heyoka", "scipy"}
+        ``"scipy"``: ``solve_ivp(DOP853)`` on the same equations, one orbit at a time
+        (a slow independent check).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(orbit, time)``: ``fli``, ``log_norm``, ``megno_y`` (Y), ``megno``
+        (<Y>), ``mle``, the Euler-Poisson state ``G1 .. gamma3`` and ``H_drift``
+        (``(H - H(0)) / max(|H(0)|, mu)``); ``w0`` (orbit, component). Attrs: body,
+        engine, tolerance, heyoka version, definitions.
+
+    Raises
+    ------
+    ValueError
+        Invalid inputs; FloatingPointError if an integration fails.
+
+    Examples
+    --------
+    >>> ds = indicators(RigidBody.paper(), [0.3, 0.0, 0.3, 1.0, 0.0], 200.0,
+    ...                 chart="andoyer")
+    >>> bool(1.5 < float(ds.megno.isel(orbit=0, time=-1)) < 2.0)
+    True
+    """
+    name = _check_engine(engine)
+    tol = _check_tol(tol)
+    y = initial_states(body, y0, chart)
+    if t is None:
+        T = _check_positive("t_end", t_end)
+        times = np.linspace(0.0, T, _check_int("n_times", n_times, 2))
+    else:
+        times = np.asarray(t, dtype=float)
+        if times.ndim != 1 or times.size < 2 or times[0] != 0.0 \
+                or np.any(np.diff(times) <= 0.0) or not np.all(np.isfinite(times)):
+            raise ValueError("t must be a 1-D array of increasing finite times starting "
+                             "at 0 (the indicators count from t = 0)")
+        T = float(times[-1])
+    w = initial_tangent(body, y, tangent, w0)
+    res = propagate_variational(y, w, times, _params(body), tol=tol, scale=T, engine=name)
+    if not res.ok.all():
+        bad = np.flatnonzero(~res.ok).tolist()
+        raise FloatingPointError(f"the variational integration failed (non-finite state) "
+                                 f"for orbits {bad}")
+    data: dict[str, Any] = {k: (("orbit", "time"), v)
+                            for k, v in _derived(res.x, times, T).items()}
+    for k, s in enumerate(STATE):
+        data[s] = (("orbit", "time"), res.x[..., k])
+    H = energy(body, res.x[..., :len(STATE)])
+    scale = np.maximum(np.abs(H[:, :1]), body.mu)
+    data["H_drift"] = (("orbit", "time"), (H - H[:, :1]) / np.where(scale > 0, scale, 1.0))
+    data["w0"] = (("orbit", "component"), w)
+    ds = xr.Dataset(data, coords={"orbit": np.arange(y.shape[0]), "time": times,
+                                  "component": list(STATE)},
+                    attrs=_provenance(body, name, tol, tangent, T, initial_chart=chart))
+    _describe(ds)
+    ds.H_drift.attrs.update(long_name="(H - H(0)) / max(|H(0)|, mu)", units="1")
+    ds.w0.attrs.update(long_name="initial unit tangent vector")
+    ds.time.attrs.update(units="body time units", long_name="time")
+    return ds
+
+
+def _provenance(body: RigidBody, engine: str, tol: float, tangent: str, T: float,
+                **extra: Any) -> dict[str, Any]:
+    return provenance(
+        body, engine=engine, tolerance=tol, heyoka_version=hy.__version__, t_end=T,
+        tangent=tangent, megno_delta=MEGNO_DELTA,
+        equations="Euler-Poisson equations (1) of Kyrychenko with their first-order "
+                  "variational equations (heyoka var_ode_sys), unit tangent vector "
+                  "w/|w| and ln|w| integrated (continuous renormalisation)",
+        **extra)
+
+
+def _describe(ds: xr.Dataset) -> None:
+    for name, attrs in _ATTRS.items():
+        if name in ds:
+            ds[name].attrs.update(attrs)
+    for name, (sym, long, eqn) in VARIABLE_ATTRS.items():
+        if name in ds:
+            ds[name].attrs.update(symbol=sym, long_name=long, equation=eqn)
+
+
+# ----------------------------------------------------------------------------- maps
+
+
+def _grid_size(n: Any) -> tuple[int, int]:
+    if isinstance(n, numbers.Integral) and not isinstance(n, bool):
+        return _check_int("n", n, 2), _check_int("n", n, 2)
+    try:
+        nx, ny = n
+    except (TypeError, ValueError):
+        raise ValueError(f"n must be an integer or a pair (nx, ny), got {n!r}") from None
+    return _check_int("n[0] (nx)", nx, 2), _check_int("n[1] (ny)", ny, 2)
+
+
+def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
+              t_end: float = 1000.0, indicator: Indicator = "fli", *,
+              engine: str | None = "heyoka", chunk: int = 1024, progress: bool | None = None,
+              tol: float = 1e-12, n_samples: int = 64, root: str = "largest",
+              plane_bounds: Any = None, tangent: Tangent = "leaf",
+              batch_size: int | None = None, n_threads: int | None = None) -> xr.Dataset:
+    """FLI and/or MEGNO over a grid of a section's plane, on the energy level ``H = h``.
+
+    Every grid point of the plane -- ``(l, L)`` of a ``g = const`` section or
+    ``(theta1, J1)`` of a ``theta2 = const`` section -- with the remaining action
+    solved from ``H = h`` (:func:`andoyer.integrate.fill.section_roots`) is an initial
+    state; its orbit is integrated with the variational equations to ``t_end``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Any body; the Hess plane needs ``e3 = 0``.
+    h : float
+        Energy level.
+    M : float
+        Area constant ``(G, gamma)``.
+    section : (coord, value), str or object with ``.coord``, ``.value``
+        ``("g", g*)`` or ``"g=0"`` (plane ``(l, L)``, ``G`` solved), ``("theta2",
+        theta2*)`` (plane ``(theta1, J1)``, ``J2`` solved).
+    n : int or (nx, ny), default 64
+        Grid points along the plane's axes (cell centres of the plane's box).
+    t_end : float, default 1000
+        Integration time of every orbit.
+    indicator : {"fli", "megno", "both"}
+        Which indicator(s) the dataset holds (one integration gives both).
+    engine : {"heyoka", "scipy"}
+        heyoka (batch mode and threads) is the one for maps.
+    chunk : int, default 1024
+        Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
+        doubles; the progress line advances per chunk.
+    progress : bool, optional
+        Progress line on stderr (default: when stderr is a terminal).
+    tol : float, default 1e-12
+        Tolerance of the Taylor integrator.
+    n_samples : int, default 64
+        Output times ``t_end k / n_samples`` over which the FLI's supremum is taken.
+    root : {"largest", "smallest"}
+        Where the level has several sheets above a point, which action to take.
+    plane_bounds : ((x_min, x_max), (y_min, y_max)), optional
+        The plane's box. Default: the angle's full range (as in
+        :func:`~andoyer.integrate.fill.fill_section`) and the action's range where the
+        level meets the plane.
+    tangent : {"leaf", "energy"}
+        Space of the initial tangent vectors (see the module docstring).
+    batch_size, n_threads : int, optional
+        heyoka's SIMD batch size and the number of threads.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(y, x)`` named after the plane (``L_action, l_angle`` or ``J1, theta1``):
+        the indicator(s) ``fli`` and/or ``megno`` (<Y> at ``t_end``), ``mle``
+        (``ln|w(t_end)|/t_end``), ``accessible`` (the level meets the point), the solved
+        action, ``H_error`` (``|H(t_end) - h| / max(|h|, mu)``); NaN outside the
+        accessible region and where an integration failed (``n_failed`` attr). Dim
+        ``boundary_vertex``: ``boundary_x``, ``boundary_y``, the accessible region's
+        boundary (NaN-separated polylines). Attrs: body, h, M, section, plane, t_end,
+        tolerance, engine, heyoka version, grid, definitions.
+
+    Notes
+    -----
+    The result depends only on the arguments (and the batch size, through round-off):
+    threads and chunks do not change it. The compiled integrator is cached per process
+    and on disk, so repeated calls, e.g. one per point of a parameter sweep in worker
+    processes, pay the compilation once.
+
+    Examples
+    --------
+    >>> ds = chaos_map(RigidBody.paper(), 0.2466, 0.0, "theta2=0", n=4, t_end=50.0)
+    >>> ds.fli.dims, int(ds.accessible.sum()) > 0
+    (('J1', 'theta1'), True)
+    """
+    name = _check_engine(engine)
+    h = float(h)
+    M = float(M)
+    nx, ny = _grid_size(n)
+    T = _check_positive("t_end", t_end)
+    if indicator not in ("fli", "megno", "both"):
+        raise ValueError(f"unknown indicator {indicator!r}; choose 'fli', 'megno' or 'both'")
+    if root not in ("largest", "smallest"):
+        raise ValueError(f"unknown root choice {root!r}; choose 'largest' or 'smallest'")
+    chunk = _check_int("chunk", chunk, 1)
+    n_samples = _check_int("n_samples", n_samples, 1)
+    tol = _check_tol(tol)
+    if isinstance(section, str):  # "theta2=0:+" as for poincare(): the direction is moot
+        coord, sep, text = section.partition("=")
+        section = (coord.strip(), text.split(":")[0].strip()) if sep else section
+    # The plane, its box and the accessible boundary; raises if h misses the section.
+    fill = fill_section(body, h, M, section, n=1, plane_bounds=plane_bounds,
+                        boundary_grid=min(200, max(64, 2 * max(nx, ny))))
+    a = fill.attrs
+    xname, yname, action = str(a["plane_x"]), str(a["plane_y"]), str(a["action"])
+    chart, value = str(a["section_chart"]), float(a["section_value"])
+    x0, x1 = float(a["plane_x_min"]), float(a["plane_x_max"])
+    y0, y1 = float(a["plane_y_min"]), float(a["plane_y_max"])
+    if plane_bounds is None:
+        # The action axis is cropped to the accessible rows (plus one cell of the fine
+        # grid): no grid row is spent above the level. The angle keeps its full turn.
+        fine = fill.plane_y.values
+        rows = np.flatnonzero(fill.accessible.values.any(axis=0))
+        step = fine[1] - fine[0]
+        y0, y1 = max(y0, fine[rows[0]] - step), min(y1, fine[rows[-1]] + step)
+    xs = x0 + (np.arange(nx) + 0.5) * (x1 - x0) / nx
+    ys = y0 + (np.arange(ny) + 0.5) * (y1 - y0) / ny
+    Yg, Xg = np.meshgrid(ys, xs, indexing="ij")  # (ny, nx)
+    roots = section_roots(body, h, M, (str(a["section_coord"]), value), Xg, Yg)
+    acc = np.array([r.size > 0 for r in roots]).reshape(ny, nx)
+    A = np.full(ny * nx, np.nan)
+    pick = -1 if root == "largest" else 0
+    for i, r in enumerate(roots):
+        if r.size:
+            A[i] = r[pick]
+    idx = np.flatnonzero(acc.ravel())
+    P = np.stack([Xg.ravel()[idx], np.full(idx.size, value), Yg.ravel()[idx], A[idx],
+                  np.full(idx.size, M)], axis=-1)
+    states = from_andoyer(P) if chart == "andoyer" else from_hess(body, P)
+    times = np.linspace(0.0, T, n_samples + 1)
+    params = _params(body)
+    if batch_size is None and name == "heyoka":
+        # One batch size for the whole map, so that the chunking cannot change round-off.
+        simd = int(hy.recommended_simd_size())
+        batch_size = simd if idx.size >= simd else 1
+
+    out = {k: np.full(ny * nx, np.nan) for k in ("fli", "megno", "mle", "H_error")}
+    n_failed = 0
+    bar = _Progress(idx.size, f"chaos map ({name}, {nx}x{ny}, t = {T:g})", progress)
+    for s in range(0, idx.size, chunk):
+        sel = idx[s:s + chunk]
+        y = states[s:s + chunk]
+        w = initial_tangent(body, y, tangent)
+        res = propagate_variational(y, w, times, params, tol=tol, scale=T, engine=name,
+                                    batch_size=batch_size, n_threads=n_threads)
+        d = _derived(res.x, times, T)
+        out["fli"][sel] = d["fli"][:, -1]
+        out["megno"][sel] = d["megno"][:, -1]
+        out["mle"][sel] = d["mle"][:, -1]
+        out["H_error"][sel] = (np.abs(energy(body, res.x[:, -1, :len(STATE)]) - h)
+                               / (max(abs(h), body.mu) or 1.0))
+        n_failed += int(np.sum(~res.ok))
+        bar.update(sel.size)
+    bar.close()
+
+    dims = (yname, xname)
+    keep = ("fli", "megno") if indicator == "both" else (indicator,)
+    data: dict[str, Any] = {k: (dims, out[k].reshape(ny, nx)) for k in (*keep, "mle")}
+    data["accessible"] = (dims, acc)
+    data[action] = (dims, A.reshape(ny, nx))
+    data["H_error"] = (dims, out["H_error"].reshape(ny, nx))
+    data["boundary_x"] = (("boundary_vertex",), fill.boundary_x.values)
+    data["boundary_y"] = (("boundary_vertex",), fill.boundary_y.values)
+    ds = xr.Dataset(
+        data,
+        coords={xname: (xname, xs, {**_coord_attrs(xname), "grid": "cell centres"}),
+                yname: (yname, ys, {**_coord_attrs(yname), "grid": "cell centres"})},
+        attrs=_provenance(
+            body, name, tol, tangent, T, h=h, M=M, section_coord=str(a["section_coord"]),
+            section_value=value, section_chart=chart, plane_x=xname, plane_y=yname,
+            action=action, root=root, indicator=indicator, nx=nx, ny=ny,
+            n_samples=n_samples, n_accessible=int(idx.size), n_failed=n_failed,
+            plane_x_min=x0, plane_x_max=x1, plane_y_min=y0, plane_y_max=y1,
+            plane_equations=str(a["equations"]),
+            units="dimensionless: moments of inertia, mu, energies, actions and time in "
+                  "the body's units; angles in rad"))
+    _describe(ds)
+    ds.accessible.attrs.update(long_name=f"the level H = h meets ({xname}, {yname})")
+    ds[action].attrs.update(long_name=f"{action} solved from H = h ({root} root)")
+    ds.H_error.attrs.update(long_name="|H(t_end) - h| / max(|h|, mu)", units="1")
+    ds.boundary_x.attrs.update(long_name=f"{xname} on the accessible boundary (NaN: new line)")
+    ds.boundary_y.attrs.update(long_name=f"{yname} on the accessible boundary (NaN: new line)")
+    return ds
+
+
+def _coord_attrs(name: str) -> dict[str, str]:
+    if name not in VARIABLE_ATTRS:
+        return {}
+    sym, long, eqn = VARIABLE_ATTRS[name]
+    units = "rad" if name in ("l_angle", "g_angle", "theta1", "theta2") else "1"
+    return {"symbol": sym, "long_name": long, "equation": eqn, "units": units}

@@ -1,0 +1,55 @@
+"""``andoyer atlas``: a grid of sections or chaos maps drawn from a scan store."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+NAME = "atlas"
+ORDER = 65
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import xarray as xr
+
+    from andoyer.cli._common import floats
+    from andoyer.plot.atlas import plot_atlas
+    from andoyer.plot.section import save_figure
+
+    store = Path(args.store)
+    if not (store / "zarr.json").is_file() and not (store / ".zgroup").is_file():
+        raise ValueError(f"{store} is not a Zarr store; give the store written by "
+                         "andoyer scan")
+    ds = xr.open_zarr(store, consolidated=True)
+    select = {}
+    for item in args.select or []:
+        name, sep, value = item.partition("=")
+        if not sep:
+            raise ValueError(f"--select {item!r}: write NAME=VALUE, e.g. M_level=0")
+        select[name.strip()] = floats(value, 1, f"--select {name}")[0]
+    fig = plot_atlas(ds, rows=args.rows, cols=args.cols, select=select, width=args.width)
+    out = save_figure(fig, args.out, pdf=args.pdf)
+    done = int(ds["done"].sum())
+    print(f"wrote {', '.join(map(str, out))} ({done} of {ds['done'].size} points done)")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="grid of sections or chaos maps from a scan store (PNG)")
+    p.add_argument("store", help="Zarr store written by andoyer scan")
+    p.add_argument("--out", default="atlas.png", help="output PNG (default atlas.png)")
+    p.add_argument("--pdf", action="store_true", help="also write a PDF beside the PNG")
+    p.add_argument("--rows", default=None,
+                   help="swept dim along the rows (mu, h_level, M_level, A, B, C; default: "
+                        "the first swept)")
+    p.add_argument("--cols", default=None,
+                   help="swept dim along the columns (default: the second swept)")
+    p.add_argument("--select", action="append", metavar="NAME=VALUE",
+                   help="value of another swept dim (nearest; default: its first value)")
+    p.add_argument("--width", type=float, default=7.0, help="figure width, inches")
+    p.set_defaults(func=run)

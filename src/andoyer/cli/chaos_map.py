@@ -1,0 +1,110 @@
+"""``andoyer chaos-map``: FLI / MEGNO over a section's plane on an energy level, NetCDF + PNG."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from andoyer.cli._common import add_body_args, body_from_args
+
+NAME = "chaos-map"
+ORDER = 50
+
+
+def _grid(text: str) -> int | tuple[int, int]:
+    parts = text.replace("x", ",").split(",")
+    try:
+        vals = [int(p) for p in parts]
+    except ValueError:
+        raise ValueError(f"--n: {text!r} is not N or NX,NY (integers)") from None
+    if len(vals) == 1:
+        return vals[0]
+    if len(vals) == 2:
+        return vals[0], vals[1]
+    raise ValueError(f"--n: {text!r} is not N or NX,NY")
+
+
+def run(args: argparse.Namespace) -> int:
+    import time
+    from pathlib import Path
+
+    import matplotlib
+    import numpy as np
+
+    matplotlib.use("Agg")
+    from andoyer.analysis.chaos import chaos_map
+    from andoyer.integrate.variational import warm_up
+    from andoyer.io import write_netcdf
+    from andoyer.plot.chaos import plot_chaos_map
+    from andoyer.plot.section import save_figure
+
+    body = body_from_args(args)
+    grid = _grid(args.n)
+    if args.energy is None:
+        from andoyer import from_andoyer
+        from andoyer.charts.euler_poisson import energy
+
+        args.energy = float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, args.area])))
+    out = Path(args.out)
+    if out.suffix != ".nc":
+        raise ValueError(f"--out must name a NetCDF file ending in .nc, got {args.out!r}")
+    if not out.parent.exists():
+        raise ValueError(f"folder {str(out.parent)!r} of --out does not exist; create it first")
+    if args.engine == "heyoka":
+        source, seconds = warm_up(tol=args.tol)
+        print(f"variational integrator: {source} in {seconds:.2f} s")
+    t0 = time.perf_counter()
+    ds = chaos_map(body, args.energy, args.area, args.section, n=grid,
+                   t_end=args.t_end, indicator=args.indicator, engine=args.engine,
+                   chunk=args.chunk, progress=True, tol=args.tol, root=args.root,
+                   tangent=args.tangent)
+    elapsed = time.perf_counter() - t0
+    ds.attrs["elapsed_seconds"] = round(elapsed, 3)
+    write_netcdf(ds, out)
+    figures = []
+    for name in ("fli", "megno") if args.indicator == "both" else (args.indicator,):
+        png = out.with_suffix(".png") if args.indicator != "both" else \
+            out.with_name(f"{out.stem}-{name}.png")
+        ax = plot_chaos_map(ds, indicator=name)
+        fig = ax.get_figure(root=True)
+        assert fig is not None
+        figures += save_figure(fig, png)
+    n_ok = int(ds.attrs["n_accessible"]) - int(ds.attrs["n_failed"])
+    what = ", ".join(f"{v} in [{float(np.nanmin(ds[v])):.3g}, {float(np.nanmax(ds[v])):.3g}]"
+                     for v in ("fli", "megno") if v in ds)
+    print(f"{n_ok} orbits on H = {args.energy:g}, M = {args.area:g} to t = {args.t_end:g} in "
+          f"{elapsed:.1f} s; {what}; max energy error {float(ds.H_error.max()):.1e}")
+    print(f"wrote {out} and {', '.join(str(f) for f in figures)}")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="chaos map (FLI / MEGNO) over a section's plane: NetCDF + PNG",
+                       description="Fast Lyapunov indicator and/or mean MEGNO of the orbits "
+                                   "started on a grid of a section's plane, on one energy "
+                                   "level and area constant.")
+    add_body_args(p)
+    p.add_argument("--energy", type=float, default=None,
+                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
+    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
+    p.add_argument("--section", default="theta2=0",
+                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L) "
+                        "(default theta2=0)")
+    p.add_argument("--n", default="128", help="grid: N (N x N) or NX,NY (default 128)")
+    p.add_argument("--t-end", type=float, default=1000.0,
+                   help="integration time of every orbit (default 1000)")
+    p.add_argument("--indicator", choices=("fli", "megno", "both"), default="fli",
+                   help="indicator to store and draw (default fli)")
+    p.add_argument("--engine", choices=("heyoka", "scipy"), default="heyoka",
+                   help="integrator of the variational equations (default heyoka; scipy "
+                        "is a slow independent check)")
+    p.add_argument("--tol", type=float, default=1e-12, help="tolerance (default 1e-12)")
+    p.add_argument("--root", choices=("largest", "smallest"), default="largest",
+                   help="where the level has several sheets over a point, which action "
+                        "(default largest)")
+    p.add_argument("--tangent", choices=("leaf", "energy"), default="leaf",
+                   help="space of the initial tangent vectors (default leaf)")
+    p.add_argument("--chunk", type=int, default=1024,
+                   help="orbits per chunk: bounds memory (default 1024)")
+    p.add_argument("--out", default="chaos-map.nc", help="output NetCDF (PNG beside it)")
+    p.set_defaults(func=run)

@@ -1,0 +1,76 @@
+"""``andoyer scan``: a parameter scan on Dask, streamed into a Zarr store, resumable."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+NAME = "scan"
+ORDER = 60
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from andoyer.scan.config import STORAGE_NAMES, check_size, load_config
+    from andoyer.scan.run import scan, summary
+
+    cfg = load_config(args.config)
+    store = Path(args.store) if args.store else Path(Path(args.config).stem + ".zarr")
+    cost = check_size(cfg, args.max_core_hours, args.max_store_gb)
+    grid = " x ".join(f"{STORAGE_NAMES[k]}[{len(cfg.values(k))}]" for k in cfg.swept)
+    print(f"scan {args.config}: task {cfg.task} over {grid} "
+          f"(engine {cfg.integrator.engine}): {cost.describe()}")
+    if args.dry_run:
+        return 0
+    where = {"serial": "in this process (no Dask)", "local": "on a local cluster",
+             None: "on a local cluster"}.get(args.scheduler, f"on {args.scheduler}")
+    print(f"store {store}, computed {where}; interrupt at will: the same command resumes")
+    try:
+        report = scan(cfg, store, scheduler=args.scheduler, n_workers=args.workers,
+                      overwrite=args.overwrite, retries=args.retries,
+                      progress=None if args.progress is None else args.progress,
+                      max_core_hours=args.max_core_hours, max_store_gb=args.max_store_gb)
+    except KeyboardInterrupt:
+        print(f"\ninterrupted: the chunks marked done in {store} are kept; run the same "
+              "command to resume", file=sys.stderr)
+        return 130
+    if report.dashboard:
+        print(f"dashboard was at {report.dashboard}")
+    print(summary(report))
+    print(f"read it with xarray.open_zarr({str(store)!r}); draw it with "
+          f"andoyer atlas {store}")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="parameter scan (mu, h, M, A, B, C) on Dask into a "
+                                  "resumable Zarr store",
+                       description="Run the scan described by a TOML file (see "
+                                   "examples/atlas.toml and the README) and stream its "
+                                   "results into a Zarr store. Rerunning the same command "
+                                   "after an interruption computes only what is missing.")
+    p.add_argument("config", help="the scan's TOML configuration")
+    p.add_argument("--store", default=None,
+                   help="Zarr store (default: CONFIG's name with .zarr, in the current "
+                        "folder)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="tcp://HOST:PORT of a running Dask scheduler; 'local' (default): "
+                        "a local cluster on all cores; 'serial': no Dask")
+    p.add_argument("--workers", type=int, default=None,
+                   help="workers of the local cluster (default: all cores)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="start again in an existing store")
+    p.add_argument("--retries", type=int, default=2, help="retries of a failing task")
+    p.add_argument("--dry-run", action="store_true",
+                   help="validate the configuration, print the estimated cost, stop")
+    p.add_argument("--max-core-hours", type=float, default=100.0,
+                   help="refuse scans estimated above this CPU time (default 100)")
+    p.add_argument("--max-store-gb", type=float, default=50.0,
+                   help="refuse scans estimated above this storage (default 50)")
+    prog = p.add_mutually_exclusive_group()
+    prog.add_argument("--progress", dest="progress", action="store_true", default=None,
+                      help="progress line (default: when stderr is a terminal)")
+    prog.add_argument("--no-progress", dest="progress", action="store_false")
+    p.set_defaults(func=run)

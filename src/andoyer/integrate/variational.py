@@ -1,0 +1,528 @@
+"""Variational equations of the Euler-Poisson flow (1), for chaos indicators.
+
+The tangent flow and the indicator integrals are one heyoka system of 15 variables,
+compiled once and cached in memory and on disk:
+
+* ``y = (G1, G2, G3, gamma1, gamma2, gamma3)``: the Euler-Poisson equations (1), the
+  heyoka system of :mod:`andoyer.integrate.engines.heyoka_engine` (derived from
+  ``H = (G, IG)/2 + mu (r, gamma)`` by SymPy, nothing typed by hand);
+* ``w_G1 .. w_gamma3``: a tangent vector ``w`` carried by the linearised flow
+  ``dw/dt = J(y) w``; ``J(y) w`` is built by :class:`heyoka.var_ode_sys` (first-order
+  variational equations of (1)) and the vector is kept at unit length: the system
+  integrates ``u = w / |w|`` and ``rho = ln |w|``,
+
+  .. math::
+
+     \\dot u = J u - f u, \\qquad \\dot\\rho = f, \\qquad f = \\frac{u \\cdot J u}{u \\cdot u}
+
+  (a continuous renormalisation: ``|u|`` is a first integral of this system, and
+  ``|w| = e^rho`` never overflows however fast it grows);
+* three quadratures for the indicators (scaled by ``1/T`` resp. ``1/T^2``, with the
+  scale ``T`` a runtime parameter, so that every variable stays of order one --
+  heyoka controls its step with the sup norm of the whole state, and a large
+  quadrature would loosen the error control of ``y``):
+
+  - ``log_norm = rho / T``,
+  - ``megno_num = (1/T^2) int_0^t (s + delta) f(s) ds``,
+  - ``megno_int = (1/T^2) int_0^t 2 num(s) / (s + delta) ds``, ``num = T^2 megno_num``.
+
+From them (see :mod:`andoyer.analysis.chaos`) ``ln |w(t)| = T log_norm``, the MEGNO
+``Y(t) = 2/t int_0^t s f(s) ds = ((t + delta) Y_delta - 2 delta rho) / t`` exactly,
+with ``Y_delta = 2 num / (t + delta)``, and its mean ``<Y>_delta = int_0^t Y_delta
+ds / (t + delta)`` (Cincotta & Simo 2000). The shift ``delta`` (:data:`MEGNO_DELTA`)
+removes the ``1/t`` singularity of the mean at t = 0 (a Taylor integrator cannot
+evaluate ``0/0``); it changes ``<Y>`` by a relative ``O(delta / t)`` only.
+
+Runtime parameters: ``par[0..7] = (a, b, c, mu, e1, e2, e3, phi0)`` (the engines'
+``params``; ``phi0`` is not used by (1)) and ``par[8] = 1/T``. One compiled
+integrator serves every body, tolerance aside.
+
+Parallelism
+-----------
+Orbits run in blocks of ``batch_size`` lanes of one SIMD (batch-mode) integrator
+(:func:`heyoka.recommended_simd_size`, 4 doubles with AVX2), and blocks on a pool of
+threads, each owning one copy of the integrator (heyoka releases the GIL while it
+integrates). Results do not depend on the threads or the order of the blocks.
+(``heyoka.ensemble_propagate_*`` would deep-copy the integrator for every task;
+heyoka's ``parallel_mode`` parallelises one step and pays off only for systems of
+hundreds of variables, not 15.)
+
+Caches
+------
+An integrator (scalar or batch, per tolerance) is compiled once per process and kept
+in a module-level pool; threads and worker processes reuse it. It is also pickled to
+``$ANDOYER_CACHE_DIR`` (default ``$XDG_CACHE_HOME/andoyer`` or ``~/.cache/andoyer``),
+so a fresh process loads it in a few milliseconds instead of compiling for seconds.
+A cache file is named after a hash of its key -- heyoka and andoyer versions,
+tolerance, batch size, the host CPU, and a hash of the equations themselves -- and
+starts with a header holding the key and a SHA-256 checksum of the pickle: a stale,
+truncated or corrupted file is detected before unpickling and rebuilt (with a
+``RuntimeWarning``), never trusted. Files are written atomically. The cache holds
+pickles: keep the folder private, as any cache of executable code. heyoka also keeps
+its own on-disk cache of compiled code (``~/.cache/heyoka``), which makes even a
+rebuild cheaper.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import os
+import pickle
+import platform
+import threading
+import time
+import warnings
+from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from functools import cache
+from pathlib import Path
+from typing import Any, Literal, NamedTuple
+
+import heyoka as hy
+import numpy as np
+from numpy.typing import NDArray
+
+from andoyer._atomic import atomic_path
+from andoyer._version import __version__
+from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
+from andoyer.integrate.engines.heyoka_engine import _state_vars, _system, tolerance
+
+__all__ = [
+    "VARIATIONAL_STATE", "TANGENT", "N_VARIATIONAL", "MEGNO_DELTA", "SCALE_PAR",
+    "FORMULATION", "ENGINES", "variational_system", "warm_up", "cache_dir", "cache_file",
+    "clear_memory_cache",
+    "propagate_variational", "VariationalResult",
+]
+
+#: The tangent vector's components (``u = w/|w|``), in the order of ``STATE``.
+TANGENT: tuple[str, ...] = tuple(f"w_{name}" for name in STATE)
+
+#: Order of the 15 variables of the variational system.
+VARIATIONAL_STATE: tuple[str, ...] = (*STATE, *TANGENT, "log_norm", "megno_num",
+                                      "megno_int")
+N_VARIATIONAL = len(VARIATIONAL_STATE)
+
+#: Time shift of the MEGNO weights (see the module docstring).
+MEGNO_DELTA = 1e-6
+
+#: Index of the runtime parameter ``1/T`` (the quadratures' scale).
+SCALE_PAR = 8
+
+#: Name of this formulation; change it when the meaning of the variables changes.
+FORMULATION = "unit-tangent+megno-shifted/1"
+
+#: Engines that integrate the variational system.
+ENGINES = ("heyoka", "scipy")
+
+EngineName = Literal["heyoka", "scipy"]
+
+
+# ----------------------------------------------------------------------------- symbolic
+
+
+@cache
+def variational_system() -> tuple[tuple[Any, Any], ...]:
+    """The 15 ``(variable, rhs)`` pairs of the system, order :data:`VARIATIONAL_STATE`."""
+    base = list(_system())
+    vsys = hy.var_ode_sys(base, [_state_vars()[0]], order=1)
+    pairs = list(vsys.sys)
+    if vsys.n_orig_sv != len(STATE) or len(pairs) != 2 * len(STATE):
+        raise RuntimeError(f"unexpected variational system: {len(pairs)} equations")
+    # var_ode_sys gives the column d y / d G1(0): its right-hand side is J(y) times
+    # that column, linear in the column's variables -- renamed to the tangent vector u.
+    u = list(hy.make_vars(*TANGENT))
+    rename = dict(zip([v for v, _ in pairs[len(STATE):]], u, strict=True))
+    Ju = [hy.subs(rhs, rename) for _, rhs in pairs[len(STATE):]]
+    f = hy.sum([ui * Jui for ui, Jui in zip(u, Ju, strict=True)]) / hy.sum([ui * ui for ui in u])
+    log_norm, num, integral = hy.make_vars(*VARIATIONAL_STATE[-3:])
+    inv_T = hy.par[SCALE_PAR]
+    s = hy.time + MEGNO_DELTA
+    return (*((v, rhs) for v, rhs in pairs[:len(STATE)]),
+            *((ui, Jui - f * ui) for ui, Jui in zip(u, Ju, strict=True)),
+            (log_norm, f * inv_T),
+            (num, s * f * inv_T * inv_T),
+            (integral, 2.0 * num / s))
+
+
+@cache
+def _equations_hash() -> str:
+    text = "\n".join(f"{v} = {rhs}" for v, rhs in variational_system())
+    return hashlib.sha256(f"{FORMULATION}\n{text}".encode()).hexdigest()
+
+
+# ----------------------------------------------------------------------------- disk cache
+
+_MAGIC = b"andoyer-variational-cache\n"
+
+
+def cache_dir() -> Path:
+    """``$ANDOYER_CACHE_DIR``, else ``$XDG_CACHE_HOME/andoyer``, else ``~/.cache/andoyer``."""
+    env = os.environ.get("ANDOYER_CACHE_DIR")
+    if env:
+        return Path(env)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    return (Path(xdg) if xdg else Path.home() / ".cache") / "andoyer"
+
+
+@cache
+def _host() -> str:
+    """The host CPU (compiled code is specific to it): machine, model and feature flags."""
+    parts = [platform.machine(), platform.processor()]
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                if line.startswith(("model name", "flags", "Features")):
+                    parts.append(line.strip())
+                if line.strip() == "":
+                    break  # the first processor is enough
+    except OSError:
+        pass
+    return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:16]
+
+
+class _Key(NamedTuple):
+    batch_size: int
+    tol: float
+
+
+def _fingerprint(key: _Key) -> dict[str, Any]:
+    return {"formulation": FORMULATION, "heyoka": hy.__version__, "andoyer": __version__,
+            "tol": repr(key.tol), "batch_size": key.batch_size, "compact_mode": False,
+            "host": _host(), "equations": _equations_hash()}
+
+
+def cache_file(batch_size: int = 1, tol: float = 1e-12) -> Path:
+    """The cache file of the integrator for these settings (it may not exist)."""
+    fp = json.dumps(_fingerprint(_Key(int(batch_size), float(tol))), sort_keys=True)
+    return cache_dir() / f"variational-{hashlib.sha256(fp.encode()).hexdigest()[:24]}.pkl"
+
+
+def _load(path: Path, fp: dict[str, Any]) -> Any | None:
+    """The cached integrator, or None (absent, stale or corrupted: warned, not raised)."""
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return None
+    except OSError as err:
+        warnings.warn(f"cannot read the integrator cache {path}: {err}; compiling instead",
+                      RuntimeWarning, stacklevel=4)
+        return None
+    reason = None
+    try:
+        if not data.startswith(_MAGIC):
+            raise ValueError("not an andoyer cache file")
+        head, _, payload = data[len(_MAGIC):].partition(b"\n")
+        header = json.loads(head)
+        if header.get("fingerprint") != fp:
+            reason = "stale (different versions, tolerance, host or equations)"
+        elif hashlib.sha256(payload).hexdigest() != header.get("sha256"):
+            raise ValueError("checksum mismatch")
+        else:
+            ta = pickle.loads(payload)  # noqa: S301 -- our own checksummed file
+            m = getattr(ta, "batch_size", 1)
+            if ta.dim != N_VARIATIONAL or m != fp["batch_size"]:
+                raise ValueError("integrator of the wrong shape")
+            return ta
+    except Exception as err:  # any failure of a cache file means: rebuild it
+        reason = f"corrupted ({type(err).__name__}: {err})"
+    warnings.warn(f"integrator cache {path} is {reason}; compiling it again",
+                  RuntimeWarning, stacklevel=4)
+    return None
+
+
+def _save(path: Path, fp: dict[str, Any], ta: Any) -> None:
+    """Write the cache file atomically; a read-only or full disk only costs a warning."""
+    try:
+        payload = pickle.dumps(ta, protocol=pickle.HIGHEST_PROTOCOL)
+        header = json.dumps({"fingerprint": fp,
+                             "sha256": hashlib.sha256(payload).hexdigest()}).encode()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with atomic_path(path) as tmp:
+            tmp.write_bytes(_MAGIC + header + b"\n" + payload)
+    except (OSError, ValueError, pickle.PicklingError) as err:
+        warnings.warn(f"cannot write the integrator cache {path}: {err}", RuntimeWarning,
+                      stacklevel=4)
+
+
+def _compile(key: _Key) -> Any:
+    system = list(variational_system())
+    common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
+    if key.batch_size == 1:
+        return hy.taylor_adaptive(system, [0.0] * N_VARIATIONAL, **common)
+    return hy.taylor_adaptive_batch(system, np.zeros((N_VARIATIONAL, key.batch_size)),
+                                    **common)
+
+
+# ----------------------------------------------------------------------------- pool
+
+_TEMPLATES: dict[_Key, Any] = {}
+_SOURCES: dict[_Key, str] = {}
+_POOL: dict[_Key, list[Any]] = {}
+_LOCK = threading.Lock()
+
+
+def _template(key: _Key) -> Any:
+    """The compiled integrator for ``key``: from memory, from disk, or compiled now."""
+    with _LOCK:
+        if key in _TEMPLATES:
+            return _TEMPLATES[key]
+        fp = _fingerprint(key)
+        path = cache_file(key.batch_size, key.tol)
+        ta = _load(path, fp)
+        source = "disk"
+        if ta is None:
+            ta = _compile(key)
+            _save(path, fp, ta)
+            source = "compiled"
+        _TEMPLATES[key] = ta
+        _SOURCES[key] = source
+        _POOL[key] = []
+        return ta
+
+
+@contextmanager
+def _borrow(key: _Key) -> Iterator[Any]:
+    """A private copy of the compiled integrator for one thread (returned to the pool)."""
+    template = _template(key)
+    with _LOCK:
+        free = _POOL[key]
+        ta = free.pop() if free else None
+    if ta is None:
+        ta = copy.deepcopy(template)  # about a millisecond: the code is not recompiled
+    try:
+        yield ta
+    finally:
+        with _LOCK:
+            _POOL[key].append(ta)
+
+
+def warm_up(*, batch_size: int | None = None, tol: float = 1e-12) -> tuple[str, float]:
+    """Make the integrator for these settings ready; say where it came from and how long.
+
+    ``batch_size=None`` is :func:`heyoka.recommended_simd_size`, the batch size of maps.
+
+    Returns
+    -------
+    (source, seconds)
+        ``source`` is ``"memory"`` (already loaded in this process), ``"disk"`` (loaded
+        from :func:`cache_file`) or ``"compiled"`` (built now, and saved).
+
+    Examples
+    --------
+    >>> source, seconds = warm_up()
+    >>> source in ("memory", "disk", "compiled")
+    True
+    """
+    m = int(hy.recommended_simd_size()) if batch_size is None else _check_batch(batch_size)
+    key = _Key(m, tolerance(tol, tol))
+    t0 = time.perf_counter()
+    had = key in _TEMPLATES
+    _template(key)
+    return ("memory" if had else _SOURCES[key]), time.perf_counter() - t0
+
+
+def clear_memory_cache() -> None:
+    """Forget the integrators loaded in this process (the disk cache is kept)."""
+    with _LOCK:
+        _TEMPLATES.clear()
+        _SOURCES.clear()
+        _POOL.clear()
+
+
+def _check_batch(batch_size: int) -> int:
+    if isinstance(batch_size, bool) or int(batch_size) != batch_size or batch_size < 1:
+        raise ValueError(f"batch_size must be a positive integer, got {batch_size!r}")
+    return int(batch_size)
+
+
+# ----------------------------------------------------------------------------- propagation
+
+
+class VariationalResult(NamedTuple):
+    """What :func:`propagate_variational` returns."""
+
+    x: NDArray[np.float64]  # (n, k, 15): the variables of VARIATIONAL_STATE at times t
+    ok: NDArray[np.bool_]  # (n,): False where the integration failed (x is NaN there)
+
+
+def _pars(params: Params, scale: float) -> NDArray[np.float64]:
+    if len(params) != 8:
+        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
+                         f"got {len(params)} values")
+    return np.array([*map(float, params), 1.0 / scale])
+
+
+def _initial(y0: NDArray[np.float64], w0: NDArray[np.float64]) -> NDArray[np.float64]:
+    return np.concatenate([y0, w0, np.zeros((y0.shape[0], 3))], axis=1)
+
+
+def _good(outcome: Any) -> bool:
+    return bool(outcome == hy.taylor_outcome.time_limit)
+
+
+def _heyoka_block(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
+                  pars: NDArray[np.float64], out: NDArray[np.float64],
+                  ok: NDArray[np.bool_], tasks: _Counter) -> None:
+    """Integrate blocks of ``key.batch_size`` orbits taken from ``tasks`` until none is left."""
+    m = key.batch_size
+    n = x0.shape[0]
+    with _borrow(key) as ta:
+        if m == 1:
+            ta.pars[:] = pars
+        else:
+            ta.pars[:] = pars[:, None]
+            grid = np.ascontiguousarray(np.repeat(t, m).reshape(-1, m))
+        while (start := tasks.next()) is not None:
+            stop = min(start + m, n)
+            if m == 1:
+                ta.time = float(t[0])
+                ta.state[:] = x0[start]
+                res = ta.propagate_grid(t)
+                good = [_good(res[0])]
+                block = np.asarray(res[-1])[None]  # (1, k, 15)
+            else:
+                lanes = np.concatenate([x0[start:stop],
+                                        np.repeat(x0[start:start + 1], m - (stop - start),
+                                                  axis=0)])
+                ta.set_time(np.full(m, float(t[0])))
+                ta.state[:] = lanes.T
+                res = ta.propagate_grid(grid)
+                good = [_good(r[0]) for r in ta.propagate_res]
+                block = np.transpose(np.asarray(res[-1]), (2, 0, 1))  # (m, k, 15)
+            for j in range(stop - start):
+                ok[start + j] = good[j] and bool(np.all(np.isfinite(block[j])))
+                out[start + j] = block[j] if ok[start + j] else np.nan
+
+
+class _Counter:
+    """A thread-safe source of block start indices 0, step, 2 step, ... < n."""
+
+    def __init__(self, n: int, step: int) -> None:
+        self._next, self._n, self._step = 0, n, step
+        self._lock = threading.Lock()
+
+    def next(self) -> int | None:
+        with self._lock:
+            if self._next >= self._n:
+                return None
+            self._next += self._step
+            return self._next - self._step
+
+
+@cache
+def _cfunc() -> Any:
+    """The system's right-hand side compiled as a function of ``(x, par, time)``."""
+    system = variational_system()
+    return hy.cfunc([rhs for _, rhs in system], [v for v, _ in system])
+
+
+_CFUNC_LOCK = threading.Lock()
+
+
+def _scipy_orbit(x0: NDArray[np.float64], t: NDArray[np.float64], pars: NDArray[np.float64],
+                 tol: float) -> tuple[NDArray[np.float64], bool]:
+    from scipy.integrate import solve_ivp
+
+    with _CFUNC_LOCK:
+        cf = _cfunc()
+    buf = np.empty(N_VARIATIONAL)
+
+    def rhs(s: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        cf(x, pars=pars, time=s, outputs=buf)
+        return buf.copy()
+
+    rtol = max(tol * TOLERANCE_FACTOR, 100 * np.finfo(float).eps)
+    sol = solve_ivp(rhs, (t[0], t[-1]), x0, method="DOP853", t_eval=t, rtol=rtol,
+                    atol=tol * TOLERANCE_FACTOR)
+    if not sol.success or sol.y.shape[1] != t.size:
+        return np.full((t.size, N_VARIATIONAL), np.nan), False
+    return np.ascontiguousarray(sol.y.T), True
+
+
+def propagate_variational(y0: NDArray[np.float64], w0: NDArray[np.float64],
+                          t: NDArray[np.float64], params: Params, *, tol: float = 1e-12,
+                          scale: float | None = None, engine: EngineName = "heyoka",
+                          batch_size: int | None = None,
+                          n_threads: int | None = None) -> VariationalResult:
+    """Integrate orbits with their tangent vectors and indicator quadratures.
+
+    Plain arrays in and out (the friendly layer is :mod:`andoyer.analysis.chaos`).
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Euler-Poisson initial states.
+    w0 : ndarray, shape (n, 6)
+        Initial tangent vectors, unit length (``log_norm`` counts from ``ln |w0| = 0``).
+    t : ndarray, shape (k,)
+        Output times, increasing, ``t[0] = 0`` (the indicators count from t = 0).
+    params : tuple
+        ``(a, b, c, mu, e1, e2, e3, phi0)``.
+    tol : float
+        heyoka's tolerance; the scipy engine (DOP853) gets ``tol * TOLERANCE_FACTOR``.
+    scale : float, optional
+        The scale ``T`` of the quadratures (default ``t[-1]``).
+    engine : {"heyoka", "scipy"}
+        ``"heyoka"``: Taylor method, batch (SIMD) mode and threads. ``"scipy"``:
+        ``solve_ivp(DOP853)`` on the same right-hand side (compiled by heyoka), one
+        orbit at a time: an independent integrator for checks.
+    batch_size : int, optional
+        Orbits per SIMD integrator (heyoka); default :func:`heyoka.recommended_simd_size`
+        when there are that many orbits, else 1.
+    n_threads : int, optional
+        Threads running blocks of orbits; default ``os.cpu_count()``.
+
+    Returns
+    -------
+    VariationalResult
+        ``x`` of shape ``(n, k, 15)`` (order :data:`VARIATIONAL_STATE`), NaN for the
+        orbits whose integration failed (``ok`` False: a non-finite state).
+    """
+    y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, len(STATE))
+    w0 = np.ascontiguousarray(w0, dtype=float).reshape(-1, len(STATE))
+    t = np.ascontiguousarray(t, dtype=float).reshape(-1)
+    if y0.shape != w0.shape:
+        raise ValueError(f"y0 and w0 must have the same shape, got {y0.shape} and {w0.shape}")
+    if t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0.0) or not np.all(np.isfinite(t)):
+        raise ValueError("t must be increasing finite output times starting at t[0] = 0")
+    T = float(t[-1]) if scale is None else float(scale)
+    if not (math.isfinite(T) and T > 0.0):
+        raise ValueError(f"scale must be finite and > 0, got {scale!r}")
+    if engine not in ENGINES:
+        raise ValueError(f"unknown engine {engine!r} for the variational equations; choose "
+                         f"{' or '.join(repr(e) for e in ENGINES)}")
+    tol = tolerance(tol, tol)
+    pars = _pars(params, T)
+    n = y0.shape[0]
+    x0 = _initial(y0, w0)
+    out = np.empty((n, t.size, N_VARIATIONAL))
+    ok = np.zeros(n, dtype=bool)
+    if n == 0:
+        return VariationalResult(out, ok)
+    if engine == "scipy":
+        for i in range(n):
+            out[i], ok[i] = _scipy_orbit(x0[i], t, pars, tol)
+        return VariationalResult(out, ok)
+    simd = int(hy.recommended_simd_size())
+    m = _check_batch(batch_size) if batch_size is not None else (simd if n >= simd else 1)
+    threads = int(n_threads) if n_threads is not None else (os.cpu_count() or 1)
+    if threads < 1:
+        raise ValueError(f"n_threads must be >= 1, got {n_threads!r}")
+    key = _Key(m, tol)
+    _template(key)  # compile or load once, before the threads start
+    tasks = _Counter(n, m)
+    workers = min(threads, -(-n // m))
+    if workers <= 1:
+        _heyoka_block(key, x0, t, pars, out, ok, tasks)
+    else:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(_heyoka_block, key, x0, t, pars, out, ok, tasks)
+                       for _ in range(workers)]
+            for fut in futures:
+                fut.result()
+    return VariationalResult(out, ok)

@@ -1,0 +1,192 @@
+"""An atlas of a parameter scan: a grid of small Poincare sections or chaos maps.
+
+Rows and columns run over two swept parameters of a scan store
+(:mod:`andoyer.scan`); each panel is labelled with its parameter values. Datasets in,
+a :class:`matplotlib.figure.Figure` out; nothing is computed here.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+
+from andoyer.plot.section import LABELS, PLANES
+from andoyer.plot.style import angle_ticks, new_figure, paper_style
+
+__all__ = ["plot_atlas", "SYMBOLS"]
+
+#: Storage name of a swept parameter -> its symbol (mathtext).
+SYMBOLS = {"mu": r"\mu", "h_level": "h", "M_level": "M", "A": "A", "B": "B", "C": "C"}
+_INDICATORS = ("fli", "megno")
+_ANGLES = ("l_angle", "g_angle", "theta1", "theta2")
+
+
+def _swept(ds: xr.Dataset) -> list[str]:
+    if "scan_dims" not in ds.attrs:
+        raise ValueError("plot_atlas: the dataset is not a scan store (no scan_dims attr); "
+                         "open the store written by andoyer scan")
+    return [str(d) for d in json.loads(str(ds.attrs["scan_dims"]))]
+
+
+def _label(dim: str, value: float) -> str:
+    return f"${SYMBOLS.get(dim, dim)} = {value:.4g}$"
+
+
+def _section_plane(ds: xr.Dataset) -> tuple[str, str]:
+    coord = str(ds.attrs.get("section_coord", ""))
+    if coord not in PLANES:
+        raise ValueError(f"plot_atlas: cannot draw sections of {coord!r}; sections of "
+                         "'g' and 'theta2' are drawn")
+    return PLANES[coord]
+
+
+def _indicator(ds: xr.Dataset, swept: list[str]) -> str:
+    for name in _INDICATORS:
+        if name in ds.data_vars:
+            return name
+    for key, v in ds.data_vars.items():
+        if v.dtype.kind == "f" and v.ndim == len(swept) + 2:
+            return str(key)
+    raise ValueError("plot_atlas: no chaos indicator (fli, megno) in the dataset")
+
+
+def _panel_section(ax: Any, p: xr.Dataset, x: str, y: str, fold: bool) -> None:
+    X = np.asarray(p[x].values, dtype=float)
+    Y = np.asarray(p[y].values, dtype=float)
+    if fold:  # at M = 0, H is 2 pi-periodic in theta1: fold the double cover (Fig. 3)
+        X = np.mod(X, 2 * np.pi)
+    colour = np.broadcast_to(np.arange(X.shape[0])[:, None], X.shape)
+    ok = np.isfinite(X) & np.isfinite(Y)
+    # Dots small enough for thousands of points, visible for a few dozen.
+    size = float(np.clip(2000.0 / max(int(ok.sum()), 1), 0.4, 4.0))
+    ax.scatter(X[ok], Y[ok], c=colour[ok], s=size, marker=".", linewidths=0, cmap="turbo",
+               vmin=0, vmax=max(X.shape[0] - 1, 1), rasterized=True)
+    if x in _ANGLES:
+        hi = 2 * np.pi if fold or x != "theta1" else 4 * np.pi
+        ax.set_xlim(0.0, hi)
+        angle_ticks(ax, 0.0, hi)
+
+
+def _panel_map(ax: Any, p: xr.Dataset, name: str, norm: tuple[float, float]) -> Any:
+    v = p[name]
+    dy, dx = (str(d) for d in v.dims)  # chaos maps are (y, x), named after the plane
+    xs = p[f"{dx}_values"].values if f"{dx}_values" in p else np.arange(v.shape[1])
+    ys = p[f"{dy}_values"].values if f"{dy}_values" in p else np.arange(v.shape[0])
+    mesh = ax.pcolormesh(xs, ys, np.asarray(v.values, dtype=float), shading="nearest",
+                         cmap="magma", vmin=norm[0], vmax=norm[1], rasterized=True)
+    if dx in _ANGLES:
+        angle_ticks(ax, float(xs.min()), float(xs.max()))
+    return mesh
+
+
+def _heading(ds: xr.Dataset, task: str, fixed: Mapping[str, float]) -> str:
+    a = ds.attrs
+    parts = [f"body {a.get('body_name', '?')}"]
+    if "section_coord" in a:
+        sym = {"theta2": r"\theta_2", "g": "g"}.get(str(a["section_coord"]),
+                                                    str(a["section_coord"]))
+        what = "sections" if task == "section" else "chaos maps on"
+        parts.append(f"{what} ${sym} = {float(a['section_value']):.4g}$")
+    for key, dim in (("h_level", "h_level"), ("M_level", "M_level")):
+        if key in a:
+            parts.append(_label(dim, float(a[key])))
+    parts += [_label(d, v) for d, v in fixed.items()]
+    return ", ".join(parts)
+
+
+def plot_atlas(ds: xr.Dataset, *, rows: str | None = None, cols: str | None = None,
+               select: Mapping[str, float] | None = None, width: float = 7.0) -> Figure:
+    """Grid of panels, one per pair of values of two swept parameters.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A scan store (``xarray.open_zarr(store)``) of a ``section`` or ``chaos_map`` task.
+    rows, cols : str, optional
+        Swept dims along the rows and the columns (storage names: ``mu``, ``h_level``,
+        ``M_level``, ``A``, ``B``, ``C``). Default: the first two swept dims (one row if
+        only one is swept).
+    select : mapping, optional
+        Values of the other swept dims (nearest grid value); default: their first value.
+    width : float
+        Figure width in inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Sections as points (one colour per orbit; ``theta1`` folded mod 2 pi at
+        ``M = 0``), chaos maps as images; points not done yet, or empty, are marked.
+    """
+    swept = _swept(ds)
+    rows = rows if rows is not None else (swept[0] if len(swept) > 1 else None)
+    cols = cols if cols is not None else (swept[1] if len(swept) > 1 else swept[0])
+    for name, d in (("rows", rows), ("cols", cols)):
+        if d is not None and d not in swept:
+            raise ValueError(f"plot_atlas: {name} = {d!r} is not a swept dim "
+                             f"({', '.join(swept)})")
+    if rows == cols:
+        raise ValueError(f"plot_atlas: rows and cols are both {rows!r}")
+    sel = dict(select or {})
+    unknown = [k for k in sel if k not in swept or k in (rows, cols)]
+    if unknown:
+        raise ValueError(f"plot_atlas: select {unknown[0]!r}: choose among the swept dims "
+                         f"other than rows and cols: "
+                         f"{', '.join(d for d in swept if d not in (rows, cols)) or 'none'}")
+    fixed = {d: sel.get(d, float(ds[d].values[0])) for d in swept if d not in (rows, cols)}
+    sub = ds.sel(fixed, method="nearest") if fixed else ds
+    task = str(ds.attrs.get("scan_task", "section"))
+    nr = 1 if rows is None else sub.sizes[rows]
+    nc = sub.sizes[cols]
+    if task == "section":
+        x, y = _section_plane(ds)
+    else:
+        ind = _indicator(ds, swept)
+        vals = sub[ind].values
+        finite = vals[np.isfinite(vals)]
+        norm = ((float(np.percentile(finite, 1)), float(np.percentile(finite, 99)))
+                if finite.size else (0.0, 1.0))
+    with paper_style():
+        fig = new_figure(nr, nc, width=width, aspect=0.8)
+        axes = np.asarray(fig.axes).reshape(nr, nc)
+        image = None
+        for i in range(nr):
+            for j in range(nc):
+                ax = axes[i, j]
+                at = {cols: j} if rows is None else {rows: i, cols: j}
+                p = sub.isel(at)
+                title = ", ".join(_label(d, float(p[d].values))
+                                  for d in ((cols,) if rows is None else (rows, cols)))
+                ax.set_title(title, fontsize=7.5, pad=2)
+                if not bool(p["done"].values) or bool(p["empty"].values):
+                    ax.text(0.5, 0.5, "empty" if bool(p["empty"].values) else "not done",
+                            transform=ax.transAxes, ha="center", va="center",
+                            fontsize=7, color="0.5")
+                    continue
+                if task == "section":
+                    M = float(p["M_level"].values) if "M_level" in p.coords else float(
+                        ds.attrs.get("M_level", np.nan))
+                    _panel_section(ax, p, x, y, fold=(x == "theta1" and M == 0.0))
+                else:
+                    image = _panel_map(ax, p, ind, norm)
+                ax.tick_params(labelsize=6.5)
+        if task == "section":
+            for ax in axes[-1]:
+                ax.set_xlabel(LABELS.get(x, x))
+            for ax in axes[:, 0]:
+                ax.set_ylabel(LABELS.get(y, y))
+        else:
+            dy, dx = (str(d) for d in ds[ind].dims[-2:])
+            for ax in axes[-1]:
+                ax.set_xlabel(LABELS.get(dx, dx))
+            for ax in axes[:, 0]:
+                ax.set_ylabel(LABELS.get(dy, dy))
+            if image is not None:
+                fig.colorbar(image, ax=list(axes.ravel()), shrink=0.8, label=ind.upper())
+        fig.suptitle(_heading(ds, task, {d: float(sub[d].values) for d in fixed}),
+                     fontsize=8)
+    return fig

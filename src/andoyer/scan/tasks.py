@@ -1,0 +1,515 @@
+"""What a scan computes at one point of its grid: a registry of task kinds.
+
+A *task kind* turns one body and one pair of levels ``(h, M)`` of the integrals of
+Eq. (1) -- the energy ``H = h`` and the area integral ``(G, gamma) = M`` -- into an
+:class:`xarray.Dataset` with the task's own dims (``orbit``, ``crossing`` for a
+Poincare section; the plane of a chaos map). The scan adds the swept dims around it.
+
+Registered kinds (:data:`TASKS`):
+
+``section``
+    :func:`andoyer.integrate.fill_section` seeds ``orbits`` initial states on the
+    section plane at ``(h, M)``, and the first ``crossings`` crossings of each orbit
+    are found by the engine (the computation of :func:`andoyer.integrate.poincare`).
+``chaos_map``
+    :func:`andoyer.analysis.chaos.chaos_map` (FLI or MEGNO over a grid of the section
+    plane), enabled when that module is installed.
+``splitting``
+    :func:`andoyer.analysis.manifolds.separatrix_splitting` at the point's mu: the
+    splitting of the separatrices of the rotations about the middle axis, measured and
+    predicted by Melnikov (sweep mu, and A, B, C, to see how it scales).
+
+Determinism
+-----------
+Every task runs single-threaded inside its worker: the heyoka engine with one thread,
+the numba engine with ``numba.set_num_threads(1)`` (parallelism comes from the
+workers). Each orbit is integrated independently of the others and of the thread
+count, so a point gives the same numbers in a serial run, on a local cluster and on
+any cluster of the same CPU type (heyoka's SIMD batch width follows the CPU: mixing
+CPU types may change results at the 1e-10 level).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import math
+import numbers
+import time
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from functools import cache
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+import xarray as xr
+
+if TYPE_CHECKING:
+    from andoyer.body import RigidBody
+    from andoyer.integrate.engines.base import Engine
+    from andoyer.scan.config import ScanConfig
+
+__all__ = ["TASKS", "TaskKind", "Option", "Empty", "Integrator", "ChunkResult",
+           "REQUIRED", "run_chunk", "run_point"]
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+#: Default of an option that has none: the configuration must give it.
+REQUIRED: Any = _Required()
+
+
+class Integrator(NamedTuple):
+    """Engine and tolerances of every integration of a scan."""
+
+    engine: str
+    rtol: float
+    atol: float
+
+
+@dataclass(frozen=True)
+class Empty:
+    """A point with nothing to compute (e.g. the energy level misses the section)."""
+
+    reason: str
+
+
+@dataclass(frozen=True)
+class Option:
+    """One key of a task's ``[task]`` table: default, validation, documentation."""
+
+    default: Any
+    check: Callable[[str, Any], Any]
+    doc: str
+
+
+@dataclass(frozen=True)
+class TaskKind:
+    """A kind of task: its options, how to run one point, and what it costs.
+
+    Attributes
+    ----------
+    name : str
+        The ``kind`` in the ``[task]`` table.
+    options : mapping str -> Option
+        The other keys of ``[task]``.
+    run : callable ``(body, h, M, options, integrator) -> Dataset | Empty``
+        One point; raise ``ValueError`` for a point that cannot be computed (it is
+        stored empty, with the reason reported).
+    cost : callable ``options -> (core seconds, stored values)`` per point
+        A rough estimate, for the size check of a configuration.
+    fixed_coords : tuple of str
+        Coordinates of the task's dims that are the same at every point (kept as
+        coordinates); other coordinates are stored as variables ``<name>_values``.
+    requires : str, optional
+        Module (and attribute ``module:attr``) the kind needs; without it the kind
+        is registered but refused with a clear error.
+    validate : callable ``(options, bodies, integrator) -> None``, optional
+        Checks that need the bodies of the grid (e.g. a Hess-chart section needs the
+        centre of mass in the G1-G2 plane) or the engine.
+    static_attrs : tuple of str
+        Attributes of a point's result that are the same at every point: copied to the
+        store's attrs.
+    levels : tuple of str
+        Which of the levels ``h``, ``M`` are parameters of the task (``run`` gets None
+        for the others); ``levels_note`` says why a level is not one.
+    """
+
+    name: str
+    doc: str
+    options: Mapping[str, Option]
+    run: Callable[..., xr.Dataset | Empty] | None
+    cost: Callable[[Mapping[str, Any]], tuple[float, float]]
+    fixed_coords: tuple[str, ...] = ()
+    requires: str | None = None
+    validate: Callable[[Mapping[str, Any], list[RigidBody], Integrator], None] | None = None
+    not_implemented: str | None = field(default=None)
+    static_attrs: tuple[str, ...] = ()
+    levels: tuple[str, ...] = ("h", "M")
+    levels_note: str = ""
+
+    def unavailable(self) -> str | None:
+        """Why this kind cannot run here (``None`` if it can)."""
+        if self.requires is not None:
+            module, _, attr = self.requires.partition(":")
+            try:
+                found = importlib.util.find_spec(module) is not None
+            except ModuleNotFoundError:
+                found = False
+            if found and attr:
+                found = hasattr(importlib.import_module(module), attr)
+            if not found:
+                return (f"task kind {self.name!r} is not available yet: it needs "
+                        f"{self.requires.replace(':', '.')}, which this version of andoyer "
+                        f"does not have")
+        if self.not_implemented is not None or self.run is None:
+            return f"task kind {self.name!r} is not available yet: {self.not_implemented}"
+        return None
+
+
+# ---------------------------------------------------------------------- option checks
+def _int_at_least(lo: int) -> Callable[[str, Any], int]:
+    def check(key: str, v: Any) -> int:
+        if isinstance(v, bool) or not isinstance(v, numbers.Integral) or int(v) < lo:
+            raise ValueError(f"{key} must be an integer >= {lo}, got {v!r}")
+        return int(v)
+    return check
+
+
+def _choice(*allowed: str) -> Callable[[str, Any], str]:
+    def check(key: str, v: Any) -> str:
+        if v not in allowed:
+            raise ValueError(f"{key} must be one of {', '.join(map(repr, allowed))}, "
+                             f"got {v!r}")
+        return str(v)
+    return check
+
+
+def _positive_or_none(key: str, v: Any) -> float | None:
+    if v is None:
+        return None
+    if isinstance(v, bool) or not isinstance(v, numbers.Real) or not (
+            math.isfinite(float(v)) and float(v) > 0):
+        raise ValueError(f"{key} must be a positive finite number, got {v!r}")
+    return float(v)
+
+
+def _positive(key: str, v: Any) -> float:
+    out = _positive_or_none(key, v)
+    if out is None:
+        raise ValueError(f"{key} must be a positive finite number, got {v!r}")
+    return out
+
+
+def _section_text(fillable: bool) -> Callable[[str, Any], str]:
+    def check(key: str, v: Any) -> str:
+        from andoyer.integrate.section import Section
+
+        if not isinstance(v, str):
+            raise ValueError(f"{key} must be a string like 'theta2=0' or 'g=0:-', got {v!r}")
+        sec = Section.parse(v)
+        if fillable and sec.coord not in ("g", "theta2"):
+            raise ValueError(
+                f"{key} = {v!r}: a scan seeds its orbits on the section plane, which is "
+                "defined for 'g=VALUE' (plane (l, L)) and 'theta2=VALUE' (plane "
+                "(theta1, J1)) sections")
+        return f"{sec.coord}={sec.value!r}:{sec.direction:+d}"
+    return check
+
+
+def _pair_of_ints(key: str, v: Any) -> list[int]:
+    if (not isinstance(v, list) or len(v) != 2
+            or any(isinstance(k, bool) or not isinstance(k, numbers.Integral) or k < 2
+                   for k in v)):
+        raise ValueError(f"{key} must be two integers >= 2 ([nx, ny]), got {v!r}")
+    return [int(k) for k in v]
+
+
+def _needs_planar(options: Mapping[str, Any], bodies: list[RigidBody],
+                  integ: Integrator) -> None:
+    if not str(options["section"]).startswith("theta"):
+        return
+    bad = [b for b in bodies if abs(b.e3) > 1e-12]
+    if bad:
+        raise ValueError(
+            f"task.section = {options['section']!r} is a Hess-chart section, which needs "
+            f"the centre of mass in the G1-G2 plane (e3 = 0), but e3 = {bad[0].e3:.6g}; "
+            "use a 'g=VALUE' section or r = [e1, e2, 0]")
+
+
+# ---------------------------------------------------------------------- engines
+@cache
+def _engine(name: str) -> Engine:
+    """The engine a task uses, single-threaded (the workers give the parallelism).
+
+    Cached per process, and heyoka's compiled integrators are pooled per process, so a
+    worker compiles (or loads from heyoka's on-disk cache) once and reuses them.
+    """
+    if name == "heyoka":
+        from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
+
+        return HeyokaEngine(n_threads=1)
+    from andoyer.integrate.engines import get_engine
+
+    return get_engine(name)
+
+
+@contextmanager
+def _single_threaded(name: str) -> Iterator[None]:
+    """Numba's parallel loops on one thread (numba's setting is per calling thread)."""
+    if name != "numba":
+        yield
+        return
+    import numba
+
+    old = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(old)
+
+
+# ---------------------------------------------------------------------- section
+_SECTION_STORAGE = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action"}
+
+
+def _pick_orbits(y0: np.ndarray, n: int, sampling: str) -> np.ndarray:
+    """``n`` rows of the fill: a prefix of a low-discrepancy sequence, or an even subset
+    of a grid (whose rows are ordered along the plane, so a prefix would cut it)."""
+    if y0.shape[0] <= n:
+        return y0
+    if sampling == "grid":
+        return y0[np.round(np.linspace(0, y0.shape[0] - 1, n)).astype(np.intp)]
+    return y0[:n]
+
+
+def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
+                   integ: Integrator) -> xr.Dataset | Empty:
+    """Poincare section at ``(h, M)``: dims ``(orbit, crossing)``, NaN-padded.
+
+    The same numbers as ``poincare(body, fill_section(...)["y0"], section, crossings)``
+    (tested); the engine is called directly to run it single-threaded.
+    """
+    from andoyer.integrate.api import initial_states
+    from andoyer.integrate.fill import fill_section
+    from andoyer.integrate.results import states_dataset
+    from andoyer.integrate.section import Section
+
+    sec = Section.parse(options["section"])
+    n, k = int(options["orbits"]), int(options["crossings"])
+    try:
+        fill = fill_section(body, h, M, (sec.coord, sec.value), n=n,
+                            method=options["sampling"], seed=options["seed"],
+                            boundary_grid=options["boundary_grid"])
+    except ValueError as exc:  # the level misses the section, or no admissible point
+        return Empty(str(exc))
+    # As poincare() does: |gamma| = 1 to the last bit (the geometric integral's level).
+    y0 = initial_states(body, _pick_orbits(fill["y0"].values, n, options["sampling"]))
+    m = y0.shape[0]
+    t_max = 1000.0 * k if options["t_max"] is None else float(options["t_max"])
+    params = (*body.params, body.phi0 if abs(body.e3) <= 1e-12 else 0.0)
+    with _single_threaded(integ.engine):
+        cross = _engine(integ.engine).crossings(y0, params, sec.kind, sec.value,
+                                                sec.direction, k, t_max, integ.rtol,
+                                                integ.atol)
+    T, Y, count, Y0 = (np.full((n, k), np.nan), np.full((n, k, 6), np.nan),
+                       np.zeros(n, dtype=np.int64), np.full((n, 6), np.nan))
+    T[:m], Y[:m], count[:m], Y0[:m] = cross.t, cross.y, cross.count, y0
+    ds = states_dataset(body, Y, ("orbit", "crossing"),
+                        {"orbit": np.arange(n), "crossing": np.arange(k)}, {},
+                        extra={"t": (("orbit", "crossing"), T),
+                               "crossings_found": (("orbit",), count),
+                               "y0": (("orbit", "component"), Y0)})
+    var = ds[_SECTION_STORAGE.get(sec.coord, sec.coord)]
+    ds["section_residual"] = np.sin(var - sec.value) if sec.is_angle else var - sec.value
+    ds["n_orbits"] = ((), np.int64(m))
+    ds.t.attrs.update(long_name="time of the crossing", units="body time units")
+    ds.y0.attrs.update(long_name="initial Euler-Poisson state of the orbit, seeded on "
+                                 "the section plane by fill_section",
+                       components="G1 G2 G3 gamma1 gamma2 gamma3", equation="(1)")
+    ds.crossings_found.attrs.update(long_name="crossings found within t_max")
+    ds.section_residual.attrs.update(
+        long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing", units="1")
+    ds.n_orbits.attrs.update(long_name="orbits seeded at this point (the rest is NaN)")
+    return ds
+
+
+def _section_cost(options: Mapping[str, Any]) -> tuple[float, float]:
+    # Measured with heyoka on the paper's body (1 core): about 30 us per crossing and
+    # 0.1 s to fill the plane at boundary_grid = 64; 25 stored values per crossing.
+    n, k = options["orbits"], options["crossings"]
+    fill = 0.1 * (options["boundary_grid"] / 64.0) ** 2
+    return fill + 5e-5 * n * k, 25.0 * n * k
+
+
+# ---------------------------------------------------------------------- chaos map
+def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
+                 integ: Integrator) -> xr.Dataset | Empty:
+    """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.chaos_map`
+    (one thread; heyoka's tolerance ``min(rtol, atol)``)."""
+    from andoyer.integrate.section import Section
+
+    chaos = importlib.import_module("andoyer.analysis.chaos")
+    sec = Section.parse(options["section"])
+    try:
+        ds = chaos.chaos_map(body, h, M, (sec.coord, sec.value), n=tuple(options["n"]),
+                             t_end=options["t_end"], indicator=options["indicator"],
+                             engine=integ.engine, tol=min(integ.rtol, integ.atol),
+                             n_threads=1, progress=False)
+    except ValueError as exc:  # the level misses the section (arguments were validated)
+        return Empty(str(exc))
+    # The boundary polyline has a different length at every point: not stored (the
+    # indicator is NaN outside the accessible region, which draws it).
+    ds = ds.drop_dims("boundary_vertex", errors="ignore")
+    for key in ("n_accessible", "n_failed"):
+        if key in ds.attrs:
+            ds[key] = ((), np.int64(ds.attrs[key]))
+    return ds
+
+
+def _chaos_cost(options: Mapping[str, Any]) -> tuple[float, float]:
+    # Measured (heyoka, one core): ~3e-5 s per orbit and time unit with the variational
+    # equations; ~6 stored values per cell.
+    nx, ny = options["n"]
+    return 3e-5 * nx * ny * options["t_end"], 6.0 * nx * ny
+
+
+def _chaos_engine(options: Mapping[str, Any], bodies: list[RigidBody],
+                  integ: Integrator) -> None:
+    if integ.engine not in ("heyoka", "scipy"):
+        raise ValueError(f"a chaos map integrates the variational equations with heyoka or "
+                         f"scipy; set [integrator] engine = \"heyoka\" (got "
+                         f"{integ.engine!r})")
+    _needs_planar(options, bodies, integ)
+
+
+# ---------------------------------------------------------------------- splitting
+def _even_at_least_4(key: str, v: Any) -> int:
+    n = _int_at_least(4)(key, v)
+    if n % 2:
+        raise ValueError(f"{key} must be even, got {n}")
+    return n
+
+
+def _small_positive(key: str, v: Any) -> float:
+    x = _positive(key, v)
+    if x >= 0.1:
+        raise ValueError(f"{key} must be in (0, 0.1) (a distance from the periodic orbit "
+                         f"on its section), got {x!r}")
+    return x
+
+
+def _splitting_point(body: RigidBody, h: float | None, M: float | None,
+                     options: Mapping[str, Any], integ: Integrator) -> xr.Dataset | Empty:
+    """Separatrix splitting at this body's mu,
+    :func:`andoyer.analysis.manifolds.separatrix_splitting` with one value of mu.
+
+    Dims ``phase`` (the splitting grid on Sigma_0) and ``intersection`` (heteroclinic
+    points, NaN-padded to ``n_phase``); the intersection variables are prefixed
+    ``heteroclinic_`` (their ``g``, ``G`` become ``g_angle``, ``G_action``).
+    """
+    manifolds = importlib.import_module("andoyer.analysis.manifolds")
+    try:
+        out = manifolds.separatrix_splitting(
+            body, [body.mu], G=options["G"], branch=options["branch"],
+            delta=options["delta"], n_phase=options["n_phase"], progress=False)
+    except ValueError as exc:
+        return Empty(str(exc))
+    split = out["splitting"].isel(mu=0, drop=True)
+    n = int(options["n_phase"])
+    inter = out["intersections"].isel(mu=0, drop=True)
+    inter = inter.reindex(intersection=np.arange(n))  # NaN-padded: a fixed length
+    names = {"g": "g_angle", "G": "G_action"}
+    inter = inter.rename({k: "heteroclinic_" + names.get(str(k), str(k))
+                          for k in inter.data_vars})
+    ds = xr.merge([split, inter], compat="override", combine_attrs="override")
+    ds.attrs = dict(out["splitting"].attrs)
+    for key in ("energy", "theta1_line", "rho", "melnikov_amplitude"):
+        if key in ds.attrs:
+            ds[key] = ((), float(ds.attrs[key]))
+    return ds
+
+
+def _splitting_cost(options: Mapping[str, Any]) -> tuple[float, float]:
+    # Measured on the paper's body (one core): ~3 s at n_phase = 8.
+    n = options["n_phase"]
+    return 1.0 + 0.25 * n, 15.0 * n
+
+
+def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
+                      integ: Integrator) -> None:
+    if integ.engine != "heyoka":
+        raise ValueError("the splitting task grows the manifolds with heyoka; set "
+                         "[integrator] engine = \"heyoka\"")
+    for b in bodies:
+        if not b.is_hess:
+            raise ValueError(f"the splitting task needs a Hess body ([body] kind = \"hess\"), "
+                             f"got A, B, C = {b.A:g}, {b.B:g}, {b.C:g}")
+        if b.mu <= 0.0:
+            raise ValueError(f"the splitting task needs mu > 0 (at mu = 0 the separatrices "
+                             f"coincide), got mu = {b.mu:g}")
+
+
+# ---------------------------------------------------------------------- registry
+_SECTION_OPTIONS = {
+    "section": Option("theta2=0", _section_text(True),
+                      "'theta2=VALUE' (plane (theta1, J1)) or 'g=VALUE' (plane (l, L)); "
+                      "':+' (default) or ':-' for the crossing direction"),
+    "orbits": Option(20, _int_at_least(1), "orbits per point (seeded by fill_section)"),
+    "crossings": Option(300, _int_at_least(1), "crossings per orbit"),
+    "sampling": Option("sobol", _choice("sobol", "halton", "grid"),
+                       "how the orbits are seeded on the plane"),
+    "seed": Option(0, _int_at_least(0), "seed of the scrambled Sobol/Halton points"),
+    "boundary_grid": Option(64, _int_at_least(8),
+                            "grid of the accessible-region search in fill_section"),
+    "t_max": Option(None, _positive_or_none,
+                    "integrate at most to this time (default 1000 x crossings)"),
+}
+
+#: Task kinds by name.
+TASKS: dict[str, TaskKind] = {
+    "section": TaskKind(
+        "section", "Poincare section: fill_section + crossings (dims orbit, crossing)",
+        _SECTION_OPTIONS, _section_point, _section_cost, ("orbit", "crossing"),
+        validate=_needs_planar),
+    "chaos_map": TaskKind(
+        "chaos_map", "chaos indicator (FLI or MEGNO) over a grid of the section plane",
+        {"section": Option("theta2=0", _section_text(True), "the section plane"),
+         "n": Option([64, 64], _pair_of_ints, "grid [nx, ny] of the plane"),
+         "t_end": Option(1000.0, _positive, "integration time of each orbit"),
+         "indicator": Option("fli", _choice("fli", "megno"), "the chaos indicator")},
+        _chaos_point, _chaos_cost, requires="andoyer.analysis.chaos:chaos_map",
+        validate=_chaos_engine,
+        static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",
+                      "plane_y", "action", "root", "plane_equations", "definitions",
+                      "heyoka_version", "tol")),
+    "splitting": TaskKind(
+        "splitting", "separatrix splitting of the rotations about the middle axis",
+        {"G": Option(1.0, _positive, "the level h = c G^2 / 2 of the rotation about the "
+                                     "middle axis (at M = 0)"),
+         "branch": Option("theta1=4phi0", _choice("theta1=4phi0", "theta1=0"),
+                          "the heteroclinic line (theta1 = 0, the Hess solutions, does "
+                          "not split)"),
+         "n_phase": Option(16, _even_at_least_4, "phases of the splitting grid (even)"),
+         "delta": Option(1e-5, _small_positive,
+                         "distance of the fundamental domains from the periodic orbits")},
+        _splitting_point, _splitting_cost, ("phase", "intersection"),
+        requires="andoyer.analysis.manifolds:separatrix_splitting",
+        validate=_splitting_bodies,
+        static_attrs=("branch", "sheet", "G_level", "psi0", "delta", "heyoka_tol",
+                      "long_double", "n_phase", "plane", "relation"),
+        levels=(), levels_note="its level is h = c G^2 / 2 (option G) at M = 0"),
+}
+
+
+# ---------------------------------------------------------------------- running
+@dataclass(frozen=True)
+class ChunkResult:
+    """What a worker sends back: one result per point of the chunk (C order)."""
+
+    block: tuple[int, ...]
+    points: list[xr.Dataset | Empty]
+    seconds: float
+
+
+def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
+    """Run the task at the grid point ``index`` (one index per swept parameter)."""
+    kind = TASKS[config.task]
+    if kind.run is None:
+        raise ValueError(kind.unavailable() or f"task kind {config.task!r} cannot run")
+    values = config.point(index)
+    body = config.body_at(values)
+    return kind.run(body, values.get("h"), values.get("M"), dict(config.task_options),
+                    config.integrator)
+
+
+def run_chunk(config: ScanConfig, block: tuple[int, ...]) -> ChunkResult:
+    """Run every point of the chunk ``block`` (what one Dask task does)."""
+    t0 = time.perf_counter()
+    points = [run_point(config, index) for index in config.block_points(block)]
+    return ChunkResult(tuple(block), points, time.perf_counter() - t0)
