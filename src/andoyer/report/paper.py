@@ -9,8 +9,8 @@ complete one.
 
 Examples
 --------
->>> [item.key for item in ITEMS][0]
-'paper-check'
+>>> [item.key for item in ITEMS][:3]
+['fig1', 'fig2', 'heteroclinic']
 """
 
 from __future__ import annotations
@@ -436,16 +436,16 @@ def _chaos(ctx: Context) -> Result:
 
 
 ITEMS: list[Item] = [
-    Item("paper-check", "Every printed formula against the derivation", _paper_check),
     Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", _fig1),
     Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points", _fig2),
     Item("heteroclinic", "Heteroclinic orbits in closed form", _heteroclinic),
     Item("solutions", "The Hess solution and the physical pendulum", _solutions),
+    Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
+         "θ2 = 0", _fig3),
     Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
          _manifolds),
     Item("chaos", "Beyond the paper: chaos maps (FLI)", _chaos),
-    Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
-         "θ2 = 0", _fig3),
+    Item("paper-check", "Every printed formula against the derivation", _paper_check),
 ]
 
 
