@@ -77,6 +77,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from andoyer._validate import positive as _positive
 from andoyer.body import RigidBody
 from andoyer.integrate.results import provenance
 
@@ -191,16 +192,6 @@ def _check_body(body: RigidBody) -> None:
             f"the fixed-point classification needs three distinct moments of inertia, got "
             f"A={body.A}, B={body.B}, C={body.C}: an axisymmetric body has whole circles "
             "of permanent rotations (lines of fixed points); break the symmetry slightly")
-
-
-def _positive(name: str, value: Any) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-    return v
 
 
 # ---------------------------------------------------------------------- rotations

@@ -69,6 +69,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc
 
+from andoyer._validate import positive as _positive
 from andoyer.body import RigidBody
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.integrate.results import provenance, states_dataset
@@ -109,13 +110,6 @@ _T_IDX = [STATE.index(s) for s in TRANSVERSE]
 _EPS = float(np.finfo(float).eps)
 #: ``|h - mu| <= SEPARATRIX_RTOL * mu`` is the separatrix.
 SEPARATRIX_RTOL = 4.0 * _EPS
-
-
-def _positive(name: str, value: float) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
 
 
 def _pendulum_body(body: RigidBody, what: str) -> None:

@@ -68,6 +68,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import expit
 
+from andoyer._validate import positive as _positive
 from andoyer.analysis.fixed_points import _theta_text
 from andoyer.body import RigidBody
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
@@ -82,16 +83,6 @@ __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
 BRANCHES = ("theta1=0", "theta1=4phi0")
 
 TWO_PI = 2.0 * math.pi
-
-
-def _positive(name: str, value: Any) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-    return v
 
 
 def _sigma(body: RigidBody) -> float:
@@ -266,8 +257,6 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
         ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
     ds.time.attrs.update(long_name="time", units="body time units")
     return ds
-
-
 
 
 # ---------------------------------------------------------------------- separatrices

@@ -34,6 +34,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from andoyer._validate import finite as _finite
 from andoyer.body import RigidBody
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
@@ -100,18 +101,6 @@ def default_energy(body: RigidBody, M: float = 0.0) -> float:
     if not abs(M) < 1.0:
         raise ValueError(f"default_energy needs |M| < 1 (it sits at G = 1), got M = {M!r}")
     return float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, M])))
-
-
-def _finite(name: str, v: Any) -> float:
-    if isinstance(v, bool):
-        raise ValueError(f"{name} must be a real number, got {v!r}")
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {v!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {x!r}")
-    return x
 
 
 @dataclass(frozen=True)

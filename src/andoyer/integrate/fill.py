@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq
 from scipy.stats import qmc
 
+from andoyer._validate import finite as _finite
 from andoyer.body import RigidBody
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
@@ -275,16 +276,6 @@ def _parse_section(section: Any) -> tuple[_Plane, float]:
     if not math.isfinite(v):
         raise ValueError(f"section value must be finite, got {v!r}")
     return SECTION_PLANES[name], math.remainder(v, TWO_PI) % TWO_PI
-
-
-def _finite(name: str, v: Any) -> float:
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {v!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {x!r}")
-    return x
 
 
 def _check_bounds(bounds: Any, plane: _Plane
