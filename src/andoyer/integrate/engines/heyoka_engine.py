@@ -46,20 +46,35 @@ must not change the integrator). After the propagation, in NumPy:
   sign of the round-off in ``f(y0)``.
 
 An orbit stops after ``n_crossings`` accepted crossings: the propagation runs in
-chunks of steps (``max_steps``) whose length is extrapolated from the crossings
-found so far, so no Python code runs per step.
+chunks of steps (``max_steps``) and to end times predicted from the crossings found
+so far, so no Python code runs per step; per crossing, the callback does one list
+append (the polish and the bookkeeping are vectorised per chunk).
 
-Parallelism
------------
+Parallelism and scheduling
+--------------------------
 Independent orbits run on a thread pool: heyoka releases the GIL while it
 integrates (event callbacks take it back briefly). With ``batch_size > 1`` a
-propagation task is one batch (SIMD) integrator over ``batch_size`` orbits; for
+propagation task is one batch (SIMD) integrator over ``batch_size`` orbits. For
 crossings each thread owns one batch integrator and feeds its lanes from a shared
-queue of orbits: a lane whose orbit is done gets the next orbit at the end of a
-chunk, since lanes are independent in heyoka's batch mode (own time, step size and
-end time). Two traps are avoided this way: a terminal event in one lane of a batch
-integrator stops every lane, and ``heyoka.ensemble_propagate_until`` takes one end
-time for all orbits (and deep-copies the integrator for each one).
+queue of orbits; lanes are independent in heyoka's batch mode (own time, step size
+and end time), and a SIMD step costs the same whether or not a lane is busy, so the
+schedule keeps the lanes full:
+
+1. a pilot: every orbit takes ``_PILOT_STEPS`` steps (its crossings are kept), which
+   measures its return time and its steps per unit time;
+2. the orbits are queued longest first (most steps still to go), so that no thread
+   is left with a long orbit while the others idle;
+3. each lane runs to the predicted time of its orbit's last wanted crossing (half a
+   return later); a chunk ends when the first lane should be done, and a lane whose
+   orbit is done takes the next orbit from the queue.
+
+On the 50-orbit x 1000-crossing benchmark 97-98 % of the SIMD lane-steps are useful.
+Two traps are avoided this way: a terminal event in one lane of a batch integrator
+stops every lane, and ``heyoka.ensemble_propagate_until`` takes one end time for all
+orbits (and deep-copies the integrator for each one).
+
+What remains per crossing is heyoka's Python event callback (a few microseconds,
+under the GIL): it bounds sections whose crossings are only a few steps apart.
 """
 
 from __future__ import annotations
@@ -180,26 +195,24 @@ class _Recorder:
 
 
 class _BatchRecorder:
-    """Batch version: also records the lane of each root."""
+    """Batch version: records ``(lane, time, dense-output state)`` at each root.
+
+    One list append per root: this runs once per crossing under the GIL, so it does
+    as little as possible (the polish and the bookkeeping are done per chunk).
+    """
 
     def __init__(self, batch_size: int) -> None:
-        self.times = np.zeros(batch_size)
-        self.lane: list[int] = []
-        self.t: list[float] = []
-        self.y: list[NDArray[np.float64]] = []
+        self.batch_size = batch_size
+        self.rows: list[tuple[int, float, NDArray[np.float64]]] = []
 
     def __call__(self, ta: Any, time: float, d_sgn: int, lane: int) -> None:
         # Dense output is evaluated for all lanes at once; only ``lane`` is meaningful.
-        self.times[lane] = time
-        y = ta.update_d_output(self.times)
-        self.lane.append(lane)
-        self.t.append(time)
-        self.y.append(y[:, lane].copy())
+        # (A tuple argument is converted faster than an array.)
+        d = ta.update_d_output((time,) * self.batch_size)
+        self.rows.append((lane, time, d[:, lane].copy()))
 
     def clear(self) -> None:
-        self.lane.clear()
-        self.t.clear()
-        self.y.clear()
+        self.rows.clear()
 
 
 class _Key(NamedTuple):
@@ -321,13 +334,15 @@ def _propagate_batch(key: _Key, y0: NDArray[np.float64], t: NDArray[np.float64],
 class _Found(NamedTuple):
     t: NDArray[np.float64]
     y: NDArray[np.float64]
+    lane: NDArray[np.int64] | None = None  # batch lane of each crossing, where known
 
 
-def _accept(kind: int, t: Sequence[float], y: Sequence[NDArray[np.float64]],
-            pars: NDArray[np.float64]) -> _Found:
+def _accept(kind: int, t: Sequence[float] | NDArray[np.float64],
+            y: Sequence[NDArray[np.float64]], pars: NDArray[np.float64],
+            lane: NDArray[np.int64] | None = None) -> _Found:
     """Newton-polish raw event states onto the section, drop w <= 0 and t <= T_START."""
     if len(t) == 0:
-        return _Found(np.empty(0), np.empty((0, 6)))
+        return _Found(np.empty(0), np.empty((0, 6)), np.empty(0, dtype=np.int64))
     T = np.asarray(t, dtype=float)
     Y = np.array(y, dtype=float)  # (r, 6)
     cf = _section_cfunc(kind)
@@ -342,7 +357,7 @@ def _accept(kind: int, t: Sequence[float], y: Sequence[NDArray[np.float64]],
     Y = Y + dt[:, None] * F
     T = T + dt
     keep = (w > 0.0) & (T > T_START)
-    return _Found(T[keep], Y[keep])
+    return _Found(T[keep], Y[keep], None if lane is None else lane[keep])
 
 
 def _field(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -395,30 +410,99 @@ def _crossings_scalar(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float
     return _concat(found, n_crossings)
 
 
-class _Orbits:
-    """A thread-safe queue of orbit indices, shared by the batch workers."""
+class _Orbit:
+    """One orbit of a batched section run: where it is, and the crossings found so far."""
 
-    def __init__(self, n: int) -> None:
+    __slots__ = ("index", "y", "hi", "lo", "steps", "parts", "n", "t_first", "t_last")
+
+    def __init__(self, index: int, y0: NDArray[np.float64]) -> None:
+        self.index = index
+        self.y = y0
+        self.hi = self.lo = 0.0  # double-length time, as heyoka keeps it
+        self.steps = 0
+        self.parts: list[_Found] = []
+        self.n = 0
+        self.t_first = self.t_last = math.nan
+
+    def add(self, found: _Found) -> None:
+        if found.t.size:
+            if self.n == 0:
+                self.t_first = float(found.t[0])
+            self.t_last = float(found.t[-1])
+            self.n += found.t.size
+            self.parts.append(found)
+
+    def done(self, n_crossings: int, t_max: float) -> bool:
+        return self.n >= n_crossings or self.hi >= t_max
+
+    def return_time(self) -> float:
+        """Mean time between crossings so far (NaN before the first crossing)."""
+        if self.n >= 2:
+            return (self.t_last - self.t_first) / (self.n - 1)
+        return self.hi / self.n if self.n else math.nan
+
+    def end_time(self, n_crossings: int, t_max: float) -> float:
+        """Predicted time of the last crossing wanted, half a return later; ``t_max``
+        while the return time is unknown."""
+        r = self.return_time()
+        if not math.isfinite(r):
+            return t_max
+        return min(t_max, self.hi + (n_crossings - self.n + 0.5) * r)
+
+    def steps_to(self, t_end: float) -> float:
+        """Steps to ``t_end`` at the step rate seen so far."""
+        rate = self.steps / self.hi if self.hi > 0.0 else 1.0
+        return max(0.0, t_end - self.hi) * rate
+
+
+class _Queue:
+    """A thread-safe queue of orbits shared by the batch workers."""
+
+    def __init__(self, orbits: Sequence[_Orbit]) -> None:
+        self._orbits = list(orbits)
         self._next = 0
-        self._n = n
         self._lock = threading.Lock()
 
-    def pop(self) -> int | None:
+    def pop(self) -> _Orbit | None:
         with self._lock:
-            if self._next >= self._n:
+            if self._next >= len(self._orbits):
                 return None
             self._next += 1
-            return self._next - 1
+            return self._orbits[self._next - 1]
 
 
-def _crossings_batch_worker(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float64],
-                            n_crossings: int, t_max: float, orbits: _Orbits,
-                            out: list[_Found | None]) -> None:
-    """Fill the lanes of one batch integrator with orbits from ``orbits`` until none is left.
+#: Steps every orbit takes first (the pilot), to measure its return time and step
+#: rate; then the orbits are scheduled longest first.
+_PILOT_STEPS = 512
+#: Most steps of one chunk of a batch integrator, between two looks at its lanes.
+_MAX_CHUNK = 16384
+_MIN_CHUNK = 32
 
-    A lane whose orbit is done (``n_crossings`` found or ``t_max`` reached) gets the
-    next orbit at the end of the chunk; idle lanes are held at their time by their
-    end time. Lanes are independent in heyoka's batch mode (own step size and time).
+
+def _split_by_lane(kind: int, rows: list[tuple[int, float, NDArray[np.float64]]],
+                   pars: NDArray[np.float64], m: int) -> list[_Found]:
+    """Polish all roots of a chunk at once and split them by lane, in time order."""
+    lane = np.fromiter((r[0] for r in rows), dtype=np.int64, count=len(rows))
+    t = np.fromiter((r[1] for r in rows), dtype=float, count=len(rows))
+    order = np.lexsort((t, lane))
+    lane = lane[order]
+    found = _accept(kind, t[order], [rows[q][2] for q in order.tolist()], pars, lane)
+    assert found.lane is not None
+    bounds = np.searchsorted(found.lane, np.arange(m + 1))
+    return [_Found(found.t[bounds[j]:bounds[j + 1]], found.y[bounds[j]:bounds[j + 1]])
+            for j in range(m)]
+
+
+def _crossings_batch_worker(key: _Key, pars: NDArray[np.float64], n_crossings: int,
+                            t_max: float, queue: _Queue, budget: int | None) -> None:
+    """Run the orbits of ``queue`` through the lanes of one batch integrator.
+
+    Each lane runs its own orbit with its own end time (heyoka's batch lanes are
+    independent: own time, step size and end time). A lane's end time is the
+    predicted time of its orbit's last wanted crossing; a chunk stops when the first
+    lane should be done (at most ``_MAX_CHUNK`` steps), and a lane whose orbit is done
+    takes the next orbit from the queue, so lanes seldom idle. With ``budget`` each
+    orbit leaves its lane after that many steps (the pilot), keeping its state.
     """
     m = key.batch_size
     with _integrator(key) as slot:
@@ -426,63 +510,68 @@ def _crossings_batch_worker(key: _Key, y0: NDArray[np.float64], pars: NDArray[np
         assert isinstance(rec, _BatchRecorder)
         rec.clear()
         ta.pars[:] = pars[:slot.n_pars, None]
-        orbit = np.full(m, -1)
-        hi, lo = np.zeros(m), np.zeros(m)
+        lanes: list[_Orbit | None] = [None] * m
+        taken = np.zeros(m, dtype=np.int64)  # steps of the lane's orbit in this phase
         state = np.empty((6, m))
+        hi, lo = np.zeros(m), np.zeros(m)
+
+        def load(j: int) -> None:
+            orbit = queue.pop()
+            lanes[j] = orbit
+            taken[j] = 0
+            if orbit is not None:
+                state[:, j] = orbit.y
+                hi[j], lo[j] = orbit.hi, orbit.lo
+
         for j in range(m):
-            i = orbits.pop()
-            if i is None:
-                break
-            orbit[j] = i
-            state[:, j] = y0[i]
-        if orbit[0] < 0:
+            load(j)
+        if lanes[0] is None:
             return
-        state[:, orbit < 0] = y0[orbit[0]][:, None]  # idle lanes: any finite state
-        ta.state[:] = state
-        ta.set_dtime(hi, lo)
-        found: list[list[_Found]] = [[] for _ in range(m)]
-        n_found = np.zeros(m, dtype=np.int64)
-        steps = np.zeros(m, dtype=np.int64)
-        chunk = 64
+        for j in range(1, m):  # idle lanes: any finite state, held at their time
+            if lanes[j] is None:
+                state[:, j], hi[j], lo[j] = state[:, 0], 0.0, 0.0
         while True:
-            active = orbit >= 0
-            t_end = np.where(active, float(t_max), np.asarray(ta.time))
-            ta.propagate_until(t_end, max_steps=chunk)
-            for j, r in enumerate(ta.propagate_res):
-                if active[j]:
-                    _check(r[0], "looking for crossings")
-                    steps[j] += r[3]
-            if rec.t:
-                lane = np.asarray(rec.lane, dtype=np.int64)
-                for j in np.flatnonzero(active).tolist():
-                    sel = np.flatnonzero(lane == j)
-                    if sel.size and n_found[j] < n_crossings:
-                        new = _accept(key.kind, [rec.t[q] for q in sel],
-                                      [rec.y[q] for q in sel], pars)
-                        found[j].append(new)
-                        n_found[j] += new.t.size
-                rec.clear()
-            time = np.asarray(ta.time)
-            refill = active & ((n_found >= n_crossings) | (time >= t_max))
-            if refill.any():
-                hi, lo = (np.array(a, dtype=float) for a in ta.dtime)
-                state = np.array(ta.state)
-                for j in np.flatnonzero(refill).tolist():
-                    out[orbit[j]] = _concat(found[j], n_crossings)
-                    found[j], n_found[j], steps[j] = [], 0, 0
-                    nxt = orbits.pop()
-                    orbit[j] = -1 if nxt is None else nxt
-                    if nxt is not None:
-                        state[:, j] = y0[nxt]
-                        hi[j] = lo[j] = 0.0
-                ta.state[:] = state
-                ta.set_dtime(hi, lo)
-            active = orbit >= 0
-            if not active.any():
+            t_end = hi.copy()
+            chunk = float(_MAX_CHUNK)
+            for j, orbit in enumerate(lanes):
+                if orbit is None:
+                    continue
+                if budget is None:
+                    t_end[j] = orbit.end_time(n_crossings, t_max)
+                    chunk = min(chunk, orbit.steps_to(t_end[j]) + 8.0)
+                else:
+                    t_end[j] = t_max
+                    chunk = min(chunk, float(budget - taken[j]))
+            ta.state[:] = state
+            ta.set_dtime(hi, lo)
+            ta.propagate_until(t_end, max_steps=max(_MIN_CHUNK, math.ceil(chunk)))
+            res = ta.propagate_res
+            found = _split_by_lane(key.kind, rec.rows, pars, m) if rec.rows else None
+            rec.clear()
+            state = np.array(ta.state)
+            hi, lo = (np.array(a, dtype=float) for a in ta.dtime)
+            for j, orbit in enumerate(lanes):
+                if orbit is None:
+                    continue
+                _check(res[j][0], "looking for crossings")
+                orbit.steps += res[j][3]
+                taken[j] += res[j][3]
+                if found is not None:
+                    orbit.add(found[j])
+                orbit.y = state[:, j].copy()
+                orbit.hi, orbit.lo = float(hi[j]), float(lo[j])
+                if orbit.done(n_crossings, t_max) or (budget is not None
+                                                      and taken[j] >= budget):
+                    load(j)
+            if all(orbit is None for orbit in lanes):
                 return
-            chunk = min(_chunk_steps(n_crossings - int(n_found[j]), int(steps[j]),
-                                     int(n_found[j])) for j in np.flatnonzero(active))
-            chunk = min(chunk, 4096)
+
+
+def _schedule(orbits: list[_Orbit], n_crossings: int, t_max: float) -> list[_Orbit]:
+    """The unfinished orbits, longest (most steps still to go) first: no thread is left
+    with a long orbit at the end while the others idle."""
+    todo = [o for o in orbits if not o.done(n_crossings, t_max)]
+    return sorted(todo, key=lambda o: -o.steps_to(o.end_time(n_crossings, t_max)))
 
 
 def _concat(parts: list[_Found], n: int) -> _Found:
@@ -593,11 +682,18 @@ class HeyokaEngine:
             results = list(_run([partial(_crossings_scalar, key, y0[i], pars, n_crossings,
                                          float(t_max)) for i in range(n)], self.n_threads))
         else:
-            results = [None] * n
-            worker = partial(_crossings_batch_worker, key, y0, pars, n_crossings, float(t_max),
-                             _Orbits(n), results)
+            orbits = [_Orbit(i, y0[i]) for i in range(n)]
             n_workers = min(self.n_threads, -(-n // m))
-            _run([worker] * n_workers, n_workers)
+            # The pilot: every orbit takes a few hundred steps (its first crossings are
+            # kept), which measures its return time and step rate ...
+            queue = _Queue(orbits)
+            _run([partial(_crossings_batch_worker, key, pars, n_crossings, float(t_max),
+                          queue, _PILOT_STEPS)] * n_workers, n_workers)
+            # ... then the rest, longest first, lanes refilled as orbits finish.
+            queue = _Queue(_schedule(orbits, n_crossings, float(t_max)))
+            _run([partial(_crossings_batch_worker, key, pars, n_crossings, float(t_max),
+                          queue, None)] * n_workers, n_workers)
+            results = [_concat(o.parts, n_crossings) for o in orbits]
         for i, r in enumerate(results):
             assert r is not None
             c = r.t.size

@@ -1,0 +1,445 @@
+"""Side-by-side timings of andoyer and the scripts a user would write without it.
+
+Every runner gets the same initial states (:mod:`benchmarks.workloads`); its error is
+measured against the extended-precision reference (:mod:`benchmarks.reference`), not
+assumed from its tolerance. Wall times are medians of ``repeat`` runs after one
+untimed warm-up run (compilation is W4's subject); CPU times (all threads) are
+recorded beside them, since the machine may be shared.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from benchmarks import reference as R
+from benchmarks import workloads as W
+
+DEFAULT = "andoyer heyoka"
+STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
+
+
+@dataclass
+class Row:
+    """One runner on one workload."""
+
+    workload: str
+    case: str
+    runner: str
+    wall_s: float  # median over the timed runs (extrapolated where noted)
+    cpu_s: float
+    runs: list[float]
+    error_median: float = math.nan
+    error_max: float = math.nan
+    error_what: str = ""
+    note: str = ""
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def timed(fn: Callable[[], Any], repeat: int, warm_up: bool = True
+          ) -> tuple[float, float, list[float], Any]:
+    """(median wall, median CPU, all walls, last result) of ``repeat`` calls."""
+    if warm_up:
+        fn()
+    walls, cpus, out = [], [], None
+    for _ in range(repeat):
+        c0, t0 = time.process_time(), time.perf_counter()
+        out = fn()
+        walls.append(time.perf_counter() - t0)
+        cpus.append(time.process_time() - c0)
+    return statistics.median(walls), statistics.median(cpus), walls, out
+
+
+def _say(msg: str) -> None:
+    print(msg, file=sys.stderr, flush=True)
+
+
+# ----------------------------------------------------------------------------- W1
+
+
+def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
+    from andoyer.integrate import propagate
+    from benchmarks.peers import heyoka_scripts as hs
+    from benchmarks.peers import scipy_scripts as ss
+
+    b = W.body()
+    p = W.params(b)
+    y0 = W.initial_states(1)[0]
+    t = W.w1_times(sizes)
+    tol = sizes.tol
+    ref = R.orbit_end(p, y0, float(t[-1]))
+
+    def andoyer(engine: str) -> Callable[[], np.ndarray]:
+        def run() -> np.ndarray:
+            ds = propagate(b, y0, t, engine=engine, rtol=tol, atol=tol, progress=False)
+            return np.array([float(ds[v][0, -1]) for v in STATE])
+        return run
+
+    table: dict[str, tuple[Callable[[], np.ndarray], int]] = {
+        "andoyer heyoka": (andoyer("heyoka"), sizes.repeat),
+        "andoyer numba": (andoyer("numba"), sizes.repeat),
+        "andoyer scipy": (andoyer("scipy"), 1),
+        "heyoka plain": (lambda: hs.plain_orbit(p, y0, t, tol)[-1], sizes.repeat),
+        "scipy DOP853": (lambda: ss.orbit(p, y0, t, tol, tol)[-1], max(1, sizes.repeat // 2)),
+    }
+    rows = []
+    for name, (fn, repeat) in table.items():
+        if name not in runners:
+            continue
+        _say(f"W1 {name} ...")
+        slow = name.endswith("scipy") or name.startswith("scipy")
+        wall, cpu, walls, y = timed(fn, repeat, warm_up=not slow)
+        err = float(np.max(np.abs(np.asarray(y) - ref)))
+        rows.append(Row("W1", f"1 orbit to t = {t[-1]:g}, {t.size} outputs", name, wall, cpu,
+                        walls, err, err, "max |y(t_end) - y_ref|",
+                        note="" if not slow else f"{repeat} run(s), no warm-up"))
+    return rows
+
+
+# ----------------------------------------------------------------------------- W2
+
+
+def _errors(T: np.ndarray, Y: np.ndarray, t_ref: np.ndarray, y_ref: np.ndarray
+            ) -> tuple[float, float, dict[str, float]]:
+    e_y = np.max(np.abs(Y[:, -1] - y_ref), axis=-1)
+    e_t = np.abs(T[:, -1] - t_ref)
+    missing = int(np.isnan(T[:, -1]).sum())
+    return (float(np.nanmedian(e_y)), float(np.nanmax(e_y)),
+            {"t_error_median": float(np.nanmedian(e_t)), "t_error_max": float(np.nanmax(e_t)),
+             "orbits_short_of_n": missing})
+
+
+def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
+       sections: tuple[tuple[str, float], ...] = W.SECTIONS) -> list[Row]:
+    from andoyer.integrate import Section, poincare
+    from benchmarks.peers import heyoka_scripts as hs
+    from benchmarks.peers import scipy_scripts as ss
+
+    b = W.body()
+    p = W.params(b)
+    n, N, tol = sizes.w2_orbits, sizes.w2_crossings, sizes.tol
+    y0 = W.initial_states(n)
+    rows: list[Row] = []
+    for name, value in sections:
+        case = f"{n} orbits x {N} crossings of {name} = {value:g} (upward)"
+        _say(f"W2 reference {name} ({n} x {N}, extended precision; cached) ...")
+        t_ref, y_ref = R.crossing(p, y0, name, value, N)
+        section = Section(name, value, 1)
+
+        def andoyer(engine: str, y: np.ndarray = y0, section: Section = section
+                    ) -> Callable[[], tuple[np.ndarray, np.ndarray]]:
+            def run() -> tuple[np.ndarray, np.ndarray]:
+                ds = poincare(b, y, section, N, engine=engine, rtol=tol, atol=tol,
+                              progress=False)
+                return ds.t.values, np.stack([ds[v].values for v in STATE], axis=-1)
+            return run
+
+        def peer(fn: Callable[..., Any], *args: Any, y: np.ndarray = y0, name: str = name,
+                 value: float = value) -> Callable[[], tuple[np.ndarray, np.ndarray]]:
+            return lambda: fn(p, y, name, value, N, *args)
+
+        fast: dict[str, Callable[[], tuple[np.ndarray, np.ndarray]]] = {
+            "andoyer heyoka": andoyer("heyoka"),
+            "andoyer numba": andoyer("numba"),
+            "heyoka plain": peer(hs.plain_section, tol),
+            "heyoka ensemble": peer(hs.ensemble_section, tol, 2),
+            "heyoka hand-tuned": peer(hs.tuned_section, tol),
+        }
+        for runner, fn in fast.items():
+            if runner not in runners:
+                continue
+            _say(f"W2 {name} {runner} ...")
+            wall, cpu, walls, (T, Y) = timed(fn, sizes.repeat)
+            em, ex, extra = _errors(T, Y, t_ref, y_ref)
+            rows.append(Row("W2", case, runner, wall, cpu, walls, em, ex,
+                            f"max-norm error of the state at crossing {N}", extra=extra))
+        # scipy: a subset of the orbits, extrapolated by integrated time
+        k = n if full_scipy else min(n, sizes.scipy_orbits)
+        span = np.asarray(t_ref, dtype=float)
+        # (function of the orbit indices, orbits per process)
+        slow: dict[str, tuple[Callable[[np.ndarray], Any], int]] = {
+            "andoyer scipy": (lambda idx: andoyer("scipy", y0[idx])(), 1),
+            "scipy DOP853 serial": (lambda idx: peer(ss.section, tol, tol, y=y0[idx])(), 1),
+            "scipy DOP853 pool(2)": (
+                lambda idx: peer(ss.section_pool, tol, tol, 2, y=y0[idx])(), 2),
+        }
+        for runner, (sub, per_process) in slow.items():
+            if runner not in runners:
+                continue
+            idx = W.subset(n, min(n, k * per_process))
+            _say(f"W2 {name} {runner} on {idx.size} orbit(s) ...")
+
+            def call(sub: Callable[[np.ndarray], Any] = sub, idx: np.ndarray = idx) -> Any:
+                return sub(idx)
+
+            wall, cpu, walls, (T, Y) = timed(call, 1, warm_up=False)
+            scale = float(span.sum() / span[idx].sum())
+            em, ex, extra = _errors(T, Y, t_ref[idx], y_ref[idx])
+            extra.update(orbits_run=int(idx.size), measured_wall_s=wall, scale=scale)
+            rows.append(Row("W2", case, runner, wall * scale, cpu * scale, walls, em, ex,
+                            f"max-norm error of the state at crossing {N}",
+                            note=("" if idx.size == n else
+                                  f"extrapolated: {idx.size} of {n} orbits run once, "
+                                  f"time x {scale:.1f} (ratio of integrated time)"),
+                            extra=extra))
+    return rows
+
+
+# ----------------------------------------------------------------------------- W3
+
+
+def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
+    case = f"FLI map {sizes.w3_grid} x {sizes.w3_grid}, t = {sizes.w3_t_end:g}"
+    try:
+        from andoyer.analysis.chaos import chaos_map
+    except ImportError as exc:
+        return [Row("W3", case, DEFAULT, math.nan, math.nan, [],
+                    note=f"not available: andoyer.analysis.chaos.chaos_map ({exc})")]
+    from benchmarks.peers import fli_heyoka
+
+    b = W.body()
+    h = W.energy_level(b)
+    grid = (sizes.w3_grid, sizes.w3_grid)
+
+    def andoyer(tol: float = sizes.tol) -> Any:
+        return chaos_map(b, h, 0.0, ("theta2", 0.0), n=grid, t_end=sizes.w3_t_end,
+                         indicator="fli", tol=tol, progress=False)
+
+    _say("W3 andoyer heyoka ...")
+    wall, cpu, walls, ds = timed(andoyer, max(1, sizes.repeat // 2 + 1))
+    _say("W3 reference (heyoka at tol 1e-15) ...")
+    fli_ref = np.asarray(fli_heyoka.reference_map(ds, b, sizes.w3_t_end))
+    fli = np.asarray(ds.fli.values)
+    ok = np.isfinite(fli_ref)
+    err = np.abs(fli - fli_ref)[ok]
+    rows = [Row("W3", case, DEFAULT, wall, cpu, walls, float(np.median(err)),
+                float(np.max(err)), "|FLI - FLI_ref| over the accessible points",
+                extra={"points": int(ok.sum())})]
+    if "heyoka hand-tuned" in runners:
+        _say("W3 heyoka hand-tuned (var_ode_sys, batch, threads) ...")
+        y0, w0, t_out = fli_heyoka.inputs(ds, b, sizes.w3_t_end)
+        p = W.params(b)
+        wall, cpu, walls, f = timed(lambda: fli_heyoka.fli_map(p, y0, w0, t_out, sizes.tol),
+                                    max(1, sizes.repeat // 2 + 1))
+        e = np.abs(f - fli_ref[ok])
+        rows.append(Row("W3", case, "heyoka hand-tuned", wall, cpu, walls,
+                        float(np.median(e)), float(np.max(e)),
+                        "|FLI - FLI_ref| over the accessible points"))
+    return rows
+
+
+# ----------------------------------------------------------------------------- W4
+
+
+def w4(cold: bool, runners: set[str]) -> list[Row]:
+    names = [r for r in ("andoyer-heyoka", "andoyer-numba", "heyoka-plain")
+             if r.replace("-", " ") in runners]
+    rows = []
+    for runner in names:
+        for state in (("cold", "warm") if cold else ("warm",)):
+            env = dict(os.environ)
+            with tempfile.TemporaryDirectory() as tmp:
+                if state == "cold":
+                    env.update(BENCH_COLD_CACHE=tmp, NUMBA_CACHE_DIR=os.path.join(tmp, "numba"),
+                               ANDOYER_CACHE_DIR=os.path.join(tmp, "andoyer"))
+                _say(f"W4 {runner} {state} process ...")
+                out = subprocess.run([sys.executable, "-m", "benchmarks.startup", runner],
+                                     env=env, capture_output=True, text=True, check=True,
+                                     cwd=Path(__file__).resolve().parent.parent)
+            r = json.loads(out.stdout.strip().splitlines()[-1])
+            paid = r["first_s"] - r["second_s"]
+            rows.append(Row(
+                "W4", f"fresh process, {state} on-disk caches: propagate 1 orbit to 1e4 "
+                      "+ section 8 x 20", runner.replace("-", " "), r["first_s"], math.nan,
+                [r["first_s"], r["second_s"]],
+                note=f"first call {r['first_s']:.2f} s, second {r['second_s']:.3f} s: "
+                     f"compilation/cache load paid {paid:.2f} s",
+                extra={**r, "compile_paid_s": paid, "caches": state}))
+    return rows
+
+
+# ----------------------------------------------------------------------------- output
+
+
+def meta(mode: str, args: dict[str, Any]) -> dict[str, Any]:
+    import heyoka
+    import numba
+    import scipy
+
+    import andoyer
+
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, cwd=Path(__file__).parent).stdout.strip()
+    except OSError:
+        commit = ""
+    return {"date": datetime.now(UTC).isoformat(timespec="seconds"), "mode": mode,
+            "args": args, "python": platform.python_version(), "machine": platform.machine(),
+            "cpus": os.cpu_count(), "numpy": np.__version__, "scipy": scipy.__version__,
+            "heyoka": heyoka.__version__, "numba": numba.__version__,
+            "andoyer": andoyer.__version__, "commit": commit,
+            "simd_size": int(heyoka.recommended_simd_size())}
+
+
+def targets(rows: list[Row]) -> list[dict[str, Any]]:
+    """The issue's targets, each with the measured ratio and whether it is met."""
+    def get(wl: str, case_start: str, runner: str) -> Row | None:
+        for r in rows:
+            if r.workload == wl and r.case.find(case_start) >= 0 and r.runner == runner:
+                return r
+        return None
+
+    out: list[dict[str, Any]] = []
+
+    def ratio(what: str, a: Row | None, b: Row | None, limit: float, faster: bool) -> None:
+        if a is None or b is None or not (a.wall_s > 0 and b.wall_s > 0):
+            return
+        value = a.wall_s / b.wall_s if not faster else b.wall_s / a.wall_s
+        ok = value <= limit if not faster else value >= limit
+        out.append({"target": what, "value": value, "limit": limit, "met": bool(ok)})
+
+    for sec, _ in W.SECTIONS:
+        d = get("W2", f"of {sec} ", DEFAULT)
+        ratio(f"W2 {sec}: andoyer default / hand-tuned heyoka <= 1.0", d,
+              get("W2", f"of {sec} ", "heyoka hand-tuned"), 1.0, False)
+        ratio(f"W2 {sec}: plain heyoka loop / andoyer default >= 3", d,
+              get("W2", f"of {sec} ", "heyoka plain"), 3.0, True)
+        ratio(f"W2 {sec}: scipy DOP853 serial / andoyer default >= 100", d,
+              get("W2", f"of {sec} ", "scipy DOP853 serial"), 100.0, True)
+        ratio(f"W2 {sec}: andoyer numba / hand-tuned heyoka <= 3", get("W2", f"of {sec} ",
+              "andoyer numba"), get("W2", f"of {sec} ", "heyoka hand-tuned"), 3.0, False)
+        h = get("W2", f"of {sec} ", "heyoka hand-tuned")
+        if d is not None and h is not None:
+            out.append({"target": f"W2 {sec}: error at the last crossing no worse than "
+                                  "hand-tuned heyoka (median, max)",
+                        "value": [d.error_median, d.error_max],
+                        "limit": [h.error_median, h.error_max],
+                        "met": bool(d.error_median <= h.error_median * 1.5
+                                    and d.error_max <= max(h.error_max * 1.5, 1e-6))})
+    ratio("W1: andoyer default / plain heyoka <= 1.5", get("W1", "", DEFAULT),
+          get("W1", "", "heyoka plain"), 1.5, False)
+    for r in rows:
+        if r.workload == "W4" and r.extra.get("caches") == "warm" and \
+                r.runner.startswith("andoyer"):
+            paid = r.extra["compile_paid_s"]
+            out.append({"target": f"W4: {r.runner}, second process pays <= 0.5 s of "
+                                  "compilation", "value": paid, "limit": 0.5,
+                        "met": bool(paid <= 0.5)})
+    return out
+
+
+def _fmt(x: float, unit: str = "") -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "–"
+    if unit == "s":
+        return f"{x * 1e3:.1f} ms" if x < 1 else f"{x:.2f} s"
+    return f"{x:.1e}"
+
+
+def markdown(result: dict[str, Any]) -> str:
+    m = result["meta"]
+    rows = [Row(**r) for r in result["rows"]]
+    lines = [
+        "# Benchmarks: andoyer side by side with plain heyoka, hand-tuned heyoka and scipy",
+        "",
+        f"{m['date']}, mode **{m['mode']}**, {m['cpus']} CPUs ({m['machine']}), "
+        f"load average before/after {result['load_before']} / {result['load_after']}; "
+        f"Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, heyoka {m['heyoka']}, "
+        f"numba {m['numba']}, andoyer {m['andoyer']} ({m['commit']}).",
+        "",
+        "Paper's Hess body (A, B, C) = (2.5, 2.0, 2.2), mu = 0.01; initial states with M = 0,"
+        " |G| ~ 1 on the level of (l, g, L, G, M) = (0.3, 0, 0.3, 1, 0). Tolerance 1e-12 "
+        "everywhere (rtol = atol). Wall time: median of the timed runs after one warm-up "
+        "run; CPU: all threads. Errors against an extended-precision heyoka reference "
+        "(long double, tol 1e-19). **x default** = this runner's time / andoyer's default "
+        "(heyoka engine): above 1 means andoyer is that many times faster.",
+        ""]
+    for wl in ("W1", "W2", "W3", "W4"):
+        sub = [r for r in rows if r.workload == wl]
+        for case in dict.fromkeys(r.case for r in sub):
+            cs = [r for r in sub if r.case == case]
+            base = next((r.wall_s for r in cs if r.runner == DEFAULT), math.nan)
+            lines += [f"## {wl}: {case}", ""]
+            if wl == "W4":
+                lines += ["| runner | imports | first call | second call | compilation paid |",
+                          "|---|---|---|---|---|"]
+                for r in cs:
+                    lines.append(f"| {r.runner} | {_fmt(r.extra.get('import_s', math.nan), 's')}"
+                                 f" | {_fmt(r.extra.get('first_s', math.nan), 's')}"
+                                 f" | {_fmt(r.extra.get('second_s', math.nan), 's')} | "
+                                 f"{_fmt(r.extra.get('compile_paid_s', math.nan), 's')} |")
+                lines.append("")
+                continue
+            lines += ["| runner | wall | CPU | x default | error median | error max | note |",
+                      "|---|---|---|---|---|---|---|"]
+            for r in cs:
+                ratio = r.wall_s / base if base > 0 and math.isfinite(r.wall_s) else math.nan
+                lines.append(f"| {r.runner} | {_fmt(r.wall_s, 's')} | {_fmt(r.cpu_s, 's')} | "
+                             f"{'–' if not math.isfinite(ratio) else f'{ratio:.2f}'} | "
+                             f"{_fmt(r.error_median)} | {_fmt(r.error_max)} | {r.note} |")
+            what = next((r.error_what for r in cs if r.error_what), "")
+            lines += ["", f"Error: {what}." if what else "", ""]
+    lines += ["## Targets", "", "| target | measured | limit | met |", "|---|---|---|---|"]
+    for t in result["targets"]:
+        v, lim = t["value"], t["limit"]
+        vs = ", ".join(f"{x:.2g}" for x in v) if isinstance(v, list) else f"{v:.2f}"
+        ls = ", ".join(f"{x:.2g}" for x in lim) if isinstance(lim, list) else f"{lim:g}"
+        lines.append(f"| {t['target']} | {vs} | {ls} | {'yes' if t['met'] else '**no**'} |")
+    lines += ["", "Reproduce: `python -m benchmarks` (full, about 10 minutes on 2 cores) or "
+              "`python -m benchmarks --quick` (under a minute); see `benchmarks/README.md`.", ""]
+    return "\n".join(lines)
+
+
+def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4"),
+        runners: set[str] | None = None, full_scipy: bool = False, cold: bool | None = None,
+        out_dir: Path | None = None, sizes: W.Sizes | None = None,
+        sections: tuple[tuple[str, float], ...] = W.SECTIONS) -> dict[str, Any]:
+    """Run the workloads; write ``results.json`` and ``RESULTS.md`` into ``out_dir``.
+
+    ``sizes`` and ``sections`` override the full/quick problem sizes and W2's sections
+    (the harness's own tests run it on a tiny problem).
+    """
+    sizes = sizes if sizes is not None else (W.QUICK if quick else W.FULL)
+    everyone = {"andoyer heyoka", "andoyer numba", "andoyer scipy", "heyoka plain",
+                "heyoka ensemble", "heyoka hand-tuned", "scipy DOP853",
+                "scipy DOP853 serial", "scipy DOP853 pool(2)"}
+    runners = everyone if runners is None else runners
+    cold = (not quick) if cold is None else cold
+    load_before = [round(x, 2) for x in os.getloadavg()]
+    rows: list[Row] = []
+    if "W1" in workloads:
+        rows += w1(sizes, runners)
+    if "W2" in workloads:
+        rows += w2(sizes, runners, full_scipy, sections)
+    if "W3" in workloads:
+        rows += w3(sizes, runners)
+    if "W4" in workloads:
+        rows += w4(cold, {r.replace("-", " ") for r in runners})
+    result = {"meta": meta("quick" if quick else "full",
+                           {"workloads": list(workloads), "full_scipy": full_scipy,
+                            "cold": cold, "sizes": asdict(sizes)}),
+              "load_before": load_before,
+              "load_after": [round(x, 2) for x in os.getloadavg()],
+              "rows": [asdict(r) for r in rows], "targets": targets(rows)}
+    out_dir = Path(__file__).parent if out_dir is None else Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for name, text in (("results.json", json.dumps(result, indent=1, default=float)),
+                       ("RESULTS.md", markdown(result))):
+        tmp = out_dir / (name + ".tmp")
+        tmp.write_text(text)
+        tmp.replace(out_dir / name)
+    return result

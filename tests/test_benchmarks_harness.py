@@ -1,0 +1,146 @@
+"""The benchmark harness itself (nothing is timed here).
+
+* the peers' hand-written equations and section functions are andoyer's derived ones
+  (else the side-by-side would compare different problems);
+* the peers find the crossings andoyer finds;
+* the harness runs end to end on a tiny problem and writes a JSON file and a
+  markdown table with the errors against the reference, the ratios and the targets.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("heyoka")
+
+from benchmarks import harness, workloads  # noqa: E402
+from benchmarks import reference as R  # noqa: E402
+from benchmarks.__main__ import main  # noqa: E402
+from benchmarks.peers import heyoka_scripts as hs  # noqa: E402
+from benchmarks.peers import model  # noqa: E402
+from benchmarks.peers import scipy_scripts as ss  # noqa: E402
+
+from andoyer import RigidBody, from_andoyer, to_hess  # noqa: E402
+from andoyer.integrate import Section, poincare  # noqa: E402
+from andoyer.kernels._generated import ep_field  # noqa: E402
+
+BODY = RigidBody.paper()
+P = workloads.params(BODY)
+RNG = np.random.default_rng(5)
+
+
+def states(n: int) -> np.ndarray:
+    G = RNG.uniform(0.8, 1.2, n)
+    x = np.column_stack([RNG.uniform(0, 2 * np.pi, n), RNG.uniform(0, 2 * np.pi, n),
+                         G * RNG.uniform(-0.9, 0.9, n), G, G * RNG.uniform(-0.5, 0.5, n)])
+    return from_andoyer(x)
+
+
+@pytest.mark.parametrize("body", [BODY, RigidBody(2.4, 1.9, 1.4, mu=0.5, r=(0.4, -0.3, 0.85))])
+def test_peer_equations_are_andoyers_field(body: RigidBody) -> None:
+    import heyoka as hy
+
+    p = {**dict(zip(("a", "b", "c", "mu", "e1", "e2", "e3"), body.params, strict=True)),
+         "phi0": 0.0}  # phi0 only enters the theta2 section
+    y = states(20)
+    G1, G2, G3, g1, g2, g3 = y.T
+    want = np.array(ep_field(G1, G2, G3, g1, g2, g3, *body.params)).T
+    np.testing.assert_allclose(np.array([model.rhs(p)(0.0, s) for s in y]), want,
+                               rtol=1e-14, atol=1e-15)
+    sys_ = model.heyoka_system(p, hy)
+    cf = hy.cfunc([rhs for _, rhs in sys_], [v for v, _ in sys_])
+    np.testing.assert_allclose(cf(np.ascontiguousarray(y.T)).T, want, rtol=1e-14, atol=1e-15)
+
+
+def test_peer_theta2_section_is_the_hess_angle() -> None:
+    y = states(50)
+    for value in (0.0, 1.0, 5.5):
+        f, w = model.numpy_section(P, "theta2", value)(y)
+        theta2 = to_hess(BODY, y)[:, 1]
+        d = np.angle(np.exp(1j * (np.arctan2(f, w) - (theta2 - value))))
+        assert np.abs(d).max() < 1e-12
+
+
+def test_peers_find_andoyers_crossings() -> None:
+    y0 = workloads.initial_states(3)
+    for name in ("G3", "theta2"):
+        ds = poincare(BODY, y0, Section(name, 0.0, 1), 4, progress=False)
+        for T, _ in (hs.plain_section(P, y0, name, 0.0, 4, 1e-12),
+                     hs.ensemble_section(P, y0, name, 0.0, 4, 1e-12),
+                     hs.tuned_section(P, y0, name, 0.0, 4, 1e-12, t_pilot=30.0),
+                     ss.section(P, y0[:1], name, 0.0, 2, 1e-12, 1e-12)):
+            np.testing.assert_allclose(T, ds.t.values[:len(T), :T.shape[1]], rtol=0, atol=1e-8)
+
+
+def test_harness_end_to_end_on_a_tiny_problem(tmp_path, monkeypatch) -> None:
+    monkeypatch.setattr(R, "CACHE", tmp_path / "reference")
+    sizes = workloads.Sizes(w1_t_end=20.0, w1_points=5, w2_orbits=4, w2_crossings=3,
+                            scipy_orbits=1, repeat=1)
+    out = harness.run(workloads=("W1", "W2"), sizes=sizes, sections=(("G3", 0.0),),
+                      runners={"andoyer heyoka", "heyoka plain", "heyoka hand-tuned",
+                               "scipy DOP853 serial"}, out_dir=tmp_path)
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data == json.loads(json.dumps(out, default=float))
+    rows = {(r["workload"], r["runner"]): r for r in data["rows"]}
+    assert set(rows) == {("W1", "andoyer heyoka"), ("W1", "heyoka plain"),
+                         ("W2", "andoyer heyoka"), ("W2", "heyoka plain"),
+                         ("W2", "heyoka hand-tuned"), ("W2", "scipy DOP853 serial")}
+    for r in data["rows"]:
+        assert r["wall_s"] > 0
+        assert r["error_max"] < 1e-9  # measured against the reference, not assumed
+    scipy = rows[("W2", "scipy DOP853 serial")]
+    assert scipy["extra"]["orbits_run"] == 1 and "extrapolated" in scipy["note"]
+    assert scipy["extra"]["scale"] > 1.0  # 4 orbits from 1, by integrated time
+    assert math.isclose(scipy["wall_s"], scipy["extra"]["measured_wall_s"]
+                        * scipy["extra"]["scale"])
+    assert len(data["load_before"]) == 3 and data["meta"]["mode"] == "full"
+    text = (tmp_path / "RESULTS.md").read_text()
+    assert "| andoyer heyoka |" in text and "## Targets" in text
+    names = [t["target"] for t in data["targets"]]
+    assert any(n.startswith("W2 G3: andoyer default / hand-tuned") for n in names)
+    assert len(list((tmp_path / "reference").glob("crossing-G3-*.json"))) == 1
+
+
+def test_reference_is_cached_and_extended_precision(tmp_path, monkeypatch) -> None:
+    monkeypatch.setattr(R, "CACHE", tmp_path)
+    y0 = workloads.initial_states(1)[0]
+    a = R.orbit_end(P, y0, 10.0)
+    assert len(list(tmp_path.glob("orbit-*.json"))) == 1
+    stored = json.loads(next(tmp_path.glob("orbit-*.json")).read_text())
+    assert np.finfo(np.longdouble).eps < 1e-18 and float(stored["tol"]) < 1e-18
+    np.testing.assert_array_equal(R.orbit_end(P, y0, 10.0), a)  # from the cache
+    double = hs.plain_orbit(P, y0, np.array([0.0, 10.0]), 1e-15)[-1]
+    assert np.abs(double - a).max() < 1e-13
+
+
+def test_targets_and_table_from_rows() -> None:
+    def row(wl: str, case: str, runner: str, wall: float, err: float = 1e-10
+            ) -> harness.Row:
+        return harness.Row(wl, case, runner, wall, wall, [wall], err, err)
+
+    case = "50 orbits x 1000 crossings of G3 = 0 (upward)"
+    rows = [row("W2", case, "andoyer heyoka", 1.0), row("W2", case, "heyoka hand-tuned", 1.2),
+            row("W2", case, "heyoka plain", 3.5), row("W2", case, "andoyer numba", 4.0),
+            row("W1", "1 orbit", "andoyer heyoka", 0.01),
+            row("W1", "1 orbit", "heyoka plain", 0.005)]
+    t = {x["target"]: x for x in harness.targets(rows)}
+    assert t["W2 G3: andoyer default / hand-tuned heyoka <= 1.0"]["met"]
+    assert math.isclose(t["W2 G3: plain heyoka loop / andoyer default >= 3"]["value"], 3.5)
+    assert not t["W2 G3: andoyer numba / hand-tuned heyoka <= 3"]["met"]
+    assert not t["W1: andoyer default / plain heyoka <= 1.5"]["met"]
+    text = harness.markdown({"meta": harness.meta("test", {}), "load_before": [0, 0, 0],
+                             "load_after": [0, 0, 0], "targets": harness.targets(rows),
+                             "rows": [harness.asdict(r) for r in rows]})
+    assert "| heyoka hand-tuned | 1.20 s | 1.20 s | 1.20 |" in text
+    assert "| W1: andoyer default / plain heyoka <= 1.5 | 2.00 | 1.5 | **no** |" in text
+
+
+def test_command_line_rejects_unknown_names() -> None:
+    with pytest.raises(SystemExit):
+        main(["--workloads", "W9"])
+    with pytest.raises(SystemExit):
+        main(["--runners", "fortran"])
