@@ -40,8 +40,8 @@ class Sizes:
 
 
 FULL = Sizes()
-QUICK = Sizes(w1_t_end=1e3, w1_points=101, w2_orbits=8, w2_crossings=50, scipy_orbits=1, w3_grid=8,
-              w3_t_end=100.0, repeat=3)
+QUICK = Sizes(w1_t_end=1e3, w1_points=101, w2_orbits=8, w2_crossings=50, scipy_orbits=1,
+              w3_grid=8, w3_t_end=100.0, repeat=3)
 
 
 def body() -> RigidBody:
@@ -78,8 +78,8 @@ def w1_times(s: Sizes) -> np.ndarray:
 
 
 def subset(n: int, k: int) -> np.ndarray:
-    """``k`` orbit indices spread evenly over ``0..n-1`` (for the slow scipy runs)."""
-    return np.unique(np.linspace(0, n - 1, k).round().astype(int))
+    """``k`` orbit indices spread evenly inside ``0..n-1`` (for the slow scipy runs)."""
+    return np.unique(np.linspace(0, n - 1, k + 2)[1:-1].round().astype(int))
 
 
 def angle_value(name: str, value: float) -> float:

@@ -206,3 +206,17 @@ def test_engines_agree_on_crossings(engine_pair: tuple[Engine, Engine],
     np.testing.assert_array_equal(a.count, b.count)
     np.testing.assert_allclose(a.t, b.t, rtol=0, atol=1e-9, equal_nan=True)
     np.testing.assert_allclose(a.y, b.y, rtol=0, atol=1e-9, equal_nan=True)
+
+
+@pytest.mark.parametrize("engine", ["heyoka", "numba", "scipy"])
+def test_initial_state_on_the_section_is_not_a_crossing(engine):
+    """A state seeded on theta2 = 0 (round-off either side) is not crossing 0 (T_START)."""
+    from andoyer import RigidBody, from_hess
+    from andoyer.integrate import poincare
+
+    body = RigidBody.paper()
+    y0 = from_hess(body, [[1.0, 0.0, 0.3, 1.0, 0.0], [4.0, 0.0, 0.6, 1.0, 0.0]])
+    ds = poincare(body, y0, "theta2=0", 2, engine=engine)
+    assert float(ds.t.min()) > 1.0
+    ref = poincare(body, y0, "theta2=0", 2, engine="heyoka")
+    np.testing.assert_allclose(ds.t.values, ref.t.values, rtol=1e-8)

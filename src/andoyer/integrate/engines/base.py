@@ -75,3 +75,9 @@ class Engine(Protocol):
         located on the dense output / Taylor polynomial so that ``|f| <= 1e-12``
         (relative to the scale of f)."""
         ...
+
+
+#: A section root at t <= T_START is the initial state lying on the section (to
+#: round-off), not a crossing: "crossings after t = 0" must not depend on the sign of
+#: the round-off in the section function at y0. Every engine applies it.
+T_START = 1e-10

@@ -93,7 +93,7 @@ import numpy as np
 import sympy as sp
 from numpy.typing import NDArray
 
-from andoyer.integrate.engines.base import Crossings, Params
+from andoyer.integrate.engines.base import T_START, Crossings, Params
 from andoyer.kernels._generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
@@ -102,9 +102,6 @@ __all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up"]
 
 #: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
 PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
-
-#: A root at ``t <= T_START`` is the initial state on the section, not a crossing.
-T_START = 1e-10
 
 _DIRECTIONS = {1: hy.event_direction.positive, -1: hy.event_direction.negative,
                0: hy.event_direction.any}

@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
 from andoyer.integrate.engines.base import (
+    T_START,
     TOLERANCE_FACTOR,
     Crossings,
     Params,
@@ -166,7 +167,7 @@ class ScipyEngine:
                 for te, ye in zip(sol.t_events[0], sol.y_events[0], strict=True):
                     c = count[i]
                     # A root exactly at a window boundary is reported by both windows.
-                    if c == m or (c > 0 and te <= t_out[i, c - 1]) or te <= 0.0:
+                    if c == m or (c > 0 and te <= t_out[i, c - 1]) or te <= T_START:
                         continue
                     if event.fw(ye)[1] > 0.0:
                         t_out[i, c], y_out[i, c] = te, ye
