@@ -170,6 +170,17 @@ class RigidBody:
         """``kappa = (a - c)/e1^2``, equal to ``a - b`` on a Hess body (after Eq. (13))."""
         return self.a - self.b
 
+    @property
+    def sigma(self) -> float:
+        """``sigma = sqrt((b - c)(c - a))``: the exponent of the permanent rotation about z
+        is ``sigma G`` when z is the middle axis of inertia; NaN when it is not.
+
+        >>> round(RigidBody.paper().sigma, 12)
+        0.049792959773
+        """
+        prod = (self.b - self.c) * (self.c - self.a)
+        return math.sqrt(prod) if prod > 0.0 else math.nan
+
     def _require_planar(self, what: str) -> None:
         if abs(self.e3) > HESS_RTOL:
             raise ValueError(

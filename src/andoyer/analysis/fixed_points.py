@@ -636,7 +636,7 @@ def _fixed_points(body: RigidBody, chart: ReducedChart, action: float, period: f
         ev = np.linalg.eigvals(J)
         motions = tuple(by_key[k] for k in motion_keys)
         if line:
-            lam = 2.0 * math.sqrt((body.b - body.c) * (body.c - body.a)) * action
+            lam = 2.0 * body.sigma * action
             ev_closed = (complex(-lam), complex(lam))
         else:
             ev_closed = motions[0].eigenvalues_closed

@@ -555,11 +555,10 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
     Exact: along the pendulum ``d(G, r)/dt = -branch sigma G3 (G, r)`` and
     ``int G3 dt = 2 pi / c`` over one rotation.
     """
-    prod = (body.b - body.c) * (body.c - body.a)
-    if prod <= 0.0:
+    if not body.sigma > 0.0:
         raise ValueError("Oz is not the middle axis of inertia ((b - c)(c - a) <= 0): "
                          "rotations about it are not hyperbolic in the mu -> 0 limit")
-    return math.exp(2.0 * math.pi * math.sqrt(prod) / body.c)
+    return math.exp(2.0 * math.pi * body.sigma / body.c)
 
 
 def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",

@@ -126,13 +126,13 @@ def middle_axis_rate(body: RigidBody) -> float:
     >>> round(middle_axis_rate(RigidBody.paper()), 12)
     0.049792959773
     """
-    prod = (body.b - body.c) * (body.c - body.a)
-    if not prod > 0.0:
+    if not body.sigma > 0.0:
+        prod = (body.b - body.c) * (body.c - body.a)
         raise ValueError(
             f"the permanent rotation about the z axis is hyperbolic only when C is the "
             f"middle moment of inertia; got A={body.A}, B={body.B}, C={body.C} "
             f"((b - c)(c - a) = {prod:.3g} <= 0)")
-    return math.sqrt(prod)
+    return body.sigma
 
 
 def rotation_energy(body: RigidBody, G: float = 1.0) -> float:

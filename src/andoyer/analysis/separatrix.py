@@ -87,13 +87,13 @@ TWO_PI = 2.0 * math.pi
 
 def _sigma(body: RigidBody) -> float:
     """``sqrt((b - c)(c - a))``; needs the z axis to be the middle axis of inertia."""
-    prod = (body.b - body.c) * (body.c - body.a)
-    if not prod > 0.0:
+    if not body.sigma > 0.0:
+        prod = (body.b - body.c) * (body.c - body.a)
         raise ValueError(
             f"the rotation about the z axis is a saddle only when C is the middle moment "
             f"of inertia; got A={body.A}, B={body.B}, C={body.C} ((b - c)(c - a) = "
             f"{prod:.3g} <= 0): there is no heteroclinic orbit between L = -G and L = G")
-    return math.sqrt(prod)
+    return body.sigma
 
 
 def _require_hess(body: RigidBody, what: str) -> None:

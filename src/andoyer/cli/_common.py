@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-__all__ = ["add_body_args", "body_from_args", "add_engine_args", "floats"]
+__all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
+           "floats"]
 
 
 # ---------------------------------------------------------------------- bodies
@@ -62,3 +63,14 @@ def add_engine_args(p: argparse.ArgumentParser) -> None:
                    help="integration engine (default: heyoka where installed, else numba)")
     p.add_argument("--rtol", type=float, default=1e-12, help="relative tolerance")
     p.add_argument("--atol", type=float, default=1e-12, help="absolute tolerance")
+
+
+def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
+    """``--energy``, ``--area``, ``--section``: an energy level, area constant and section."""
+    p.add_argument("--energy", type=float, default=None,
+                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
+    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
+    p.add_argument("--section", default="theta2=0",
+                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L)"
+                        + ("; append ':-' for the decreasing direction" if directed else "")
+                        + " (default theta2=0)")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, body_from_args
+from andoyer.cli._common import add_body_args, add_level_args, body_from_args
 
 NAME = "chaos-map"
 ORDER = 50
@@ -84,12 +84,7 @@ def register(sub: Any) -> None:
                                    "started on a grid of a section's plane, on one energy "
                                    "level and area constant.")
     add_body_args(p)
-    p.add_argument("--energy", type=float, default=None,
-                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
-    p.add_argument("--section", default="theta2=0",
-                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L) "
-                        "(default theta2=0)")
+    add_level_args(p, directed=False)
     p.add_argument("--n", default="128", help="grid: N (N x N) or NX,NY (default 128)")
     p.add_argument("--t-end", type=float, default=1000.0,
                    help="integration time of every orbit (default 1000)")

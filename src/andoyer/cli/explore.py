@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_engine_args, body_from_args
+from andoyer.cli._common import add_body_args, add_engine_args, add_level_args, body_from_args
 
 NAME = "explore"
 ORDER = 45
@@ -34,12 +34,7 @@ def register(sub: Any) -> None:
                        description="Serve the explorer on http://127.0.0.1:PORT/ and block "
                                    "until Ctrl-C: click on the section plane to seed orbits.")
     add_body_args(p)
-    p.add_argument("--energy", type=float, default=None,
-                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
-    p.add_argument("--section", default="theta2=0",
-                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
-                        "append ':-' for the decreasing direction (default theta2=0)")
+    add_level_args(p)
     p.add_argument("--crossings", type=int, default=500,
                    help="crossings per orbit (default 500)")
     add_engine_args(p)

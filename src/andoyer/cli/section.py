@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_engine_args, body_from_args
+from andoyer.cli._common import add_body_args, add_engine_args, add_level_args, body_from_args
 
 NAME = "section"
 ORDER = 40
@@ -58,12 +58,7 @@ def run(args: argparse.Namespace) -> int:
 def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="Poincare section on an energy level: NetCDF + PNG")
     add_body_args(p)
-    p.add_argument("--energy", type=float, default=None,
-                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
-    p.add_argument("--section", default="theta2=0",
-                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
-                        "append ':-' for the decreasing direction (default theta2=0)")
+    add_level_args(p)
     p.add_argument("--orbits", type=int, default=40, help="orbits (default 40)")
     p.add_argument("--crossings", type=int, default=300,
                    help="crossings per orbit (default 300)")

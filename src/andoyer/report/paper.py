@@ -377,7 +377,7 @@ def _manifolds(ctx: Context) -> Result:
          "separatrix theta1 = 4 phi0 is measured as Delta G along the section.",
          "Melnikov function of mu H1 along the heteroclinic orbit: M(theta2) = "
          "-s pi rho / sinh(pi rho) [sin(theta1 + theta2) - sin theta2], rho = c/(2 sigma) "
-         f"= {body.c / (2 * float(np.sqrt((body.b - body.c) * (body.c - body.a)))):.4f} "
+         f"= {body.c / (2 * body.sigma):.4f} "
          "for this body: the splitting is exponentially small, and first order holds with "
          "a relative error that halves with mu (table).",
          f"The separatrix theta1 = 0 of the Hess solution does not split: max |Delta G| = "
