@@ -11,6 +11,7 @@ from andoyer.charts import from_hess as from_hess
 from andoyer.charts import geometric_integral as geometric_integral
 from andoyer.charts import to_andoyer as to_andoyer
 from andoyer.charts import to_hess as to_hess
+from andoyer.citation import cite as cite
 from andoyer.dynamics import cyclic_rate as cyclic_rate
 from andoyer.dynamics import hamiltonian as hamiltonian
 from andoyer.dynamics import vector_field as vector_field
@@ -20,6 +21,7 @@ __all__ = [
     "RigidBody",
     "Singular",
     "area_integral",
+    "cite",
     "cyclic_rate",
     "hamiltonian",
     "paper_check",
