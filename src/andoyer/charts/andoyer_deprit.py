@@ -47,6 +47,8 @@ __all__ = [
     "from_andoyer",
     "to_andoyer",
     "singular_mask",
+    "singular_flags",
+    "singular_distances",
     "require_regular",
 ]
 
@@ -156,14 +158,54 @@ def from_andoyer(x: ArrayLike) -> NDArray[np.float64]:
     return np.stack(np.broadcast_arrays(*cols), axis=-1)
 
 
-def singular_mask(y: ArrayLike) -> NDArray[np.int_]:
-    """:class:`Singular` flags of Euler-Poisson states (0 at regular points)."""
+def singular_mask(y: ArrayLike, scale: ArrayLike | None = None) -> NDArray[np.int_]:
+    """:class:`Singular` flags of Euler-Poisson states (0 at regular points).
+
+    ``G = 0`` is flagged where ``|G| <= SINGULAR_RTOL * scale`` (``scale``, e.g.
+    :func:`andoyer.charts.euler_poisson.momentum_bound`, broadcasts against the states;
+    without it only ``G == 0`` exactly); ``L = +-G`` and ``|M| = G`` relative to ``|G|``.
+    """
     arr = as_state(y)
-    return _flags(arr)[0]
+    return singular_flags(arr, scale)[0]
 
 
-def _flags(arr: NDArray[np.float64]) -> tuple[NDArray[np.int_], NDArray[np.float64],
-                                              NDArray[np.float64], NDArray[np.float64]]:
+def singular_distances(y: ArrayLike, scale: ArrayLike) -> NDArray[np.float64]:
+    """Relative distances of states to the singular sets, shape ``(..., 3)``.
+
+    Columns: ``|G| / scale`` (to ``G = 0``), ``sqrt(G1^2 + G2^2) / |G|`` (to ``L = +-G``,
+    the sine of the angle between G and body axis 3) and ``|G x gamma| / (|G| |gamma|)``
+    (to ``|M| = G``, the sine of the angle between G and the vertical). An angle that
+    depends on a set is resolved to about ``(state error) / distance``; the distances to
+    ``L = +-G`` and ``|M| = G`` are 0 where ``G = 0``.
+
+    Examples
+    --------
+    >>> d = singular_distances([0.0, 0.6, 0.8, 0.0, 0.0, 1.0], 2.0)
+    >>> [round(float(v), 12) for v in d]
+    [0.5, 0.6, 0.6]
+    """
+    arr = as_state(y)
+    Gv, gamma = arr[..., :3], arr[..., 3:]
+    G = np.linalg.norm(Gv, axis=-1)
+    rho = np.hypot(Gv[..., 0], Gv[..., 1])
+    cross = np.linalg.norm(np.cross(Gv, gamma), axis=-1)
+    gnorm = np.linalg.norm(gamma, axis=-1)
+    s = np.asarray(scale, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dG = np.where(s > 0, G / np.where(s > 0, s, 1.0), np.where(G > 0, np.inf, 0.0))
+        dL = np.where(G > 0, rho / np.where(G > 0, G, 1.0), 0.0)
+        dM = np.where(G * gnorm > 0, cross / np.where(G * gnorm > 0, G * gnorm, 1.0), 0.0)
+    return np.stack(np.broadcast_arrays(dG, dL, dM), axis=-1)
+
+
+def singular_flags(arr: NDArray[np.float64], scale: ArrayLike | None = None
+                   ) -> tuple[NDArray[np.int_], NDArray[np.float64], NDArray[np.float64],
+                              NDArray[np.float64]]:
+    """``(flags, |G|, sqrt(G1^2 + G2^2), |gamma|)`` of validated states ``arr``.
+
+    The flags as in :func:`singular_mask`; the lengths are returned because the chart
+    maps need them too.
+    """
     Gv, gamma = arr[..., :3], arr[..., 3:]
     G = np.linalg.norm(Gv, axis=-1)
     rho = np.hypot(Gv[..., 0], Gv[..., 1])
@@ -173,7 +215,10 @@ def _flags(arr: NDArray[np.float64]) -> tuple[NDArray[np.int_], NDArray[np.float
     flags = np.zeros(G.shape, dtype=int)
     flags |= np.where(rho <= SINGULAR_RTOL * G, int(Singular.L_EQ_PM_G), 0)
     flags |= np.where(cross <= SINGULAR_RTOL * G * gnorm, int(Singular.M_EQ_PM_G), 0)
-    flags = np.where(G == 0.0, int(Singular.G_ZERO), flags)
+    zero = G == 0.0
+    if scale is not None:
+        zero = zero | (G <= SINGULAR_RTOL * np.asarray(scale, dtype=float))
+    flags = np.where(zero, int(Singular.G_ZERO), flags)
     return flags, G, rho, gnorm
 
 
@@ -207,7 +252,7 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
         Only with ``with_mask=True``.
     """
     arr = as_state(y)
-    flags, G, rho, gnorm = _flags(arr)
+    flags, G, rho, gnorm = singular_flags(arr)
     G1, G2, G3, gamma1, gamma2, gamma3 = np.moveaxis(arr, -1, 0)
     M = G1 * gamma1 + G2 * gamma2 + G3 * gamma3
     # On |M| = G the dot product misses +-G|gamma| by round-off, which from_andoyer

@@ -32,6 +32,7 @@ __all__ = [
     "energy",
     "area_integral",
     "geometric_integral",
+    "momentum_bound",
     "as_state",
 ]
 
@@ -92,3 +93,29 @@ def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
     """Geometric integral ``C2 = |gamma|^2`` (equal to 1 on the physical level)."""
     arr = as_state(y)
     return np.einsum("...i,...i->...", arr[..., 3:], arr[..., 3:])
+
+
+def momentum_bound(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
+    """The largest ``|G|`` on the energy level of ``y``: the orbit's momentum scale.
+
+    On ``H = h`` the kinetic energy ``T = h - mu (r, gamma)`` is at most
+    ``h + mu |r| |gamma|`` and at least ``|G|^2 / (2 max(A, B, C))``, so every state of the
+    orbit through ``y`` has ``|G| <= sqrt(2 max(A, B, C) (h + mu |r| |gamma|))``. Singular
+    sets of the charts (``G -> 0``) are detected relative to this scale, which an orbit
+    keeps for all time (the Euler-Poisson state itself has no other momentum scale).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody(2.0, 2.0, 1.0, mu=1.0, r=(0, 0, 1))
+    >>> y = [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]  # at rest, upright: h = mu, T <= 2 mu
+    >>> round(float(momentum_bound(body, y)), 6)  # sqrt(2 A (h + mu))
+    2.828427
+    """
+    arr = as_state(y)
+    a, b, c, mu, e1, e2, e3 = body.params
+    rnorm = float(np.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
+    gnorm = np.sqrt(geometric_integral(arr))
+    room = np.maximum(energy(body, arr) + abs(mu) * rnorm * gnorm, 0.0)
+    bound = np.sqrt(2.0 * max(body.A, body.B, body.C) * room)
+    return np.maximum(bound, np.linalg.norm(arr[..., :3], axis=-1))

@@ -12,8 +12,14 @@ from numpy.typing import NDArray
 
 from andoyer._version import __version__
 from andoyer.body import RigidBody
-from andoyer.charts.andoyer_deprit import to_andoyer
-from andoyer.charts.euler_poisson import STATE, area_integral, energy, geometric_integral
+from andoyer.charts.andoyer_deprit import singular_mask, to_andoyer
+from andoyer.charts.euler_poisson import (
+    STATE,
+    area_integral,
+    energy,
+    geometric_integral,
+    momentum_bound,
+)
 from andoyer.charts.hess import to_hess
 
 __all__ = ["states_dataset", "provenance", "VARIABLE_ATTRS"]
@@ -71,7 +77,10 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     safe = np.where(valid[..., None], y, np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0]))
     data: dict[str, tuple[tuple[str, ...], Any]] = {
         name: (dims, y[..., i]) for i, name in enumerate(STATE)}
-    x, flags = to_andoyer(safe, with_mask=True)
+    x = to_andoyer(safe)
+    # G = 0 relative to the orbit's momentum scale (the largest |G| on its energy level),
+    # not only where |G| is exactly 0.
+    flags = singular_mask(safe, momentum_bound(body, safe))
     nan = np.where(valid, 1.0, np.nan)
     for i, name in enumerate(("l_angle", "g_angle", "L_action", "G_action", "M_action")):
         data[name] = (dims, x[..., i] * nan)

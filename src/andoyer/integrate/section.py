@@ -13,9 +13,25 @@ import math
 import re
 from dataclasses import dataclass
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.charts.andoyer_deprit import singular_distances
 from andoyer.kernels._generated import SECTION_KINDS
 
-__all__ = ["Section", "SECTION_KINDS"]
+__all__ = ["Section", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
+
+#: A crossing of an angle section counts only where the state's relative distance to
+#: every singular set the angle depends on (G = 0 relative to the orbit's momentum
+#: scale, L = +-G, |M| = G) exceeds this: closer, the angle is resolved no better than
+#: (state error) / distance, i.e. to worse than ~1e-6 rad, and at the set itself it is
+#: undefined (a "singular passage", reported apart from the crossings).
+SECTION_SINGULAR_RTOL = 1e-6
+
+#: Columns of :func:`andoyer.charts.andoyer_deprit.singular_distances` an angle needs:
+#: 0 (G = 0), 1 (L = +-G: the node of the invariant and body planes), 2 (|M| = G: the
+#: node of the invariant and horizontal planes).
+_ANGLE_NEEDS = {"l": (0, 1), "theta1": (0, 1), "g": (0, 1, 2), "theta2": (0, 1, 2)}
 
 _CHART_OF = {
     **{k: "euler_poisson" for k in ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")},
@@ -71,6 +87,28 @@ class Section:
     @property
     def is_angle(self) -> bool:
         return self.coord in ANGLES
+
+    def defined_distance(self, y: ArrayLike, scale: ArrayLike) -> NDArray[np.float64]:
+        """Relative distance of Euler-Poisson states to where the coordinate is undefined.
+
+        ``inf`` for the smooth coordinates (``G1``, ..., ``J2``: defined everywhere);
+        for an angle the smallest :func:`~andoyer.charts.andoyer_deprit.singular_distances`
+        column it depends on, ``G`` measured against ``scale`` (the orbit's momentum
+        scale, :func:`~andoyer.charts.euler_poisson.momentum_bound`).
+
+        Examples
+        --------
+        >>> y = [[0.0, 0.6, 0.8, 0.0, 0.0, 1.0], [0.0, 0.0, 1e-9, 0.0, 0.0, 1.0]]
+        >>> Section("l", 0.0).defined_distance(y, 1.0).round(12).tolist()
+        [0.6, 0.0]
+        >>> Section("G3", 0.0).defined_distance(y, 1.0).tolist()
+        [inf, inf]
+        """
+        arr = np.asarray(y, dtype=float)
+        if self.coord not in _ANGLE_NEEDS:
+            return np.full(arr.shape[:-1], np.inf)
+        d = singular_distances(arr, scale)
+        return np.min(d[..., list(_ANGLE_NEEDS[self.coord])], axis=-1)
 
     @classmethod
     def parse(cls, text: str) -> Section:

@@ -93,6 +93,7 @@ import numpy as np
 import sympy as sp
 from numpy.typing import NDArray
 
+from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import T_START, Crossings, Params
 from andoyer.kernels._generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
@@ -290,7 +291,7 @@ def _par_vector(params: Params, value: float) -> NDArray[np.float64]:
 def _check(outcome: Any, what: str) -> None:
     if outcome in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):
         return
-    raise FloatingPointError(
+    raise IntegrationError(
         f"heyoka stopped {what} with outcome {outcome!r} (non-finite state or step)")
 
 

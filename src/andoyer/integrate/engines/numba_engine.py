@@ -22,6 +22,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
+from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import (
     TOLERANCE_FACTOR,
     Crossings,
@@ -54,7 +55,7 @@ def _raise_on_failure(info: NDArray[np.int64], what: str) -> None:
     bad = np.flatnonzero(status != dop853.SUCCESS)
     if bad.size:
         i = int(bad[0])
-        raise FloatingPointError(
+        raise IntegrationError(
             f"numba DOP853 failed {what} for {bad.size} orbit(s), first orbit {i}: "
             f"{dop853.STATUS_MESSAGES[int(status[i])]} after "
             f"{int(info[i, dop853.INFO.index('accepted')])} steps")

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import (
     T_START,
     TOLERANCE_FACTOR,
@@ -54,7 +55,7 @@ class _Field:
         dy = ep_field(*y.tolist(), *self.p)
         # solve_ivp would loop for ever on a NaN step size.
         if not math.isfinite(sum(dy)):
-            raise FloatingPointError(f"scipy DOP853: non-finite field at t = {t!r}")
+            raise IntegrationError(f"scipy DOP853: non-finite field at t = {t!r}")
         return np.array(dy)
 
 
@@ -79,7 +80,7 @@ class _SectionEvent:
 
 def _check(sol: object, what: str) -> None:
     if getattr(sol, "status", -1) < 0:
-        raise FloatingPointError(f"scipy DOP853 failed {what}: {getattr(sol, 'message', '')}")
+        raise IntegrationError(f"scipy DOP853 failed {what}: {getattr(sol, 'message', '')}")
 
 
 class ScipyEngine:
@@ -161,8 +162,15 @@ class ScipyEngine:
             t, state, window = 0.0, y[i], _FIRST_WINDOW
             while count[i] < m and t < t_max:
                 t1 = min(t + window, t_max)
-                sol = solve_ivp(fun, (t, t1), state, method="DOP853", events=event,
-                                **self._tolerances(rtol, atol))
+                try:
+                    sol = solve_ivp(fun, (t, t1), state, method="DOP853", events=event,
+                                    **self._tolerances(rtol, atol))
+                except RuntimeError as exc:  # SciPy's root finder on a degenerate root
+                    raise IntegrationError(
+                        f"scipy DOP853 could not locate a root of the section function in "
+                        f"t = [{t:.6g}, {t1:.6g}] ({exc}); this happens at passages through "
+                        "a chart's singular set (e.g. G = 0): use the heyoka or numba "
+                        "engine, or a section of a smooth coordinate") from None
                 _check(sol, "while locating crossings")
                 for te, ye in zip(sol.t_events[0], sol.y_events[0], strict=True):
                     c = count[i]

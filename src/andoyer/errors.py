@@ -1,0 +1,36 @@
+"""The exceptions and warnings andoyer raises on purpose, in one place.
+
+Every expected failure is one of these or a plain ``ValueError``/``TypeError`` (bad
+input); the command line turns each into one line on stderr and its own exit code.
+
+Examples
+--------
+>>> issubclass(CostLimitError, ValueError), issubclass(IntegrationError, FloatingPointError)
+(True, True)
+"""
+
+from __future__ import annotations
+
+__all__ = ["CostLimitError", "IntegrationError", "SingularPassageWarning"]
+
+
+class CostLimitError(ValueError):
+    """The estimated time or memory of a request exceeds a documented limit.
+
+    The message gives the estimate, the limit and the argument that overrides it.
+    """
+
+
+class IntegrationError(FloatingPointError):
+    """An integrator failed (step size underflow, non-finite field, too many steps).
+
+    A ``FloatingPointError``, which is what the engines raised before it existed.
+    """
+
+
+class SingularPassageWarning(UserWarning):
+    """An orbit passed through a chart's singular set where a section angle is undefined.
+
+    Such passages are not crossings: they are counted and timed apart
+    (``singular_passages``, ``singular_passage_t`` in the section dataset).
+    """
