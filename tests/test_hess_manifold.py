@@ -150,6 +150,43 @@ def test_bad_input(paper_body):
         propagate_hess_manifold(paper_body, X0, t, rtol=1.0)
 
 
-def test_orbit_reaching_singular_set(paper_body):
-    with pytest.raises(ValueError, match="singular set.*propagate"):
-        propagate_hess_manifold(paper_body, [1.0, 0.4, 1.0, 0.2], [0.0, 200.0])
+def test_orbit_through_the_hess_charts_singular_set_integrates(paper_body):
+    # The docstring example (M = 0.2): the reduced Hess-chart integration stopped at
+    # t = 74 (L = +-G, J1 -> J2); on the manifold in Euler-Poisson variables it goes on.
+    t = np.linspace(0.0, 200.0, 401)
+    red = propagate_hess_manifold(paper_body, [1.0, 0.4, 1.0, 0.2], t)
+    assert int(red.sheet_switches) >= 1 and int(red.g_zero_passages) == 0
+    assert set(np.unique(red.theta1.values)) == {0.0, 2 * math.pi}
+    assert float(abs(red.hess_relation).max()) <= 1e-14
+    assert float(abs(red.area - 0.2).max()) <= 1e-14
+    full = propagate(paper_body, ep_state(red), t, engine="numba",
+                     rtol=1e-13, atol=1e-13).isel(orbit=0)
+    for v in STATE:
+        np.testing.assert_allclose(red[v].values, full[v].values, rtol=0, atol=1e-9)
+    # theta3 against the chart quadrature where the chart is regular.
+    from andoyer.dynamics import cyclic_rate
+    fine = np.linspace(0.0, 5.0, 2001)
+    red = propagate_hess_manifold(paper_body, [1.0, 0.4, 1.0, 0.2], fine)
+    x = np.stack([red[v].values for v in ("theta1", "theta2", "J1", "J2", "J3")], axis=-1)
+    rate = cyclic_rate(paper_body, x, "hess")
+    dm = np.gradient(red.theta3.values, fine)
+    np.testing.assert_allclose(dm[1:-1], rate[1:-1], rtol=1e-5, atol=1e-9)
+
+
+def test_hess_libration_through_G0_integrates_with_the_jump_of_m(paper_body):
+    # M = 0 libration of the Hess solution: passes G = 0, where m jumps by pi.
+    t = np.linspace(0.0, 120.0, 241)
+    red = propagate_hess_manifold(paper_body, [4.0, 0.03, 0.1, 0.0], t)
+    assert int(red.g_zero_passages) >= 1
+    assert float(abs(red.hess_relation).max()) <= 1e-15
+    full = propagate(paper_body, ep_state(red), t, engine="numba",
+                     rtol=1e-13, atol=1e-13).isel(orbit=0)
+    for v in STATE:
+        np.testing.assert_allclose(red[v].values, full[v].values, rtol=0, atol=1e-9)
+    jumps = np.diff(red.theta3.values)
+    assert np.allclose(np.sort(np.abs(jumps))[-int(red.g_zero_passages):], math.pi)
+
+
+def test_angular_momentum_reaching_the_vertical_is_refused(paper_body):
+    with pytest.raises(ValueError, match="singular set"):
+        propagate_hess_manifold(paper_body, [0.0, 0.0, 0.3, 0.1], [0.0, 1.0])

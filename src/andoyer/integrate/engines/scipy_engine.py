@@ -19,6 +19,8 @@ unlike the numba and heyoka engines whose residual stays at round-off.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,7 +36,7 @@ from andoyer.integrate.engines.base import (
 )
 from andoyer.kernels._generated import ep_field, section
 
-__all__ = ["ScipyEngine"]
+__all__ = ["ScipyEngine", "solve_dop853"]
 
 # Events are collected over windows of integration that double in length from this,
 # so that an orbit stops soon after its n-th crossing without a terminal event.
@@ -76,6 +78,30 @@ class _SectionEvent:
 
     def __call__(self, t: float, y: NDArray[np.float64]) -> float:
         return self.fw(y)[0]
+
+
+def solve_dop853(rhs: Callable[[float, NDArray[np.float64]], NDArray[np.float64]],
+                 t: NDArray[np.float64], y0: NDArray[np.float64], rtol: float, atol: float,
+                 *, events: Sequence[Callable[..., float]] | None = None) -> Any:
+    """``solve_ivp(method="DOP853")`` from ``t[0]`` with output at ``t``: the one helper
+    for integrations of right-hand sides other than the Euler-Poisson field (reduced
+    systems, canonical charts, quadratures), so that every SciPy integration is built
+    in this module. Tolerances are used as given (no :data:`TOLERANCE_FACTOR`).
+
+    Returns SciPy's ``OdeResult`` (status 1 when a terminal event fired); raises
+    :class:`~andoyer.errors.IntegrationError` when the integrator fails.
+
+    Examples
+    --------
+    >>> sol = solve_dop853(lambda t, y: -y, np.array([0.0, 1.0]), np.array([1.0]),
+    ...                    1e-12, 1e-12)
+    >>> bool(abs(sol.y[0, -1] - np.exp(-1.0)) < 1e-11)
+    True
+    """
+    sol = solve_ivp(rhs, (float(t[0]), float(t[-1])), y0, method="DOP853", t_eval=t,
+                    rtol=rtol, atol=atol, events=events)
+    _check(sol, "")
+    return sol
 
 
 def _check(sol: object, what: str) -> None:
