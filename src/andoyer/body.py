@@ -13,12 +13,17 @@ References
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import ParamSpec, TypeVar
 
 import numpy as np
 
-__all__ = ["RigidBody", "PAPER_BODY"]
+from andoyer.errors import ArgumentTypeError
+
+__all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
 
 #: Relative tolerance used to decide whether a body satisfies the Hess conditions (2).
 HESS_RTOL = 1e-12
@@ -261,3 +266,32 @@ class RigidBody:
 
 #: The body of the paper's computations (Fig. 3).
 PAPER_BODY = RigidBody.paper()
+
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Decorator of the public functions whose first argument is a body: anything but a
+    :class:`RigidBody` there raises one clear ``TypeError`` naming the function.
+
+    Examples
+    --------
+    >>> from andoyer import energy
+    >>> energy("paper", [0, 0, 1, 0, 0, 1])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    andoyer.errors.ArgumentTypeError: energy: body must be a RigidBody (...), got str 'paper'
+    """
+
+    @functools.wraps(func)
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        body = args[0] if args else kwargs.get("body")
+        if not isinstance(body, RigidBody):
+            raise ArgumentTypeError(
+                f"{func.__name__}: body must be a RigidBody (e.g. RigidBody.paper() or "
+                f"RigidBody.hess(A, B, C, mu)), got {type(body).__name__} {repr(body)[:60]}")
+        return func(*args, **kwargs)
+
+    return wrapper

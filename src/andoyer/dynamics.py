@@ -14,7 +14,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import as_andoyer, require_regular
 from andoyer.charts.euler_poisson import as_state
 from andoyer.charts.hess import as_hess
@@ -62,6 +62,7 @@ def _regular_check(arr: NDArray[np.float64], chart: str, what: str) -> None:
     require_regular(flags.astype(int), what)
 
 
+@checks_body
 def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
                 ) -> NDArray[np.float64]:
     """H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).
@@ -88,6 +89,7 @@ def _field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
     return np.stack(np.broadcast_arrays(*cols, arr[..., 0]), axis=-1)[..., :-1]
 
 
+@checks_body
 def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
                  ) -> NDArray[np.float64]:
     """Time derivative of the chart coordinates, same shape as ``x``.
@@ -100,6 +102,7 @@ def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
     return _field(body, x, chart)[..., : len(CHARTS[chart])]
 
 
+@checks_body
 def cyclic_rate(body: RigidBody, x: ArrayLike, chart: Chart = "andoyer"
                 ) -> NDArray[np.float64]:
     """``dm/dt = dH/dM`` (``= dtheta3/dt = dH/dJ3``): the quadrature for the cyclic angle."""

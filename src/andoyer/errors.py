@@ -11,7 +11,14 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["CostLimitError", "IntegrationError", "SingularPassageWarning"]
+__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "SingularPassageWarning"]
+
+
+class ArgumentTypeError(TypeError, ValueError):
+    """An argument of the wrong type (a string where a :class:`~andoyer.RigidBody` belongs).
+
+    Both a ``TypeError`` and a ``ValueError``, so that code catching either sees it.
+    """
 
 
 class CostLimitError(ValueError):

@@ -62,10 +62,11 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
 from andoyer.charts.hess import from_hess
+from andoyer.integrate import budget
 from andoyer.integrate.api import _params, _Progress, initial_states
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
@@ -136,6 +137,7 @@ def _gradients(body: RigidBody, y: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.stack(rows, axis=1)
 
 
+@checks_body
 def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
                     direction: ArrayLike | None = None) -> NDArray[np.float64]:
     """Unit initial tangent vectors at Euler-Poisson states ``y``, shape (n, 6).
@@ -270,6 +272,7 @@ def _derived(x: NDArray[np.float64], t: NDArray[np.float64], scale: float
 # ----------------------------------------------------------------------------- single orbits
 
 
+@checks_body
 def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times: int = 101,
                t: ArrayLike | None = None, chart: str = "euler_poisson",
                tangent: Tangent = "leaf", w0: ArrayLike | None = None,
@@ -390,6 +393,7 @@ def _grid_size(n: Any) -> tuple[int, int]:
     return _check_int("n[0] (nx)", nx, 2), _check_int("n[1] (ny)", ny, 2)
 
 
+@checks_body
 def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
               t_end: float = 1000.0, indicator: Indicator = "fli", *,
               engine: str | None = "heyoka", chunk: int = 1024, progress: bool | None = None,
@@ -471,6 +475,8 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     h = float(h)
     M = float(M)
     nx, ny = _grid_size(n)
+    # Grid, roots and result arrays: about 400 bytes per grid point; checked before any.
+    budget.check("chaos_map", memory=400.0 * nx * ny)
     T = _check_positive("t_end", t_end)
     if indicator not in ("fli", "megno", "both"):
         raise ValueError(f"unknown indicator {indicator!r}; choose 'fli', 'megno' or 'both'")
@@ -512,6 +518,9 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
                   np.full(idx.size, M)], axis=-1)
     states = from_andoyer(P) if chart == "andoyer" else from_hess(body, P)
     times = np.linspace(0.0, T, n_samples + 1)
+    # The variational system (state, tangent vector, MEGNO integrals) costs about three
+    # plain steps per step.
+    budget.check("chaos_map", steps=3.0 * budget.estimate_steps(body, states, T, tol))
     params = _params(body)
     if batch_size is None and name == "heyoka":
         # One batch size for the whole map, so that the chunking cannot change round-off.

@@ -78,7 +78,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer._validate import positive as _positive
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
 
 __all__ = [
@@ -241,6 +241,7 @@ class PermanentRotation:
                 f"moment {self.moment} = {self.moment_value:g}): {self.linear_type}")
 
 
+@checks_body
 def permanent_rotations(body: RigidBody, G0: float = 1.0) -> tuple[PermanentRotation, ...]:
     """The six permanent rotations of the free body and their linear type.
 
@@ -666,6 +667,7 @@ def _n_seed(n_seed: Any) -> tuple[int, int]:
     return nq, npp
 
 
+@checks_body
 def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
                          n_seed: int | tuple[int, int] = (64, 33)) -> FixedPointSet:
     """All fixed points of the unperturbed system (9) in ``(l, L)`` at fixed ``G = G0``.
@@ -698,6 +700,7 @@ def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
     return _fixed_points(body, "andoyer", G0, TWO_PI, _n_seed(n_seed))
 
 
+@checks_body
 def hess_fixed_points(body: RigidBody, J2: float = 1.0, *, double_cover: bool = False,
                       n_seed: int | tuple[int, int] = (64, 33)) -> FixedPointSet:
     """All fixed points of the unperturbed Hess-chart system in ``(theta1, J1)``, ``M = 0``.
@@ -789,6 +792,7 @@ class EquilibriumSet:
         return ds
 
 
+@checks_body
 def euler_poisson_equilibria(body: RigidBody) -> EquilibriumSet:
     """The equilibria ``G = 0``, ``gamma = -+ r`` of (1) and their leaf eigenvalues.
 

@@ -79,7 +79,7 @@ from andoyer.analysis.pendulum import (
     pendulum_period,
     pendulum_solution,
 )
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.integrate.hess_manifold import THETA1_TOL
 from andoyer.integrate.results import provenance, states_dataset
@@ -140,6 +140,7 @@ def derive_reduced_hamiltonian() -> Any:
     return sp.simplify(H_hess().subs(S.theta1, 0).subs(S.c, c_hess))
 
 
+@checks_body
 def reduced_hamiltonian(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, M: float = 0.0
                         ) -> NDArray[np.float64]:
     """``H = c J2^2/2 + mu sqrt(J2^2 - M^2) sin(theta2) / J2`` on ``theta1 = 0 (mod 2 pi)``.
@@ -162,6 +163,7 @@ def reduced_hamiltonian(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, M: fl
                       + body.mu * np.sqrt((j2 - M) * (j2 + M)) / j2 * np.sin(t2))
 
 
+@checks_body
 def drift_rate(body: RigidBody) -> float:
     """``s = kappa sin(2 phi0) = -2 branch sigma``: the rate in ``dpsi/dt = -(s/2) J2 sin psi``.
 
@@ -170,6 +172,7 @@ def drift_rate(body: RigidBody) -> float:
     return body.kappa * math.sin(2.0 * body.phi0)
 
 
+@checks_body
 def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLike,
                   M: float = 0.0, theta1: float = 0.0) -> NDArray[np.float64]:
     """``d(theta2, J1, J2, theta3)/dt`` on ``theta1 = 0`` or ``2 pi`` (a Hess body).
@@ -203,6 +206,7 @@ def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLi
 
 
 # ----------------------------------------------------------------------------- energies
+@checks_body
 def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
     """``(J2*, h_min)``: the centre ``theta2 = 3 pi/2`` of the reduced system.
 
@@ -229,6 +233,7 @@ def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
     return J, float(reduced_hamiltonian(body, 1.5 * math.pi, J, M))
 
 
+@checks_body
 def classify_motion(body: RigidBody, h: float, M: float = 0.0) -> str:
     """Motion of the reduced system at energy ``h`` (a key of :data:`MOTIONS`).
 
@@ -259,6 +264,7 @@ def classify_motion(body: RigidBody, h: float, M: float = 0.0) -> str:
     return "libration" if h < pole else "rotation"
 
 
+@checks_body
 def cubic_roots(body: RigidBody, h: float, M: float = 0.0) -> tuple[float, float, float]:
     """Roots ``u_a <= u_b <= u_c`` of ``P(u) = mu^2 (u - M^2) - u (h - c u/2)^2``.
 
@@ -289,6 +295,7 @@ def cubic_roots(body: RigidBody, h: float, M: float = 0.0) -> tuple[float, float
     return float(roots[0]), float(max(roots[1], M * M)), float(roots[2])
 
 
+@checks_body
 def period(body: RigidBody, h: float, M: float = 0.0, *, method: str = "elliptic") -> float:
     """Period of the reduced motion in ``(theta2, J2)`` at energy ``h``.
 
@@ -383,6 +390,7 @@ def _quad_period(body: RigidBody, h: float, M: float, ub: float, uc: float) -> f
 
 
 # ----------------------------------------------------------------------------- embedding
+@checks_body
 def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike,
                M: float = 0.0) -> NDArray[np.float64]:
     """Euler-Poisson state of the Hess solution from ``(theta2, J2, psi)``; shape ``(..., 6)``.
@@ -525,6 +533,7 @@ def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: f
             "cos2": np.cos(0.5 * psi) ** 2, "sin2": np.sin(0.5 * psi) ** 2}
 
 
+@checks_body
 def hess_solution(body: RigidBody, x0: ArrayLike, t: ArrayLike, *, rtol: float = 1e-12,
                   atol: float = 1e-12) -> xr.Dataset:
     """The Hess solution from a point of ``theta1 = 0``, in closed form where it exists.

@@ -88,7 +88,7 @@ from andoyer.analysis.periodic import (
     section_state,
 )
 from andoyer.analysis.separatrix import BRANCHES
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
@@ -110,6 +110,7 @@ Stability = Literal["unstable", "stable"]
 TWO_PI = 2.0 * math.pi
 
 
+@checks_body
 def euler_poinsot_excess(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """``E = H0 - c |G|^2 / 2``: zero on the unperturbed separatrices and on ``P+-``.
 
@@ -201,6 +202,7 @@ def _line(body: RigidBody, h: float, branch: str, sheet: int) -> tuple[float, in
     return heteroclinic_line(body, math.sqrt(2.0 * h / body.c), branch, sheet)
 
 
+@checks_body
 def manifold_branch(body: RigidBody, h: float, stability: Stability,
                     branch: str = "theta1=4phi0", *, sheet: int = 1, psi0: float = 0.0,
                     delta: float = 1e-5, orbit: RotationOrbit | None = None,
@@ -643,6 +645,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
 
 
 # ----------------------------------------------------------------------------- driver
+@checks_body
 def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
                          G: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
                          psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,

@@ -83,7 +83,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.analysis.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance
@@ -103,6 +103,7 @@ TWO_PI = 2.0 * math.pi
 TAIL = 46.0
 
 
+@checks_body
 def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
                       ) -> tuple[float, int]:
     """``(theta1 of the line in [0, 4 pi), s)``: ``s = +1`` where J1 increases along it.
@@ -123,6 +124,7 @@ def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
                                               else -1)
 
 
+@checks_body
 def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     """``rho = c J2 / lambda = c / (2 sigma)``: frequency of theta2 over the rate of J1.
 
@@ -134,6 +136,7 @@ def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     return body.c * J2 / heteroclinic_rate(body, J2)
 
 
+@checks_body
 def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """``{E, H1}(y) = grad E . X_{H1}`` in the Euler-Poisson variables, shape ``(...)``.
 
@@ -148,6 +151,7 @@ def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(np.einsum("...i,...i->...", gradE, X1[..., :3]))
 
 
+@checks_body
 def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
                          branch: str = "theta1=4phi0", sheet: int = 1
                          ) -> NDArray[np.float64]:
@@ -180,6 +184,7 @@ def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.
     return np.asarray(-s * factor * (np.sin(theta1 + th) - np.sin(th)))
 
 
+@checks_body
 def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
                         branch: str = "theta1=4phi0", sheet: int = 1,
                         method: str = "trapezoid", points_per_period: int = 32
@@ -238,6 +243,7 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
     return out.reshape(np.shape(theta2_0))
 
 
+@checks_body
 def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 1.0,
                         branch: str = "theta1=4phi0", sheet: int = 1
                         ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -252,6 +258,7 @@ def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 
     return dE, -dE / (body.c * G)
 
 
+@checks_body
 def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
                       J2: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
                       n: int = 64, quadrature: bool = True) -> xr.Dataset:

@@ -70,7 +70,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc
 
 from andoyer._validate import positive as _positive
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.integrate.results import provenance, states_dataset
 
@@ -253,6 +253,7 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
 
 
 # ----------------------------------------------------------------------------- physical pendulum
+@checks_body
 def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArray[np.float64]:
     """Euler-Poisson states on the physical pendulum: ``G = (0, 0, L)``,
     ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)``; shape ``(..., 6)``.
@@ -266,6 +267,7 @@ def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArra
     return np.stack([z, z, LL, np.sin(a), np.cos(a), z], axis=-1)
 
 
+@checks_body
 def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int = 1
                        ) -> NDArray[np.float64]:
     """``Pi = mu (r, gamma)`` on the physical pendulum in Andoyer-Deprit variables.
@@ -292,6 +294,7 @@ def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int 
     return np.asarray(body.mu * np.sin(g_ - l_ - body.phi0))
 
 
+@checks_body
 def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
                              ) -> NDArray[np.float64]:
     """The potential on the physical pendulum as printed after (11): ``mu^-1 sin(g + l - phi0)``.
@@ -313,6 +316,7 @@ def _initial_bottom(body: RigidBody, h: float) -> tuple[float, float]:
     return 1.5 * math.pi, math.sqrt(2.0 * e / body.c)
 
 
+@checks_body
 def physical_pendulum(body: RigidBody, vartheta0: float, L0: float, t: ArrayLike
                       ) -> xr.Dataset:
     """The physical-pendulum motion in closed form (Jacobi elliptic functions).
@@ -432,6 +436,7 @@ def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: floa
     return Phi, out[12]
 
 
+@checks_body
 def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variational",
               tol: float = 1e-15, step: float = 1e-6, engine: str = "numba") -> Monodromy:
     """Monodromy matrix of the Euler-Poisson flow (1) over ``[0, T]`` from ``y0``.
@@ -471,6 +476,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
     return Monodromy(Phi, T, y, yT, method)
 
 
+@checks_body
 def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "variational",
                                 tol: float = 1e-15, step: float = 1e-6,
                                 engine: str = "numba") -> Monodromy:
@@ -510,6 +516,7 @@ def _leaf_basis(y: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.asarray(vt[1:].T)
 
 
+@checks_body
 def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational",
                         tol: float = 1e-15, parabolic_tol: float = 1e-6) -> Floquet:
     """Floquet multipliers of the physical-pendulum orbit of energy ``h`` in the full system.
@@ -547,6 +554,7 @@ def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational
     return Floquet(s, pair, stability, leaf, shear, mono)
 
 
+@checks_body
 def hess_rotation_multiplier(body: RigidBody) -> float:
     """``exp(2 pi sigma / c)``, ``sigma = sqrt((b - c)(c - a))``: the multiplier of every
     physical-pendulum rotation of a Hess body (and the ``mu -> 0`` limit of any body with
@@ -561,6 +569,7 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
     return math.exp(2.0 * math.pi * body.sigma / body.c)
 
 
+@checks_body
 def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
                  tol: float = 1e-15, parabolic_tol: float = 1e-6) -> xr.Dataset:
     """Floquet multipliers of the physical-pendulum orbits over a range of energies.

@@ -81,7 +81,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance
@@ -116,6 +116,7 @@ _I6 = np.eye(6)
 
 
 # ----------------------------------------------------------------------------- helpers
+@checks_body
 def middle_axis_rate(body: RigidBody) -> float:
     """``sigma = sqrt((b - c)(c - a))``: the exponent of the rotation about z is ``sigma G``.
 
@@ -135,6 +136,7 @@ def middle_axis_rate(body: RigidBody) -> float:
     return body.sigma
 
 
+@checks_body
 def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
     """``h = c G^2 / 2``: the energy of the permanent rotation about z with ``|G| = G``.
 
@@ -290,6 +292,7 @@ def _pars(body: RigidBody, psi0: float) -> NDArray[np.float64]:
     return np.array([*body.params, math.cos(psi0), math.sin(psi0)])
 
 
+@checks_body
 def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *,
                     psi0: float = 0.0, backward: bool = False, t_max: float = 1e4,
                     tol: float = DEFAULT_TOL, stm: bool = False,
@@ -374,6 +377,7 @@ def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
     return g
 
 
+@checks_body
 def event_projector(body: RigidBody, y: NDArray[np.float64], kind: str,
                     psi0: float = 0.0) -> NDArray[np.float64]:
     """``I - F grad(f)^T / (grad(f) . F)``: the event sensitivity at a crossing ``y``."""
@@ -399,6 +403,7 @@ def _assemble(n: NDArray[np.float64], G: float, gamma3: float, psi0: float
                      rho * math.cos(psi0), gamma3])
 
 
+@checks_body
 def section_state(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                   section: RotationSection | None = None, *, jacobian: bool = False
                   ) -> Any:
@@ -520,6 +525,7 @@ class SectionReturn:
     stm: NDArray[np.float64] | None
 
 
+@checks_body
 def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                section: RotationSection | None = None, *, jacobian: bool = True,
                tol: float = DEFAULT_TOL, long_double: bool = False) -> SectionReturn:
@@ -611,6 +617,7 @@ def _eigen(DP: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.flo
     return w, V
 
 
+@checks_body
 def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                    section: RotationSection | None = None, *, guess: ArrayLike | None = None,
                    tol: float = DEFAULT_TOL, xtol: float = 1e-13, max_iter: int = 12,
@@ -673,6 +680,7 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                          float(np.linalg.norm(r.x - x)), tol, long_double)
 
 
+@checks_body
 def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                             section: RotationSection | None = None, *,
                             mu: ArrayLike | None = None, steps: int = 4,
@@ -785,6 +793,7 @@ def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
 
 
 # ----------------------------------------------------------------------------- exact orbit
+@checks_body
 def pendulum_rotation(body: RigidBody, h: float, section: RotationSection | None = None
                       ) -> tuple[NDArray[np.float64], float]:
     """The pendulum rotation about ``sign * z`` on ``M = 0`` (bodies with ``e3 = 0``).

@@ -70,7 +70,7 @@ from scipy.special import expit
 
 from andoyer._validate import positive as _positive
 from andoyer.analysis.fixed_points import _theta_text
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance
@@ -104,6 +104,7 @@ def _require_hess(body: RigidBody, what: str) -> None:
             "and theta1 = 4 phi0; build it with RigidBody.hess(A, B, C, mu)")
 
 
+@checks_body
 def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     """Rate ``lambda = 2 sigma J2`` of the unperturbed heteroclinic orbits, ``J1 ~ e^{-lambda t}``.
 
@@ -143,6 +144,7 @@ def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
     return float(np.mod(4.0 * phi0, TWO_PI)), sgn
 
 
+@checks_body
 def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1=0",
                  t0: float = 0.0, sign: int = +1, *, theta2_0: float = 0.0) -> xr.Dataset:
     """The unperturbed (``mu = 0``, ``M = 0``) heteroclinic orbit along a separatrix line.
@@ -284,6 +286,7 @@ def _middle(body: RigidBody) -> tuple[str, float]:
     return axis, I[axis]
 
 
+@checks_body
 def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     """Energy ``H0 = I_mid G0^2 / 2`` of the separatrix: that of the rotation about the
     middle axis (``c G0^2/2`` when z is the middle axis, as for a Hess body).
@@ -401,6 +404,7 @@ def _check_n(n: Any, what: str, minimum: int = 8) -> int:
     return k
 
 
+@checks_body
 def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dataset:
     """The separatrices of (9) in ``(l, L)`` as sampled curves, closed form.
 
@@ -436,6 +440,7 @@ def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dat
     return _curves_dataset(body, "andoyer", G0, TWO_PI, _check_n(n, "n"))
 
 
+@checks_body
 def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
                     double_cover: bool = False) -> xr.Dataset:
     """The separatrices of the unperturbed Hess-chart system in ``(theta1, J1)``.
@@ -590,6 +595,7 @@ def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
     return ds
 
 
+@checks_body
 def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] = (241, 121),
                      *, n_levels: int = 14, n_curve: int = 201) -> xr.Dataset:
     """Everything Fig. 1 / Fig. 2(a) need: the unperturbed portrait of (9) in ``(l, L)``.
@@ -627,6 +633,7 @@ def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] 
     return _portrait(body, "andoyer", G0, n, n_levels, _check_n(n_curve, "n_curve"), False)
 
 
+@checks_body
 def portrait_hess(body: RigidBody, J2: float = 1.0, n: int | tuple[int, int] = (241, 81), *,
                   n_levels: int = 14, n_curve: int = 201,
                   double_cover: bool = False) -> xr.Dataset:

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.api import poincare, propagate
 from andoyer.integrate.fill import fill_section
 
@@ -32,6 +32,7 @@ __all__ = ["fig3_trajectories", "fig3_section", "separatrix_energy", "zoom_box",
 DEFAULT_J1: tuple[float, ...] = (0.004, 0.012, 0.03, 0.07, 0.13, 0.2, 0.3, 0.42)
 
 
+@checks_body
 def zoom_box(body: RigidBody, J2: float = 1.0
              ) -> tuple[tuple[float, float], tuple[float, float]]:
     """The enlarged region of Fig. 3: a box around the saddle (theta1, J1) = (4 phi0, 0).
@@ -42,6 +43,7 @@ def zoom_box(body: RigidBody, J2: float = 1.0
     return (t - 0.3, t + 0.3), (0.0, 0.06 * J2)
 
 
+@checks_body
 def separatrix_energy(body: RigidBody, J2: float = 1.0) -> float:
     """H0 on the unperturbed separatrices at G = J2: c J2^2 / 2 (Eq. (13) with L = +-G).
 
@@ -57,6 +59,7 @@ def _check_body(body: RigidBody) -> None:
     body._require_planar("Fig. 3 (the Hess chart)")
 
 
+@checks_body
 def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
                       J1: Sequence[float] = DEFAULT_J1, theta2: float = 0.0,
                       t_end: float = 400.0, dt: float = 0.1, engine: str | None = None,
@@ -124,6 +127,7 @@ def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
     return out
 
 
+@checks_body
 def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
                  theta2: float = 0.0, n_orbits: int = 40, n_zoom: int = 12,
                  n_crossings: int = 300,

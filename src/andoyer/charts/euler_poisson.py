@@ -23,6 +23,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.body import checks_body
+
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
 
@@ -68,6 +70,7 @@ def as_state(y: ArrayLike, name: str = "y") -> NDArray[np.float64]:
     return arr
 
 
+@checks_body
 def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """Total energy ``H(y)`` of Eq. (1) (kinetic + potential), shape ``(...)``.
 
@@ -95,6 +98,7 @@ def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
     return np.einsum("...i,...i->...", arr[..., 3:], arr[..., 3:])
 
 
+@checks_body
 def momentum_bound(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """The largest ``|G|`` on the energy level of ``y``: the orbit's momentum scale.
 

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.body import checks_body
 from andoyer.charts.andoyer_deprit import (
     SINGULAR_RTOL,
     rotation_chain_expr,
@@ -113,6 +114,7 @@ def as_hess(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
     return arr
 
 
+@checks_body
 def from_hess(body: RigidBody, x: ArrayLike) -> NDArray[np.float64]:
     """Euler-Poisson state from Hess-chart coordinates, Eq. (15) then (5)-(6).
 
@@ -142,11 +144,14 @@ def from_hess(body: RigidBody, x: ArrayLike) -> NDArray[np.float64]:
 
 
 @overload
+@checks_body
 def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[False] = ...
             ) -> NDArray[np.float64]: ...
 @overload
+@checks_body
 def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[True]
             ) -> tuple[NDArray[np.float64], NDArray[np.int_]]: ...
+@checks_body
 def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False
             ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.int_]]:
     """Hess-chart coordinates of Euler-Poisson states, Eq. (14).

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 from andoyer._version import __version__
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "EXIT_CODES"]
 
 
 def _command_modules() -> list:
@@ -30,22 +30,86 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="andoyer",
         description="Phase space of the heavy rigid body (Hess gyroscope) in "
-                    "Andoyer-Deprit variables.")
+                    "Andoyer-Deprit variables.",
+        epilog="exit codes: " + ", ".join(f"{code} {kind}" for kind, code in
+                                          EXIT_CODES.items()) + "; 0 success")
     parser.add_argument("--version", action="version", version=f"andoyer {__version__}")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the Python traceback of a failure")
+    parser.add_argument("--no-limits", action="store_true",
+                        help="lift the cost guards (estimated integration steps and memory "
+                             "of one call; see andoyer.integrate.budget)")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for mod in _command_modules():
         mod.register(sub)
+    for command in sub.choices.values():  # --debug after the command word too
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                             help="show the Python traceback of a failure")
     return parser
 
 
+#: Exit codes of ``andoyer``, one per class of expected failure (argparse's usage errors
+#: are 2 as well). Documented in ``andoyer --help``.
+EXIT_CODES = {
+    "bad input": 2,
+    "cost limit": 3,
+    "file system": 4,
+    "out of memory": 5,
+    "integration failed": 6,
+    "missing dependency": 7,
+    "internal error": 70,
+    "interrupted": 130,
+}
+
+
+def _classify(exc: BaseException) -> tuple[str, str]:
+    """``(class, message)`` of an exception that ends a command."""
+    from andoyer.errors import CostLimitError, IntegrationError
+
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted", ("interrupted; files already written are complete, nothing "
+                               "half-written was left behind")
+    if isinstance(exc, CostLimitError):
+        return "cost limit", str(exc)
+    if isinstance(exc, MemoryError):
+        return "out of memory", ("out of memory; ask for less (fewer orbits, crossings, grid "
+                                 "points or output times)")
+    if isinstance(exc, ModuleNotFoundError):
+        return "missing dependency", f"{exc}; install it or choose another --engine"
+    if isinstance(exc, OSError):
+        where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
+        return "file system", f"{exc.strerror or exc}{':' if where else ''}{where}"
+    if isinstance(exc, IntegrationError | FloatingPointError):
+        return "integration failed", f"integration failed: {exc}"
+    if isinstance(exc, ValueError | TypeError):
+        return "bad input", str(exc)
+    return "internal error", (f"internal error ({type(exc).__name__}: {exc}); rerun with "
+                              "--debug for the traceback and report it")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``andoyer`` console script."""
+    """Entry point of the ``andoyer`` console script.
+
+    Every expected failure ends with one line on stderr and ``SystemExit`` with the exit
+    code of its class (:data:`EXIT_CODES`), as argparse's usage errors do; never a
+    traceback (``--debug`` shows it).
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        if args.no_limits:
+            import math
+
+            from andoyer.integrate.budget import set_limits
+
+            set_limits(steps=math.inf, memory=math.inf)
         return int(args.func(args))
-    except ValueError as exc:  # bad input: a clear message, no traceback
-        parser.exit(2, f"andoyer {args.command}: error: {exc}\n")
+    except (Exception, KeyboardInterrupt) as exc:
+        if getattr(args, "debug", False):
+            raise
+        kind, message = _classify(exc)
+        sys.stderr.write(f"andoyer {args.command}: error: {message}\n")
+        raise SystemExit(EXIT_CODES[kind]) from None
 
 
 if __name__ == "__main__":  # pragma: no cover

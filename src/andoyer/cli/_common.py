@@ -3,10 +3,87 @@
 from __future__ import annotations
 
 import argparse
+import os
+from collections.abc import Iterable
+from pathlib import Path
 from typing import Any
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "floats"]
+           "floats", "output_file", "output_folder", "distinct_outputs"]
+
+#: The body flags each --body takes (others are refused, not ignored).
+BODY_FLAGS = {
+    "paper": ("mu",),
+    "hess": ("A", "B", "C", "mu"),
+    "custom": ("A", "B", "C", "mu", "r"),
+    "lagrange": ("A", "C", "mu"),
+    "kovalevskaya": ("C", "mu"),
+    "goryachev-chaplygin": ("C", "mu"),
+}
+
+
+# ---------------------------------------------------------------------- outputs
+def _writable_folder(folder: Path, flag: str, text: str) -> None:
+    if not folder.exists():
+        raise ValueError(f"{flag} {text!r}: folder {str(folder)!r} does not exist; create it "
+                         "first")
+    if not folder.is_dir():
+        raise ValueError(f"{flag} {text!r}: {str(folder)!r} is a file, not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"{flag} {text!r}: folder {str(folder)!r} is not writable")
+
+
+def output_file(text: str, suffix: str, flag: str = "--out") -> Path:
+    """Check an output file named on the command line before any computation.
+
+    It must end in ``suffix``, must not be a folder, and its folder must exist and be
+    writable. Raises ``ValueError`` naming the flag and its value.
+
+    Examples
+    --------
+    >>> output_file("sec.nc", ".nc").name
+    'sec.nc'
+    >>> output_file("sec.png", ".nc")
+    Traceback (most recent call last):
+    ...
+    ValueError: --out 'sec.png' must name a .nc file (other outputs are written beside it)
+    """
+    path = Path(text)
+    if path.suffix.lower() != suffix:
+        raise ValueError(f"{flag} {text!r} must name a {suffix} file (other outputs are "
+                         "written beside it)")
+    if path.is_dir():
+        raise ValueError(f"{flag} {text!r} is an existing folder; name a file")
+    _writable_folder(path.parent if str(path.parent) else Path("."), flag, text)
+    return path
+
+
+def output_folder(text: str, flag: str = "--out") -> Path:
+    """Check an output folder: an existing writable folder, or one that can be created."""
+    path = Path(text)
+    if path.exists():
+        if not path.is_dir():
+            raise ValueError(f"{flag} {text!r} is an existing file; name a folder")
+        _writable_folder(path, flag, text)
+        return path
+    parent = path.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    _writable_folder(parent, flag, text)
+    return path
+
+
+def distinct_outputs(outputs: Iterable[Path], inputs: Iterable[Path] = ()) -> None:
+    """Refuse outputs that would overwrite each other or an input."""
+    seen: dict[Path, Path] = {}
+    for p in inputs:
+        seen[Path(os.path.abspath(p))] = Path(p)
+    for p in outputs:
+        key = Path(os.path.abspath(p))
+        if key in seen:
+            raise ValueError(f"output {str(p)!r} would overwrite {str(seen[key])!r}; choose "
+                             "another --out")
+        seen[key] = Path(p)
 
 
 # ---------------------------------------------------------------------- bodies
@@ -26,15 +103,24 @@ def add_body_args(p: argparse.ArgumentParser) -> None:
 
 
 def body_from_args(args: argparse.Namespace) -> Any:
+    """The body of ``--body`` and its flags; a flag the body does not take is refused."""
+    from andoyer._validate import positive
     from andoyer.body import RigidBody
 
+    extra = [n for n in ("A", "B", "C", "mu", "r") if getattr(args, n) is not None
+             and n not in BODY_FLAGS[args.body]]
+    if extra:
+        takes = ", ".join(f"--{n}" for n in BODY_FLAGS[args.body])
+        raise ValueError(f"--body {args.body} does not take --{', --'.join(extra)} (it takes "
+                         f"{takes}); for a body of your own use --body hess or --body custom")
     mu = 0.01 if args.mu is None else args.mu
     if args.body == "paper":
         return RigidBody.paper(mu)
     if args.body in ("kovalevskaya", "goryachev-chaplygin"):
         make = (RigidBody.kovalevskaya if args.body == "kovalevskaya"
                 else RigidBody.goryachev_chaplygin)
-        return make(args.C or 1.0, 1.0 if args.mu is None else args.mu)
+        C = 1.0 if args.C is None else positive("--C", args.C)
+        return make(C, 1.0 if args.mu is None else args.mu)
     missing = [n for n in ("A", "B", "C") if getattr(args, n) is None
                and not (args.body == "lagrange" and n == "B")]
     if missing:

@@ -17,11 +17,13 @@ def run(args: argparse.Namespace) -> int:
     matplotlib.use("Agg")
     import xarray as xr
 
-    from andoyer.cli._common import floats
+    from andoyer.cli._common import distinct_outputs, floats, output_file
     from andoyer.plot.atlas import plot_atlas
     from andoyer.plot.section import save_figure
 
+    png = output_file(args.out, ".png")
     store = Path(args.store)
+    distinct_outputs([png, png.with_suffix(".pdf")], [store])
     if not (store / "zarr.json").is_file() and not (store / ".zgroup").is_file():
         raise ValueError(f"{store} is not a Zarr store; give the store written by "
                          "andoyer scan")
@@ -33,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"--select {item!r}: write NAME=VALUE, e.g. M_level=0")
         select[name.strip()] = floats(value, 1, f"--select {name}")[0]
     fig = plot_atlas(ds, rows=args.rows, cols=args.cols, select=select, width=args.width)
-    out = save_figure(fig, args.out, pdf=args.pdf)
+    out = save_figure(fig, png, pdf=args.pdf)
     done = int(ds["done"].sum())
     print(f"wrote {', '.join(map(str, out))} ({done} of {ds['done'].size} points done)")
     return 0

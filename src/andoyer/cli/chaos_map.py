@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_level_args, body_from_args
+from andoyer.cli._common import add_body_args, add_level_args, body_from_args, output_file
 
 NAME = "chaos-map"
 ORDER = 50
@@ -26,7 +26,6 @@ def _grid(text: str) -> int | tuple[int, int]:
 
 def run(args: argparse.Namespace) -> int:
     import time
-    from pathlib import Path
 
     import matplotlib
     import numpy as np
@@ -38,6 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.section import save_figure
 
+    out = output_file(args.out, ".nc")
     body = body_from_args(args)
     grid = _grid(args.n)
     if args.energy is None:
@@ -45,11 +45,6 @@ def run(args: argparse.Namespace) -> int:
         from andoyer.charts.euler_poisson import energy
 
         args.energy = float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, args.area])))
-    out = Path(args.out)
-    if out.suffix != ".nc":
-        raise ValueError(f"--out must name a NetCDF file ending in .nc, got {args.out!r}")
-    if not out.parent.exists():
-        raise ValueError(f"folder {str(out.parent)!r} of --out does not exist; create it first")
     if args.engine == "heyoka":
         source, seconds = warm_up(tol=args.tol)
         print(f"variational integrator: {source} in {seconds:.2f} s")

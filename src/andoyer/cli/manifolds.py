@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, body_from_args
+from andoyer.cli._common import add_body_args, body_from_args, output_folder
 
 NAME = "manifolds"
 ORDER = 60
@@ -26,8 +26,6 @@ def _mu_list(text: str) -> list[float]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -39,6 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.manifolds import plot_manifolds_summary
     from andoyer.plot.section import save_figure
 
+    out = output_folder(args.out)
     body = body_from_args(args)
     if args.mu_list is None:
         mus = [args.mu] if args.mu is not None else _mu_list(DEFAULT_MU)
@@ -48,7 +47,6 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("andoyer manifolds follows the heteroclinic lines theta1 = 0 and "
                          "theta1 = 4 phi0 of a Hess body: use --body paper or --body hess "
                          "--A .. --B .. --C ..")
-    out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     common: dict[str, Any] = {"G": args.G, "psi0": args.psi0, "delta": args.delta,
                               "n_phase": args.n_phase, "tol": args.tol,

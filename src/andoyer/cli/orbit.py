@@ -5,7 +5,13 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_engine_args, body_from_args, floats
+from andoyer.cli._common import (
+    add_body_args,
+    add_engine_args,
+    body_from_args,
+    floats,
+    output_file,
+)
 
 NAME = "orbit"
 ORDER = 30
@@ -17,6 +23,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.integrate.api import propagate
     from andoyer.io import write_netcdf
 
+    out_path = output_file(args.out, ".nc")
     body = body_from_args(args)
     given = [(n, v) for n, v in (("euler_poisson", args.y0), ("andoyer", args.andoyer),
                                  ("hess", args.hess)) if v is not None]
@@ -29,7 +36,7 @@ def run(args: argparse.Namespace) -> int:
     t = np.linspace(0.0, args.t_end, args.n_out)
     ds = propagate(body, state, t, engine=args.engine, rtol=args.rtol, atol=args.atol,
                    chart=chart, progress=True)
-    out = write_netcdf(ds, args.out)
+    out = write_netcdf(ds, out_path)
     drift = float(abs(ds.H_drift).max())
     print(f"wrote {out}: {args.n_out} states to t = {args.t_end:g} "
           f"(engine {ds.attrs['engine']}, max |relative energy drift| {drift:.2e})")

@@ -10,8 +10,10 @@ ORDER = 10
 
 
 def run(args: argparse.Namespace) -> int:
+    from andoyer.cli._common import output_folder
     from andoyer.report.paper import build_paper
 
+    output_folder(args.out)
     index, done = build_paper(args.out, engine=args.engine, quick=args.quick,
                               only=args.only or None, progress=True)
     print(f"andoyer paper: {len(done)} items written to {index.parent}/; open {index}")

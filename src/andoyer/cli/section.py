@@ -5,15 +5,19 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_engine_args, add_level_args, body_from_args
+from andoyer.cli._common import (
+    add_body_args,
+    add_engine_args,
+    add_level_args,
+    body_from_args,
+    output_file,
+)
 
 NAME = "section"
 ORDER = 40
 
 
 def run(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -23,6 +27,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.io import write_netcdf
     from andoyer.plot.section import plot_section, save_figure
 
+    out = output_file(args.out, ".nc")
     body = body_from_args(args)
     sec = Section.parse(args.section)
     if sec.coord not in ("g", "theta2"):
@@ -42,7 +47,6 @@ def run(args: argparse.Namespace) -> int:
     ds = poincare(body, y0, sec, args.crossings, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, progress=True)
     ds.attrs.update(energy=args.energy, area=args.area)
-    out = Path(args.out)
     write_netcdf(ds, out)
     ax = plot_section(ds, boundary=fill,
                       title=f"{body.name or 'body'}: H = {args.energy:.6g}, M = {args.area:g}, "

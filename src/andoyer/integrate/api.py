@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer, to_andoyer
 from andoyer.charts.euler_poisson import (
     area_integral,
@@ -29,6 +29,7 @@ from andoyer.charts.euler_poisson import (
 )
 from andoyer.charts.hess import from_hess, to_hess
 from andoyer.errors import SingularPassageWarning
+from andoyer.integrate import budget
 from andoyer.integrate.engines import default_engine_name, get_engine
 from andoyer.integrate.engines.base import Crossings, Engine, Params
 from andoyer.integrate.results import provenance, states_dataset
@@ -47,11 +48,15 @@ RESIDUAL_BOUND = 1e-10
 #: Rounds of continuation past singular passages before :func:`poincare` gives up on an
 #: orbit (each round asks the engine for more roots than the last, so few are needed).
 _MAX_ROUNDS = 40
+#: Bytes per state of a states dataset (about 30 float64 variables: the state, three
+#: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
+_DATASET_BYTES = 30 * 8
 #: Largest scratch array of crossings one engine call may allocate (bytes).
 _MAX_SCRATCH = 256 * 2**20
 
 
 # ---------------------------------------------------------------------- validation
+@checks_body
 def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson"
                    ) -> NDArray[np.float64]:
     """Euler-Poisson initial states, shape (n, 6), from states given in ``chart``.
@@ -168,6 +173,7 @@ def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
 
 
 # ---------------------------------------------------------------------- orbits
+@checks_body
 def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | None = None,
               rtol: float = 1e-12, atol: float = 1e-12, chart: str = "euler_poisson",
               progress: bool | None = None) -> xr.Dataset:
@@ -208,6 +214,8 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
     rtol, atol = _check_tolerances(rtol, atol)
     times = _check_times(t)
     y = initial_states(body, y0, chart)
+    budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
+                 memory=_DATASET_BYTES * y.shape[0] * times.size)
     name = default_engine_name() if engine is None else engine
     eng = get_engine(name)
     params = _params(body)
@@ -233,6 +241,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
     return ds
 
 
+@checks_body
 def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings: int, *,
              engine: str | None = None, rtol: float = 1e-12, atol: float = 1e-12,
              t_max: float | None = None, chart: str = "euler_poisson",
@@ -303,6 +312,11 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     if not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_max must be a positive finite time, got {t_max!r}")
     y = initial_states(body, y0, chart)
+    # The default t_max is a generous cap, not the expected duration: only a t_max the
+    # user gave is costed in steps.
+    budget.check("poincare",
+                 steps=0.0 if t_max is None else budget.estimate_steps(body, y, t_end, rtol),
+                 memory=_DATASET_BYTES * y.shape[0] * int(n_crossings))
     name = default_engine_name() if engine is None else engine
     eng = get_engine(name)
     params = _params(body)
@@ -440,6 +454,7 @@ def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
 
 
 # ---------------------------------------------------------------------- canonical charts
+@checks_body
 def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
                         chart: str = "hess", rtol: float = 1e-12, atol: float = 1e-12,
                         singular_margin: float = 1e-9) -> xr.Dataset:

@@ -38,7 +38,7 @@ from scipy.optimize import brentq
 from scipy.stats import qmc
 
 from andoyer._validate import finite as _finite
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
@@ -412,6 +412,7 @@ def _polylines(xs: NDArray[np.float64], ys: NDArray[np.float64], F: NDArray[np.f
 
 
 # ----------------------------------------------------------------------- public API
+@checks_body
 def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: Any
                   ) -> list[NDArray[np.float64]]:
     """All values of the remaining action on the level h above plane points ``(x, y)``.
@@ -453,6 +454,7 @@ def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: 
     return eq.roots(p, q)
 
 
+@checks_body
 def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 40,
                  method: Method = "grid", seed: int = 0,
                  plane_bounds: Any = None, root: RootChoice = "all",

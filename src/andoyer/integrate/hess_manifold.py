@@ -37,7 +37,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.charts.hess import as_hess, from_hess
 from andoyer.integrate.api import _check_times, _check_tolerances
@@ -114,6 +114,7 @@ def _onto_casimirs(y: NDArray[np.float64], M: float, scale: float
     return out, float(np.max(np.abs(new - gamma), initial=0.0))
 
 
+@checks_body
 def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
                             rtol: float = 1e-12, atol: float = 1e-12,
                             singular_margin: float = 1e-9) -> xr.Dataset:
@@ -172,8 +173,6 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     >>> int(ds.sheet_switches) > 0
     True
     """
-    if not isinstance(body, RigidBody):
-        raise TypeError(f"body must be a RigidBody, got {type(body).__name__}")
     if not body.is_hess:
         raise ValueError(
             "propagate_hess_manifold needs a Hess body: the Hess conditions (2) "

@@ -11,7 +11,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer._version import __version__
-from andoyer.body import RigidBody
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import singular_mask, to_andoyer
 from andoyer.charts.euler_poisson import (
     STATE,
@@ -51,6 +51,7 @@ VARIABLE_ATTRS: dict[str, tuple[str, str, str]] = {
 _UNITS = {"l_angle": "rad", "g_angle": "rad", "theta1": "rad", "theta2": "rad"}
 
 
+@checks_body
 def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
     """Attributes recording body, package version and creation time."""
     attrs: dict[str, Any] = {f"body_{k}" if not k.startswith("body") else k: v
@@ -64,6 +65,7 @@ def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
     return attrs
 
 
+@checks_body
 def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
                    coords: Mapping[str, Any], attrs: Mapping[str, Any],
                    extra: Mapping[str, tuple[Sequence[str], Any]] | None = None) -> xr.Dataset:

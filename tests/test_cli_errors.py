@@ -1,0 +1,102 @@
+"""One error boundary for the command line: one line on stderr, a distinct exit code per
+class of expected failure, no traceback; outputs checked before any computation."""
+
+import subprocess
+import sys
+
+import pytest
+
+from andoyer import cli
+from andoyer.cli import EXIT_CODES, main
+from andoyer.errors import CostLimitError, IntegrationError
+
+ORBIT = ["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "1", "--n-out", "3"]
+
+
+def run(argv, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    return info.value.code, err
+
+
+@pytest.mark.parametrize("exc, kind", [
+    (ValueError("bad value"), "bad input"),
+    (TypeError("bad type"), "bad input"),
+    (CostLimitError("too much"), "cost limit"),
+    (PermissionError(13, "Permission denied", "/x/y.nc"), "file system"),
+    (MemoryError(), "out of memory"),
+    (IntegrationError("step size underflow"), "integration failed"),
+    (ModuleNotFoundError("No module named 'heyoka'"), "missing dependency"),
+    (RuntimeError("a bug"), "internal error"),
+    (KeyboardInterrupt(), "interrupted"),
+])
+def test_each_failure_class_has_its_exit_code(monkeypatch, capsys, tmp_path, exc, kind):
+    def boom(args):
+        raise exc
+
+    parser = cli.build_parser()
+    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    parser._subparsers._group_actions[0].choices["orbit"].set_defaults(func=boom)
+    code, err = run([*ORBIT, "--out", str(tmp_path / "o.nc")], capsys)
+    assert code == EXIT_CODES[kind]
+    assert err.startswith("andoyer orbit: error:") and err.count("\n") == 1
+    assert len(set(EXIT_CODES.values())) == len(EXIT_CODES)
+    # --debug shows the traceback instead
+    if not isinstance(exc, KeyboardInterrupt):
+        with pytest.raises(type(exc)):
+            main(["--debug", *ORBIT, "--out", str(tmp_path / "o.nc")])
+
+
+@pytest.mark.parametrize("out, match", [
+    ("sec.png", "must name a .nc file"),
+    ("{tmp}", "must name a .nc file"),
+    ("{tmp}/missing/o.nc", "does not exist"),
+    ("{file}/o.nc", "is a file, not a folder"),
+])
+def test_outputs_are_checked_before_computing(capsys, tmp_path, monkeypatch, out, match):
+    (tmp_path / "f").write_text("x")
+    out = out.format(tmp=tmp_path, file=tmp_path / "f")
+    calls = []
+    monkeypatch.setattr("andoyer.integrate.api.propagate", lambda *a, **k: calls.append(1))
+    code, err = run([*ORBIT, "--out", out], capsys)
+    assert code == 2 and match in err and not calls
+    assert list(tmp_path.iterdir()) == [tmp_path / "f"]  # nothing half-written
+
+
+def test_section_out_must_be_netcdf_so_the_figure_cannot_overwrite_it(capsys):
+    code, err = run(["section", "--out", "sec.png"], capsys)
+    assert code == 2 and ".nc" in err
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--A", "3", "--B", "1", "--C", "2"], "--body paper does not take --A, --B, --C"),
+    (["--body", "kovalevskaya", "--A", "2"], "does not take --A"),
+    (["--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--r", "1", "0", "0"],
+     "does not take --r"),
+])
+def test_flags_that_do_not_apply_are_refused(capsys, tmp_path, argv, match):
+    code, err = run([*ORBIT, *argv, "--out", str(tmp_path / "o.nc")], capsys)
+    assert code == 2 and match in err
+
+
+def test_a_given_zero_is_not_replaced_by_a_default(capsys, tmp_path):
+    code, err = run([*ORBIT, "--body", "kovalevskaya", "--C", "0",
+                     "--out", str(tmp_path / "o.nc")], capsys)
+    assert code == 2 and "--C must be finite and > 0" in err
+
+
+def test_cost_limit_from_the_command_line(capsys, tmp_path):
+    code, err = run(["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "1e13",
+                     "--out", str(tmp_path / "o.nc")], capsys)
+    assert code == EXIT_CODES["cost limit"] and "--no-limits" in err
+
+
+def test_real_process_prints_one_line_and_no_traceback(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "andoyer", *ORBIT, "--out",
+                           str(tmp_path / "missing" / "o.nc")],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr
+    assert proc.stderr.strip().startswith("andoyer orbit: error:")
