@@ -66,6 +66,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
 from andoyer.charts.hess import from_hess
+from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import _params, _Progress, initial_states
 from andoyer.integrate.fill import fill_section, section_roots
@@ -180,7 +181,13 @@ def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
     N = _gradients(body, Y)  # (n, 3, 6): the Casimirs' gradients, then grad H
     if direction is not None:
         k = 2 if tangent == "leaf" else 3
-        V = np.broadcast_to(np.asarray(direction, dtype=float), Y.shape)
+        try:
+            V = np.broadcast_to(np.asarray(direction, dtype=float), Y.shape)
+        except (TypeError, ValueError):
+            raise ValueError(f"w0 (initial tangent direction) must have shape (6,) or "
+                             f"{Y.shape}, got {np.shape(direction)}") from None
+        if not np.all(np.isfinite(V)):
+            raise ValueError("w0 (initial tangent direction) contains NaN or infinity")
         W = V - _project(N[:, :k], V)
         norm = np.linalg.norm(W, axis=1)
         if np.any(norm <= 1e-8 * np.linalg.norm(V, axis=1)):
@@ -336,11 +343,13 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
             raise ValueError("t must be a 1-D array of increasing finite times starting "
                              "at 0 (the indicators count from t = 0)")
         T = float(times[-1])
+    budget.check("indicators", steps=3.0 * budget.estimate_steps(body, y, T, tol),
+                 memory=8.0 * 20 * y.shape[0] * times.size)
     w = initial_tangent(body, y, tangent, w0)
     res = propagate_variational(y, w, times, _params(body), tol=tol, scale=T, engine=name)
     if not res.ok.all():
         bad = np.flatnonzero(~res.ok).tolist()
-        raise FloatingPointError(f"the variational integration failed (non-finite state) "
+        raise IntegrationError(f"the variational integration failed (non-finite state) "
                                  f"for orbits {bad}")
     data: dict[str, Any] = {k: (("orbit", "time"), v)
                             for k, v in _derived(res.x, times, T).items()}

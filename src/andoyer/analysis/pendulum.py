@@ -42,14 +42,22 @@ energy and ``|gamma|^2``) and the transverse block ``(G1, G2, gamma3)`` (multipl
 ``1`` -- the area integral M -- and a pair ``lambda, 1/lambda``). The pair is taken
 from the trace, ``lambda + 1/lambda = tr Phi_perp - 1``, which is insensitive to the
 Jordan blocks of the trivial multipliers. ``|tr| < 2``: elliptic (linearly stable);
-``> 2``: hyperbolic (unstable); ``= 2``: parabolic.
+``> 2``: hyperbolic (unstable); ``= 2``: parabolic -- multipliers 1, and where the
+matrix is a Jordan block (``shear > 0``) linearly unstable: a perturbation grows in
+proportion to time, not exponentially.
 
 On a Hess body the pair is known exactly: ``(G, r)`` obeys
 ``d(G, r)/dt = -branch sigma G3 (G, r)`` with ``sigma = sqrt((b - c)(c - a))``, and
 ``int G3 dt`` over a period is ``2 pi / c`` for a rotation and 0 for a libration, so
 rotations have ``lambda = exp(+-2 pi sigma / c)`` at every energy
-(:func:`hess_rotation_multiplier`) and librations ``lambda = 1`` with a Jordan block
-(the Hess librations of all ``J1`` share the period: a shear, linear divergence).
+(:func:`hess_rotation_multiplier`) and librations ``lambda = 1`` with a Jordan block.
+Measured on the paper's body (tests): the fixed eigenvector of the leaf monodromy and
+the range of ``Phi - I`` are both the tangent of the Hess manifold (3). A perturbation
+along the manifold comes back unchanged -- the neighbouring Hess librations share the
+pendulum's period, which is why that direction is *not* sheared -- while a perturbation
+off the manifold, ``(G, r) != 0``, comes back with a shift along the manifold of
+``shear`` times its size: a linear (algebraic) instability, growing with the energy
+(``shear`` = 1.53, 2.83, 14.95 at ``h / mu`` = 0.2, 0.5, 0.9).
 
 References
 ----------
@@ -524,7 +532,8 @@ def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational
     The six multipliers are ``1, 1, 1`` (in-plane: flow, energy, ``|gamma|^2``), ``1``
     (area integral) and ``lambda, 1/lambda`` with ``lambda + 1/lambda = tr Phi_perp - 1``
     (module notes). ``|trace| < 2 - parabolic_tol``: elliptic; ``> 2 + parabolic_tol``:
-    hyperbolic; else parabolic.
+    hyperbolic; else parabolic (multipliers 1; with ``shear > 0`` a Jordan block, i.e.
+    linearly unstable).
 
     Examples
     --------

@@ -43,6 +43,7 @@ from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
+from andoyer.integrate import budget
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
 from andoyer.kernels import _generated as K
 
@@ -455,6 +456,13 @@ def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: 
 
 
 @checks_body
+def _bottom(body: RigidBody, M: float) -> float:
+    """``min(a, b, c) M^2 / 2 - mu``, the lowest energy at area constant ``M`` (inf on
+    overflow, for a message)."""
+    with np.errstate(over="ignore"):
+        return float(0.5 * min(body.a, body.b, body.c) * np.float64(M) ** 2 - body.mu)
+
+
 def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 40,
                  method: Method = "grid", seed: int = 0,
                  plane_bounds: Any = None, root: RootChoice = "all",
@@ -546,6 +554,8 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
     if isinstance(boundary_grid, bool) or not isinstance(boundary_grid, numbers.Integral) \
             or boundary_grid < 8:
         raise ValueError(f"boundary_grid must be an integer >= 8, got {boundary_grid!r}")
+    # Roots of n points (~500 bytes each) and the boundary grid (~100 bytes a point).
+    budget.check("fill_section", memory=500.0 * n + 100.0 * float(boundary_grid) ** 2)
     energy_fn = _energy_kernel(body, plane)  # the Hess chart raises here if e3 != 0
     bounds = None if plane_bounds is None else _check_bounds(plane_bounds, plane)
     if h <= -body.mu:
@@ -557,7 +567,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
             f"|M| = {abs(M):.6g} is too large for the energy level h = {h:.10g}: the "
             f"actions obey |M| < {plane.symbols[3]} <= G_max = sqrt(2 (h + mu) / min(a, b, c))"
             f" = {act_max:.6g} (H >= min(a, b, c) M^2 / 2 - mu = "
-            f"{0.5 * min(body.a, body.b, body.c) * M**2 - body.mu:.6g}); lower |M| or "
+            f"{_bottom(body, M):.6g}); lower |M| or "
             f"raise h")
     eq = _Equation(plane, energy_fn, value, M, h, act_max)
     (x0, x1), (y0, y1) = bounds if bounds is not None else _default_bounds(plane, act_max, M)

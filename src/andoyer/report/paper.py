@@ -329,8 +329,11 @@ def _solutions(ctx: Context) -> Result:
          "On the physical pendulum Pi = mu sin(g + l + phi0) on L = G and mu sin(g - l - "
          "phi0) on L = -G, not the printed mu^-1 sin(g + l - phi0).",
          f"Stability (added): the pendulum rotations of the Hess body are unstable at every "
-         f"energy, multiplier exp(2 pi sigma / c) = {lam:.6f}; its librations are parabolic "
-         "(a Jordan block: a 1:1 resonance of the transverse and pendulum frequencies). "
+         f"energy, multiplier exp(2 pi sigma / c) = {lam:.6f}; its librations have multipliers "
+         "1 but a Jordan block (a 1:1 resonance of the transverse and pendulum "
+         "frequencies), so they are linearly unstable: a perturbation off the Hess manifold "
+         "returns shifted along it, growing in proportion to time and more so at higher "
+         "energy. "
          "For a non-Hess centre of mass r = (0.6, 0.8, 0) the librations have alternating "
          "stable and unstable tongues."],
         numbers={"max_rel_period_error": float(rel.max()), "rotation_multiplier": lam})
