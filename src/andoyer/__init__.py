@@ -35,10 +35,37 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> object:
-    """``andoyer.explore``: the browser explorer, imported on first use (it loads Panel)."""
-    if name == "explore":
-        import importlib
+#: Names imported on first use (they load xarray, Numba, SciPy): ``from andoyer import
+#: propagate`` works, while ``import andoyer`` stays light.
+_LAZY = {
+    "propagate": "andoyer.integrate.api",
+    "poincare": "andoyer.integrate.api",
+    "initial_states": "andoyer.integrate.api",
+    "integrate_canonical": "andoyer.integrate.api",
+    "Section": "andoyer.integrate.section",
+    "fill_section": "andoyer.integrate.fill",
+    "propagate_hess_manifold": "andoyer.integrate.hess_manifold",
+    "chaos_map": "andoyer.analysis.chaos",
+    "indicators": "andoyer.analysis.chaos",
+}
+__all__ += sorted(_LAZY)
 
+
+def __getattr__(name: str) -> object:
+    """The integration API and the explorer, imported on first use.
+
+    ``andoyer.explore`` is the browser explorer (it loads Panel).
+    """
+    import importlib
+
+    if name == "explore":
         return importlib.import_module("andoyer.explore")
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
     raise AttributeError(f"module 'andoyer' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY) | {"explore"})

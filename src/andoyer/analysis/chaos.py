@@ -57,7 +57,6 @@ import math
 import numbers
 from typing import Any, Literal
 
-import heyoka as hy
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
@@ -69,6 +68,7 @@ from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import _params, _Progress, initial_states
+from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
 from andoyer.integrate.variational import (

@@ -82,7 +82,6 @@ from functools import cache
 from pathlib import Path
 from typing import Any, Literal, NamedTuple
 
-import heyoka as hy
 import numpy as np
 from numpy.typing import NDArray
 
@@ -91,6 +90,7 @@ from andoyer._version import __version__
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
 from andoyer.integrate.engines.heyoka_engine import _state_vars, _system, tolerance
+from andoyer.integrate.engines.lazy import heyoka as hy
 
 __all__ = [
     "VARIATIONAL_STATE", "TANGENT", "N_VARIATIONAL", "MEGNO_DELTA", "SCALE_PAR",

@@ -88,13 +88,13 @@ from contextlib import contextmanager
 from functools import cache, partial
 from typing import Any, NamedTuple, TypeVar
 
-import heyoka as hy
 import numpy as np
 import sympy as sp
 from numpy.typing import NDArray
 
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import T_START, Crossings, Params
+from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.kernels._generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
@@ -104,8 +104,9 @@ __all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up"]
 #: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
 PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
 
-_DIRECTIONS = {1: hy.event_direction.positive, -1: hy.event_direction.negative,
-               0: hy.event_direction.any}
+#: Crossing direction -> name of heyoka's event_direction (looked up at use: heyoka is
+#: imported lazily).
+_DIRECTIONS = {1: "positive", -1: "negative", 0: "any"}
 
 _NO_SECTION = -1
 _T = TypeVar("_T")
@@ -236,7 +237,7 @@ def _build(key: _Key) -> _Slot:
             ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)), **common)
         return _Slot(ta, None, int(np.shape(ta.pars)[0]))
     f = _section_exprs(key.kind)[0]
-    direction = _DIRECTIONS[key.direction]
+    direction = getattr(hy.event_direction, _DIRECTIONS[key.direction])
     if key.batch_size == 1:
         ev = hy.nt_event(f, _Recorder(), direction=direction)
         ta = hy.taylor_adaptive(system, [0.0] * 6, nt_events=[ev], **common)

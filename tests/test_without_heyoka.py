@@ -1,0 +1,41 @@
+"""Where heyoka is missing (no wheel), every module imports, orbits and sections run on
+the numba engine, and what needs heyoka says so clearly."""
+
+import subprocess
+import sys
+import textwrap
+
+SCRIPT = textwrap.dedent("""
+    import sys
+    sys.modules["heyoka"] = None  # as if it were not installed
+    import importlib, pkgutil, warnings
+    import numpy as np
+    import andoyer
+    for m in pkgutil.walk_packages(andoyer.__path__, "andoyer."):
+        if not m.name.endswith("__main__"):
+            importlib.import_module(m.name)
+    from andoyer import RigidBody
+    from andoyer.integrate import poincare, propagate
+    from andoyer.integrate.engines import default_engine_name
+    assert default_engine_name() == "numba"
+    body = RigidBody.paper()
+    ds = propagate(body, [0.3, 0, 0.3, 1, 0], [0, 1, 2], chart="andoyer")
+    assert ds.attrs["engine"] == "numba" and abs(ds.H_drift).max() < 1e-12
+    ds = poincare(body, [0.3, 0, 0.3, 1, 0], "theta2=0", 3, chart="andoyer")
+    assert int(ds.crossings_found[0]) == 3
+    from andoyer.analysis.chaos import indicators
+    try:
+        indicators(body, [0.3, 0, 0.3, 1, 0], 5.0, chart="andoyer")
+    except ModuleNotFoundError as exc:
+        assert "heyoka is not installed" in str(exc)
+    else:
+        raise AssertionError("indicators ran without heyoka")
+    print("ok")
+""")
+
+
+def test_andoyer_without_heyoka():
+    proc = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert proc.stdout.strip().endswith("ok")
