@@ -23,6 +23,7 @@ run: install
 test: install
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 	$(BIN)/python -m pytest -m "not slow" --doctest-modules src tests
 
 clean:

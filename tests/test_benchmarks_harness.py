@@ -26,7 +26,7 @@ from benchmarks.peers import scipy_scripts as ss  # noqa: E402
 
 from andoyer import RigidBody, from_andoyer, to_hess  # noqa: E402
 from andoyer.integrate import Section, poincare  # noqa: E402
-from andoyer.kernels._generated import ep_field  # noqa: E402
+from andoyer.kernels.generated import ep_field  # noqa: E402
 
 BODY = RigidBody.paper()
 P = workloads.params(BODY)

@@ -1,6 +1,6 @@
 """The committed kernels are still what the symbolic layer generates; the import is light.
 
-``andoyer.kernels._generated`` is committed so that ``import andoyer`` never runs SymPy.
+``andoyer.kernels.generated`` is committed so that ``import andoyer`` never runs SymPy.
 Here it is regenerated in memory (well, in a temporary file) from
 :mod:`andoyer.symbolic` and both versions are evaluated at random points: if someone
 edits H, a chart map or the generated file by hand without regenerating, this fails.
@@ -18,7 +18,7 @@ from types import ModuleType
 import numpy as np
 import pytest
 
-from andoyer.kernels import _generated as committed
+from andoyer.kernels import generated as committed
 from andoyer.symbolic.codegen import KERNELS, generate_source
 
 NPTS = 100

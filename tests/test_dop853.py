@@ -29,10 +29,10 @@ from scipy.integrate import solve_ivp
 
 from andoyer import RigidBody, from_andoyer, to_andoyer, to_hess
 from andoyer.charts.euler_poisson import STATE
-from andoyer.kernels import _generated
 from andoyer.kernels import dop853 as dop
+from andoyer.kernels import generated
 
-KIND = {name: i for i, name in enumerate(_generated.SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS)}
 TOL = 1e-12
 MAX_STEPS = 10**8
 X_START = np.array([[0.3, 1.1, 0.2, 1.0, -0.4],  # (l, g, L, G, M), |G| = 1
@@ -186,7 +186,7 @@ def test_step_control_is_hairers(general_body: RigidBody,
     p = kernel_params(general_body)
 
     def fun(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.array(_generated.ep_field(*y.tolist(), *general_body.params))
+        return np.array(generated.ep_field(*y.tolist(), *general_body.params))
 
     for tol in (1e-6, 1e-12):
         _, info = dop.propagate(y_start[:1], np.array([0.0, 100.0]), p, tol, tol, MAX_STEPS)
@@ -214,7 +214,7 @@ def test_failure_is_reported_not_hidden(general_body: RigidBody,
 def _section_fw(body: RigidBody, kind: int, value: float,
                 y: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     phi0 = kernel_params(body)[-1]
-    f, w = _generated.section(kind, *np.moveaxis(y, -1, 0), phi0, value, np.cos(value),
+    f, w = generated.section(kind, *np.moveaxis(y, -1, 0), phi0, value, np.cos(value),
                               np.sin(value))
     return np.asarray(f) + 0.0 * y[..., 0], np.asarray(w) + 0.0 * y[..., 0]
 
@@ -222,7 +222,7 @@ def _section_fw(body: RigidBody, kind: int, value: float,
 def _dfdt(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
           ) -> NDArray[np.float64]:
     """df/dt = grad f . F(y), by a central difference along the field."""
-    F = np.stack(_generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
+    F = np.stack(generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
     d = 1e-6
     return (_section_fw(body, kind, value, y + d * F)[0]
             - _section_fw(body, kind, value, y - d * F)[0]) / (2 * d)
@@ -390,4 +390,4 @@ def test_a_second_process_loads_the_compiled_kernels(
 def test_state_order_is_the_charts() -> None:
     # The kernels unpack y in this order (see dop853._field); fail loudly if it moves.
     assert STATE == ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
-    assert _generated.SECTION_KINDS[:6] == STATE
+    assert generated.SECTION_KINDS[:6] == STATE

@@ -27,9 +27,9 @@ from numpy.typing import NDArray
 from andoyer import RigidBody, from_andoyer
 from andoyer.integrate.engines import ENGINES
 from andoyer.integrate.engines.base import Engine, Params
-from andoyer.kernels import _generated
+from andoyer.kernels import generated
 
-KIND = {name: i for i, name in enumerate(_generated.SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS)}
 TOL = 1e-12
 X_START = np.array([[0.3, 1.1, 0.2, 1.0, -0.4],  # (l, g, L, G, M), |G| = 1, |gamma| = 1
                     [1.0, 2.0, -0.5, 1.0, 0.3]])
@@ -69,7 +69,7 @@ def params(body: RigidBody) -> Params:
 
 def integrals(body: RigidBody, y: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
     G, gamma = y[..., :3], y[..., 3:]
-    return {"H": _generated.ep_hamiltonian(*np.moveaxis(y, -1, 0), *body.params),
+    return {"H": generated.ep_hamiltonian(*np.moveaxis(y, -1, 0), *body.params),
             "area": np.sum(G * gamma, axis=-1),
             "geometric": np.sum(gamma * gamma, axis=-1),
             "G": np.linalg.norm(G, axis=-1)}
@@ -86,7 +86,7 @@ def drifts(body: RigidBody, y: NDArray[np.float64]) -> dict[str, float]:
 
 def section_fw(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    f, w = _generated.section(kind, *np.moveaxis(y, -1, 0), params(body)[-1], value,
+    f, w = generated.section(kind, *np.moveaxis(y, -1, 0), params(body)[-1], value,
                               np.cos(value), np.sin(value))
     zero = 0.0 * y[..., 0]
     return np.asarray(f) + zero, np.asarray(w) + zero
@@ -95,7 +95,7 @@ def section_fw(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
 def dfdt(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
          ) -> NDArray[np.float64]:
     """df/dt = grad f . F(y), by a central difference along the field (1)."""
-    F = np.stack(_generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
+    F = np.stack(generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
     d = 1e-6
     return (section_fw(body, kind, value, y + d * F)[0]
             - section_fw(body, kind, value, y - d * F)[0]) / (2 * d)

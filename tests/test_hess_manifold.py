@@ -16,7 +16,7 @@ from scipy.integrate import solve_ivp
 from andoyer import RigidBody
 from andoyer.integrate.api import propagate
 from andoyer.integrate.hess_manifold import METHOD, propagate_hess_manifold
-from andoyer.kernels._generated import ep_field
+from andoyer.kernels.generated import ep_field
 from andoyer.kernels.numba import ep_field as ep_field_jit
 
 STATE = ["G1", "G2", "G3", "gamma1", "gamma2", "gamma3"]

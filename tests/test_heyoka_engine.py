@@ -30,7 +30,7 @@ from andoyer import (  # noqa: E402
 )
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine  # noqa: E402
-from andoyer.kernels._generated import SECTION_KINDS, ep_field, section  # noqa: E402
+from andoyer.kernels.generated import SECTION_KINDS, ep_field, section  # noqa: E402
 
 BODIES = {
     "paper": RigidBody.paper(),  # Hess: A=2.5, B=2.0, C=2.2, mu=0.01

@@ -222,13 +222,14 @@ def test_chunk_cut_between_data_and_mark_is_recomputed(reference, tmp_path, monk
 
 
 def test_progress_line(capsys):
-    from andoyer.scan.run import _Progress
+    from andoyer.progress import Progress
 
-    bar = _Progress(4, 1, "http://127.0.0.1:8787/status", True)
+    bar = Progress(4, "scan", True, postfix="Dask dashboard http://127.0.0.1:8787/status",
+                   initial=1)
     bar.update()
     bar.close()
     err = capsys.readouterr().err
-    assert "2/4 tasks" in err and "s left" in err
+    assert "2/4" in err and "<" in err  # done/total and tqdm's elapsed<left
     assert "dashboard http://127.0.0.1:8787/status" in err and err.endswith("\n")
 
 

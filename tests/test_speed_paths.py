@@ -22,15 +22,14 @@ import pytest
 from andoyer import RigidBody, area_integral, energy, from_andoyer, geometric_integral
 from andoyer.integrate import Section, poincare, propagate
 from andoyer.integrate import api as api_module
-from andoyer.integrate.api import _params
-from andoyer.kernels._generated import SECTION_KINDS
+from andoyer.kernels.generated import SECTION_KINDS
 
 hy = pytest.importorskip("heyoka")
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
 from andoyer.integrate.engines.numba_engine import NumbaEngine  # noqa: E402
 
 BODY = RigidBody.paper()
-P = _params(BODY)
+P = BODY.engine_params
 
 
 def orbits(n: int) -> np.ndarray:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-__all__ = ["finite", "positive"]
+__all__ = ["finite", "positive", "floats"]
 
 
 def finite(name: str, value: Any) -> float:
@@ -35,3 +35,18 @@ def positive(name: str, value: Any) -> float:
     if v <= 0.0:
         raise ValueError(f"{name} must be finite and > 0, got {v!r}")
     return v
+
+
+def floats(text: str, n: int, what: str) -> list[float]:
+    """``n`` numbers from ``"a,b,c"`` or ``"a b c"`` (command line, explorer fields).
+
+    >>> floats("0.3, 1", 2, "--state")
+    [0.3, 1.0]
+    """
+    try:
+        vals = [float(v) for v in text.replace(",", " ").split()]
+    except ValueError:
+        raise ValueError(f"{what}: {text!r} is not a list of numbers") from None
+    if len(vals) != n:
+        raise ValueError(f"{what} needs {n} numbers, got {len(vals)}")
+    return vals

@@ -201,6 +201,16 @@ class RigidBody:
         """``(a, b, c, mu, e1, e2, e3)``: the body as the plain floats kernels take."""
         return (self.a, self.b, self.c, self.mu, self.e1, self.e2, self.e3)
 
+    @property
+    def engine_params(self) -> tuple[float, float, float, float, float, float, float, float]:
+        """``(a, b, c, mu, e1, e2, e3, phi0)``: what the integration engines take.
+
+        ``phi0`` (11) enters only the Hess-chart section functions; it is 0.0 for a body
+        whose centre of mass is off the G1-G2 plane (there the Hess chart does not apply).
+        """
+        phi0 = self.phi0 if abs(self.e3) <= 1e-12 else 0.0
+        return (*self.params, phi0)
+
     def attrs(self) -> dict[str, float | str]:
         """The body as flat attributes for self-describing datasets."""
         return {"body_name": self.name, "A": self.A, "B": self.B, "C": self.C,

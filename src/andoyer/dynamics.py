@@ -18,9 +18,9 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import as_andoyer, require_regular
 from andoyer.charts.euler_poisson import as_state
 from andoyer.charts.hess import as_hess
-from andoyer.kernels import _generated as K
+from andoyer.kernels import generated as K
 
-__all__ = ["CHARTS", "Chart", "hamiltonian", "vector_field", "cyclic_rate"]
+__all__ = ["CHARTS", "Chart", "hamiltonian", "vector_field", "cyclic_rate", "canonical_field"]
 
 Chart = Literal["euler_poisson", "andoyer", "hess"]
 #: Chart name -> coordinate names.
@@ -81,7 +81,10 @@ def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
     return np.asarray(fn(*np.moveaxis(arr, -1, 0), *p), dtype=np.float64)
 
 
-def _field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
+def canonical_field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
+    """The chart's generated field with the cyclic angle's rate appended (last column):
+    ``d(l, g, L, G, M, m)/dt`` or ``d(theta1, ..., J3, theta3)/dt``; regular points only.
+    """
     arr, p = _chart_args(body, x, chart)
     _regular_check(arr, chart, f"the {chart} vector field")
     fn = _FIELDS[chart]
@@ -99,7 +102,7 @@ def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
     form is (16) (``dJ3/dt = 0``). The canonical charts need regular points
     (``|L| < G``, ``|M| < G``; ``0 < J1 < J2``, ``|J3| < J2``) and raise otherwise.
     """
-    return _field(body, x, chart)[..., : len(CHARTS[chart])]
+    return canonical_field(body, x, chart)[..., : len(CHARTS[chart])]
 
 
 @checks_body
@@ -109,4 +112,4 @@ def cyclic_rate(body: RigidBody, x: ArrayLike, chart: Chart = "andoyer"
     if chart == "euler_poisson":
         raise ValueError("the cyclic angle m is a coordinate of the 'andoyer' and 'hess' "
                          "charts; convert the state with to_andoyer or to_hess first")
-    return _field(body, x, chart)[..., -1]
+    return canonical_field(body, x, chart)[..., -1]

@@ -67,7 +67,7 @@ from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
 from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
-from andoyer.integrate.api import _params, _Progress, initial_states
+from andoyer.integrate.api import initial_states
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
@@ -77,6 +77,7 @@ from andoyer.integrate.variational import (
     VARIATIONAL_STATE,
     propagate_variational,
 )
+from andoyer.progress import Progress
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "INDICATORS", "TANGENT_SPACES"]
 
@@ -346,7 +347,7 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
     budget.check("indicators", steps=3.0 * budget.estimate_steps(body, y, T, tol),
                  memory=8.0 * 20 * y.shape[0] * times.size)
     w = initial_tangent(body, y, tangent, w0)
-    res = propagate_variational(y, w, times, _params(body), tol=tol, scale=T, engine=name)
+    res = propagate_variational(y, w, times, body.engine_params, tol=tol, scale=T, engine=name)
     if not res.ok.all():
         bad = np.flatnonzero(~res.ok).tolist()
         raise IntegrationError(f"the variational integration failed (non-finite state) "
@@ -530,7 +531,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     # The variational system (state, tangent vector, MEGNO integrals) costs about three
     # plain steps per step.
     budget.check("chaos_map", steps=3.0 * budget.estimate_steps(body, states, T, tol))
-    params = _params(body)
+    params = body.engine_params
     if batch_size is None and name == "heyoka":
         # One batch size for the whole map, so that the chunking cannot change round-off.
         simd = int(hy.recommended_simd_size())
@@ -538,7 +539,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
 
     out = {k: np.full(ny * nx, np.nan) for k in ("fli", "megno", "mle", "H_error")}
     n_failed = 0
-    bar = _Progress(idx.size, f"chaos map ({name}, {nx}x{ny}, t = {T:g})", progress)
+    bar = Progress(idx.size, f"chaos map ({name}, {nx}x{ny}, t = {T:g})", progress)
     for s in range(0, idx.size, chunk):
         sel = idx[s:s + chunk]
         y = states[s:s + chunk]

@@ -90,6 +90,7 @@ __all__ = [
     "AXES",
     "ROTATION_LABELS",
     "classify",
+    "theta_text",
     "permanent_rotations",
     "andoyer_fixed_points",
     "hess_fixed_points",
@@ -98,7 +99,6 @@ __all__ = [
 ]
 
 ReducedChart = Literal["andoyer", "hess"]
-TWO_PI = 2.0 * math.pi
 
 #: Principal axis -> (moment name, index in (a, b, c)).
 AXES: dict[str, tuple[str, int]] = {"x": ("A", 0), "y": ("B", 1), "z": ("C", 2)}
@@ -491,7 +491,7 @@ def _l_closed_forms(body: RigidBody, G0: float
     return pts
 
 
-def _theta_text(value: float, period: float, phi0: float, lstar: float | None) -> str:
+def theta_text(value: float, period: float, phi0: float, lstar: float | None) -> str:
     """Name ``value`` (mod ``period``) as ``k pi + m phi0 (+ n l*)``, simplest first."""
     terms = [("phi0", phi0)] + ([("l*", lstar)] if lstar is not None else [])
     best: tuple[int, str] | None = None
@@ -539,7 +539,7 @@ def _closed_forms(body: RigidBody, chart: ReducedChart, action: float, period: f
                 break
         else:
             jt = {0.0: "0", J2: "J2"}.get(J1, "J2/2")
-            merged.append((theta1, J1, f"({_theta_text(theta1, period, phi0, lstar)}, {jt})",
+            merged.append((theta1, J1, f"({theta_text(theta1, period, phi0, lstar)}, {jt})",
                            motions, line))
     return merged
 
@@ -697,7 +697,7 @@ def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
     (12, 4, 4)
     """
     G0 = _positive("G0", G0)
-    return _fixed_points(body, "andoyer", G0, TWO_PI, _n_seed(n_seed))
+    return _fixed_points(body, "andoyer", G0, math.tau, _n_seed(n_seed))
 
 
 @checks_body
@@ -725,7 +725,7 @@ def hess_fixed_points(body: RigidBody, J2: float = 1.0, *, double_cover: bool = 
     [('(0, 0)', 'saddle', '-z'), ('(4 phi0, 0)', 'saddle', '-z')]
     """
     J2 = _positive("J2", J2)
-    period = 2.0 * TWO_PI if double_cover else TWO_PI
+    period = 2.0 * math.tau if double_cover else math.tau
     nq, npp = _n_seed(n_seed)
     return _fixed_points(body, "hess", J2, period, (nq * (2 if double_cover else 1), npp))
 

@@ -104,7 +104,6 @@ __all__ = [
 MOTIONS = {"equilibrium": 0, "libration": 1, "separatrix": 2, "rotation": 3,
            "pole_passage": 4}
 
-_TWO_PI = 2.0 * math.pi
 _EPS = float(np.finfo(float).eps)
 _REL = 8.0 * _EPS
 
@@ -189,7 +188,7 @@ def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLi
     Eq. (16) at ``theta1 = 0``. Returns shape ``(..., 4)``.
     """
     _check_hess(body)
-    off = math.remainder(float(theta1), _TWO_PI)
+    off = math.remainder(float(theta1), math.tau)
     if abs(off) > THETA1_TOL:
         raise ValueError(f"theta1 = {theta1!r} is not on the Hess manifold theta1 = 0 (mod 2 pi)")
     eps = 1.0 if abs(math.remainder(float(theta1), 4.0 * math.pi)) <= THETA1_TOL else -1.0
@@ -342,9 +341,9 @@ def period(body: RigidBody, h: float, M: float = 0.0, *, method: str = "elliptic
         return math.inf
     if motion == "equilibrium":
         if M == 0.0:
-            return _TWO_PI / math.sqrt(c * mu)
+            return math.tau / math.sqrt(c * mu)
         J, _ = energy_minimum(body, M)
-        return _TWO_PI / _centre_frequency(body, J, M)
+        return math.tau / _centre_frequency(body, J, M)
     if M == 0.0 and method == "elliptic":
         return pendulum_period(c, mu, h)
     ua, ub, uc = cubic_roots(body, h, M)
@@ -426,10 +425,10 @@ def signed_to_hess(theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike, M: float = 
     if np.any(neg) and M != 0.0:
         raise ValueError("J2 < 0 only exists in the M = 0 signed picture")
     ps = np.where(neg, ps + math.pi, ps)
-    t2 = np.mod(np.where(neg, math.pi - t2, t2), _TWO_PI)
-    t2 = np.where(t2 >= _TWO_PI, 0.0, t2)
+    t2 = np.mod(np.where(neg, math.pi - t2, t2), math.tau)
+    t2 = np.where(t2 >= math.tau, 0.0, t2)
     G = np.abs(j2)
-    theta1 = np.where(np.sin(ps) >= 0.0, 0.0, _TWO_PI)
+    theta1 = np.where(np.sin(ps) >= 0.0, 0.0, math.tau)
     J1 = G * np.cos(0.5 * ps) ** 2
     return np.stack(np.broadcast_arrays(theta1, t2, J1, G, np.full(G.shape, float(M))),
                     axis=-1)
@@ -443,10 +442,10 @@ def _initial(body: RigidBody, x0: ArrayLike) -> tuple[float, float, float, float
         raise ValueError("x0 must be one finite Hess-chart point (theta1, theta2, J1, J2, J3), "
                          f"shape (5,), got {arr.shape}")
     theta1, theta2, J1, J2, M = (float(v) for v in arr)
-    if abs(math.remainder(theta1, _TWO_PI)) > THETA1_TOL:
+    if abs(math.remainder(theta1, math.tau)) > THETA1_TOL:
         raise ValueError(f"x0: theta1 = {theta1!r} is not on the Hess manifold theta1 = 0 "
                          "(mod 2 pi); the Hess solution lives there")
-    theta1 = 0.0 if abs(math.remainder(theta1, 4.0 * math.pi)) <= THETA1_TOL else _TWO_PI
+    theta1 = 0.0 if abs(math.remainder(theta1, 4.0 * math.pi)) <= THETA1_TOL else math.tau
     if not J2 > 0.0:
         raise ValueError(f"x0: J2 = G must be > 0, got {J2!r}")
     if not 0.0 <= J1 <= J2:

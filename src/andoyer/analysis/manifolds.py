@@ -107,7 +107,6 @@ __all__ = [
 ]
 
 Stability = Literal["unstable", "stable"]
-TWO_PI = 2.0 * math.pi
 
 
 @checks_body
@@ -283,7 +282,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     # Orient v: the traced point must arrive near the line's l = theta1/2 - phi0 (mod 2 pi).
     l_line = theta1_line / 2.0 - body.phi0
     l_seen = float(to_andoyer(trial.trace(0.5).y)[0])
-    if abs(math.remainder(l_seen - l_line, TWO_PI)) > math.pi / 2:
+    if abs(math.remainder(l_seen - l_line, math.tau)) > math.pi / 2:
         trial = replace(trial, vector=-v)
     return trial
 
@@ -318,7 +317,7 @@ class ManifoldCurve:
         from scipy.optimize import brentq
 
         gs = self.g
-        r = np.remainder(gs - g + math.pi, TWO_PI) - math.pi
+        r = np.remainder(gs - g + math.pi, math.tau) - math.pi
         # A sign change of r between two close samples, not its jump at r = +-pi.
         cand = np.flatnonzero((np.sign(r[:-1]) != np.sign(r[1:]))
                               & (np.abs(r[:-1]) < 1.0) & (np.abs(r[1:]) < 1.0))
@@ -330,7 +329,7 @@ class ManifoldCurve:
 
         def f(s: float) -> float:
             cr = self.branch.trace(s)
-            miss = math.remainder(float(to_andoyer(cr.y)[1]) - g, TWO_PI)
+            miss = math.remainder(float(to_andoyer(cr.y)[1]) - g, math.tau)
             best.append((abs(miss), cr))
             return miss
 
@@ -349,7 +348,7 @@ class ManifoldCurve:
         arclength = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(g), np.diff(G)))])
         ds = xr.Dataset(
             {"s": (("point",), self.s),
-             "g_angle": (("point",), np.mod(g, TWO_PI)),
+             "g_angle": (("point",), np.mod(g, math.tau)),
              "g_unwrapped": (("point",), g),
              "G_action": (("point",), G),
              "l_angle": (("point",), x[:, 0]),
@@ -533,7 +532,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
         raise ValueError("wu and ws must follow the same heteroclinic line and sheet")
     if (wu.branch.stability, ws.branch.stability) != ("unstable", "stable"):
         raise ValueError("give the unstable manifold first, then the stable one")
-    phases = TWO_PI * np.arange(n_phase) / n_phase
+    phases = math.tau * np.arange(n_phase) / n_phase
     rows = [splitting_at(wu, ws, float(g)) for g in phases]
     dG = np.array([r["Delta_G"] for r in rows])
     Gu = np.array([r["G_u"] for r in rows])
@@ -569,7 +568,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
     if locate:
         # Candidates: sign changes of the interpolant on a fine grid shifted off the
         # sample phases (a zero on a symmetry line would fall on a node).
-        step = TWO_PI / (64 * n_phase)
+        step = math.tau / (64 * n_phase)
         dense = step * (np.arange(64 * n_phase + 1) + 0.381966)
         vals = _trig_interp(dG, dense)
         idx = np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)
@@ -585,17 +584,17 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
             lo, hi = float(dense[i]), float(dense[i + 1])
             # Widen the bracket until the fresh values change sign.
             while f(lo) * f(hi) > 0.0:
-                if hi - lo > TWO_PI / n_phase:
+                if hi - lo > math.tau / n_phase:
                     raise RuntimeError("could not bracket a heteroclinic point: the "
                                        "interpolated splitting is not accurate; raise "
                                        "n_phase")
                 lo, hi = lo - (hi - lo), hi + (hi - lo)
             z = brentq(f, lo, hi, xtol=gtol, rtol=1e-15)
-            zeros.append(z % TWO_PI)
+            zeros.append(z % math.tau)
             r = cache.get(z) or splitting_at(wu, ws, z)
             slope_s = float(_trig_interp(Gs, np.array([z]), 1)[0])
             slope_u = float(_trig_interp(Gu, np.array([z]), 1)[0])
-            rec["g"].append(z % TWO_PI)
+            rec["g"].append(z % math.tau)
             rec["G"].append(0.5 * (r["G_u"] + r["G_s"]))
             rec["state_distance"].append(float(np.linalg.norm(r["y_u"] - r["y_s"])))
             rec["Delta_G"].append(r["Delta_G"])
@@ -608,7 +607,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
             if key != "lobe_area":
                 rec[key] = [rec[key][i] for i in order]
         for k, z0 in enumerate(zs):
-            z1 = zs[(k + 1) % zs.size] + (TWO_PI if k + 1 == zs.size else 0.0)
+            z1 = zs[(k + 1) % zs.size] + (math.tau if k + 1 == zs.size else 0.0)
             gg = np.linspace(z0, z1, 2049)
             upper = _trig_interp(Gu, gg)
             lower = _trig_interp(Gs, gg)
@@ -704,7 +703,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     """
     from andoyer.analysis.melnikov import melnikov_function
     from andoyer.analysis.periodic import orbits_dataset
-    from andoyer.integrate.api import _Progress
+    from andoyer.progress import Progress
 
     mus = np.atleast_1d(np.asarray(mu, dtype=float))
     if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
@@ -719,7 +718,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     h = 0.5 * body.c * G * G
     theta1_line, j1_dir = _line(body, h, branch, sheet)
     leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
-    bar = _Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
+    bar = Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
     # Both rotation orbits, continued in mu once through every requested value.
     path = np.concatenate([[0.0], mus])
     orb_u, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, leaves), mu=path,

@@ -98,7 +98,6 @@ __all__ = [
     "melnikov_rho",
 ]
 
-TWO_PI = 2.0 * math.pi
 #: The integrand is below ``exp(-TAIL)`` times its maximum beyond the truncation time.
 TAIL = 46.0
 
@@ -230,7 +229,7 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
 
     for i, phase in np.ndenumerate(th):
         if method == "trapezoid":
-            h = min(TWO_PI / omega, TWO_PI / lam) / points_per_period
+            h = min(math.tau / omega, math.tau / lam) / points_per_period
             n = math.ceil(T / h)
             t = h * np.arange(-n, n + 1)
             out[i] = h * float(np.sum(f(t, float(phase))))
@@ -291,7 +290,7 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     if theta2_0 is None:
         if int(n) != n or n < 1:
             raise ValueError(f"n must be a positive integer, got {n!r}")
-        th = TWO_PI * np.arange(int(n)) / int(n)
+        th = math.tau * np.arange(int(n)) / int(n)
     else:
         th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
         if th.ndim != 1 or not np.all(np.isfinite(th)):
@@ -302,7 +301,7 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
     M = melnikov_closed_form(body, th, J2=J2, branch=branch, sheet=sheet)
     data: dict[str, Any] = {"M": (("theta2_0",), M),
-                            "g": (("theta2_0",), np.mod(th + theta1 / 2.0, TWO_PI)),
+                            "g": (("theta2_0",), np.mod(th + theta1 / 2.0, math.tau)),
                             "Delta_G_per_mu": (("theta2_0",), -M / (body.c * J2))}
     if quadrature:
         data["M_quadrature"] = (("theta2_0",), melnikov_quadrature(

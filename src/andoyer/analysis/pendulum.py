@@ -401,8 +401,7 @@ _VAR_LOCK = threading.Lock()
 
 @cache
 def _variational_integrator_cached(tol: float) -> Any:
-    import heyoka as hy
-
+    from andoyer.integrate.engines.lazy import heyoka as hy
     from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 
     state = hy.make_vars(*(str(s) for s in S.y))
@@ -417,7 +416,7 @@ def _variational_integrator_cached(tol: float) -> Any:
 
 def _variational_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float,
                            tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    import heyoka as hy
+    from andoyer.integrate.engines.lazy import heyoka as hy
 
     with _VAR_LOCK:
         ta = _variational_integrator_cached(tol)

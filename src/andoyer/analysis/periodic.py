@@ -85,6 +85,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance
+from andoyer.kernels.constants import T_START
 
 __all__ = [
     "DEFAULT_TOL",
@@ -109,8 +110,6 @@ __all__ = [
 
 #: heyoka's tolerance used by default for the periodic orbits and the manifolds.
 DEFAULT_TOL = 1e-15
-#: A root at ``|t| <= T_START`` is the starting point on its own section, not a crossing.
-T_START = 1e-10
 
 _I6 = np.eye(6)
 
@@ -224,8 +223,7 @@ def _heyoka_system() -> tuple[Any, tuple[Any, ...], tuple[Any, ...]]:
     runtime parameters ``par[0..6] = (a, b, c, mu, e1, e2, e3)``,
     ``par[7], par[8] = cos psi0, sin psi0``.
     """
-    import heyoka as hy
-
+    from andoyer.integrate.engines.lazy import heyoka as hy
     from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 
     xs = tuple(hy.make_vars(*(str(s) for s in S.y)))
@@ -344,7 +342,7 @@ def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *
     ta.pars[:] = _pars(body, psi0)[:np.shape(ta.pars)[0]]
     ta.reset_cooldowns()
     outcome = ta.propagate_until(fp(-t_max if backward else t_max))[0]
-    import heyoka as hy
+    from andoyer.integrate.engines.lazy import heyoka as hy
 
     if outcome in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):
         raise RuntimeError(

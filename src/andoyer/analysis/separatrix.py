@@ -69,7 +69,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.special import expit
 
 from andoyer._validate import positive as _positive
-from andoyer.analysis.fixed_points import _theta_text
+from andoyer.analysis.fixed_points import theta_text
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.charts.euler_poisson import STATE
@@ -82,7 +82,6 @@ __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
 #: The two heteroclinic lines of the Hess chart at ``mu = 0`` (theta1 mod 2 pi).
 BRANCHES = ("theta1=0", "theta1=4phi0")
 
-TWO_PI = 2.0 * math.pi
 
 
 def _sigma(body: RigidBody) -> float:
@@ -141,7 +140,7 @@ def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
     sgn = 1 if phi0 > 0.0 else -1
     if branch == "theta1=0":
         return 0.0, -sgn
-    return float(np.mod(4.0 * phi0, TWO_PI)), sgn
+    return float(np.mod(4.0 * phi0, math.tau)), sgn
 
 
 @checks_body
@@ -211,7 +210,7 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
         raise ValueError("t0 and theta2_0 must be finite")
     lam = heteroclinic_rate(body, J2)
     line, s = _branch_angle(body, branch)
-    theta1 = line + (TWO_PI if sign == -1 else 0.0)
+    theta1 = line + (math.tau if sign == -1 else 0.0)
 
     x = s * lam * (times - t0)
     J1 = J2 * expit(x)
@@ -340,7 +339,7 @@ def _curves(body: RigidBody, chart: str, action: float, period: float, n: int
                 if any(min(abs(t1 - o), period - abs(t1 - o)) < 1e-9 for o in seen):
                     continue
                 seen.append(t1)
-                named = _theta_text(t1, period, body.phi0, None if body.is_hess else lstar)
+                named = theta_text(t1, period, body.phi0, None if body.is_hess else lstar)
                 out.append((np.full(n, t1), (G0 + L) / 2.0, "separatrix", hess,
                             f"theta1 = {named}"))
                 if t1 == 0.0:  # the line theta1 = 0 is also theta1 = period: draw both ends
@@ -437,7 +436,7 @@ def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dat
     ['l = pi - |phi0|', 'l = 2 pi - |phi0|']
     """
     G0 = _positive("G0", G0)
-    return _curves_dataset(body, "andoyer", G0, TWO_PI, _check_n(n, "n"))
+    return _curves_dataset(body, "andoyer", G0, math.tau, _check_n(n, "n"))
 
 
 @checks_body
@@ -460,7 +459,7 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
     """
     J2 = _positive("J2", J2)
     _require_planar(body)
-    period = 2.0 * TWO_PI if double_cover else TWO_PI
+    period = 2.0 * math.tau if double_cover else math.tau
     return _curves_dataset(body, "hess", J2, period, _check_n(n, "n"))
 
 
@@ -496,12 +495,12 @@ def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
     body0 = body.with_mu(0.0)
     if chart == "hess":
         _require_planar(body)
-        period = 2.0 * TWO_PI if double_cover else TWO_PI
+        period = 2.0 * math.tau if double_cover else math.tau
         qn, pn, an = "theta1", "J1", "J2"
         p_lo, p_hi = 0.0, action
         fps = hess_fixed_points(body, action, double_cover=double_cover)
     else:
-        period = TWO_PI
+        period = math.tau
         qn, pn, an = "l_angle", "L_action", "G_action"
         p_lo, p_hi = -action, action
         fps = andoyer_fixed_points(body, action)

@@ -31,6 +31,7 @@ References
 from __future__ import annotations
 
 import enum
+import math
 from typing import Any, Literal, overload
 
 import numpy as np
@@ -59,7 +60,6 @@ COORDS = ("l", "g", "L", "G", "M")
 #: is below this (there the angles lose about ``eps / distance`` of accuracy).
 SINGULAR_RTOL = 1e-12
 
-TWO_PI = 2.0 * np.pi
 
 
 class Singular(enum.IntFlag):
@@ -269,12 +269,12 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
     u = gamma1 * sl + gamma2 * cl
     v1 = (u * G3 - gamma3 * rho) / Gsafe
     g = np.where(flags & int(Singular.M_EQ_PM_G), 0.0, np.arctan2(v0, v1))
-    x = np.stack(np.broadcast_arrays(np.mod(l, TWO_PI), np.mod(g, TWO_PI), G3, G, M),
+    x = np.stack(np.broadcast_arrays(np.mod(l, math.tau), np.mod(g, math.tau), G3, G, M),
                  axis=-1)
     zero = flags == int(Singular.G_ZERO)
     x = np.where(zero[..., None], 0.0, x)
     # mod can round 2 pi - tiny up to exactly 2 pi.
-    x[..., :2] = np.where(x[..., :2] >= TWO_PI, 0.0, x[..., :2])
+    x[..., :2] = np.where(x[..., :2] >= math.tau, 0.0, x[..., :2])
     if with_mask:
         return x, flags
     return x

@@ -36,6 +36,7 @@ References
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
@@ -60,7 +61,6 @@ __all__ = ["COORDS", "hess_to_andoyer_expr", "andoyer_to_hess_expr", "hess_to_ep
 COORDS = ("theta1", "theta2", "J1", "J2", "J3")
 
 FOUR_PI = 4.0 * np.pi
-TWO_PI = 2.0 * np.pi
 
 
 def hess_to_andoyer_expr(theta1: Any, theta2: Any, J1: Any, J2: Any, J3: Any,
@@ -178,10 +178,10 @@ def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False
     with np.errstate(divide="ignore", invalid="ignore"):
         J1 = np.where(L < 0.0, rho**2 / np.where(G - L > 0, 2.0 * (G - L), 1.0), J1)
     theta1 = np.mod(theta1, FOUR_PI)
-    theta2 = np.mod(theta2, TWO_PI)
+    theta2 = np.mod(theta2, math.tau)
     out = np.stack(np.broadcast_arrays(theta1, theta2, J1, J2, J3), axis=-1)
     out[..., 0] = np.where(out[..., 0] >= FOUR_PI, 0.0, out[..., 0])
-    out[..., 1] = np.where(out[..., 1] >= TWO_PI, 0.0, out[..., 1])
+    out[..., 1] = np.where(out[..., 1] >= math.tau, 0.0, out[..., 1])
     if with_mask:
         return out, flags
     return out

@@ -8,6 +8,8 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from andoyer._validate import floats
+
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
            "floats", "output_file", "output_folder", "distinct_outputs"]
 
@@ -132,16 +134,6 @@ def body_from_args(args: argparse.Namespace) -> Any:
     if args.r is None:
         raise ValueError("--body custom needs --r E1 E2 E3 (direction of the centre of mass)")
     return RigidBody(args.A, args.B, args.C, mu, tuple(args.r), "custom")
-
-
-def floats(text: str, n: int, what: str) -> list[float]:
-    try:
-        vals = [float(v) for v in text.replace(",", " ").split()]
-    except ValueError:
-        raise ValueError(f"{what}: {text!r} is not a list of numbers") from None
-    if len(vals) != n:
-        raise ValueError(f"{what} needs {n} numbers, got {len(vals)}")
-    return vals
 
 
 def add_engine_args(p: argparse.ArgumentParser) -> None:

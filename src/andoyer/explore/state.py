@@ -50,7 +50,6 @@ __all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage",
            "STAGE_GROWTH", "orbit_indicators", "chaos_underlay", "UNDERLAY_N",
            "UNDERLAY_T_END"]
 
-TWO_PI = 2.0 * math.pi
 
 #: Crossings of the first stage of an orbit (what the responsiveness target is about).
 FIRST_STAGE = 100
@@ -183,7 +182,7 @@ class Settings:
     @property
     def x_period(self) -> float:
         """Period of the plane's angle as shown: 2 pi, but 4 pi for theta1 when M != 0."""
-        return TWO_PI if (self.plane.coord == "g" or self.M == 0.0) else 2.0 * TWO_PI
+        return math.tau if (self.plane.coord == "g" or self.M == 0.0) else 2.0 * math.tau
 
     def attrs(self) -> dict[str, Any]:
         """Flat attributes for datasets (the body's are added by ``provenance``)."""
@@ -275,7 +274,7 @@ def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: fl
         return []
     G0 = math.sqrt(2.0 * h / I_mid)
     if plane.chart == "hess":
-        ds = sep.separatrix_hess(body, G0, n, double_cover=period > 1.5 * TWO_PI)
+        ds = sep.separatrix_hess(body, G0, n, double_cover=period > 1.5 * math.tau)
     else:
         ds = sep.separatrix_andoyer(body, G0, n)
     x = ds[f"separatrix_{plane.x}"].values

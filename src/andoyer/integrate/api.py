@@ -8,8 +8,6 @@ systems (4) or (16) directly, for comparison with the paper.
 from __future__ import annotations
 
 import math
-import sys
-import time
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -34,9 +32,10 @@ from andoyer.integrate.engines import default_engine_name, get_engine
 from andoyer.integrate.engines.base import Crossings, Engine, Params
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
+from andoyer.progress import Progress
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
-           "RESIDUAL_BOUND"]
+           "RESIDUAL_BOUND", "check_times", "check_tolerances"]
 
 #: |gamma| may differ from 1 by this much (then it is renormalised); more is an error.
 GAMMA_TOL = 1e-12
@@ -91,7 +90,8 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson"
     return y
 
 
-def _check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
+def check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
+    """``(rtol, atol)`` as floats, or ``ValueError`` naming the one out of range."""
     for name, v in (("rtol", rtol), ("atol", atol)):
         if not isinstance(v, (int, float)) or not math.isfinite(v):
             raise ValueError(f"{name} must be a finite number, got {v!r}")
@@ -102,7 +102,8 @@ def _check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
     return float(rtol), float(atol)
 
 
-def _check_times(t: ArrayLike) -> NDArray[np.float64]:
+def check_times(t: ArrayLike) -> NDArray[np.float64]:
+    """Output times as a float array: 1-D, at least 2, finite, strictly increasing."""
     arr = np.asarray(t, dtype=float)
     if arr.ndim != 1 or arr.size < 2:
         raise ValueError(f"t must be a 1-D array of at least 2 output times (the first is "
@@ -114,33 +115,6 @@ def _check_times(t: ArrayLike) -> NDArray[np.float64]:
     return arr
 
 
-class _Progress:
-    """A plain progress line on stderr for work that lasts more than a second."""
-
-    def __init__(self, total: int, label: str, enabled: bool | None) -> None:
-        self.total, self.label, self.done = total, label, 0
-        self.t0 = time.perf_counter()
-        self.enabled = sys.stderr.isatty() if enabled is None else enabled
-        self.shown = False
-
-    def update(self, k: int) -> None:
-        self.done += k
-        elapsed = time.perf_counter() - self.t0
-        if not self.enabled or (elapsed < 1.0 and self.done < self.total):
-            return
-        frac = self.done / self.total
-        eta = elapsed / frac * (1 - frac) if frac > 0 else float("nan")
-        bar = "#" * int(30 * frac)
-        sys.stderr.write(f"\r{self.label} [{bar:<30}] {self.done}/{self.total} "
-                         f"{elapsed:5.1f}s elapsed, {eta:5.1f}s left")
-        sys.stderr.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
-
-
 #: Fewest orbits per engine call while a progress line is shown.
 _MIN_CHUNK = 64
 
@@ -150,15 +124,9 @@ def _chunks(n: int, parts: int) -> list[slice]:
     return [slice(i, min(n, i + size)) for i in range(0, n, size)]
 
 
-def _params(body: RigidBody) -> Params:
-    phi0 = body.phi0 if abs(body.e3) <= 1e-12 else 0.0
-    a, b, c, mu, e1, e2, e3 = body.params
-    return (a, b, c, mu, e1, e2, e3, phi0)
-
-
 def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
                 progress: bool | None) -> list[Any]:
-    bar = _Progress(n, label, progress)
+    bar = Progress(n, label, progress)
     out = []
     # Chunks exist only to move the progress line. The engines balance the orbits of
     # one call over their SIMD lanes and threads (longest first); each chunk boundary
@@ -211,14 +179,14 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
     >>> ds.sizes["time"], bool(abs(ds.H_drift).max() < 1e-10)
     (3, True)
     """
-    rtol, atol = _check_tolerances(rtol, atol)
-    times = _check_times(t)
+    rtol, atol = check_tolerances(rtol, atol)
+    times = check_times(t)
     y = initial_states(body, y0, chart)
     budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
                  memory=_DATASET_BYTES * y.shape[0] * times.size)
     name = default_engine_name() if engine is None else engine
     eng = get_engine(name)
-    params = _params(body)
+    params = body.engine_params
     parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, rtol, atol),
                         y.shape[0], f"propagate ({name})", progress)
     Y = np.concatenate(parts, axis=0)
@@ -307,7 +275,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         body._require_planar(f"the Hess-chart section {sec.coord!r}")
     if not isinstance(n_crossings, (int, np.integer)) or n_crossings < 1:
         raise ValueError(f"n_crossings must be a positive integer, got {n_crossings!r}")
-    rtol, atol = _check_tolerances(rtol, atol)
+    rtol, atol = check_tolerances(rtol, atol)
     t_end = 1000.0 * n_crossings if t_max is None else float(t_max)
     if not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_max must be a positive finite time, got {t_max!r}")
@@ -319,7 +287,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
                  memory=_DATASET_BYTES * y.shape[0] * int(n_crossings))
     name = default_engine_name() if engine is None else engine
     eng = get_engine(name)
-    params = _params(body)
+    params = body.engine_params
     scale = momentum_bound(body, y)
     parts = _run_chunks(
         lambda sl: _regular_crossings(eng, y[sl], scale[sl], params, sec, int(n_crossings),
@@ -474,12 +442,12 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     """
     from scipy.integrate import solve_ivp
 
-    from andoyer.dynamics import CHARTS, _field
+    from andoyer.dynamics import CHARTS, canonical_field
 
     if chart not in ("andoyer", "hess"):
         raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
-    rtol, atol = _check_tolerances(rtol, atol)
-    times = _check_times(t)
+    rtol, atol = check_tolerances(rtol, atol)
+    times = check_times(t)
     x = np.asarray(x0, dtype=float)
     if x.shape != (5,):
         raise ValueError(f"x0 must be one point of the {chart} chart, shape (5,), "
@@ -487,7 +455,7 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     names = CHARTS[chart]
 
     def rhs(_t: float, z: NDArray[np.float64]) -> NDArray[np.float64]:
-        return _field(body, z[:5], chart)
+        return canonical_field(body, z[:5], chart)
 
     def distance(_t: float, z: NDArray[np.float64]) -> float:
         if chart == "andoyer":

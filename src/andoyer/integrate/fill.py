@@ -45,11 +45,10 @@ from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate import budget
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
-from andoyer.kernels import _generated as K
+from andoyer.kernels import generated as K
 
 __all__ = ["fill_section", "section_roots", "SECTION_PLANES", "SINGULAR_MARGIN"]
 
-TWO_PI = 2.0 * math.pi
 
 #: Roots closer than this (relative to the action) to the chart's singular set
 #: (``G = |L|``, ``G = |M|``; ``J1 = 0``, ``J1 = J2``, ``J2 = |J3|``) are skipped: there the
@@ -245,9 +244,9 @@ def _action_bound(body: RigidBody, h: float) -> float:
 def _default_bounds(plane: _Plane, act_max: float, M: float
                     ) -> tuple[tuple[float, float], tuple[float, float]]:
     if plane.chart == "andoyer":
-        return (0.0, TWO_PI), (-act_max, act_max)
+        return (0.0, math.tau), (-act_max, act_max)
     # H is 4 pi-periodic in theta1, 2 pi-periodic on M = 0 (see andoyer.charts.hess).
-    return (0.0, TWO_PI if M == 0.0 else 2.0 * TWO_PI), (0.0, act_max)
+    return (0.0, math.tau if M == 0.0 else 2.0 * math.tau), (0.0, act_max)
 
 
 # ----------------------------------------------------------------------- validation
@@ -276,7 +275,7 @@ def _parse_section(section: Any) -> tuple[_Plane, float]:
         raise ValueError(f"section value must be a number, got {value!r}") from None
     if not math.isfinite(v):
         raise ValueError(f"section value must be finite, got {v!r}")
-    return SECTION_PLANES[name], math.remainder(v, TWO_PI) % TWO_PI
+    return SECTION_PLANES[name], math.remainder(v, math.tau) % math.tau
 
 
 def _check_bounds(bounds: Any, plane: _Plane

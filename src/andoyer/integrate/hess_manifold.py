@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.charts.hess import as_hess, from_hess
-from andoyer.integrate.api import _check_times, _check_tolerances
+from andoyer.integrate.api import check_times, check_tolerances
 from andoyer.integrate.engines.scipy_engine import solve_dop853
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.kernels.numba import ep_field
@@ -54,8 +54,6 @@ METHOD = "Euler-Poisson equations restricted to the Hess manifold (3)"
 #: A zero of ``s`` with ``|G3| <= G_ZERO_RTOL * momentum_bound`` is a ``G = 0`` passage.
 G_ZERO_RTOL = 1e-6
 
-_TWO_PI = 2.0 * math.pi
-_FOUR_PI = 4.0 * math.pi
 
 
 def _manifold_point(body: RigidBody, x0: ArrayLike) -> tuple[float, NDArray[np.float64]]:
@@ -68,13 +66,14 @@ def _manifold_point(body: RigidBody, x0: ArrayLike) -> tuple[float, NDArray[np.f
         if not math.isfinite(arr[0]):
             raise ValueError("x0: theta1 is NaN or infinite")
         # theta1 is 4 pi-periodic; theta1 = 0 and theta1 = 2 pi both lie on (3).
-        off = math.remainder(float(arr[0]), _TWO_PI)
+        off = math.remainder(float(arr[0]), math.tau)
         if abs(off) > THETA1_TOL:
             raise ValueError(
                 f"x0: theta1 = {arr[0]!r} is not on the Hess manifold theta1 = 0 (mod 2 pi) "
                 f"(off by {off:.3g} > {THETA1_TOL:g}); the reduced equations only hold "
                 "there -- use propagate(..., chart='hess') for other states")
-        theta1 = 0.0 if abs(math.remainder(float(arr[0]), _FOUR_PI)) <= THETA1_TOL else _TWO_PI
+        on_zero = abs(math.remainder(float(arr[0]), 2 * math.tau)) <= THETA1_TOL
+        theta1 = 0.0 if on_zero else math.tau
         rest = arr[1:]
     else:
         raise ValueError(
@@ -179,8 +178,8 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
             "A > C > B, e3 = 0 and (c - b) e1^2 = (a - c) e2^2 must hold (build it with "
             f"RigidBody.hess(A, B, C, mu)); got A={body.A}, B={body.B}, C={body.C}, "
             f"r={body.r}")
-    rtol, atol = _check_tolerances(rtol, atol)
-    times = _check_times(t)
+    rtol, atol = check_tolerances(rtol, atol)
+    times = check_times(t)
     if not (math.isfinite(singular_margin) and 0.0 < singular_margin < 1.0):
         raise ValueError(f"singular_margin must lie in (0, 1), got {singular_margin!r}")
     theta1, z0 = _manifold_point(body, x0)
@@ -232,7 +231,7 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     t_zero = t_sw[zero]
     n_sw = np.searchsorted(t_sw, times, side="left")
     n_zero = np.searchsorted(t_zero, times, side="left")
-    theta1_t = np.where(n_sw % 2 == 0, theta1, _TWO_PI - theta1)
+    theta1_t = np.where(n_sw % 2 == 0, theta1, math.tau - theta1)
     theta3 = m_t + math.pi * n_zero
     attrs: dict[str, Any] = provenance(
         body, engine="scipy-DOP853", method=METHOD, rtol=rtol, atol=atol, theta1=theta1,

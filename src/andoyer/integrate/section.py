@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.andoyer_deprit import singular_distances
-from andoyer.kernels._generated import SECTION_KINDS
+from andoyer.kernels.generated import SECTION_KINDS
 
 __all__ = ["Section", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
 

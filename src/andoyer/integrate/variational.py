@@ -89,7 +89,7 @@ from andoyer._atomic import atomic_path
 from andoyer._version import __version__
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
-from andoyer.integrate.engines.heyoka_engine import _state_vars, _system, tolerance
+from andoyer.integrate.engines.heyoka_engine import heyoka_state_vars, heyoka_system, tolerance
 from andoyer.integrate.engines.lazy import heyoka as hy
 
 __all__ = [
@@ -128,8 +128,8 @@ EngineName = Literal["heyoka", "scipy"]
 @cache
 def variational_system() -> tuple[tuple[Any, Any], ...]:
     """The 15 ``(variable, rhs)`` pairs of the system, order :data:`VARIATIONAL_STATE`."""
-    base = list(_system())
-    vsys = hy.var_ode_sys(base, [_state_vars()[0]], order=1)
+    base = list(heyoka_system())
+    vsys = hy.var_ode_sys(base, [heyoka_state_vars()[0]], order=1)
     pairs = list(vsys.sys)
     if vsys.n_orig_sv != len(STATE) or len(pairs) != 2 * len(STATE):
         raise RuntimeError(f"unexpected variational system: {len(pairs)} equations")

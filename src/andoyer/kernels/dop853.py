@@ -17,7 +17,7 @@ orbit per iteration, each orbit independent):
 
 * :func:`propagate` -- states at given output times, read off the dense output;
 * :func:`locate_crossings` -- the first crossings of a section
-  ``f(y) = 0`` (from :func:`andoyer.kernels._generated.section`), each root located
+  ``f(y) = 0`` (from :func:`andoyer.kernels.generated.section`), each root located
   on the dense output polynomial;
 * :func:`integrate_fixed`, :func:`interpolate_step` -- fixed steps without control
   and the interpolant of one step, for measuring the orders of the method.
@@ -66,7 +66,7 @@ oscillation of ``f``, not per step.
 
 Compilation cache. Numba's cache is keyed on the source of the file that defines a
 function, not on the functions it calls, so a regenerated
-:mod:`andoyer.kernels._generated` would otherwise be served stale machine code. The
+:mod:`andoyer.kernels.generated` would otherwise be served stale machine code. The
 cached entry points are therefore built by a factory closing over :data:`KERNEL_STAMP`
 (a hash of the generated kernels and their Numba wrappers), which Numba hashes into
 the cache key; the helpers they call are not cached themselves (their code is part
@@ -90,8 +90,9 @@ from typing import Any
 import numba
 import numpy as np
 
-from andoyer.kernels import _generated
+from andoyer.kernels import generated
 from andoyer.kernels import numba as _kernels
+from andoyer.kernels.constants import T_START
 from andoyer.kernels.numba import ep_field
 
 __all__ = [
@@ -339,10 +340,6 @@ ERROR_EXPONENT = -1.0 / 8.0
 # Brent's method on the dense output: tolerance on theta = (t - t0)/h and iterations.
 ROOT_XTOL = 4.0 * np.finfo(np.float64).eps
 ROOT_MAXITER = 100
-#: A root at t <= T_START is the initial state on the section (to round-off), not a
-#: crossing: "crossings after t = 0" must not depend on the sign of the round-off in
-#: f(y0). The same rule as the heyoka engine's ``T_START``.
-T_START = 1e-10
 # Golden-section search for a pair of roots inside one step: ratio and tolerance.
 GOLDEN = 0.5 * (math.sqrt(5.0) - 1.0)
 GRAZE_XTOL = 1e-9
@@ -350,7 +347,7 @@ GRAZE_XTOL = 1e-9
 
 def _stamp() -> str:
     h = hashlib.sha256()
-    for module in (_generated, _kernels):
+    for module in (generated, _kernels):
         h.update(Path(module.__file__ or "").read_bytes())
     return h.hexdigest()
 
@@ -366,7 +363,7 @@ KERNEL_STAMP = _stamp()
 #: orbit. Measured 1.3x faster steps at the same accuracy.
 FASTMATH = {"reassoc", "contract", "arcp"}
 _jit = numba.njit(nogil=True, fastmath=FASTMATH)
-_section = _jit(_generated.section)
+_section = _jit(generated.section)
 
 
 @_jit
@@ -819,7 +816,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
         p : ndarray, shape (8,)
             Kernel parameters :data:`PARAMS`.
         kind : int
-            Index into :data:`andoyer.kernels._generated.SECTION_KINDS`.
+            Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
         value : float
             The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
         direction : int

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numba
 
-from andoyer.kernels import _generated as _g
+from andoyer.kernels import generated as _g
 
 __all__ = [
     "ep_hamiltonian",

@@ -16,7 +16,6 @@ from __future__ import annotations
 import contextlib
 import logging
 import os
-import sys
 import time
 import uuid
 from collections.abc import Generator, Iterator, Sequence
@@ -27,6 +26,7 @@ from typing import Any
 
 import xarray as xr
 
+from andoyer.progress import Progress
 from andoyer.scan.config import ScanConfig, check_size, load_config
 from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
 from andoyer.scan.tasks import TASKS, ChunkResult, Empty, run_chunk
@@ -70,41 +70,6 @@ class ScanReport:
     def open(self) -> xr.Dataset:
         """The store as a (lazy) xarray dataset."""
         return xr.open_zarr(self.store, consolidated=True)
-
-
-class _Progress:
-    """A progress line on stderr: tasks done, time left, dashboard address."""
-
-    def __init__(self, total: int, resumed: int, dashboard: str | None,
-                 enabled: bool | None) -> None:
-        self.total, self.resumed, self.done = total, resumed, 0
-        self.dashboard = dashboard
-        self.t0 = time.perf_counter()
-        self.enabled = sys.stderr.isatty() if enabled is None else enabled
-        self.shown = False
-        if self.enabled:
-            sys.stderr.write(f"scan: {total - resumed} of {total} tasks to compute"
-                             + (f"; Dask dashboard {dashboard}" if dashboard else "") + "\n")
-
-    def update(self) -> None:
-        self.done += 1
-        if not self.enabled:
-            return
-        elapsed = time.perf_counter() - self.t0
-        left = self.total - self.resumed - self.done
-        eta = elapsed / self.done * left
-        frac = (self.resumed + self.done) / self.total
-        line = (f"\rscan [{'#' * int(30 * frac):<30}] {self.resumed + self.done}/"
-                f"{self.total} tasks, {elapsed:.0f} s elapsed, ~{eta:.0f} s left")
-        if self.dashboard:
-            line += f" | dashboard {self.dashboard}"
-        sys.stderr.write(line)
-        sys.stderr.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
 
 
 # ---------------------------------------------------------------------- executors
@@ -258,7 +223,10 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
             window = max_in_flight or max(2, 2 * threads)
             results = _dask(c, cfg, todo, retries, window)
             stack.callback(results.close)
-        bar = _Progress(len(blocks), report.resumed, dashboard, progress)
+        bar = Progress(len(blocks), f"scan ({len(blocks) - report.resumed} of "
+                       f"{len(blocks)} tasks to compute)", progress,
+                       postfix=f"Dask dashboard {dashboard}" if dashboard else None,
+                       initial=report.resumed)
         stack.callback(bar.close)
         computed, empty = _consume(results, path, cfg, schema, overwrite, bar)
     return ScanReport(path, len(blocks), report.resumed, computed, empty,
@@ -266,7 +234,7 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
 
 
 def _consume(results: Iterator[ChunkResult], path: Path, cfg: ScanConfig,
-             schema: Schema | None, overwrite: bool, bar: _Progress
+             schema: Schema | None, overwrite: bool, bar: Progress
              ) -> tuple[int, list[tuple[dict[str, float], str]]]:
     """Write each chunk's results as they arrive; lay out the store at the first data."""
     kind = TASKS[cfg.task]

@@ -9,7 +9,7 @@ inputs, picks the engine and wraps results into xarray datasets.
 kernel parameters (:attr:`RigidBody.params`) followed by ``phi0`` (0.0 for a body
 whose centre of mass is off the G1-G2 plane; it only enters theta sections).
 
-Section kinds are indices into :data:`andoyer.kernels._generated.SECTION_KINDS`;
+Section kinds are indices into :data:`andoyer.kernels.generated.SECTION_KINDS`;
 the section function and its margin come from the generated
 ``section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv) -> (f, w)``:
 a crossing is a root of ``f`` in the requested direction where ``w > 0``.
@@ -77,7 +77,3 @@ class Engine(Protocol):
         ...
 
 
-#: A section root at t <= T_START is the initial state lying on the section (to
-#: round-off), not a crossing: "crossings after t = 0" must not depend on the sign of
-#: the round-off in the section function at y0. Every engine applies it.
-T_START = 1e-10

@@ -93,13 +93,15 @@ import sympy as sp
 from numpy.typing import NDArray
 
 from andoyer.errors import IntegrationError
-from andoyer.integrate.engines.base import T_START, Crossings, Params
+from andoyer.integrate.engines.base import Crossings, Params
 from andoyer.integrate.engines.lazy import heyoka as hy
-from andoyer.kernels._generated import SECTION_KINDS
+from andoyer.kernels.constants import T_START
+from andoyer.kernels.generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
-__all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up"]
+__all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up", "heyoka_system",
+           "heyoka_state_vars"]
 
 #: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
 PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
@@ -127,24 +129,25 @@ def tolerance(rtol: float, atol: float) -> float:
 
 
 @cache
-def _state_vars() -> tuple[Any, ...]:
+def heyoka_state_vars() -> tuple[Any, ...]:
+    """The heyoka variables of the Euler-Poisson state, named as in ``STATE``."""
     return tuple(hy.make_vars(*(str(s) for s in S.y)))
 
 
 @cache
 def _symbol_map() -> dict[sp.Basic, Any]:
     """SymPy symbol -> heyoka variable (state) or runtime parameter (everything else)."""
-    smap: dict[sp.Basic, Any] = dict(zip(S.y, _state_vars(), strict=True))
+    smap: dict[sp.Basic, Any] = dict(zip(S.y, heyoka_state_vars(), strict=True))
     smap.update({s: hy.par[i] for i, s in enumerate(PARAMETERS)})
     return smap
 
 
 @cache
-def _system() -> tuple[tuple[Any, Any], ...]:
+def heyoka_system() -> tuple[tuple[Any, Any], ...]:
     """The Euler-Poisson equations (1) as heyoka ``(variable, rhs)`` pairs."""
     smap = _symbol_map()
     return tuple((x, hy.from_sympy(e, smap))
-                 for x, e in zip(_state_vars(), euler_poisson_field(), strict=True))
+                 for x, e in zip(heyoka_state_vars(), euler_poisson_field(), strict=True))
 
 
 @cache
@@ -156,7 +159,7 @@ def _section_exprs(kind: int) -> tuple[Any, Any, Any]:
     """
     smap = _symbol_map()
     f, w = (hy.from_sympy(sp.sympify(e), smap) for e in section_function(SECTION_KINDS[kind]))
-    fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in _system()])
+    fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in heyoka_system()])
     return f, w, fdot
 
 
@@ -165,7 +168,7 @@ _CFUNC_LOCK = threading.Lock()
 
 @cache
 def _section_cfunc_cached(kind: int) -> Any:
-    return hy.cfunc(list(_section_exprs(kind)), list(_state_vars()))
+    return hy.cfunc(list(_section_exprs(kind)), list(heyoka_state_vars()))
 
 
 def _section_cfunc(kind: int) -> Any:
@@ -228,7 +231,7 @@ class _Slot(NamedTuple):
 
 
 def _build(key: _Key) -> _Slot:
-    system = list(_system())
+    system = list(heyoka_system())
     common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
     if key.kind == _NO_SECTION:
         if key.batch_size == 1:
@@ -368,7 +371,7 @@ def _field(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.floa
 
 @cache
 def _field_cfunc_cached() -> Any:
-    return hy.cfunc([rhs for _, rhs in _system()], list(_state_vars()))
+    return hy.cfunc([rhs for _, rhs in heyoka_system()], list(heyoka_state_vars()))
 
 
 def _field_cfunc() -> Any:

@@ -31,7 +31,8 @@ class LazyModule(types.ModuleType):
         self._hint = hint
 
     def __getattr__(self, attr: str) -> Any:
-        if attr.startswith("__"):
+        # Probes such as inspect.unwrap's __wrapped__ must not import the module.
+        if attr.startswith("__") and attr != "__version__":
             raise AttributeError(attr)
         try:
             module = importlib.import_module(self.__name__)

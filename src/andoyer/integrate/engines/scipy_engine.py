@@ -2,7 +2,7 @@
 
 Kept as an independent check of the compiled engines in tests: the right-hand side
 and the section functions are the generated NumPy kernels
-(:mod:`andoyer.kernels._generated`) called from Python at every stage, so it is slow
+(:mod:`andoyer.kernels.generated`) called from Python at every stage, so it is slow
 (seconds per orbit to t = 1e3 at rtol = 1e-12) and runs serially. Its tolerances
 mean what they mean for the numba engine: SciPy's controller is given
 ``tolerance_factor * rtol`` and ``tolerance_factor * atol``
@@ -28,13 +28,13 @@ from scipy.integrate import solve_ivp
 
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import (
-    T_START,
     TOLERANCE_FACTOR,
     Crossings,
     Params,
     check_tolerance_factor,
 )
-from andoyer.kernels._generated import ep_field, section
+from andoyer.kernels.constants import T_START
+from andoyer.kernels.generated import ep_field, section
 
 __all__ = ["ScipyEngine", "solve_dop853"]
 

@@ -1,0 +1,61 @@
+"""Progress bars for long work: one place, on ``tqdm`` (notebook-aware through tqdm.auto).
+
+Shown on stderr when it is a terminal (or in a notebook), hidden otherwise, unless the
+caller says ``enabled=True`` or ``False``: the ``progress=`` keyword of the public
+functions.
+
+Examples
+--------
+>>> bar = Progress(3, "demo", enabled=False)
+>>> bar.update(2); bar.update(1); bar.close()
+>>> bar.done
+3
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+__all__ = ["Progress"]
+
+
+class Progress:
+    """A progress bar of ``total`` units labelled ``label``.
+
+    Parameters
+    ----------
+    total : int
+    label : str
+    enabled : bool or None
+        ``None``: shown when stderr is a terminal (tqdm's own test).
+    postfix : str, optional
+        Fixed text after the bar (e.g. a dashboard address).
+    """
+
+    def __init__(self, total: int, label: str, enabled: bool | None = None,
+                 postfix: str | None = None, initial: int = 0) -> None:
+        from tqdm.auto import tqdm
+
+        self.total, self.done = int(total), 0
+        # tqdm's disable=None hides the bar when the stream is not a terminal.
+        self._bar: Any = tqdm(total=self.total, desc=label, file=sys.stderr, initial=initial,
+                              disable=None if enabled is None else not enabled,
+                              mininterval=0.5, unit="", dynamic_ncols=True,
+                              postfix=postfix)
+        self.enabled = not self._bar.disable
+
+    def update(self, k: int = 1) -> None:
+        """``k`` more units done."""
+        self.done += k
+        self._bar.update(k)
+
+    def close(self) -> None:
+        """End the bar (its line stays)."""
+        self._bar.close()
+
+    def __enter__(self) -> Progress:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
