@@ -495,9 +495,6 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     chunk = _check_int("chunk", chunk, 1)
     n_samples = _check_int("n_samples", n_samples, 1)
     tol = _check_tol(tol)
-    if isinstance(section, str):  # "theta2=0:+" as for poincare(): the direction is moot
-        coord, sep, text = section.partition("=")
-        section = (coord.strip(), text.split(":")[0].strip()) if sep else section
     # The plane, its box and the accessible boundary; raises if h misses the section.
     fill = fill_section(body, h, M, section, n=1, plane_bounds=plane_bounds,
                         boundary_grid=min(200, max(64, 2 * max(nx, ny))))

@@ -41,7 +41,8 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate.engines import ENGINES
-from andoyer.integrate.section import Section
+from andoyer.integrate.section import SECTION_PLANES, Section
+from andoyer.integrate.section import SectionPlane as Plane
 
 __all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage", "Orbit",
            "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",
@@ -69,23 +70,8 @@ PALETTE: tuple[str, ...] = (
 RootChoice = Literal["smallest", "largest", "all"]
 
 
-@dataclass(frozen=True)
-class Plane:
-    """A section plane: chart, storage names of its axes and of the solved action."""
-
-    coord: str              # section coordinate: "theta2" or "g"
-    chart: Literal["hess", "andoyer"]
-    x: str                  # storage name of the horizontal axis
-    y: str                  # storage name of the vertical axis
-    action: str             # storage name of the action solved from H = h
-    symbols: tuple[str, str, str, str]  # x, y, action, section coordinate (plain text)
-
-
-#: Section coordinate -> its plane.
-PLANES: dict[str, Plane] = {
-    "theta2": Plane("theta2", "hess", "theta1", "J1", "J2", ("θ1", "J1", "J2", "θ2")),
-    "g": Plane("g", "andoyer", "l_angle", "L_action", "G_action", ("l", "L", "G", "g")),
-}
+#: The section planes (one definition: :data:`andoyer.integrate.section.SECTION_PLANES`).
+PLANES: dict[str, Plane] = SECTION_PLANES
 
 
 def default_energy(body: RigidBody, M: float = 0.0) -> float:
@@ -397,8 +383,8 @@ def seed(settings: Settings, x: float, y: float) -> list[Seed]:
                           [x], [y])[0]
     if roots.size == 0:
         raise OutsideRegionError(
-            f"({p.symbols[0]}, {p.symbols[1]}) = ({x:.6g}, {y:.6g}) is outside the accessible "
-            f"region of H = {settings.h:.10g}, M = {settings.M:.6g}: no {p.symbols[2]} puts "
+            f"({p.text[0]}, {p.text[1]}) = ({x:.6g}, {y:.6g}) is outside the accessible "
+            f"region of H = {settings.h:.10g}, M = {settings.M:.6g}: no {p.text[2]} puts "
             f"this point on the energy level (or it lies on the chart's singular set); "
             f"click inside the boundary")
     pick = {"smallest": [0], "largest": [roots.size - 1],

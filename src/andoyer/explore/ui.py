@@ -189,7 +189,7 @@ class Explorer:
                      x_range=Range1d(start=0.0, end=2.0 * math.pi),
                      y_range=Range1d(start=0.0, end=1.0),
                      tools="pan,wheel_zoom,box_zoom,reset", toolbar_location="above",
-                     x_axis_label=s.plane.symbols[0], y_axis_label=s.plane.symbols[1],
+                     x_axis_label=s.plane.text[0], y_axis_label=s.plane.text[1],
                      output_backend="canvas")
         fig.image_rgba(image="image", x="x", y="y", dw="dw", dh="dh", source=self.region)
         fig.line("x", "y", source=self.boundary, color="black", line_width=1.2,
@@ -446,8 +446,8 @@ class Explorer:
         self.fig.x_range.update(start=x0, end=x1, reset_start=x0, reset_end=x1)
         self.fig.y_range.update(start=y0 - pad, end=y1 + pad, reset_start=y0 - pad,
                                 reset_end=y1 + pad)
-        self.fig.xaxis.axis_label = s.plane.symbols[0]
-        self.fig.yaxis.axis_label = s.plane.symbols[1]
+        self.fig.xaxis.axis_label = s.plane.text[0]
+        self.fig.yaxis.axis_label = s.plane.text[1]
         k = np.arange(math.ceil(x0 / (math.pi / 2) - 1e-9),
                       math.floor(x1 / (math.pi / 2) + 1e-9) + 1)
         ticks = [float(v * math.pi / 2) for v in k]
@@ -459,9 +459,9 @@ class Explorer:
         title = self.fig.title
         if isinstance(title, Title):
             title.text = (f"{s.body.name or 'body'}: h = {s.h:.10g}, M = {s.M:.6g}, "
-                          f"{s.plane.symbols[3]} = {s.section.value:.6g} ({arrow})")
+                          f"{s.plane.text[3]} = {s.section.value:.6g} ({arrow})")
         self._status("ready: click inside the boundary to seed an orbit "
-                     f"({s.plane.symbols[2]} is solved from H = h)", "info")
+                     f"({s.plane.text[2]} is solved from H = h)", "info")
         if self.w_underlay.value:
             self._request_underlay()
 
@@ -485,7 +485,7 @@ class Explorer:
             self._pending += 1
             ahead = self._pending - 1
         p = job.settings.plane
-        self._status(f"seeding at ({p.symbols[0]}, {p.symbols[1]}) = ({x:.6g}, {y:.6g})"
+        self._status(f"seeding at ({p.text[0]}, {p.text[1]}) = ({x:.6g}, {y:.6g})"
                      + (f"; {ahead} job(s) ahead in the queue" if ahead else ""), "busy")
 
         def work() -> None:
@@ -518,11 +518,11 @@ class Explorer:
         for oid, sd in zip(ids, seeds, strict=True):
             self.session.add(sd, job.settings, orbit_id=oid)
             if not sd.crosses_in(s.section.direction):
-                notes.append(f"orbit {oid} crosses {s.plane.symbols[3]} = "
+                notes.append(f"orbit {oid} crosses {s.plane.text[3]} = "
                              f"{s.section.value:.4g} at the click in the other direction: "
                              "its section points do not start at the click")
         if seeds[0].n_roots > 1 and s.root != "all":
-            notes.append(f"{seeds[0].n_roots} values of {s.plane.symbols[2]} solve H = h "
+            notes.append(f"{seeds[0].n_roots} values of {s.plane.text[2]} solve H = h "
                          f"here; seeded the {s.root} (choose 'all' to seed every one)")
         self._refresh_orbit_table()
         self._select(ids[-1])
@@ -698,7 +698,7 @@ class Explorer:
                      f"{d['H']:.1e}<br>|(G, γ) − M|/|G| ≤ {d['area']:.1e}<br>"
                      f"||γ|² − 1| ≤ {d['geometric']:.1e}")
         self.info.object = (f"<div><b style='color:{o.colour}'>● orbit {o.id}</b> "
-                            f"({o.status}, {o.x.size} crossings; {o.settings.plane.symbols[2]}"
+                            f"({o.status}, {o.x.size} crossings; {o.settings.plane.text[2]}"
                             f" = {o.seed.action:.12g}, solution {o.seed.root_index + 1} of "
                             f"{o.seed.n_roots})<br>{''.join(rows)}{drift}</div>")
 

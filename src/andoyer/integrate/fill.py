@@ -45,6 +45,7 @@ from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate import budget
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
+from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
 
 __all__ = ["fill_section", "section_roots", "SECTION_PLANES", "SINGULAR_MARGIN"]
@@ -65,32 +66,6 @@ _GOLDEN_ITERATIONS = 64
 _INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
-@dataclass(frozen=True)
-class _Plane:
-    """One kind of section: its chart and the storage names of the chart's coordinates."""
-
-    chart: str
-    coord: str
-    storage: tuple[str, str, str, str, str]
-    symbols: tuple[str, str, str, str, str]
-    equations: str
-
-
-#: Section coordinate -> its plane. Coordinates are ``(angle1, section angle, plane
-#: action, solved action, area constant)``.
-SECTION_PLANES: dict[str, _Plane] = {
-    "g": _Plane("andoyer", "g",
-                ("l_angle", "g_angle", "L_action", "G_action", "M_action"),
-                ("l", "g", "L", "G", "M"),
-                "H of Eq. (7) in the Andoyer-Deprit variables (5)-(6) of Kyrychenko; "
-                "section g = const, G solved from H(l, g, L, G, M) = h"),
-    "theta2": _Plane("hess", "theta2",
-                     ("theta1", "theta2", "J1", "J2", "J3"),
-                     ("theta1", "theta2", "J1", "J2", "J3"),
-                     "H in the Hess variables (14)-(15) of Kyrychenko (the Hamiltonian "
-                     "after Eq. (15)); section theta2 = const, J2 solved from "
-                     "H(theta1, theta2, J1, J2, J3 = M) = h"),
-}
 _ALIASES = {"g_angle": "g"}
 
 Method = Literal["grid", "sobol", "halton"]
@@ -102,7 +77,7 @@ RootChoice = Literal["all", "smallest", "largest"]
 class _Equation:
     """``H(p, value, q, A, M) - h`` on one section, ``A`` in ``[lo(q), act_max]``."""
 
-    plane: _Plane
+    plane: SectionPlane
     hamiltonian: Callable[..., Any]
     value: float
     M: float
@@ -226,7 +201,7 @@ class _Equation:
         return ok
 
 
-def _energy_kernel(body: RigidBody, plane: _Plane) -> Callable[..., Any]:
+def _energy_kernel(body: RigidBody, plane: SectionPlane) -> Callable[..., Any]:
     """H in the section's chart, from the generated kernels (derived from Eq. (1))."""
     if plane.chart == "andoyer":
         params = body.params
@@ -241,7 +216,7 @@ def _action_bound(body: RigidBody, h: float) -> float:
     return math.sqrt(2.0 * (h + body.mu) / min(body.a, body.b, body.c))
 
 
-def _default_bounds(plane: _Plane, act_max: float, M: float
+def _default_bounds(plane: SectionPlane, act_max: float, M: float
                     ) -> tuple[tuple[float, float], tuple[float, float]]:
     if plane.chart == "andoyer":
         return (0.0, math.tau), (-act_max, act_max)
@@ -250,35 +225,33 @@ def _default_bounds(plane: _Plane, act_max: float, M: float
 
 
 # ----------------------------------------------------------------------- validation
-def _parse_section(section: Any) -> tuple[_Plane, float]:
-    if isinstance(section, str):
-        coord, sep, val = section.partition("=")
-        if not sep:
-            raise ValueError(f"cannot parse section {section!r}; write e.g. 'g=0' or "
-                             "pass ('g', 0.0)")
-        coord, value = coord.strip(), val.strip()
-    elif hasattr(section, "coord") and hasattr(section, "value"):
-        coord, value = section.coord, section.value
+def _parse_section(section: Any) -> tuple[SectionPlane, float]:
+    """The plane and value of a section given as a :class:`Section`, a string parsed by
+    :meth:`Section.parse` (a direction suffix is allowed and moot here), a pair
+    ``(coord, value)`` or an object with ``.coord`` and ``.value``."""
+    if isinstance(section, Section):
+        sec = section
+    elif isinstance(section, str):
+        sec = Section.parse(section)
     else:
-        try:
-            coord, value = section
-        except (TypeError, ValueError):
-            raise ValueError(f"section must be (coord, value), e.g. ('g', 0.0), or an object "
-                             f"with .coord and .value; got {section!r}") from None
-    name = _ALIASES.get(coord, coord)
-    if name not in SECTION_PLANES:
-        raise ValueError(f"cannot fill a section of coordinate {coord!r}: choose 'g' "
+        if hasattr(section, "coord") and hasattr(section, "value"):
+            coord, value = section.coord, section.value
+        else:
+            try:
+                coord, value = section
+            except (TypeError, ValueError):
+                raise ValueError(f"section must be (coord, value), e.g. ('g', 0.0), a string "
+                                 f"such as 'g=0' or a Section; got {section!r}") from None
+        if not isinstance(coord, str):
+            raise ValueError(f"section coordinate must be a name such as 'g', got {coord!r}")
+        sec = Section(_ALIASES.get(coord, coord), value)
+    if sec.coord not in SECTION_PLANES:
+        raise ValueError(f"cannot fill a section of coordinate {sec.coord!r}: choose 'g' "
                          "(Andoyer-Deprit plane (l, L)) or 'theta2' (Hess plane (theta1, J1))")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"section value must be a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"section value must be finite, got {v!r}")
-    return SECTION_PLANES[name], math.remainder(v, math.tau) % math.tau
+    return SECTION_PLANES[sec.coord], sec.value
 
 
-def _check_bounds(bounds: Any, plane: _Plane
+def _check_bounds(bounds: Any, plane: SectionPlane
                   ) -> tuple[tuple[float, float], tuple[float, float]]:
     try:
         (x0, x1), (y0, y1) = bounds
@@ -293,11 +266,11 @@ def _check_bounds(bounds: Any, plane: _Plane
     return (x0, x1), (y0, y1)
 
 
-def _label(plane: _Plane, value: float, M: float) -> str:
+def _label(plane: SectionPlane, value: float, M: float) -> str:
     return f"{plane.coord} = {value:.6g} (M = {M:.6g})"
 
 
-def _section_minimum(body: RigidBody, plane: _Plane, value: float, M: float,
+def _section_minimum(body: RigidBody, plane: SectionPlane, value: float, M: float,
                      bounds: Any) -> float:
     """Approximate minimum of H over the section (h-independent), for error messages."""
     amax = float(np.max(np.abs([body.a, body.b, body.c])))
@@ -316,7 +289,7 @@ def _section_minimum(body: RigidBody, plane: _Plane, value: float, M: float,
     return float(np.min(eq.min_over_action(X.ravel(), Y.ravel())))
 
 
-def _no_intersection(body: RigidBody, plane: _Plane, value: float, M: float, h: float,
+def _no_intersection(body: RigidBody, plane: SectionPlane, value: float, M: float, h: float,
                      bounds: Any, why: str = "") -> ValueError:
     hmin = _section_minimum(body, plane, value, M, bounds)
     s = plane.symbols
@@ -454,7 +427,6 @@ def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: 
     return eq.roots(p, q)
 
 
-@checks_body
 def _bottom(body: RigidBody, M: float) -> float:
     """``min(a, b, c) M^2 / 2 - mu``, the lowest energy at area constant ``M`` (inf on
     overflow, for a message)."""
@@ -462,6 +434,7 @@ def _bottom(body: RigidBody, M: float) -> float:
         return float(0.5 * min(body.a, body.b, body.c) * np.float64(M) ** 2 - body.mu)
 
 
+@checks_body
 def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 40,
                  method: Method = "grid", seed: int = 0,
                  plane_bounds: Any = None, root: RootChoice = "all",

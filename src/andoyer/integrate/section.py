@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -19,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.charts.andoyer_deprit import singular_distances
 from andoyer.kernels.generated import SECTION_KINDS
 
-__all__ = ["Section", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
+__all__ = ["Section", "SectionPlane", "SECTION_PLANES", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
 
 #: A crossing of an angle section counts only where the state's relative distance to
 #: every singular set the angle depends on (G = 0 relative to the orbit's momentum
@@ -39,6 +40,55 @@ _CHART_OF = {
     **{k: "hess" for k in ("theta1", "theta2", "J1", "J2")},
 }
 ANGLES = ("l", "g", "theta1", "theta2")
+
+
+@dataclass(frozen=True)
+class SectionPlane:
+    """The plane of a filled section: ``coord = const`` spans two coordinates of its
+    chart, and the remaining action is solved from ``H = h``.
+
+    Coordinates are ordered ``(plane x, section angle, plane y, solved action, area
+    constant)``: ``storage`` gives their dataset names, ``symbols`` their ASCII names,
+    ``text`` the axis labels ``(x, y, action, section coordinate)`` in plain Unicode.
+    """
+
+    chart: Literal["andoyer", "hess"]
+    coord: str
+    storage: tuple[str, str, str, str, str]
+    symbols: tuple[str, str, str, str, str]
+    text: tuple[str, str, str, str]
+    equations: str
+
+    @property
+    def x(self) -> str:
+        """Storage name of the horizontal axis."""
+        return self.storage[0]
+
+    @property
+    def y(self) -> str:
+        """Storage name of the vertical axis."""
+        return self.storage[2]
+
+    @property
+    def action(self) -> str:
+        """Storage name of the action solved from ``H = h``."""
+        return self.storage[3]
+
+
+#: Section coordinate -> its plane: the one definition (fill, explorer, plots).
+SECTION_PLANES: dict[str, SectionPlane] = {
+    "g": SectionPlane("andoyer", "g",
+                      ("l_angle", "g_angle", "L_action", "G_action", "M_action"),
+                      ("l", "g", "L", "G", "M"), ("l", "L", "G", "g"),
+                      "H of Eq. (7) in the Andoyer-Deprit variables (5)-(6) of Kyrychenko; "
+                      "section g = const, G solved from H(l, g, L, G, M) = h"),
+    "theta2": SectionPlane("hess", "theta2",
+                           ("theta1", "theta2", "J1", "J2", "J3"),
+                           ("theta1", "theta2", "J1", "J2", "J3"), ("θ1", "J1", "J2", "θ2"),
+                           "H in the Hess variables (14)-(15) of Kyrychenko (the Hamiltonian "
+                           "after Eq. (15)); section theta2 = const, J2 solved from "
+                           "H(theta1, theta2, J1, J2, J3 = M) = h"),
+}
 
 
 @dataclass(frozen=True)
@@ -83,6 +133,18 @@ class Section:
     def chart(self) -> str:
         """The chart the coordinate belongs to."""
         return _CHART_OF[self.coord]
+
+    @property
+    def plane(self) -> SectionPlane:
+        """The plane filled on this section (``g`` and ``theta2`` sections only).
+
+        >>> Section.parse("theta2=0").plane.x
+        'theta1'
+        """
+        if self.coord not in SECTION_PLANES:
+            raise ValueError(f"a section of {self.coord!r} has no filled plane: choose 'g' "
+                             "(plane (l, L)) or 'theta2' (plane (theta1, J1))")
+        return SECTION_PLANES[self.coord]
 
     @property
     def is_angle(self) -> bool:

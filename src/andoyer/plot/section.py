@@ -16,14 +16,15 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from andoyer._atomic import atomic_path
+from andoyer.integrate.section import SECTION_PLANES
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
 
-#: Section coordinate (code or storage name) -> storage names of the plane (x, y).
+#: Section coordinate (code or storage name) -> storage names of the plane (x, y),
+#: from the one definition :data:`andoyer.integrate.section.SECTION_PLANES`.
 PLANES: dict[str, tuple[str, str]] = {
-    "g": ("l_angle", "L_action"),
-    "g_angle": ("l_angle", "L_action"),
-    "theta2": ("theta1", "J1"),
+    **{k: (p.x, p.y) for k, p in SECTION_PLANES.items()},
+    **{p.storage[1]: (p.x, p.y) for p in SECTION_PLANES.values()},
 }
 
 #: Storage name -> axis label with the paper's symbol (mathtext).
