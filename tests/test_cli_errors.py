@@ -100,3 +100,10 @@ def test_real_process_prints_one_line_and_no_traceback(tmp_path):
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert proc.stderr.strip().startswith("andoyer orbit: error:")
+
+
+def test_level_flags_have_the_api_names_and_keep_the_old_aliases():
+    parser = cli.build_parser()
+    new = parser.parse_args(["section", "--h", "0.25", "--M", "0.1"])
+    old = parser.parse_args(["section", "--energy", "0.25", "--area", "0.1"])
+    assert (new.h, new.M) == (old.h, old.M) == (0.25, 0.1)

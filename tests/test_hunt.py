@@ -78,8 +78,8 @@ def test_public_entries_reject_bad_values_clearly(name, value):
 ARGS = st.sampled_from(["nan", "inf", "-1", "0", "1e300", "x", "", "1,2", "-0"])
 FLAGS = {
     "orbit": ["--t-end", "--n-out", "--rtol", "--andoyer", "--mu", "--body"],
-    "section": ["--energy", "--area", "--orbits", "--crossings", "--section"],
-    "chaos-map": ["--n", "--t-end", "--energy", "--tol"],
+    "section": ["--h", "--energy", "--M", "--area", "--orbits", "--crossings", "--section"],
+    "chaos-map": ["--n", "--t-end", "--h", "--tol"],
 }
 
 

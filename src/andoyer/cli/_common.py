@@ -144,10 +144,14 @@ def add_engine_args(p: argparse.ArgumentParser) -> None:
 
 
 def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
-    """``--energy``, ``--area``, ``--section``: an energy level, area constant and section."""
-    p.add_argument("--energy", type=float, default=None,
-                   help="energy level H (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    p.add_argument("--area", type=float, default=0.0, help="area constant M (default 0)")
+    """``--h``, ``--M``, ``--section``: energy level, area constant and section (the names
+    of the Python API; ``--energy`` and ``--area`` are kept as aliases for one release)."""
+    p.add_argument("--h", "--energy", dest="h", type=float, default=None,
+                   help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, "
+                        "M)); --energy is an alias kept for one release")
+    p.add_argument("--M", "--area", dest="M", type=float, default=0.0,
+                   help="area constant (G, gamma) = M (default 0); --area is an alias kept "
+                        "for one release")
     p.add_argument("--section", default="theta2=0",
                    help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L)"
                         + ("; append ':-' for the decreasing direction" if directed else "")

@@ -40,16 +40,15 @@ def run(args: argparse.Namespace) -> int:
     out = output_file(args.out, ".nc")
     body = body_from_args(args)
     grid = _grid(args.n)
-    if args.energy is None:
-        from andoyer import from_andoyer
-        from andoyer.charts.euler_poisson import energy
+    if args.h is None:
+        from andoyer.integrate.fill import default_h
 
-        args.energy = float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, args.area])))
+        args.h = default_h(body, args.M)
     if args.engine == "heyoka":
         source, seconds = warm_up(tol=args.tol)
         print(f"variational integrator: {source} in {seconds:.2f} s")
     t0 = time.perf_counter()
-    ds = chaos_map(body, args.energy, args.area, args.section, n=grid,
+    ds = chaos_map(body, args.h, args.M, args.section, n=grid,
                    t_end=args.t_end, indicator=args.indicator, engine=args.engine,
                    chunk=args.chunk, progress=True, tol=args.tol, root=args.root,
                    tangent=args.tangent)
@@ -67,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     n_ok = int(ds.attrs["n_accessible"]) - int(ds.attrs["n_failed"])
     what = ", ".join(f"{v} in [{float(np.nanmin(ds[v])):.3g}, {float(np.nanmax(ds[v])):.3g}]"
                      for v in ("fli", "megno") if v in ds)
-    print(f"{n_ok} orbits on H = {args.energy:g}, M = {args.area:g} to t = {args.t_end:g} in "
+    print(f"{n_ok} orbits on H = {args.h:g}, M = {args.M:g} to t = {args.t_end:g} in "
           f"{elapsed:.1f} s; {what}; max energy error {float(ds.H_error.max()):.1e}")
     print(f"wrote {out} and {', '.join(str(f) for f in figures)}")
     return 0

@@ -22,8 +22,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"andoyer explore: serving on {url}", flush=True)
         print("press Ctrl-C to stop", flush=True)
 
-    serve(body, port=args.port, show=not args.no_browser, on_start=started, h=args.energy,
-          M=args.area, section=section, n_crossings=args.crossings, engine=args.engine,
+    serve(body, port=args.port, show=not args.no_browser, on_start=started, h=args.h,
+          M=args.M, section=section, n_crossings=args.crossings, engine=args.engine,
           rtol=args.rtol, atol=args.atol)
     print("andoyer explore: stopped")
     return 0

@@ -34,22 +34,21 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("andoyer section fills the planes of 'g=...' (l, L) and "
                          "'theta2=...' (theta1, J1) sections; use the Python API poincare() "
                          "for other sections")
-    if args.energy is None:
-        from andoyer import from_andoyer
-        from andoyer.charts.euler_poisson import energy
+    if args.h is None:
+        from andoyer.integrate.fill import default_h
 
-        args.energy = float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, args.area])))
-    fill = fill_section(body, args.energy, args.area, (sec.coord, sec.value),
+        args.h = default_h(body, args.M)
+    fill = fill_section(body, args.h, args.M, (sec.coord, sec.value),
                         n=args.orbits, method=args.sampling)
     y0 = fill["y0"].values
-    print(f"{y0.shape[0]} orbits on H = {args.energy:g}, M = {args.area:g}; "
+    print(f"{y0.shape[0]} orbits on H = {args.h:g}, M = {args.M:g}; "
           f"{args.crossings} crossings each")
     ds = poincare(body, y0, sec, args.crossings, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, progress=True)
-    ds.attrs.update(energy=args.energy, area=args.area)
+    ds.attrs.update(h=args.h, M=args.M)
     write_netcdf(ds, out)
     ax = plot_section(ds, boundary=fill,
-                      title=f"{body.name or 'body'}: H = {args.energy:.6g}, M = {args.area:g}, "
+                      title=f"{body.name or 'body'}: H = {args.h:.6g}, M = {args.M:g}, "
                             f"{sec.coord} = {sec.value:g}")
     fig = ax.get_figure(root=True)
     assert fig is not None

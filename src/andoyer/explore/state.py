@@ -41,6 +41,7 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate.engines import ENGINES
+from andoyer.integrate.fill import default_h
 from andoyer.integrate.section import SECTION_PLANES, Section
 from andoyer.integrate.section import SectionPlane as Plane
 
@@ -74,18 +75,8 @@ RootChoice = Literal["smallest", "largest", "all"]
 PLANES: dict[str, Plane] = SECTION_PLANES
 
 
-def default_energy(body: RigidBody, M: float = 0.0) -> float:
-    """The energy ``andoyer section`` uses by default: H at ``(l, g, L, G, M) =
-    (0.3, 0, 0.3, 1, M)`` (Eq. (7)).
-
-    Examples
-    --------
-    >>> round(default_energy(RigidBody.paper()), 10)
-    0.2465679623
-    """
-    if not abs(M) < 1.0:
-        raise ValueError(f"default_energy needs |M| < 1 (it sits at G = 1), got M = {M!r}")
-    return float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, M])))
+#: The default energy level (one definition: :func:`andoyer.integrate.fill.default_h`).
+default_energy = default_h
 
 
 @dataclass(frozen=True)

@@ -48,7 +48,7 @@ from andoyer.integrate.results import VARIABLE_ATTRS, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
 
-__all__ = ["fill_section", "section_roots", "SECTION_PLANES", "SINGULAR_MARGIN"]
+__all__ = ["fill_section", "section_roots", "default_h", "SECTION_PLANES", "SINGULAR_MARGIN"]
 
 
 #: Roots closer than this (relative to the action) to the chart's singular set
@@ -425,6 +425,24 @@ def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: 
         return [np.empty(0) for _ in range(p.size)]
     eq = _Equation(plane, _energy_kernel(body, plane), value, M, h, _action_bound(body, h))
     return eq.roots(p, q)
+
+
+@checks_body
+def default_h(body: RigidBody, M: float = 0.0) -> float:
+    """The default energy level of the command line and the explorer: H at
+    ``(l, g, L, G, M) = (0.3, 0, 0.3, 1, M)`` (Eq. (7)).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> round(default_h(RigidBody.paper()), 10)
+    0.2465679623
+    """
+    M = _finite("M", M)
+    if not abs(M) < 1.0:
+        raise ValueError(f"the default energy level needs |M| < 1 (it sits at G = 1), got "
+                         f"M = {M!r}; give h yourself")
+    return float(energy(body, from_andoyer([0.3, 0.0, 0.3, 1.0, M])))
 
 
 def _bottom(body: RigidBody, M: float) -> float:
