@@ -167,7 +167,7 @@ class RigidBody:
         gives ``phi0`` in (0, pi/2), the other branch (``branch=-1``) in (-pi/2, 0).
         Defined for any body with ``e3 = 0`` (it is the parameter of the Hess chart (14)).
         """
-        self._require_planar("phi0")
+        self.require_planar("phi0")
         return math.atan2(self.e2, self.e1)
 
     @property
@@ -186,11 +186,39 @@ class RigidBody:
         prod = (self.b - self.c) * (self.c - self.a)
         return math.sqrt(prod) if prod > 0.0 else math.nan
 
-    def _require_planar(self, what: str) -> None:
+    def require_planar(self, what: str) -> None:
+        """``ValueError`` naming ``what`` unless the centre of mass is in the G1-G2 plane."""
         if abs(self.e3) > HESS_RTOL:
             raise ValueError(
                 f"{what} needs the centre of mass in the G1-G2 principal plane (e3 = 0), "
                 f"but e3 = {self.e3!r}; build the body with RigidBody.hess(...) or r=(e1, e2, 0)")
+
+    def require_hess(self, what: str) -> None:
+        """``ValueError`` naming ``what`` unless the body satisfies the Hess conditions (2).
+
+        >>> body = RigidBody(2.5, 2.0, 2.2, 0.01, (1.0, 0.0, 0.0))
+        >>> body.require_hess("the demo")  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        ValueError: the demo needs a Hess body: the Hess conditions (2) ...
+        """
+        if not self.is_hess:
+            raise ValueError(
+                f"{what} needs a Hess body: the Hess conditions (2) A > C > B, e3 = 0 and "
+                "(c - b) e1^2 = (a - c) e2^2 must hold (then the heteroclinic lines are "
+                "theta1 = 0 and theta1 = 4 phi0); build it with RigidBody.hess(A, B, C, mu); "
+                f"got A={self.A}, B={self.B}, C={self.C}, r={self.r}")
+
+    def require_middle_axis(self, what: str) -> float:
+        """:attr:`sigma`, or ``ValueError`` naming ``what`` unless C is the middle moment
+        (the rotation about Oz a saddle, ``(b - c)(c - a) > 0``)."""
+        if not self.sigma > 0.0:
+            prod = (self.b - self.c) * (self.c - self.a)
+            raise ValueError(
+                f"{what} needs Oz to be the middle axis of inertia (C the middle moment of "
+                f"inertia, the rotation about Oz a saddle); got A={self.A}, B={self.B}, "
+                f"C={self.C} ((b - c)(c - a) = {prod:.3g} <= 0)")
+        return self.sigma
 
     def with_mu(self, mu: float) -> RigidBody:
         """The same body with another ``mu`` (useful for mu -> 0 continuation)."""

@@ -111,11 +111,7 @@ _REL = 8.0 * _EPS
 def _check_hess(body: RigidBody) -> None:
     if not isinstance(body, RigidBody):
         raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
-    if not body.is_hess:
-        raise ValueError(
-            "the Hess solution needs a Hess body: A > C > B, e3 = 0 and "
-            "(c - b) e1^2 = (a - c) e2^2 (Eq. (2)); build it with RigidBody.hess(A, B, C, "
-            f"mu); got A={body.A}, B={body.B}, C={body.C}, r={body.r}")
+    body.require_hess("the Hess solution")
     if body.mu <= 0.0:
         raise ValueError("the Hess solution needs mu > 0 (at mu = 0 theta2 rotates "
                          "uniformly); use body.with_mu(mu)")

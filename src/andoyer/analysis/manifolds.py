@@ -247,10 +247,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     >>> bool(np.ptp(curve.g) > 2 * np.pi)                  # one fundamental domain: a full turn
     True
     """
-    if not body.is_hess:
-        raise ValueError("manifold_branch follows the heteroclinic lines theta1 = 0 and "
-                         "theta1 = 4 phi0 of a Hess body; build it with RigidBody.hess(A, B, "
-                         "C, mu)")
+    body.require_hess("manifold_branch")
     if stability not in ("unstable", "stable"):
         raise ValueError(f"stability must be 'unstable' or 'stable', got {stability!r}")
     if branch not in BRANCHES:
@@ -710,8 +707,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
         raise ValueError("mu must be a non-empty list of finite values > 0")
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
-    if not body.is_hess:
-        raise ValueError("separatrix_splitting needs a Hess body (RigidBody.hess(A, B, C))")
+    body.require_hess("separatrix_splitting")
     G = float(G)
     if not (math.isfinite(G) and G > 0.0):
         raise ValueError(f"G must be finite and > 0, got {G!r}")

@@ -123,7 +123,7 @@ SEPARATRIX_RTOL = 4.0 * _EPS
 def _pendulum_body(body: RigidBody, what: str) -> None:
     if not isinstance(body, RigidBody):
         raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
-    body._require_planar(what)
+    body.require_planar(what)
     if body.mu <= 0.0:
         raise ValueError(f"{what} needs mu > 0 (mu = 0 is the free body: the pendulum "
                          "degenerates into a uniform rotation); use body.with_mu(mu)")
@@ -268,7 +268,7 @@ def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArra
 
     ``mu (r, gamma) = mu sin(vartheta)``; on ``L > 0`` (``L = G``), ``vartheta = g + l + phi0``.
     """
-    body._require_planar("the physical pendulum")
+    body.require_planar("the physical pendulum")
     th, LL = np.broadcast_arrays(np.asarray(vartheta, dtype=float), np.asarray(L, dtype=float))
     z = np.zeros(th.shape)
     a = th - body.phi0
@@ -293,7 +293,7 @@ def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int 
     >>> bool(np.isclose(pendulum_potential(body, 0.4, 1.3), pi))
     True
     """
-    body._require_planar("the physical-pendulum potential")
+    body.require_planar("the physical-pendulum potential")
     if L_sign not in (1, -1):
         raise ValueError(f"L_sign must be +1 (L = G) or -1 (L = -G), got {L_sign!r}")
     l_, g_ = np.asarray(l, dtype=float), np.asarray(g, dtype=float)
@@ -310,7 +310,7 @@ def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
     Kept to show that it is wrong (``mu^-1`` for ``mu``, ``-phi0`` for ``+phi0``);
     use :func:`pendulum_potential`.
     """
-    body._require_planar("the physical-pendulum potential")
+    body.require_planar("the physical-pendulum potential")
     return np.asarray(np.sin(np.asarray(g, dtype=float) + np.asarray(l, dtype=float)
                              - body.phi0) / body.mu)
 
@@ -571,10 +571,8 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
     Exact: along the pendulum ``d(G, r)/dt = -branch sigma G3 (G, r)`` and
     ``int G3 dt = 2 pi / c`` over one rotation.
     """
-    if not body.sigma > 0.0:
-        raise ValueError("Oz is not the middle axis of inertia ((b - c)(c - a) <= 0): "
-                         "rotations about it are not hyperbolic in the mu -> 0 limit")
-    return math.exp(2.0 * math.pi * body.sigma / body.c)
+    sigma = body.require_middle_axis("hyperbolic pendulum rotations (in the mu -> 0 limit)")
+    return math.exp(2.0 * math.pi * sigma / body.c)
 
 
 @checks_body

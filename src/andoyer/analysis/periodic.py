@@ -126,13 +126,7 @@ def middle_axis_rate(body: RigidBody) -> float:
     >>> round(middle_axis_rate(RigidBody.paper()), 12)
     0.049792959773
     """
-    if not body.sigma > 0.0:
-        prod = (body.b - body.c) * (body.c - body.a)
-        raise ValueError(
-            f"the permanent rotation about the z axis is hyperbolic only when C is the "
-            f"middle moment of inertia; got A={body.A}, B={body.B}, C={body.C} "
-            f"((b - c)(c - a) = {prod:.3g} <= 0)")
-    return body.sigma
+    return body.require_middle_axis("a hyperbolic rotation about the z axis")
 
 
 @checks_body
@@ -810,7 +804,7 @@ def pendulum_rotation(body: RigidBody, h: float, section: RotationSection | None
     from scipy.integrate import quad
 
     sec = RotationSection() if section is None else section
-    body._require_planar("pendulum_rotation")
+    body.require_planar("pendulum_rotation")
     a, b, c, mu, e1, e2, _ = body.params
 
     def G3(psi: float) -> float:

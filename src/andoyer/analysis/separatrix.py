@@ -84,26 +84,6 @@ BRANCHES = ("theta1=0", "theta1=4phi0")
 
 
 
-def _sigma(body: RigidBody) -> float:
-    """``sqrt((b - c)(c - a))``; needs the z axis to be the middle axis of inertia."""
-    if not body.sigma > 0.0:
-        prod = (body.b - body.c) * (body.c - body.a)
-        raise ValueError(
-            f"the rotation about the z axis is a saddle only when C is the middle moment "
-            f"of inertia; got A={body.A}, B={body.B}, C={body.C} ((b - c)(c - a) = "
-            f"{prod:.3g} <= 0): there is no heteroclinic orbit between L = -G and L = G")
-    return body.sigma
-
-
-def _require_hess(body: RigidBody, what: str) -> None:
-    if not body.is_hess:
-        raise ValueError(
-            f"{what} needs a Hess body (conditions (2): A > C > B, e3 = 0, "
-            "(c - b) e1^2 = (a - c) e2^2), so that the heteroclinic lines are theta1 = 0 "
-            "and theta1 = 4 phi0; build it with RigidBody.hess(A, B, C, mu)")
-
-
-@checks_body
 def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     """Rate ``lambda = 2 sigma J2`` of the unperturbed heteroclinic orbits, ``J1 ~ e^{-lambda t}``.
 
@@ -129,7 +109,8 @@ def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     >>> round(heteroclinic_rate(RigidBody.paper(), 1.0), 12)
     0.099585919546
     """
-    return 2.0 * _sigma(body) * _positive("J2", J2)
+    sigma = body.require_middle_axis("a heteroclinic orbit between L = -G and L = G")
+    return 2.0 * sigma * _positive("J2", J2)
 
 
 def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
@@ -197,7 +178,7 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
     >>> ds.attrs["J1_direction"]
     'decreasing'
     """
-    _require_hess(body, "heteroclinic")
+    body.require_hess("heteroclinic")
     J2 = _positive("J2", J2)
     if sign not in (1, -1):
         raise ValueError(f"sign must be +1 or -1, got {sign!r}")
@@ -458,15 +439,9 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
     [0.0, 2.959523, 6.283185]
     """
     J2 = _positive("J2", J2)
-    _require_planar(body)
+    body.require_planar("the Hess chart")
     period = 2.0 * math.tau if double_cover else math.tau
     return _curves_dataset(body, "hess", J2, period, _check_n(n, "n"))
-
-
-def _require_planar(body: RigidBody) -> None:
-    if abs(body.e3) > 1e-12:
-        raise ValueError("the Hess chart needs e3 = 0 (phi0 is the angle of r in the "
-                         f"G1-G2 plane); got e3 = {body.e3!r}")
 
 
 # ---------------------------------------------------------------------- portraits
@@ -494,7 +469,7 @@ def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
     n_levels = _check_n(n_levels, "n_levels", 2)
     body0 = body.with_mu(0.0)
     if chart == "hess":
-        _require_planar(body)
+        body.require_planar("the Hess chart")
         period = 2.0 * math.tau if double_cover else math.tau
         qn, pn, an = "theta1", "J1", "J2"
         p_lo, p_hi = 0.0, action

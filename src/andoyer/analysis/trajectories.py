@@ -56,7 +56,7 @@ def separatrix_energy(body: RigidBody, J2: float = 1.0) -> float:
 def _check_body(body: RigidBody) -> None:
     if not isinstance(body, RigidBody):
         raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
-    body._require_planar("Fig. 3 (the Hess chart)")
+    body.require_planar("Fig. 3 (the Hess chart)")
 
 
 @checks_body

@@ -132,7 +132,7 @@ class Settings:
             raise ValueError(f"the explorer shows the planes of 'theta2=...' sections "
                              f"(theta1, J1) and 'g=...' sections (l, L), not {sec.coord!r}")
         if sec.coord == "theta2":
-            self.body._require_planar("the Hess plane (theta1, J1) of a theta2 section")
+            self.body.require_planar("the Hess plane (theta1, J1) of a theta2 section")
         object.__setattr__(self, "section", sec)
         object.__setattr__(self, "h", _finite("h (energy)", self.h))
         object.__setattr__(self, "M", _finite("M (area constant)", self.M))

@@ -272,7 +272,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     if not isinstance(sec, Section):
         raise ValueError(f"section must be a Section or a string like 'g=0', got {section!r}")
     if sec.chart == "hess":
-        body._require_planar(f"the Hess-chart section {sec.coord!r}")
+        body.require_planar(f"the Hess-chart section {sec.coord!r}")
     if not isinstance(n_crossings, (int, np.integer)) or n_crossings < 1:
         raise ValueError(f"n_crossings must be a positive integer, got {n_crossings!r}")
     rtol, atol = check_tolerances(rtol, atol)

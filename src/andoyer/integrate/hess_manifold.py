@@ -172,12 +172,7 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     >>> int(ds.sheet_switches) > 0
     True
     """
-    if not body.is_hess:
-        raise ValueError(
-            "propagate_hess_manifold needs a Hess body: the Hess conditions (2) "
-            "A > C > B, e3 = 0 and (c - b) e1^2 = (a - c) e2^2 must hold (build it with "
-            f"RigidBody.hess(A, B, C, mu)); got A={body.A}, B={body.B}, C={body.C}, "
-            f"r={body.r}")
+    body.require_hess("propagate_hess_manifold")
     rtol, atol = check_tolerances(rtol, atol)
     times = check_times(t)
     if not (math.isfinite(singular_margin) and 0.0 < singular_margin < 1.0):
