@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 
 from andoyer import RigidBody
 from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
-from andoyer.analysis.separatrix import portrait_andoyer, portrait_hess
+from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
 from andoyer.dynamics import hamiltonian
 from andoyer.plot.portraits import plot_fig1, plot_fig2
 

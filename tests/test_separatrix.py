@@ -13,11 +13,10 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
+from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
 from andoyer.analysis.separatrix import (
     heteroclinic,
     heteroclinic_rate,
-    portrait_andoyer,
-    portrait_hess,
     separatrix_andoyer,
     separatrix_energy,
     separatrix_hess,

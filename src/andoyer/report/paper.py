@@ -135,7 +135,7 @@ def _pre(text: str) -> str:
 
 
 def _fig1(ctx: Context) -> Result:
-    from andoyer.analysis.separatrix import portrait_andoyer
+    from andoyer.analysis.portraits import portrait_andoyer
     from andoyer.plot.portraits import plot_fig1
 
     ds = portrait_andoyer(ctx.body, 1.0)
@@ -160,7 +160,8 @@ def _fig2(ctx: Context) -> Result:
         format_table,
         hess_fixed_points,
     )
-    from andoyer.analysis.separatrix import FIG2_CAPTION, portrait_andoyer, portrait_hess
+    from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
+    from andoyer.analysis.separatrix import FIG2_CAPTION
     from andoyer.plot.portraits import plot_fig2
 
     ds_a = portrait_andoyer(ctx.body, 1.0)
