@@ -28,7 +28,6 @@ from andoyer.integrate import fill_section, poincare
 from andoyer.scan import estimate_cost, load_config, scan
 from andoyer.scan.config import check_size
 from andoyer.scan.store import Schema, Variable, _check_names
-from andoyer.scan.tasks import TASKS
 
 # 2 x 2 grid; 5 orbits (one SIMD batch of 4 plus a refilled lane) x 20 crossings.
 TINY = {"body": {"kind": "hess", "name": "paper"},
@@ -382,18 +381,6 @@ def test_bad_configurations_are_refused_clearly(cfg, message):
         load_config(cfg)
 
 
-def test_task_registry_refuses_what_is_missing(monkeypatch):
-    """A registered kind whose analysis module is absent is refused clearly."""
-    from andoyer.scan.tasks import TaskKind
-
-    monkeypatch.setitem(TASKS, "future", TaskKind(
-        "future", "a task of a later version", {}, None, lambda o: (1.0, 1.0),
-        requires="andoyer.analysis.no_such_module"))
-    with pytest.raises(ValueError, match="task kind 'future' is not available yet: it needs "
-                                         "andoyer.analysis.no_such_module"):
-        load_config(_with(TINY, "task", kind="future"))
-
-
 CHAOS = {"parameters": {"mu": [0.01, 0.3], "h": 0.5},
          "task": {"kind": "chaos_map", "n": [4, 3], "t_end": 20.0}}
 
@@ -433,7 +420,7 @@ def test_chaos_atlas_draws_images(chaos_store):
 @pytest.mark.slow
 def test_splitting_scan_scales_with_mu(tmp_path):
     """Splitting at two mu: the public API's numbers; first order in mu (Melnikov)."""
-    from andoyer.analysis.manifolds import separatrix_splitting
+    from andoyer.analysis.splitting import separatrix_splitting
 
     cfg = {"parameters": {"mu": [0.005, 0.01]},
            "task": {"kind": "splitting", "n_phase": 8, "delta": 1e-4}}

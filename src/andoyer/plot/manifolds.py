@@ -1,6 +1,6 @@
 """Invariant manifolds and separatrix splitting: datasets in, figures out (nothing computed).
 
-The datasets come from :func:`andoyer.analysis.manifolds.separatrix_splitting`: the
+The datasets come from :func:`andoyer.analysis.splitting.separatrix_splitting`: the
 manifold curves on the section ``L = 0`` in its Darboux coordinates ``(g, G)``, the
 heteroclinic points, and the splitting ``Delta G`` as a function of the phase ``g`` and
 of ``mu`` with its first-order (Melnikov) prediction.
@@ -164,7 +164,7 @@ def plot_manifolds_summary(result: dict[str, xr.Dataset], hess: xr.Dataset | Non
     Parameters
     ----------
     result : dict of xarray.Dataset
-        What :func:`andoyer.analysis.manifolds.separatrix_splitting` returns.
+        What :func:`andoyer.analysis.splitting.separatrix_splitting` returns.
     hess : xarray.Dataset, optional
         The ``"splitting"`` dataset of the Hess branch ``theta1 = 0``.
     """

@@ -353,7 +353,7 @@ def _interp_period(ctx: Context, periods: xr.Dataset) -> xr.DataArray:
 def _manifolds(ctx: Context) -> Result:
     import numpy as np
 
-    from andoyer.analysis.manifolds import separatrix_splitting
+    from andoyer.analysis.splitting import separatrix_splitting
     from andoyer.plot.manifolds import plot_manifolds_summary
 
     mus = [0.0025, 0.005, 0.01] if not ctx.quick else [0.005, 0.01]

@@ -365,9 +365,6 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
                          + (f" (did you mean {close[0]!r}?)" if close else "")
                          + f"; choose one of {', '.join(TASKS)}")
     tk = TASKS[task]
-    reason = tk.unavailable()
-    if reason is not None:
-        raise ValueError(f"{where}: [task] {reason}")
 
     # [parameters]
     used = tuple(k for k in PARAMETERS if k not in ("h", "M") or k in tk.levels)

@@ -189,9 +189,6 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     2 {'mu': 2, 'orbit': 2, 'crossing': 3, 'component': 6} True
     """
     cfg = config if isinstance(config, ScanConfig) else load_config(config)
-    reason = TASKS[cfg.task].unavailable()
-    if reason is not None:
-        raise ValueError(reason)
     if client is not None and scheduler is not None:
         raise ValueError("give either client= or scheduler=, not both")
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:

@@ -15,7 +15,7 @@ Registered kinds (:data:`TASKS`):
     :func:`andoyer.analysis.chaos.chaos_map` (FLI or MEGNO over a grid of the section
     plane), enabled when that module is installed.
 ``splitting``
-    :func:`andoyer.analysis.manifolds.separatrix_splitting` at the point's mu: the
+    :func:`andoyer.analysis.splitting.separatrix_splitting` at the point's mu: the
     splitting of the separatrices of the rotations about the middle axis, measured and
     predicted by Melnikov (sweep mu, and A, B, C, to see how it scales).
 
@@ -31,14 +31,12 @@ CPU types may change results at the 1e-10 level).
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import math
 import numbers
 import time
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -105,9 +103,6 @@ class TaskKind:
     fixed_coords : tuple of str
         Coordinates of the task's dims that are the same at every point (kept as
         coordinates); other coordinates are stored as variables ``<name>_values``.
-    requires : str, optional
-        Module (and attribute ``module:attr``) the kind needs; without it the kind
-        is registered but refused with a clear error.
     validate : callable ``(options, bodies, integrator) -> None``, optional
         Checks that need the bodies of the grid (e.g. a Hess-chart section needs the
         centre of mass in the G1-G2 plane) or the engine.
@@ -122,33 +117,13 @@ class TaskKind:
     name: str
     doc: str
     options: Mapping[str, Option]
-    run: Callable[..., xr.Dataset | Empty] | None
+    run: Callable[..., xr.Dataset | Empty]
     cost: Callable[[Mapping[str, Any]], tuple[float, float]]
     fixed_coords: tuple[str, ...] = ()
-    requires: str | None = None
     validate: Callable[[Mapping[str, Any], list[RigidBody], Integrator], None] | None = None
-    not_implemented: str | None = field(default=None)
     static_attrs: tuple[str, ...] = ()
     levels: tuple[str, ...] = ("h", "M")
     levels_note: str = ""
-
-    def unavailable(self) -> str | None:
-        """Why this kind cannot run here (``None`` if it can)."""
-        if self.requires is not None:
-            module, _, attr = self.requires.partition(":")
-            try:
-                found = importlib.util.find_spec(module) is not None
-            except ModuleNotFoundError:
-                found = False
-            if found and attr:
-                found = hasattr(importlib.import_module(module), attr)
-            if not found:
-                return (f"task kind {self.name!r} is not available yet: it needs "
-                        f"{self.requires.replace(':', '.')}, which this version of andoyer "
-                        f"does not have")
-        if self.not_implemented is not None or self.run is None:
-            return f"task kind {self.name!r} is not available yet: {self.not_implemented}"
-        return None
 
 
 # ---------------------------------------------------------------------- option checks
@@ -332,9 +307,8 @@ def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any]
                  integ: Integrator) -> xr.Dataset | Empty:
     """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.chaos_map`
     (one thread; heyoka's tolerance ``min(rtol, atol)``)."""
+    from andoyer.analysis import chaos
     from andoyer.integrate.section import Section
-
-    chaos = importlib.import_module("andoyer.analysis.chaos")
     sec = Section.parse(options["section"])
     try:
         ds = chaos.chaos_map(body, h, M, (sec.coord, sec.value), n=tuple(options["n"]),
@@ -387,13 +361,13 @@ def _small_positive(key: str, v: Any) -> float:
 def _splitting_point(body: RigidBody, h: float | None, M: float | None,
                      options: Mapping[str, Any], integ: Integrator) -> xr.Dataset | Empty:
     """Separatrix splitting at this body's mu,
-    :func:`andoyer.analysis.manifolds.separatrix_splitting` with one value of mu.
+    :func:`andoyer.analysis.splitting.separatrix_splitting` with one value of mu.
 
     Dims ``phase`` (the splitting grid on Sigma_0) and ``intersection`` (heteroclinic
     points, NaN-padded to ``n_phase``); the intersection variables are prefixed
     ``heteroclinic_`` (their ``g``, ``G`` become ``g_angle``, ``G_action``).
     """
-    manifolds = importlib.import_module("andoyer.analysis.manifolds")
+    from andoyer.analysis import splitting as manifolds
     try:
         out = manifolds.separatrix_splitting(
             body, [body.mu], G=options["G"], branch=options["branch"],
@@ -463,7 +437,7 @@ TASKS: dict[str, TaskKind] = {
          "n": Option([64, 64], _pair_of_ints, "grid [nx, ny] of the plane"),
          "t_end": Option(1000.0, _positive, "integration time of each orbit"),
          "indicator": Option("fli", _choice("fli", "megno"), "the chaos indicator")},
-        _chaos_point, _chaos_cost, requires="andoyer.analysis.chaos:chaos_map",
+        _chaos_point, _chaos_cost,
         validate=_chaos_engine,
         static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",
                       "plane_y", "action", "root", "plane_equations", "definitions",
@@ -479,7 +453,6 @@ TASKS: dict[str, TaskKind] = {
          "delta": Option(1e-5, _small_positive,
                          "distance of the fundamental domains from the periodic orbits")},
         _splitting_point, _splitting_cost, ("phase", "intersection"),
-        requires="andoyer.analysis.manifolds:separatrix_splitting",
         validate=_splitting_bodies,
         static_attrs=("branch", "sheet", "G_level", "psi0", "delta", "heyoka_tol",
                       "long_double", "n_phase", "plane", "relation"),
@@ -500,8 +473,6 @@ class ChunkResult:
 def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
     """Run the task at the grid point ``index`` (one index per swept parameter)."""
     kind = TASKS[config.task]
-    if kind.run is None:
-        raise ValueError(kind.unavailable() or f"task kind {config.task!r} cannot run")
     values = config.point(index)
     body = config.body_at(values)
     return kind.run(body, values.get("h"), values.get("M"), dict(config.task_options),

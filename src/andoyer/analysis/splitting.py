@@ -1,0 +1,388 @@
+"""Splitting of the separatrices: the distance between the unstable and stable manifolds
+of :mod:`andoyer.analysis.manifolds` on the section, the splitting angle and lobe areas,
+and the driver that measures them over mu against the Melnikov prediction of
+:mod:`andoyer.analysis.melnikov`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from andoyer.analysis.manifolds import (
+    ManifoldCurve,
+    euler_poinsot_excess,
+    grow_manifold,
+    heteroclinic_line_of,
+    manifold_branch,
+)
+from andoyer.analysis.periodic import (
+    DEFAULT_TOL,
+    RotationSection,
+    continue_rotation_orbit,
+)
+from andoyer.body import RigidBody, checks_body
+from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.results import provenance
+
+__all__ = ["measure_splitting", "separatrix_splitting", "splitting_at"]
+
+
+# ----------------------------------------------------------------------------- splitting
+def splitting_at(wu: ManifoldCurve, ws: ManifoldCurve, g: float) -> dict[str, Any]:
+    """Fresh points of both manifolds on the line ``g = const`` of ``Sigma_0``.
+
+    Returns a dict with ``Delta_G = G^u - G^s``, ``Delta_E = E^u - E^s``, the states
+    ``y_u``, ``y_s`` and their phases.
+    """
+    cu = wu.point_at_phase(g)
+    cs = ws.point_at_phase(g)
+    body = wu.branch.body
+    Gu, Gs = float(np.linalg.norm(cu.y[:3])), float(np.linalg.norm(cs.y[:3]))
+    return {"Delta_G": Gu - Gs,
+            "Delta_E": float(euler_poinsot_excess(body, cu.y) - euler_poinsot_excess(body,
+                                                                                     cs.y)),
+            "G_u": Gu, "G_s": Gs, "y_u": cu.y, "y_s": cs.y, "t_u": cu.t, "t_s": cs.t}
+
+
+def _trig_interp(values: NDArray[np.float64], g: NDArray[np.floating[Any]],
+                 derivative: int = 0) -> NDArray[np.float64]:
+    """Trigonometric interpolant of samples on ``2 pi k / n`` (n even), at ``g``."""
+    n = values.size
+    c = np.fft.rfft(values) / n
+    k = np.arange(c.size)
+    w = np.full(c.size, 2.0)
+    w[0] = 1.0
+    if n % 2 == 0:
+        w[-1] = 1.0
+    coef = w * c * (1j * k) ** derivative
+    return np.asarray(np.real(np.exp(1j * np.outer(g, k)) @ coef))
+
+
+def _shoelace(xs: NDArray[np.float64], ys: NDArray[np.float64]) -> float:
+    return 0.5 * float(np.dot(xs, np.roll(ys, -1)) - np.dot(ys, np.roll(xs, -1)))
+
+
+def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32,
+                      locate: bool | None = None, gtol: float = 1e-13,
+                      noise: float = 1e-11) -> tuple[xr.Dataset, xr.Dataset]:
+    """Splitting of ``W^u`` and ``W^s`` on ``Sigma_0`` as a function of the phase ``g``.
+
+    Parameters
+    ----------
+    wu, ws : ManifoldCurve
+        The unstable and the stable manifold of the same heteroclinic line.
+    n_phase : int
+        Even number of equally spaced phases ``g_k = 2 pi k / n_phase`` at which fresh
+        points are computed; ``Delta G`` between them is the trigonometric interpolant
+        (the splitting is analytic and periodic in ``g``).
+    locate : bool, optional
+        Locate the heteroclinic points (default: when ``max |Delta G| > noise``).
+    gtol : float
+        Tolerance in ``g`` of the located heteroclinic points.
+    noise : float
+        Below this ``max |Delta G|`` the manifolds are taken to coincide.
+
+    Returns
+    -------
+    splitting : xarray.Dataset
+        Dim ``phase``: ``Delta_G``, ``Delta_E``, ``G_u``, ``G_s``.
+    intersections : xarray.Dataset
+        Dim ``intersection``: ``g`` and ``G`` of each heteroclinic point, the distance
+        ``state_distance`` between the two manifolds' states there, ``Delta_G``
+        (residual), ``angle`` (splitting angle in the ``(g, G)`` plane), and
+        ``lobe_area`` of the lobe that starts there (signed: ``int Delta G dg``).
+    """
+    from scipy.optimize import brentq
+
+    if int(n_phase) != n_phase or n_phase < 8 or n_phase % 2:
+        raise ValueError(f"n_phase must be an even integer >= 8, got {n_phase!r}")
+    if wu.branch.branch != ws.branch.branch or wu.branch.sheet != ws.branch.sheet:
+        raise ValueError("wu and ws must follow the same heteroclinic line and sheet")
+    if (wu.branch.stability, ws.branch.stability) != ("unstable", "stable"):
+        raise ValueError("give the unstable manifold first, then the stable one")
+    phases = math.tau * np.arange(n_phase) / n_phase
+    rows = [splitting_at(wu, ws, float(g)) for g in phases]
+    dG = np.array([r["Delta_G"] for r in rows])
+    Gu = np.array([r["G_u"] for r in rows])
+    Gs = np.array([r["G_s"] for r in rows])
+    body = wu.branch.body
+    split = xr.Dataset(
+        {"Delta_G": (("phase",), dG),
+         "Delta_E": (("phase",), [r["Delta_E"] for r in rows]),
+         "G_u": (("phase",), Gu), "G_s": (("phase",), Gs)},
+        coords={"phase": phases},
+        attrs=provenance(body, engine="heyoka (Taylor)", branch=wu.branch.branch,
+                         sheet=wu.branch.sheet, energy=wu.branch.h,
+                         plane="Sigma_0 = {L = G3 = 0}, Darboux coordinates (g, G)",
+                         heyoka_tol=wu.branch.orbit.tol,
+                         delta_u=wu.branch.delta, delta_s=ws.branch.delta))
+    split.phase.attrs.update(symbol="g", long_name="phase: Andoyer-Deprit angle g on L = 0",
+                             units="rad", equation="(5)-(6)")
+    for name, sym, long in (
+            ("Delta_G", "\\Delta G", "G^u - G^s on the line g = const of L = 0"),
+            ("Delta_E", "\\Delta E", "E^u - E^s, E = H0 - c G^2/2"),
+            ("G_u", "G^u", "G on the unstable manifold"),
+            ("G_s", "G^s", "G on the stable manifold")):
+        split[name].attrs.update(symbol=sym, long_name=long, units="1", equation="(12)-(13)")
+    split["Delta_E"].attrs["units"] = "energy units"
+
+    coincide = float(np.max(np.abs(dG))) <= noise
+    split.attrs["max_abs_Delta_G"] = float(np.max(np.abs(dG)))
+    split.attrs["manifolds_coincide"] = int(coincide)
+    if locate is None:
+        locate = not coincide
+    rec: dict[str, list[Any]] = {k: [] for k in (
+        "g", "G", "state_distance", "Delta_G", "angle", "lobe_area", "y_u", "y_s")}
+    if locate:
+        # Candidates: sign changes of the interpolant on a fine grid shifted off the
+        # sample phases (a zero on a symmetry line would fall on a node).
+        step = math.tau / (64 * n_phase)
+        dense = step * (np.arange(64 * n_phase + 1) + 0.381966)
+        vals = _trig_interp(dG, dense)
+        idx = np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)
+        zeros = []
+        cache: dict[float, dict[str, Any]] = {}
+
+        def f(g: float) -> float:
+            r = splitting_at(wu, ws, g)
+            cache[g] = r
+            return float(r["Delta_G"])
+
+        for i in idx:
+            lo, hi = float(dense[i]), float(dense[i + 1])
+            # Widen the bracket until the fresh values change sign.
+            while f(lo) * f(hi) > 0.0:
+                if hi - lo > math.tau / n_phase:
+                    raise RuntimeError("could not bracket a heteroclinic point: the "
+                                       "interpolated splitting is not accurate; raise "
+                                       "n_phase")
+                lo, hi = lo - (hi - lo), hi + (hi - lo)
+            z = brentq(f, lo, hi, xtol=gtol, rtol=1e-15)
+            zeros.append(z % math.tau)
+            r = cache.get(z) or splitting_at(wu, ws, z)
+            slope_s = float(_trig_interp(Gs, np.array([z]), 1)[0])
+            slope_u = float(_trig_interp(Gu, np.array([z]), 1)[0])
+            rec["g"].append(z % math.tau)
+            rec["G"].append(0.5 * (r["G_u"] + r["G_s"]))
+            rec["state_distance"].append(float(np.linalg.norm(r["y_u"] - r["y_s"])))
+            rec["Delta_G"].append(r["Delta_G"])
+            rec["angle"].append(math.atan(slope_u) - math.atan(slope_s))
+            rec["y_u"].append(r["y_u"])
+            rec["y_s"].append(r["y_s"])
+        order = np.argsort(zeros)
+        zs = np.asarray(zeros)[order]
+        for key in rec:
+            if key != "lobe_area":
+                rec[key] = [rec[key][i] for i in order]
+        for k, z0 in enumerate(zs):
+            z1 = zs[(k + 1) % zs.size] + (math.tau if k + 1 == zs.size else 0.0)
+            gg = np.linspace(z0, z1, 2049)
+            upper = _trig_interp(Gu, gg)
+            lower = _trig_interp(Gs, gg)
+            # The lobe polygon: along W^u from z_k to z_{k+1}, back along W^s; the
+            # shoelace area is signed with Delta G (counter-clockwise positive).
+            poly_g = np.concatenate([gg, gg[::-1]])
+            poly_G = np.concatenate([upper, lower[::-1]])
+            rec["lobe_area"].append(-_shoelace(poly_g, poly_G))
+    n_int = len(rec["g"])
+    inter = xr.Dataset(
+        {"g": (("intersection",), np.asarray(rec["g"], dtype=float)),
+         "G": (("intersection",), np.asarray(rec["G"], dtype=float)),
+         "state_distance": (("intersection",), np.asarray(rec["state_distance"], dtype=float)),
+         "Delta_G": (("intersection",), np.asarray(rec["Delta_G"], dtype=float)),
+         "angle": (("intersection",), np.asarray(rec["angle"], dtype=float)),
+         "lobe_area": (("intersection",), np.asarray(rec["lobe_area"], dtype=float)),
+         "y_u": (("intersection", "component"),
+                 np.asarray(rec["y_u"], dtype=float).reshape(n_int, 6)),
+         "y_s": (("intersection", "component"),
+                 np.asarray(rec["y_s"], dtype=float).reshape(n_int, 6))},
+        coords={"intersection": np.arange(n_int), "component": list(STATE)},
+        attrs={**split.attrs, "gtol": gtol})
+    for name, sym, long, units in (
+            ("g", "g", "phase of the heteroclinic point on L = 0", "rad"),
+            ("G", "G", "G of the heteroclinic point", "1"),
+            ("state_distance", "|y^u - y^s|", "distance of the two manifolds' states", "1"),
+            ("Delta_G", "\\Delta G", "residual G^u - G^s at the located point", "1"),
+            ("angle", "\\alpha", "splitting angle atan(G^u') - atan(G^s') in (g, G)", "rad"),
+            ("lobe_area", "A", "signed area int Delta G dg of the lobe from this point to "
+                               "the next (shoelace)", "action units"),
+            ("y_u", "y^u", "state on W^u", "1"), ("y_s", "y^s", "state on W^s", "1")):
+        inter[name].attrs.update(symbol=sym, long_name=long, units=units)
+    return split, inter
+
+
+# ----------------------------------------------------------------------------- driver
+@checks_body
+def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
+                         G: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
+                         psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
+                         tol: float = DEFAULT_TOL, long_double: bool = False,
+                         grow: dict[str, Any] | None = None, progress: bool | None = None,
+                         ) -> dict[str, xr.Dataset]:
+    """Measure the separatrix splitting for several ``mu`` and compare it with Melnikov.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (its own ``mu`` is ignored).
+    mu : sequence of float
+        Increasing values ``mu > 0``.
+    G : float
+        The energy level is ``h = c G^2 / 2`` (the rotation about z with ``|G| = G`` at
+        ``mu = 0``); the Melnikov prediction uses ``J2 = G``.
+    branch, sheet :
+        The heteroclinic line (``"theta1=0"``, the Hess solutions, does not split).
+    psi0, delta :
+        Fundamental domains on ``psi = psi0`` at distance ``delta`` from the orbits.
+    n_phase : int
+        Phases of the splitting grid (even).
+    tol, long_double :
+        heyoka tolerance and precision.
+    grow : dict, optional
+        Keyword arguments of :func:`grow_manifold`.
+    progress : bool, optional
+        Progress line on stderr (default: when stderr is a terminal).
+
+    Returns
+    -------
+    dict of xarray.Dataset
+        * ``"splitting"`` (mu, phase): measured ``Delta_G``, ``Delta_E``; the first-order
+          predictions ``Delta_G_melnikov = -mu M(g - theta1/2)/(c G)``,
+          ``Delta_E_melnikov = mu M``; per ``mu``: ``amplitude`` (max over the phase of
+          ``|Delta G|``), ``amplitude_melnikov``, ``relative_error``
+          (``max |Delta G - prediction| / amplitude_melnikov``).
+        * ``"intersections"`` (mu, intersection): heteroclinic points ``g``, ``G``,
+          ``state_distance``, ``Delta_G``, ``angle``, ``lobe_area`` and their
+          first-order predictions ``angle_melnikov``, ``lobe_area_melnikov`` (NaN-padded).
+        * ``"melnikov"``: :func:`~andoyer.analysis.melnikov.melnikov_function` at the
+          phases of the grid.
+        * ``"orbit_leaves"``, ``"orbit_reaches"`` (mu): the periodic orbits the line
+          leaves and reaches, continued from ``mu = 0`` (:func:`~andoyer.analysis.
+          periodic.orbits_dataset`).
+        * ``"curve_unstable"``, ``"curve_stable"`` (point): the manifold curves on
+          ``Sigma_0`` at the largest ``mu`` (:meth:`ManifoldCurve.dataset`).
+
+    Examples
+    --------
+    >>> out = separatrix_splitting(RigidBody.hess(2.5, 1.0, 1.6), [0.01], n_phase=8,
+    ...                            delta=1e-4)                      # doctest: +SKIP
+    >>> float(out["splitting"].relative_error[0]) < 0.05            # doctest: +SKIP
+    True
+    """
+    from andoyer.analysis.melnikov import melnikov_function
+    from andoyer.analysis.periodic import orbits_dataset
+    from andoyer.progress import Progress
+
+    mus = np.atleast_1d(np.asarray(mu, dtype=float))
+    if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
+        raise ValueError("mu must be a non-empty list of finite values > 0")
+    if np.any(np.diff(mus) <= 0):
+        raise ValueError("mu must be increasing")
+    body.require_hess("separatrix_splitting")
+    G = float(G)
+    if not (math.isfinite(G) and G > 0.0):
+        raise ValueError(f"G must be finite and > 0, got {G!r}")
+    h = 0.5 * body.c * G * G
+    theta1_line, j1_dir = heteroclinic_line_of(body, h, branch, sheet)
+    leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
+    bar = Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
+    # Both rotation orbits, continued in mu once through every requested value.
+    path = np.concatenate([[0.0], mus])
+    orb_u, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, leaves), mu=path,
+                                       tol=tol, long_double=long_double)
+    bar.update(1)
+    orb_s, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, reaches), mu=path,
+                                       tol=tol, long_double=long_double)
+    bar.update(1)
+    splits, inters = [], []
+    curves: dict[str, xr.Dataset] = {}
+    for k, m in enumerate(mus):
+        bm = body.with_mu(float(m))
+        common: dict[str, Any] = {"sheet": sheet, "psi0": psi0, "delta": delta, "tol": tol,
+                                  "long_double": long_double}
+        wu = grow_manifold(manifold_branch(bm, h, "unstable", branch, orbit=orb_u[k + 1],
+                                           **common), **(grow or {}))
+        ws = grow_manifold(manifold_branch(bm, h, "stable", branch, orbit=orb_s[k + 1],
+                                           **common), **(grow or {}))
+        bar.update(1)
+        sp, it = measure_splitting(wu, ws, n_phase=n_phase)
+        bar.update(2)
+        splits.append(sp)
+        inters.append(it)
+        if k == mus.size - 1:
+            curves = {"curve_unstable": wu.dataset(), "curve_stable": ws.dataset()}
+    bar.close()
+
+    phases = splits[0].phase.values
+    # The Melnikov phase: theta2 = g - theta1/2 where the unperturbed line crosses L = 0.
+    mel = melnikov_function(body, phases - theta1_line / 2.0, J2=G, branch=branch,
+                            sheet=sheet)
+    dG = np.stack([sp.Delta_G.values for sp in splits])
+    dE = np.stack([sp.Delta_E.values for sp in splits])
+    pred_E = mus[:, None] * mel["M"].values[None, :]
+    pred_G = -pred_E / (body.c * G)
+    amp = np.max(np.abs(dG), axis=1)
+    amp_pred = np.max(np.abs(pred_G), axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
+    attrs = provenance(body.with_mu(float(mus[-1])), engine="heyoka (Taylor)",
+                       branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
+                       delta=delta, heyoka_tol=tol, long_double=int(long_double),
+                       n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
+                       melnikov_amplitude=mel.attrs["amplitude"],
+                       plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
+                       relation="Delta_E = mu M(theta2_0) + O(mu^2); Delta_G = -Delta_E/(c G)"
+                                " (1 + O(mu)); theta2_0 = g - theta1_line/2")
+    attrs["body_mu"] = "see the mu coordinate"
+    splitting = xr.Dataset(
+        {"Delta_G": (("mu", "phase"), dG),
+         "Delta_E": (("mu", "phase"), dE),
+         "Delta_G_melnikov": (("mu", "phase"), pred_G),
+         "Delta_E_melnikov": (("mu", "phase"), pred_E),
+         "amplitude": (("mu",), amp),
+         "amplitude_melnikov": (("mu",), amp_pred),
+         "relative_error": (("mu",), rel)},
+        coords={"mu": mus, "phase": phases}, attrs=attrs)
+    for name, sym, long, units in (
+            ("Delta_G", "\\Delta G", "measured G^u - G^s on the line g = const of L = 0", "1"),
+            ("Delta_E", "\\Delta E", "measured E^u - E^s, E = H0 - c G^2/2", "energy units"),
+            ("Delta_G_melnikov", "-\\mu M/(c G)", "first-order prediction of Delta G", "1"),
+            ("Delta_E_melnikov", "\\mu M", "first-order prediction of Delta E",
+             "energy units"),
+            ("amplitude", "max|\\Delta G|", "measured splitting amplitude", "1"),
+            ("amplitude_melnikov", "max|\\mu M/(c G)|", "predicted splitting amplitude", "1"),
+            ("relative_error", "", "max over the phase |Delta G - prediction| / predicted "
+                                   "amplitude", "1")):
+        splitting[name].attrs.update(symbol=sym, long_name=long, units=units)
+    splitting.mu.attrs.update(symbol="\\mu", long_name="weight x distance of the centre of "
+                              "mass", units="1", equation="(1)")
+    splitting.phase.attrs.update(splits[0].phase.attrs)
+
+    n_max = max([it.sizes["intersection"] for it in inters] + [0])
+    data: dict[str, Any] = {}
+    for name in ("g", "G", "state_distance", "Delta_G", "angle", "lobe_area"):
+        arr = np.full((mus.size, n_max), np.nan)
+        for k, it in enumerate(inters):
+            arr[k, :it.sizes["intersection"]] = it[name].values
+        data[name] = (("mu", "intersection"), arr)
+    # A pure harmonic A cos(g + c): slope A at its zeros, lobe area 2 A.
+    data["angle_melnikov"] = (("mu",), np.arctan(amp_pred))
+    data["lobe_area_melnikov"] = (("mu",), 2.0 * amp_pred)
+    intersections = xr.Dataset(data, coords={"mu": mus, "intersection": np.arange(n_max)},
+                               attrs={**attrs, "gtol": inters[0].attrs.get("gtol", np.nan)})
+    for name in ("g", "G", "state_distance", "Delta_G", "angle", "lobe_area"):
+        intersections[name].attrs.update(inters[0][name].attrs)
+    intersections["angle_melnikov"].attrs.update(
+        symbol="atan(max|\\mu M/(c G)|)", long_name="first-order splitting angle", units="rad")
+    intersections["lobe_area_melnikov"].attrs.update(
+        symbol="2 max|\\mu M/(c G)|", long_name="first-order lobe area |int Delta G dg|",
+        units="action units")
+    return {"splitting": splitting, "intersections": intersections, "melnikov": mel,
+            "orbit_leaves": orbits_dataset(orb_u), "orbit_reaches": orbits_dataset(orb_s),
+            **curves}
