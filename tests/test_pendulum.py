@@ -16,14 +16,17 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from andoyer import RigidBody, from_andoyer, to_andoyer
-from andoyer.analysis.pendulum import (
-    IN_PLANE,
-    STABILITY,
-    TRANSVERSE,
+from andoyer.analysis.floquet import (
     floquet_multipliers,
     floquet_scan,
     hess_rotation_multiplier,
     monodromy,
+    physical_pendulum_monodromy,
+)
+from andoyer.analysis.pendulum import (
+    IN_PLANE,
+    STABILITY,
+    TRANSVERSE,
     paper_pendulum_potential,
     pendulum_energy,
     pendulum_period,
@@ -31,7 +34,6 @@ from andoyer.analysis.pendulum import (
     pendulum_solution,
     pendulum_state,
     physical_pendulum,
-    physical_pendulum_monodromy,
 )
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate import Section, poincare, propagate

@@ -26,7 +26,7 @@ def plot_solutions(periods: xr.Dataset, portrait: xr.Dataset, floquet: xr.Datase
     portrait : xarray.Dataset
         ``H`` on (``J2``, ``theta2``) with attrs ``mu``, ``separatrix``.
     floquet : xarray.Dataset
-        :func:`andoyer.analysis.pendulum.floquet_scan` output(s), stacked on dim ``body``.
+        :func:`andoyer.analysis.floquet.floquet_scan` output(s), stacked on dim ``body``.
     """
     with paper_style():
         fig = new_figure(1, 3, aspect=0.95)

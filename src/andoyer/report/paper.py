@@ -288,8 +288,8 @@ def _hess_periods(ctx: Context, Ms: tuple[float, ...], n: int, n_check: int) -> 
 def _solutions(ctx: Context) -> Result:
     import numpy as np
 
+    from andoyer.analysis.floquet import floquet_scan, hess_rotation_multiplier
     from andoyer.analysis.hess_solution import reduced_hamiltonian
-    from andoyer.analysis.pendulum import floquet_scan, hess_rotation_multiplier
     from andoyer.plot.solutions import plot_solutions
 
     body, mu = ctx.body, ctx.body.mu
