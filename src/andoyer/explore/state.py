@@ -447,7 +447,7 @@ def crossing_stages(settings: Settings, y0: NDArray[np.float64], *,
     ``t = 0``: ``t_max`` is what one ``poincare(body, y0, section, N)`` call uses, the
     engines are deterministic and their step sequence does not depend on how many
     crossings are asked for, so the first ``n_k`` crossings of a stage are those of the
-    single call, bit for bit (``tests/test_explore.py`` checks it for every engine).
+    single call, bit for bit (``tests/explore/test_explore.py`` checks it for every engine).
     Restarting from the last crossing instead would change the step sequence, and the
     points by ~1e-11 already on a regular orbit (more on a chaotic one). The price is
     the recomputed prefixes: less than ``(2 growth - 1)/(growth - 1)`` times one call

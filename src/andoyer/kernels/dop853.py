@@ -129,7 +129,7 @@ N = 6
 # er_i (5th order) and bhh_i (3rd order), the dense-output weights d_ij. A[i, j] is
 # a_{i+1, j+1} of dop853.f (0-based here). The numbers are copied from SciPy's
 # ``scipy/integrate/_ivp/dop853_coefficients.py`` (BSD-3-Clause, (c) SciPy
-# developers), which transcribes dop853.f; tests/test_dop853.py checks they agree.
+# developers), which transcribes dop853.f; tests/kernels/test_dop853.py checks they agree.
 # ----------------------------------------------------------------------------------
 
 #: Stages of a step (the 13th, FSAL, is the first of the next step).

@@ -3,7 +3,7 @@
 The output, ``andoyer/kernels/generated.py``, is plain Python on scalars or NumPy
 arrays (common subexpressions eliminated); the same functions are compiled by Numba
 in :mod:`andoyer.kernels.numba`. It is committed, so importing ``andoyer`` never runs
-SymPy; ``tests/test_codegen.py`` regenerates it in memory and checks that the
+SymPy; ``tests/symbolic/test_codegen.py`` regenerates it in memory and checks that the
 committed file still evaluates to the same numbers.
 
 Regenerate with ``python -m andoyer.symbolic.codegen``.

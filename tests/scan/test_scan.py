@@ -458,7 +458,7 @@ def test_toml_file_errors_name_the_file(tmp_path):
 
 
 def test_example_configurations_are_valid():
-    for path in sorted(Path(__file__).parents[1].joinpath("examples").glob("*.toml")):
+    for path in sorted(Path(__file__).resolve().parents[2].joinpath("examples").glob("*.toml")):
         cfg = load_config(path)
         check_size(cfg, 1.0, 1.0)  # examples stay small
 

@@ -17,8 +17,6 @@ import pytest
 
 pytest.importorskip("heyoka")
 
-from benchmarks import harness, workloads  # noqa: E402
-from benchmarks import reference as R  # noqa: E402
 from benchmarks.__main__ import main  # noqa: E402
 from benchmarks.peers import heyoka_scripts as hs  # noqa: E402
 from benchmarks.peers import model  # noqa: E402
@@ -27,6 +25,8 @@ from benchmarks.peers import scipy_scripts as ss  # noqa: E402
 from andoyer import RigidBody, from_andoyer, to_hess  # noqa: E402
 from andoyer.integrate import Section, poincare  # noqa: E402
 from andoyer.kernels.generated import ep_field  # noqa: E402
+from benchmarks import harness, workloads  # noqa: E402
+from benchmarks import reference as R  # noqa: E402
 
 BODY = RigidBody.paper()
 P = workloads.params(BODY)
