@@ -77,6 +77,7 @@ from andoyer.integrate.variational import (
     VARIATIONAL_STATE,
     propagate_variational,
 )
+from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "INDICATORS", "TANGENT_SPACES"]
@@ -587,5 +588,5 @@ def _coord_attrs(name: str) -> dict[str, str]:
     if name not in VARIABLE_ATTRS:
         return {}
     sym, long, eqn = VARIABLE_ATTRS[name]
-    units = "rad" if name in ("l_angle", "g_angle", "theta1", "theta2") else "1"
+    units = COORDINATE[name].units if name in COORDINATE else "1"
     return {"symbol": sym, "long_name": long, "equation": eqn, "units": units}

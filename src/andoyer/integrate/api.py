@@ -32,10 +32,11 @@ from andoyer.integrate.engines import default_engine_name, get_engine
 from andoyer.integrate.engines.base import Crossings, Engine, Params
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
+from andoyer.notation import coordinates, storage_name
 from andoyer.progress import Progress
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
-           "RESIDUAL_BOUND", "check_times", "check_tolerances"]
+           "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
 
 #: |gamma| may differ from 1 by this much (then it is renormalised); more is an error.
 GAMMA_TOL = 1e-12
@@ -290,7 +291,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     params = body.engine_params
     scale = momentum_bound(body, y)
     parts = _run_chunks(
-        lambda sl: _regular_crossings(eng, y[sl], scale[sl], params, sec, int(n_crossings),
+        lambda sl: section_crossings(eng, y[sl], scale[sl], params, sec, int(n_crossings),
                                       t_end, rtol, atol, body),
         y.shape[0], f"poincare ({name})", progress)
     T = np.concatenate([p[0].t for p in parts], axis=0)
@@ -336,7 +337,7 @@ def _passage_message(sec: Section, n_pass: NDArray[np.int64]) -> str:
             "coordinate such as 'G3=0', or propagate_hess_manifold().")
 
 
-def _regular_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.float64],
+def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.float64],
                        params: Params, sec: Section, n: int, t_end: float, rtol: float,
                        atol: float, body: RigidBody) -> tuple[Crossings, list[list[float]]]:
     """The first ``n`` crossings of each orbit where ``sec`` is defined, and the times of
@@ -399,22 +400,14 @@ def _regular_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.fl
 def _residual_values(sec: Section, body: RigidBody, y: NDArray[np.float64]
                      ) -> NDArray[np.float64]:
     """``sin(angle - value)`` (or ``coord - value``) at Euler-Poisson states ``y``."""
-    if sec.chart == "hess":
-        x = to_hess(body, y)
-        v = x[..., ("theta1", "theta2", "J1", "J2").index(sec.coord)]
-    elif sec.chart == "andoyer":
-        x = to_andoyer(y)
-        v = x[..., ("l", "g", "L", "G").index(sec.coord)]
-    else:
-        v = y[..., ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3").index(sec.coord)]
+    x = {"hess": lambda: to_hess(body, y), "andoyer": lambda: to_andoyer(y),
+         "euler_poisson": lambda: y}[sec.chart]()
+    v = x[..., coordinates(sec.chart).index(sec.coord)]
     return np.sin(v - sec.value) if sec.is_angle else v - sec.value
 
 
-_STORAGE = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action"}
-
-
 def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
-    var = ds[_STORAGE.get(sec.coord, sec.coord)]
+    var = ds[storage_name(sec.coord)]
     res = xr.DataArray(np.sin(var - sec.value)) if sec.is_angle else var - sec.value
     res.attrs.update(long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing",
                      units="1")
@@ -477,9 +470,8 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     cyc = "m" if chart == "andoyer" else "theta3"
     data: dict[str, Any] = {n: (("time",), sol.y[i]) for i, n in enumerate(names)}
     data[cyc] = (("time",), sol.y[5])
-    renamed = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action",
-               "M": "M_action", "m": "m_angle"}
     ds = xr.Dataset(data, coords={"time": times},
                     attrs=provenance(body, engine="scipy-DOP853", rtol=rtol, atol=atol,
                                      equations=f"canonical equations in the {chart} chart"))
-    return ds.rename({k: v for k, v in renamed.items() if k in ds})
+    return ds.rename({k: storage_name(str(k)) for k in ds.data_vars
+                      if storage_name(str(k)) != k})

@@ -21,37 +21,17 @@ from andoyer.charts.euler_poisson import (
     momentum_bound,
 )
 from andoyer.charts.hess import to_hess
+from andoyer.notation import COORDINATES, coordinates, storage_name
 
 __all__ = ["states_dataset", "provenance", "VARIABLE_ATTRS"]
 
-#: Storage name -> (paper symbol, long name, equation). Storage names differ ignoring
-#: case (l/L and g/G would collide on case-insensitive file systems).
+#: Storage name -> (paper symbol, long name, equation), from :mod:`andoyer.notation`.
 VARIABLE_ATTRS: dict[str, tuple[str, str, str]] = {
-    "G1": ("G_1", "angular momentum, body axis 1", "(1)"),
-    "G2": ("G_2", "angular momentum, body axis 2", "(1)"),
-    "G3": ("G_3", "angular momentum, body axis 3", "(1)"),
-    "gamma1": ("\\gamma_1", "upward vertical, body axis 1", "(1)"),
-    "gamma2": ("\\gamma_2", "upward vertical, body axis 2", "(1)"),
-    "gamma3": ("\\gamma_3", "upward vertical, body axis 3", "(1)"),
-    "l_angle": ("l", "Andoyer-Deprit angle l", "(5)-(6)"),
-    "g_angle": ("g", "Andoyer-Deprit angle g", "(5)-(6)"),
-    "L_action": ("L", "projection of G on body axis 3", "(5)"),
-    "G_action": ("G", "length of the angular momentum", "(5)"),
-    "M_action": ("M", "area integral (G, gamma)", "(4)"),
-    "theta1": ("\\theta_1", "Hess-chart angle 2(l + phi0), in [0, 4 pi)", "(14)"),
-    "theta2": ("\\theta_2", "Hess-chart angle g - l - phi0", "(14)"),
-    "J1": ("J_1", "Hess-chart action (G + L)/2", "(14)"),
-    "J2": ("J_2", "Hess-chart action G", "(14)"),
-    "J3": ("J_3", "Hess-chart action M", "(14)"),
-    "H": ("H", "energy", "(1)"),
-    "area": ("(G, \\gamma)", "area integral", "(1)"),
-    "geometric": ("|\\gamma|^2", "geometric integral", "(1)"),
-    "singular": ("", "Singular flags of the Andoyer-Deprit chart (0: regular)", ""),
-}
-_UNITS = {"l_angle": "rad", "g_angle": "rad", "theta1": "rad", "theta2": "rad"}
+    c.storage: (c.symbol, c.long_name, c.equation) for c in COORDINATES
+    if c.code not in ("m", "theta3")}
+_UNITS = {c.storage: c.units for c in COORDINATES}
 
 
-@checks_body
 def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
     """Attributes recording body, package version and creation time."""
     attrs: dict[str, Any] = {f"body_{k}" if not k.startswith("body") else k: v
@@ -84,11 +64,11 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     # not only where |G| is exactly 0.
     flags = singular_mask(safe, momentum_bound(body, safe))
     nan = np.where(valid, 1.0, np.nan)
-    for i, name in enumerate(("l_angle", "g_angle", "L_action", "G_action", "M_action")):
+    for i, name in enumerate(map(storage_name, coordinates("andoyer"))):
         data[name] = (dims, x[..., i] * nan)
     if abs(body.e3) <= 1e-12:
         xh = to_hess(body, safe)
-        for i, name in enumerate(("theta1", "theta2", "J1", "J2", "J3")):
+        for i, name in enumerate(map(storage_name, coordinates("hess"))):
             data[name] = (dims, xh[..., i] * nan)
     data["H"] = (dims, energy(body, safe) * nan)
     data["area"] = (dims, area_integral(safe) * nan)

@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
+from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, new_figure, paper_style
 
@@ -23,7 +24,7 @@ __all__ = ["plot_atlas", "SYMBOLS"]
 #: Storage name of a swept parameter -> its symbol (mathtext).
 SYMBOLS = {"mu": r"\mu", "h_level": "h", "M_level": "M", "A": "A", "B": "B", "C": "C"}
 _INDICATORS = ("fli", "megno")
-_ANGLES = ("l_angle", "g_angle", "theta1", "theta2")
+_ANGLES = ANGLES
 
 
 def _swept(ds: xr.Dataset) -> list[str]:

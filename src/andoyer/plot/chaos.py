@@ -14,6 +14,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import COLOURS, WIDTH, angle_ticks, paper_style
 
@@ -25,7 +26,7 @@ COLOUR_BAR_LABELS: dict[str, str] = {
     "megno": r"MEGNO $\langle Y\rangle$",
     "mle": r"$\ln\|w(t)\|\,/\,t$",
 }
-_ANGLES = ("l_angle", "g_angle", "theta1", "theta2")
+_ANGLES = ANGLES
 _SECTION_SYMBOL = {"g": "g", "theta2": r"\theta_2"}
 # MEGNO: 2 is the quasi-periodic value; the scale saturates at 4x that.
 _MEGNO_RANGE = (0.0, 8.0)

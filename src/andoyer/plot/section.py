@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 
 from andoyer._atomic import atomic_path
 from andoyer.integrate.section import SECTION_PLANES
+from andoyer.notation import ANGLES, COORDINATES
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
 
@@ -27,14 +28,9 @@ PLANES: dict[str, tuple[str, str]] = {
     **{p.storage[1]: (p.x, p.y) for p in SECTION_PLANES.values()},
 }
 
-#: Storage name -> axis label with the paper's symbol (mathtext).
-LABELS: dict[str, str] = {
-    "l_angle": "$l$", "g_angle": "$g$", "L_action": "$L$", "G_action": "$G$",
-    "M_action": "$M$", "theta1": r"$\theta_1$", "theta2": r"$\theta_2$", "J1": "$J_1$",
-    "J2": "$J_2$", "J3": "$J_3$", "G1": "$G_1$", "G2": "$G_2$", "G3": "$G_3$",
-    "gamma1": r"$\gamma_1$", "gamma2": r"$\gamma_2$", "gamma3": r"$\gamma_3$",
-}
-_ANGLES = ("l_angle", "g_angle", "theta1", "theta2")
+#: Storage name -> axis label with the paper's symbol (mathtext), from :mod:`andoyer.notation`.
+LABELS: dict[str, str] = {c.storage: c.label for c in COORDINATES if c.symbol}
+_ANGLES = ANGLES
 _SYMBOL = {"g": "g", "g_angle": "g", "theta2": r"\theta_2"}
 
 

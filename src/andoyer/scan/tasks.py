@@ -230,7 +230,6 @@ def _single_threaded(name: str) -> Iterator[None]:
 
 
 # ---------------------------------------------------------------------- section
-_SECTION_STORAGE = {"l": "l_angle", "g": "g_angle", "L": "L_action", "G": "G_action"}
 
 
 def _pick_orbits(y0: np.ndarray, n: int, sampling: str) -> np.ndarray:
@@ -250,10 +249,12 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
     The same numbers as ``poincare(body, fill_section(...)["y0"], section, crossings)``
     (tested); the engine is called directly to run it single-threaded.
     """
-    from andoyer.integrate.api import initial_states
+    from andoyer.charts.euler_poisson import momentum_bound
+    from andoyer.integrate.api import initial_states, section_crossings
     from andoyer.integrate.fill import fill_section
     from andoyer.integrate.results import states_dataset
     from andoyer.integrate.section import Section
+    from andoyer.notation import storage_name
 
     sec = Section.parse(options["section"])
     n, k = int(options["orbits"]), int(options["crossings"])
@@ -267,11 +268,11 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
     y0 = initial_states(body, _pick_orbits(fill["y0"].values, n, options["sampling"]))
     m = y0.shape[0]
     t_max = 1000.0 * k if options["t_max"] is None else float(options["t_max"])
-    params = (*body.params, body.phi0 if abs(body.e3) <= 1e-12 else 0.0)
     with _single_threaded(integ.engine):
-        cross = _engine(integ.engine).crossings(y0, params, sec.kind, sec.value,
-                                                sec.direction, k, t_max, integ.rtol,
-                                                integ.atol)
+        # The friendly layer's crossing rule: singular passages are not crossings.
+        cross, _ = section_crossings(_engine(integ.engine), y0, momentum_bound(body, y0),
+                                     body.engine_params, sec, k, t_max, integ.rtol,
+                                     integ.atol, body)
     T, Y, count, Y0 = (np.full((n, k), np.nan), np.full((n, k, 6), np.nan),
                        np.zeros(n, dtype=np.int64), np.full((n, 6), np.nan))
     T[:m], Y[:m], count[:m], Y0[:m] = cross.t, cross.y, cross.count, y0
@@ -280,7 +281,7 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
                         extra={"t": (("orbit", "crossing"), T),
                                "crossings_found": (("orbit",), count),
                                "y0": (("orbit", "component"), Y0)})
-    var = ds[_SECTION_STORAGE.get(sec.coord, sec.coord)]
+    var = ds[storage_name(sec.coord)]
     ds["section_residual"] = np.sin(var - sec.value) if sec.is_angle else var - sec.value
     ds["n_orbits"] = ((), np.int64(m))
     ds.t.attrs.update(long_name="time of the crossing", units="body time units")
