@@ -477,7 +477,7 @@ def _solution_m0(body: RigidBody, theta2_0: float, J2_0: float, psi0: float,
 def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: float,
                 tau: NDArray[np.float64], rtol: float, atol: float
                 ) -> dict[str, NDArray[np.float64]]:
-    from scipy.integrate import solve_ivp
+    from andoyer.integrate.engines.scipy_engine import solve_dop853
 
     c, mu = body.c, body.mu
     h = float(reduced_hamiltonian(body, theta2_0, J2_0, M))
@@ -517,11 +517,7 @@ def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: f
                          -M * (h - 0.5 * c * uu) / ((jj - M) * (jj + M))])
 
     if tau.size > 1:
-        sol = solve_ivp(rhs, (tau[0], tau[-1]), [psi0, 0.0], method="DOP853", t_eval=tau,
-                        rtol=rtol, atol=atol)
-        if not sol.success:
-            raise RuntimeError(f"quadrature of psi, theta3 failed: {sol.message}")
-        psi, theta3 = sol.y
+        psi, theta3 = solve_dop853(rhs, tau, np.array([psi0, 0.0]), rtol, atol).y
     else:
         psi, theta3 = np.array([psi0]), np.array([0.0])
     return {"theta2": theta2, "J2": np.atleast_1d(J2), "psi": psi, "theta3": theta3,

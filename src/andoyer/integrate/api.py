@@ -433,9 +433,8 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
         Dims ``(time,)``: the chart coordinates and the cyclic angle (``m`` or
         ``theta3``) by quadrature, from 0 at ``t[0]``.
     """
-    from scipy.integrate import solve_ivp
-
     from andoyer.dynamics import CHARTS, canonical_field
+    from andoyer.integrate.engines.scipy_engine import solve_dop853
 
     if chart not in ("andoyer", "hess"):
         raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
@@ -458,15 +457,12 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
         return float(min(J1, J2 - J1, J2 - abs(J3)) / J2 - singular_margin)
 
     distance.terminal = True  # type: ignore[attr-defined]
-    sol = solve_ivp(rhs, (times[0], times[-1]), np.append(x, 0.0), method="DOP853",
-                    t_eval=times, rtol=rtol, atol=atol, events=distance)
+    sol = solve_dop853(rhs, times, np.append(x, 0.0), rtol, atol, events=[distance])
     if sol.status == 1:
         raise ValueError(
             f"the orbit reached the singular set of the {chart} chart at t = "
             f"{sol.t_events[0][0]:.6g} (L = +-G or |M| = G); integrate it with "
             "propagate(), which uses the regular Euler-Poisson variables")
-    if not sol.success:
-        raise RuntimeError(f"integration failed: {sol.message}")
     cyc = "m" if chart == "andoyer" else "theta3"
     data: dict[str, Any] = {n: (("time",), sol.y[i]) for i, n in enumerate(names)}
     data[cyc] = (("time",), sol.y[5])

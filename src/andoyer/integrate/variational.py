@@ -76,6 +76,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from andoyer.charts.euler_poisson import STATE
+from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
 from andoyer.integrate.engines.heyoka_engine import heyoka_state_vars, heyoka_system, tolerance
 from andoyer.integrate.engines.lazy import heyoka as hy
@@ -313,7 +314,7 @@ _CFUNC_LOCK = threading.Lock()
 
 def _scipy_orbit(x0: NDArray[np.float64], t: NDArray[np.float64], pars: NDArray[np.float64],
                  tol: float) -> tuple[NDArray[np.float64], bool]:
-    from scipy.integrate import solve_ivp
+    from andoyer.integrate.engines.scipy_engine import solve_dop853
 
     with _CFUNC_LOCK:
         cf = _cfunc()
@@ -324,9 +325,11 @@ def _scipy_orbit(x0: NDArray[np.float64], t: NDArray[np.float64], pars: NDArray[
         return buf.copy()
 
     rtol = max(tol * TOLERANCE_FACTOR, 100 * np.finfo(float).eps)
-    sol = solve_ivp(rhs, (t[0], t[-1]), x0, method="DOP853", t_eval=t, rtol=rtol,
-                    atol=tol * TOLERANCE_FACTOR)
-    if not sol.success or sol.y.shape[1] != t.size:
+    try:
+        sol = solve_dop853(rhs, t, x0, rtol, tol * TOLERANCE_FACTOR)
+    except IntegrationError:
+        return np.full((t.size, N_VARIATIONAL), np.nan), False
+    if sol.y.shape[1] != t.size:
         return np.full((t.size, N_VARIATIONAL), np.nan), False
     return np.ascontiguousarray(sol.y.T), True
 
