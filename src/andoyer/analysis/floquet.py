@@ -63,15 +63,11 @@ _VAR_LOCK = threading.Lock()
 
 @cache
 def _variational_integrator_cached(tol: float) -> Any:
+    from andoyer.integrate.engines.heyoka_engine import heyoka_system
     from andoyer.integrate.engines.lazy import heyoka as hy
-    from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 
-    state = hy.make_vars(*(str(s) for s in S.y))
-    smap: dict[Any, Any] = dict(zip(S.y, state, strict=True))
-    smap.update({s: hy.par[i] for i, s in enumerate(S.body)})
-    system = [(x, hy.from_sympy(e, smap))
-              for x, e in zip(state, euler_poisson_field(), strict=True)]
-    vsys = hy.var_ode_sys(system, hy.var_args.vars, order=1)
+    # The one SymPy -> heyoka builder; heyoka derives the variational equations.
+    vsys = hy.var_ode_sys(list(heyoka_system()), hy.var_args.vars, order=1)
     # compact_mode: the 42 equations compile in about a second instead of ten.
     return hy.taylor_adaptive(vsys, [0.0] * 6, tol=tol, compact_mode=True)
 

@@ -137,15 +137,11 @@ def _heyoka_system() -> tuple[Any, tuple[Any, ...], tuple[Any, ...]]:
     runtime parameters ``par[0..6] = (a, b, c, mu, e1, e2, e3)``,
     ``par[7], par[8] = cos psi0, sin psi0``.
     """
+    from andoyer.integrate.engines.heyoka_engine import heyoka_state_vars, heyoka_system
     from andoyer.integrate.engines.lazy import heyoka as hy
-    from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 
-    xs = tuple(hy.make_vars(*(str(s) for s in S.y)))
-    smap: dict[Any, Any] = dict(zip(S.y, xs, strict=True))
-    smap.update({s: hy.par[i] for i, s in enumerate(S.body)})
-    system = tuple((x, hy.from_sympy(e, smap))
-                   for x, e in zip(xs, euler_poisson_field(), strict=True))
-    _, _, G3, g1, g2, _ = xs
+    system = heyoka_system()  # the one SymPy -> heyoka builder
+    _, _, G3, g1, g2, _ = heyoka_state_vars()
     cpsi, spsi = hy.par[7], hy.par[8]
     f_psi = g1 * cpsi - g2 * spsi   # = rho sin(psi - psi0)
     w_psi = g1 * spsi + g2 * cpsi   # = rho cos(psi - psi0) > 0 on the crossing
