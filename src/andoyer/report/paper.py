@@ -237,65 +237,18 @@ def _heteroclinic(ctx: Context) -> Result:
         {"lambda": lam, "max_error": max(errs)})
 
 
-def _hess_periods(ctx: Context, Ms: tuple[float, ...], n: int, n_check: int) -> xr.Dataset:
-    """Periods of the Hess solution vs energy: closed form and integrated crossings."""
-    import math
-
-    import numpy as np
-    from scipy.optimize import brentq
-
-    from andoyer.analysis.hess_solution import cubic_roots, energy_minimum, period
-    from andoyer.charts.hess import from_hess
-    from andoyer.integrate import Section, poincare
-
-    body, mu, c = ctx.body, ctx.body.mu, ctx.body.c
-    h = np.linspace(-0.98 * mu, 5.0 * mu, n)
-    T = np.full((len(Ms), n), np.nan)
-    hc = np.full((len(Ms), n_check), np.nan)
-    Tc = np.full((len(Ms), n_check), np.nan)
-    for i, M in enumerate(Ms):
-        Jstar, hmin = energy_minimum(body, M)
-        for j, hj in enumerate(h):
-            if hj > hmin and abs(hj - mu) > 1e-9 * mu:
-                T[i, j] = period(body, float(hj), M)
-        for j, hj in enumerate(np.linspace(hmin + 0.1 * mu, 4.2 * mu, n_check)):
-            hj = float(hj) if abs(hj - mu) > 0.05 * mu else float(hj) + 0.1 * mu
-            # Start at the bottom theta2 = 3 pi/2 of the reduced system, J1 = J2/2.
-            def excess(J: float, hj: float = hj, M: float = M) -> float:
-                return c * J * J / 2 - mu * math.sqrt(max(1.0 - M * M / (J * J), 0.0)) - hj
-
-            J2 = brentq(excess, max(Jstar, 1e-12), 10.0)
-            Tj = period(body, hj, M)
-            _, ub, uc = cubic_roots(body, hj, M)
-            x0 = np.array([0.0, 1.5 * np.pi, J2 / 2, J2, M])
-            sec = poincare(body, from_hess(body, x0), Section("G", math.sqrt(0.5 * (ub + uc)),
-                           1), 3, t_max=5 * Tj, engine=ctx.engine, rtol=1e-13, atol=1e-13)
-            dt = float(np.mean(np.diff(sec.t.values[0])))
-            # On an M = 0 libration |G| = |J2| repeats every half period (G = 0 passage).
-            half = M == 0.0 and hj < mu
-            hc[i, j], Tc[i, j] = hj, 2 * dt if half else dt
-    ds = xr.Dataset(
-        {"T_elliptic": (("M", "h"), T), "h_check": (("M", "check"), hc),
-         "T_integrated": (("M", "check"), Tc)},
-        coords={"M": list(Ms), "h": h},
-        attrs={"body_mu": mu, "equations": "reduced Hamiltonian on theta1 = 0 of (16)"})
-    ds.T_elliptic.attrs.update(long_name="period by complete elliptic integrals K(m)")
-    ds.T_integrated.attrs.update(long_name="period from crossings of G = const of the "
-                                 "integrated Euler-Poisson orbit")
-    return ds
-
-
 def _solutions(ctx: Context) -> Result:
     import numpy as np
 
     from andoyer.analysis.floquet import floquet_scan, hess_rotation_multiplier
+    from andoyer.analysis.hess_periods import hess_periods
     from andoyer.analysis.hess_solution import reduced_hamiltonian
     from andoyer.plot.solutions import plot_solutions
 
     body, mu = ctx.body, ctx.body.mu
-    periods = _hess_periods(ctx, (0.0, 0.05), 60 if ctx.quick else 160,
-                            2 if ctx.quick else 5)
-    rel = np.abs(periods.T_integrated / _interp_period(ctx, periods) - 1.0)
+    periods = hess_periods(body, (0.0, 0.05), 60 if ctx.quick else 160,
+                           2 if ctx.quick else 5, engine=ctx.engine)
+    rel = np.abs(periods.T_integrated / periods.T_elliptic_check - 1.0)
     th = np.linspace(0.0, 2 * np.pi, 181)
     J = np.linspace(-1.2, 1.2, 121) * np.sqrt(2 * 3 * mu / body.c)
     H = reduced_hamiltonian(body, th[:, None], J[None, :], 0.0)
@@ -338,16 +291,6 @@ def _solutions(ctx: Context) -> Result:
          "For a non-Hess centre of mass r = (0.6, 0.8, 0) the librations have alternating "
          "stable and unstable tongues."],
         numbers={"max_rel_period_error": float(rel.max()), "rotation_multiplier": lam})
-
-
-def _interp_period(ctx: Context, periods: xr.Dataset) -> xr.DataArray:
-    from andoyer.analysis.hess_solution import period
-
-    out = periods.T_integrated * 0.0
-    for i, M in enumerate(periods.M.values):
-        for j, hj in enumerate(periods.h_check.values[i]):
-            out[i, j] = period(ctx.body, float(hj), float(M))
-    return out
 
 
 def _manifolds(ctx: Context) -> Result:
