@@ -51,6 +51,8 @@ _MAX_ROUNDS = 40
 #: Bytes per state of a states dataset (about 30 float64 variables: the state, three
 #: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
 _DATASET_BYTES = 30 * 8
+#: A regular state standing in for NaN padding while roots are classified.
+_DUMMY_STATE = np.array([0.6, 0.0, 0.8, 0.0, 0.6, 0.8])
 #: Largest scratch array of crossings one engine call may allocate (bytes).
 _MAX_SCRATCH = 256 * 2**20
 
@@ -324,7 +326,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     if n_pass.any():
         ds.singular_passage_t.attrs.update(long_name="time of the singular passage",
                                            units="body time units")
-        warnings.warn(_passage_message(sec, n_pass), SingularPassageWarning, stacklevel=2)
+        warnings.warn(_passage_message(sec, n_pass), SingularPassageWarning, stacklevel=3)
     return ds
 
 
@@ -366,25 +368,27 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         t0 = float(start_t[active].min())
         cr = eng.crossings(start_y[active], params, sec.kind, sec.value, sec.direction,
                            ask, t_end - t0, rtol, atol)
+        # Classify every root of this round at once (NaN padding replaced by a dummy
+        # state, masked out): a Python loop runs over orbits only, never over crossings.
+        tt = cr.t + start_t[active][:, None]
+        valid = np.isfinite(tt) & (tt <= t_end)
+        yy = np.where(valid[..., None], cr.y, _DUMMY_STATE)
+        good = valid & (sec.defined_distance(yy, scale[active][:, None])
+                        > SECTION_SINGULAR_RTOL)
+        good &= np.abs(_residual_values(sec, body, yy)) <= RESIDUAL_BOUND
         still = []
         for j, i in enumerate(active):
             k = int(cr.count[j])
-            ts, ys = cr.t[j, :k] + start_t[i], cr.y[j, :k]
-            keep = ts <= t_end
-            ts, ys = ts[keep], ys[keep]
-            good = sec.defined_distance(ys, scale[i]) > SECTION_SINGULAR_RTOL
-            if good.any():
-                good &= np.abs(_residual_values(sec, body, ys)) <= RESIDUAL_BOUND
-            for tq, yq, ok in zip(ts, ys, good, strict=True):
-                if count[i] == n:
-                    break
-                if ok:
-                    T[i, count[i]], Y[i, count[i]] = tq, yq
-                    count[i] += 1
-                else:
-                    passages[i].append(float(tq))
-            if count[i] < n and k == ask and keep.all():
-                start_y[i], start_t[i] = ys[-1], ts[-1]
+            take = np.flatnonzero(good[j])[:n - count[i]]
+            T[i, count[i]:count[i] + take.size] = tt[j, take]
+            Y[i, count[i]:count[i] + take.size] = cr.y[j, take]
+            count[i] += take.size
+            # Passages before the last crossing kept (all of them if more are needed).
+            limit = take[-1] if count[i] == n and take.size else k
+            bad = np.flatnonzero(valid[j, :limit] & ~good[j, :limit])
+            passages[i].extend(tt[j, bad].tolist())
+            if count[i] < n and k == ask and valid[j, :k].all():
+                start_y[i], start_t[i] = cr.y[j, k - 1], tt[j, k - 1]
                 still.append(i)
         if not still:
             break
