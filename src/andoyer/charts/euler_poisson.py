@@ -99,7 +99,8 @@ def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
 
 
 @checks_body
-def momentum_bound(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
+def momentum_bound(body: RigidBody, y: ArrayLike, H: ArrayLike | None = None
+                   ) -> NDArray[np.float64]:
     """The largest ``|G|`` on the energy level of ``y``: the orbit's momentum scale.
 
     On ``H = h`` the kinetic energy ``T = h - mu (r, gamma)`` is at most
@@ -107,6 +108,7 @@ def momentum_bound(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     orbit through ``y`` has ``|G| <= sqrt(2 max(A, B, C) (h + mu |r| |gamma|))``. Singular
     sets of the charts (``G -> 0``) are detected relative to this scale, which an orbit
     keeps for all time (the Euler-Poisson state itself has no other momentum scale).
+    ``H``, when given, is ``energy(body, y)`` already computed.
 
     Examples
     --------
@@ -120,6 +122,7 @@ def momentum_bound(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     a, b, c, mu, e1, e2, e3 = body.params
     rnorm = float(np.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
     gnorm = np.sqrt(geometric_integral(arr))
-    room = np.maximum(energy(body, arr) + abs(mu) * rnorm * gnorm, 0.0)
+    h = energy(body, arr) if H is None else np.asarray(H, dtype=float)
+    room = np.maximum(h + abs(mu) * rnorm * gnorm, 0.0)
     bound = np.sqrt(2.0 * max(body.A, body.B, body.C) * room)
     return np.maximum(bound, np.linalg.norm(arr[..., :3], axis=-1))

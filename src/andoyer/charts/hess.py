@@ -46,7 +46,6 @@ from andoyer.body import checks_body
 from andoyer.charts.andoyer_deprit import (
     SINGULAR_RTOL,
     rotation_chain_expr,
-    singular_flags,
     to_andoyer,
 )
 from andoyer.charts.euler_poisson import as_state
@@ -174,7 +173,7 @@ def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False
     x, flags = to_andoyer(arr, with_mask=True)
     l, g, L, G, M = np.moveaxis(x, -1, 0)
     theta1, theta2, J1, J2, J3 = andoyer_to_hess_expr(l, g, L, G, M, phi0)
-    _, _, rho, _ = singular_flags(arr)
+    rho = np.hypot(arr[..., 0], arr[..., 1])
     with np.errstate(divide="ignore", invalid="ignore"):
         J1 = np.where(L < 0.0, rho**2 / np.where(G - L > 0, 2.0 * (G - L), 1.0), J1)
     theta1 = np.mod(theta1, FOUR_PI)

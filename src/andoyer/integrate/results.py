@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 
 from andoyer._version import __version__
 from andoyer.body import RigidBody, checks_body
-from andoyer.charts.andoyer_deprit import singular_mask, to_andoyer
+from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, Singular, to_andoyer
 from andoyer.charts.euler_poisson import (
     STATE,
     area_integral,
@@ -59,10 +59,12 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     safe = np.where(valid[..., None], y, np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0]))
     data: dict[str, tuple[tuple[str, ...], Any]] = {
         name: (dims, y[..., i]) for i, name in enumerate(STATE)}
-    x = to_andoyer(safe)
+    x, flags = to_andoyer(safe, with_mask=True)
+    H = energy(body, safe)
     # G = 0 relative to the orbit's momentum scale (the largest |G| on its energy level),
     # not only where |G| is exactly 0.
-    flags = singular_mask(safe, momentum_bound(body, safe))
+    flags = np.where(x[..., 3] <= SINGULAR_RTOL * momentum_bound(body, safe, H),
+                     int(Singular.G_ZERO), flags)
     nan = np.where(valid, 1.0, np.nan)
     for i, name in enumerate(map(storage_name, coordinates("andoyer"))):
         data[name] = (dims, x[..., i] * nan)
@@ -70,7 +72,7 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
         xh = to_hess(body, safe)
         for i, name in enumerate(map(storage_name, coordinates("hess"))):
             data[name] = (dims, xh[..., i] * nan)
-    data["H"] = (dims, energy(body, safe) * nan)
+    data["H"] = (dims, H * nan)
     data["area"] = (dims, area_integral(safe) * nan)
     data["geometric"] = (dims, geometric_integral(safe) * nan)
     data["singular"] = (dims, np.where(valid, flags, -1))
