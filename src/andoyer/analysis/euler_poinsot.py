@@ -1,0 +1,123 @@
+"""Euler-Poinsot motion (mu = 0) in closed form: Jacobi elliptic functions.
+
+With ``mu = 0`` the Hamiltonian (7) is ``H0 = ((a sin^2 l + b cos^2 l)(G^2 - L^2) + c L^2)/2``
+(Eq. (9)): ``G`` is constant, ``(l, L)`` move on the level curves of ``H0`` and ``g``
+advances at the rate ``dg/dt = dH0/dG = G (a G1^2 + b G2^2) / (G1^2 + G2^2)``.
+
+Derivation (written here once, checked against integration in the tests). Order the
+inverse moments ``p > q > r`` (``a, b, c`` sorted) and call ``u`` the momentum component
+on the axis of ``q`` (the middle axis). From ``2h = p Gp^2 + q u^2 + r Gr^2`` and
+``G^2 = Gp^2 + u^2 + Gr^2``::
+
+    (p - r) Gp^2 = A1 - B1 u^2,   A1 = 2h - r G^2,  B1 = q - r
+    (p - r) Gr^2 = A2 - B2 u^2,   A2 = p G^2 - 2h,  B2 = p - q
+    (du/dt)^2 = (p - r)^2 Gp^2 Gr^2 = (A1 - B1 u^2)(A2 - B2 u^2)
+
+so ``u = U sn(lambda t, k)`` with, for ``2h < q G^2`` (motion about the axis of ``r``),
+``U^2 = A1/B1``, ``lambda^2 = B1 A2``, ``k^2 = B2 A1 / (B1 A2)``, and for ``2h > q G^2``
+(about the axis of ``p``) ``U^2 = A2/B2``, ``lambda^2 = B2 A1``, ``k^2 = B1 A2 / (B2 A1)``.
+The body-frame motion has period ``T = 4 K(k) / lambda``. Every squared component is
+``alpha + beta sn^2``; with ``G3^2 = alpha + beta sn^2`` and
+``dg/dt = G c + G (2h - c G^2) / (G^2 - G3^2)``, the mean rate of ``g`` over a period is
+
+    <dg/dt> = G c + G (2h - c G^2) Pi(n | k^2) / ((G^2 - alpha) K(k)),  n = beta/(G^2 - alpha)
+
+with ``Pi`` the complete elliptic integral of the third kind, from Carlson's symmetric
+forms: ``Pi(n|m) = R_F(0, 1-m, 1) + n R_J(0, 1-m, 1, 1-n) / 3`` (``scipy.special``). The
+rotation number is the advance of ``g`` over one period of ``(l, L)``, in turns.
+At ``2h = q G^2`` (the separatrix, ``k = 1``) the period is infinite: refused.
+
+Examples
+--------
+>>> from andoyer import RigidBody
+>>> body = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
+>>> f = euler_poinsot_frequencies(body, 0.21, 1.0)
+>>> round(f.period, 6), round(f.g_rate, 6), round(f.rotation_number, 6)
+(100.751098, 0.410847, 6.587954)
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from scipy.special import ellipk, elliprf, elliprj
+
+from andoyer._validate import finite, positive
+from andoyer.body import RigidBody, checks_body
+
+__all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi"]
+
+
+def elliptic_pi(n: float, m: float) -> float:
+    """Complete elliptic integral of the third kind ``Pi(n | m)``, ``n < 1``, ``m < 1``.
+
+    ``int_0^(pi/2) dphi / ((1 - n sin^2 phi) sqrt(1 - m sin^2 phi))``, by Carlson's forms.
+
+    >>> round(elliptic_pi(0.0, 0.5), 12) == round(float(ellipk(0.5)), 12)
+    True
+    """
+    if not (n < 1.0 and m < 1.0):
+        raise ValueError(f"elliptic_pi needs n < 1 and m < 1, got n = {n!r}, m = {m!r}")
+    return float(elliprf(0.0, 1.0 - m, 1.0) + n * elliprj(0.0, 1.0 - m, 1.0, 1.0 - n) / 3.0)
+
+
+class EulerPoinsotFrequencies(NamedTuple):
+    """The Euler-Poinsot motion on ``H0 = h``, ``|G| = G``."""
+
+    period: float           #: period T of the body-frame motion, of (l, L)
+    g_rate: float           #: mean rate of g
+    rotation_number: float  #: advance of g over one period T, in turns
+    modulus: float          #: k^2 of the Jacobi functions
+    regime: str             #: "about the axis of the smallest/largest inverse moment"
+
+
+@checks_body
+def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoinsotFrequencies:
+    """Period of ``(l, L)``, mean rate of ``g`` and rotation number of the free top.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Its moments (``mu`` is ignored: this is the ``mu = 0`` motion); distinct moments.
+    h : float
+        Energy ``H0 = (a G1^2 + b G2^2 + c G3^2)/2``; ``r G^2 < 2h < p G^2``, ``2h != q G^2``.
+    G : float
+        Length of the angular momentum, ``> 0``.
+
+    Returns
+    -------
+    EulerPoinsotFrequencies
+    """
+    h, G = finite("h", h), positive("G", G)
+    p, q, r = sorted((body.a, body.b, body.c), reverse=True)
+    if not p > q > r:
+        raise ValueError(f"euler_poinsot_frequencies needs three distinct moments, got "
+                         f"A={body.A}, B={body.B}, C={body.C}")
+    G2 = G * G
+    if not r * G2 < 2.0 * h < p * G2:
+        raise ValueError(f"h = {h!r} is off the accessible range ({0.5 * r * G2!r}, "
+                         f"{0.5 * p * G2!r}) for G = {G!r} (r G^2 < 2h < p G^2)")
+    A1, B1, A2, B2 = 2.0 * h - r * G2, q - r, p * G2 - 2.0 * h, p - q
+    if abs(2.0 * h - q * G2) <= 1e-14 * q * G2:
+        raise ValueError("2h = q G^2 is the separatrix: the period is infinite")
+    # Squared components alpha + beta sn^2 on the axes of p, q, r.
+    if 2.0 * h < q * G2:
+        lam, m, U2 = math.sqrt(B1 * A2), B2 * A1 / (B1 * A2), A1 / B1
+        regime = "about the axis of the smallest inverse moment (largest moment)"
+    else:
+        lam, m, U2 = math.sqrt(B2 * A1), B1 * A2 / (B2 * A1), A2 / B2
+        regime = "about the axis of the largest inverse moment (smallest moment)"
+    comp = {p: (A1 / (p - r), -B1 * U2 / (p - r)), q: (0.0, U2),
+            r: (A2 / (p - r), -B2 * U2 / (p - r))}
+    K = float(ellipk(m))
+    T = 4.0 * K / lam
+    c = body.c
+    alpha, beta = comp[c]
+    rest = G2 - alpha
+    if not rest > 0.0:
+        raise ValueError("the motion reaches L = +-G (G along body axis 3): g is undefined")
+    nn = beta / rest
+    mean_inv = elliptic_pi(nn, m) / (rest * K)  # <1 / (G^2 - G3^2)>
+    g_rate = G * c + G * (2.0 * h - c * G2) * mean_inv
+    return EulerPoinsotFrequencies(T, g_rate, g_rate * T / (2.0 * math.pi), m, regime)
