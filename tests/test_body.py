@@ -195,3 +195,36 @@ def test_attrs_are_flat():
     attrs = RigidBody.paper().attrs()
     assert attrs["is_hess"] == 1 and attrs["body_name"] == "paper"
     assert all(isinstance(v, (int, float, str)) for v in attrs.values())
+
+
+# ---------------------------------------------------------------------- near-Hess bodies
+def test_near_hess_turns_the_centre_of_mass_and_states_the_drift_of_the_relation():
+    import numpy as np
+
+    from andoyer.kernels.generated import ep_field
+
+    rng = np.random.default_rng(3)
+    for eps, e3 in ((0.0, 0.0), (1e-3, 0.0), (-0.05, 0.0), (0.02, 0.1)):
+        body = RigidBody.near_hess(2.5, 2.0, 2.2, mu=0.3, epsilon=eps, e3=e3)
+        assert abs(np.linalg.norm(body.r) - 1.0) < 1e-15
+        assert body.is_hess == (eps == 0.0 and e3 == 0.0)
+        a, b, c = body.a, body.b, body.c
+        e1, e2, z = body.r
+        for _ in range(20):
+            y = rng.normal(size=6)
+            y[3:] /= np.linalg.norm(y[3:])
+            f = np.array(ep_field(*y, *body.params))
+            rate = float(np.dot(body.r, f[:3]))          # d(G, r)/dt from Euler's equations
+            Gr = e1 * y[0] + e2 * y[1] + z * y[2]
+            Gn = (-e2 * y[0] + e1 * y[1]) / np.hypot(e1, e2)
+            rho2 = e1 * e1 + e2 * e2
+            # The documented law, written for the in-plane part and the e3 lift.
+            kH = ((c - b) * e1**2 - (a - c) * e2**2) / rho2
+            law = (y[2] * ((a - b) * e1 * e2 / rho2 * (Gr - z * y[2]) + kH * Gn * np.sqrt(rho2))
+                   + z * (b - a) * y[0] * y[1])
+            assert abs(rate - law) < 1e-12
+    # kappa_H vanishes on the Hess direction and grows like 2 sigma epsilon.
+    paper = RigidBody.paper()
+    for eps in (1e-6, 1e-4):
+        kH = RigidBody.near_hess(2.5, 2.0, 2.2, 0.01, eps).hess_defect
+        assert abs(kH / (2 * paper.sigma * eps) - 1) < 50 * eps

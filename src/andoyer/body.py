@@ -21,6 +21,7 @@ from typing import ParamSpec, TypeVar
 
 import numpy as np
 
+from andoyer._validate import finite as _finite
 from andoyer.errors import ArgumentTypeError
 
 __all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
@@ -274,6 +275,53 @@ class RigidBody:
             raise ValueError(f"branch must be +1 or -1, got {branch!r}")
         phi0 = math.atan(math.sqrt(A * (C - B) / (B * (A - C))))
         return cls(A, B, C, mu, (math.cos(phi0), branch * math.sin(phi0), 0.0), name)
+
+    @classmethod
+    def near_hess(cls, A: float, B: float, C: float, mu: float = 0.0, epsilon: float = 0.0,
+                  e3: float = 0.0, branch: int = 1, name: str = "near-hess") -> RigidBody:
+        """A Hess body whose centre of mass is turned by ``epsilon`` in the (e1, e2) plane
+        off the Hess direction ``phi0`` and lifted by ``e3``.
+
+        ``r = (sqrt(1 - e3^2) cos(phi), sqrt(1 - e3^2) sin(phi), e3)`` with
+        ``phi = branch * phi0 + epsilon``; ``epsilon = e3 = 0`` is :meth:`hess`.
+
+        What becomes of the Hess relation (3): for any centre of mass in the (e1, e2)
+        plane, with ``n = (-e2, e1, 0)``, Euler's equations give exactly
+
+            d(G, r)/dt = G3 [ (a - b) e1 e2 (G, r) + kappa_H (G, n) ],
+            kappa_H = (c - b) e1^2 - (a - c) e2^2 = :attr:`hess_defect`
+
+        (the potential does not enter: ``r . (gamma x r) = 0``). On a Hess body
+        ``kappa_H = 0`` and (3) is invariant; off it, ``(G, r)`` is driven by ``(G, n)`` at
+        a rate ``kappa_H = -(a - b) sin(2 phi0) epsilon + O(epsilon^2) = 2 sigma epsilon +
+        O(epsilon^2)`` (branch +1, ``sin 2 phi0 = 2 sigma / (b - a)``), so an orbit
+        started on ``(G, r) = 0`` leaves it linearly in time (``e3 != 0`` adds
+        ``e3 (b - a) G1 G2``).
+
+        Examples
+        --------
+        >>> body = RigidBody.near_hess(2.5, 2.0, 2.2, mu=0.01, epsilon=0.0)
+        >>> body.is_hess, abs(body.hess_defect) < 1e-15
+        (True, True)
+        >>> round(RigidBody.near_hess(2.5, 2.0, 2.2, mu=0.01, epsilon=1e-3).hess_defect, 9)
+        9.9595e-05
+        """
+        base = cls.hess(A, B, C, mu, branch)
+        eps = _finite("epsilon", epsilon)
+        z = _finite("e3", e3)
+        if not abs(z) < 1.0:
+            raise ValueError(f"e3 must lie in (-1, 1) (a unit vector r), got {e3!r}")
+        phi = math.atan2(base.e2, base.e1) + eps
+        rho = math.sqrt(1.0 - z * z)
+        return cls(base.A, base.B, base.C, base.mu,
+                   (rho * math.cos(phi), rho * math.sin(phi), z), name)
+
+    @property
+    def hess_defect(self) -> float:
+        """``kappa_H = (c - b) e1^2 - (a - c) e2^2``: zero exactly when the centre of mass
+        satisfies the Hess condition (8); the rate at which ``(G, n)`` drives ``(G, r)``
+        (see :meth:`near_hess`)."""
+        return (self.c - self.b) * self.e1**2 - (self.a - self.c) * self.e2**2
 
     @classmethod
     def paper(cls, mu: float = 0.01) -> RigidBody:
