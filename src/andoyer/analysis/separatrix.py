@@ -77,7 +77,7 @@ from andoyer.integrate.results import provenance
 
 __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
            "separatrix_andoyer", "separatrix_hess",
-           "FIG2_CAPTION", "check_grid_size", "separatrix_curves"]
+           "FIG2_CAPTION", "check_grid_size", "separatrix_curves", "separatrix_on_level"]
 
 #: The two heteroclinic lines of the Hess chart at ``mu = 0`` (theta1 mod 2 pi).
 BRANCHES = ("theta1=0", "theta1=4phi0")
@@ -443,3 +443,33 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
     return separatrix_curves(body, "hess", J2, period, check_grid_size(n, "n"))
 
 
+
+
+@checks_body
+def separatrix_on_level(body: RigidBody, h: float, chart: str, n: int = 401, *,
+                        double_cover: bool = False) -> xr.Dataset | None:
+    """The unperturbed (mu = 0) separatrices that lie on the energy level ``H0 = h``.
+
+    They sit at ``G0 = sqrt(2 h / I_mid)`` (``I_mid`` the middle of ``a, b, c``): the G of
+    the rotation about the middle axis on that level. ``chart`` is ``"hess"`` or
+    ``"andoyer"``; ``None`` when ``h <= 0`` or two moments are equal (no separatrix).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = separatrix_on_level(RigidBody.paper(), 0.25, "hess")
+    >>> float(ds.attrs["separatrix_H0"])
+    0.25
+    """
+    if h <= 0.0:
+        return None
+    try:
+        I_mid = 2.0 * separatrix_energy(body, 1.0)
+    except ValueError:  # two equal moments: no separatrix
+        return None
+    G0 = math.sqrt(2.0 * h / I_mid)
+    if chart == "hess":
+        return separatrix_hess(body, G0, n, double_cover=double_cover)
+    if chart == "andoyer":
+        return separatrix_andoyer(body, G0, n)
+    raise ValueError(f"chart must be 'hess' or 'andoyer', got {chart!r}")

@@ -241,19 +241,12 @@ def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: fl
     ...     [0.0, round(4 * body.phi0, 6), round(2 * math.pi, 6)])
     True
     """
-    from andoyer.analysis import separatrix as sep
+    from andoyer.analysis.separatrix import separatrix_on_level
 
-    if h <= 0.0:
+    ds = separatrix_on_level(body, h, plane.chart, n,
+                             double_cover=period > 1.5 * math.tau)
+    if ds is None:
         return []
-    try:
-        I_mid = 2.0 * sep.separatrix_energy(body, 1.0)
-    except ValueError:  # two equal moments: no separatrix
-        return []
-    G0 = math.sqrt(2.0 * h / I_mid)
-    if plane.chart == "hess":
-        ds = sep.separatrix_hess(body, G0, n, double_cover=period > 1.5 * math.tau)
-    else:
-        ds = sep.separatrix_andoyer(body, G0, n)
     x = ds[f"separatrix_{plane.x}"].values
     y = ds[f"separatrix_{plane.y}"].values
     keep = ds.separatrix_kind.values == "separatrix"
