@@ -83,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
     from playwright.sync_api import sync_playwright
 
     from andoyer.body import RigidBody
-    from andoyer.explore.ui import serve
+    from andoyer.explore.server import serve
 
     server = serve(RigidBody.paper(), threaded=True, n_crossings=args.crossings,
                    engine=args.engine)

@@ -95,7 +95,7 @@ def _click(page: Any, x: float, y: float) -> None:
 
 def test_explore_in_chromium(tmp_path: Path) -> None:
     sync_api = _need_browser()
-    from andoyer.explore.ui import serve
+    from andoyer.explore.server import serve
 
     body = RigidBody.paper()
     server = serve(body, threaded=True, n_crossings=CROSSINGS)

@@ -12,7 +12,7 @@ ORDER = 45
 
 
 def run(args: argparse.Namespace) -> int:
-    from andoyer.explore.ui import serve
+    from andoyer.explore.server import serve
     from andoyer.integrate.section import Section
 
     body = body_from_args(args)

@@ -19,15 +19,15 @@ __all__ = ["app", "serve", "Explorer"]
 
 
 def app(*args: Any, **kwargs: Any) -> Any:
-    """The explorer page as a Panel object (see :func:`andoyer.explore.ui.app`)."""
-    from andoyer.explore.ui import app as _app
+    """The explorer page as a Panel object (see :func:`andoyer.explore.server.app`)."""
+    from andoyer.explore.server import app as _app
 
     return _app(*args, **kwargs)
 
 
 def serve(*args: Any, **kwargs: Any) -> Any:
-    """Serve the explorer (see :func:`andoyer.explore.ui.serve`)."""
-    from andoyer.explore.ui import serve as _serve
+    """Serve the explorer (see :func:`andoyer.explore.server.serve`)."""
+    from andoyer.explore.server import serve as _serve
 
     return _serve(*args, **kwargs)
 
