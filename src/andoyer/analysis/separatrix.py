@@ -223,7 +223,10 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
          "J3": (("time",), np.zeros_like(times)),
          "J2_minus_J1": (("time",), J2_minus_J1),
          "L_action": (("time",), J2 * cJ),
-         "y": (("time", "component"), y)},
+         "y": (("time", "component"), y),
+         # The rates as values too (not only attrs): what a user reads off.
+         "lambda_rate": ((), lam),
+         "sigma": ((), lam / (2.0 * J2))},
         coords={"time": times, "component": list(STATE)}, attrs=attrs)
     meta = {"theta1": (r"\theta_1", "Hess-chart angle 2(l + phi0)", "rad", "(14)"),
             "theta2": (r"\theta_2", "Hess-chart angle g - l - phi0 (unreduced)", "rad",
@@ -233,7 +236,10 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
             "J3": ("J_3", "Hess-chart action M (area integral)", "1", "(14)"),
             "J2_minus_J1": ("J_2 - J_1", "J2 - J1 = (G - L)/2", "1", "(14)"),
             "L_action": ("L", "projection of G on body axis 3", "1", "(5)"),
-            "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)")}
+            "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)"),
+            "lambda_rate": ("\\lambda", "rate of the heteroclinic orbit, 2 sigma J2",
+                            "1/body time units", "after Fig. 3"),
+            "sigma": ("\\sigma", "sqrt((b - c)(c - a))", "1", "")}
     for name, (sym, long, units, eq) in meta.items():
         ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
     ds.time.attrs.update(long_name="time", units="body time units")
