@@ -41,12 +41,15 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from scipy.special import ellipk, elliprf, elliprj
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from andoyer._validate import finite, positive
 from andoyer.body import RigidBody, checks_body
 
-__all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi"]
+__all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi",
+           "euler_poinsot_momentum"]
 
 
 def elliptic_pi(n: float, m: float) -> float:
@@ -121,3 +124,76 @@ def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoins
     mean_inv = elliptic_pi(nn, m) / (rest * K)  # <1 / (G^2 - G3^2)>
     g_rate = G * c + G * (2.0 * h - c * G2) * mean_inv
     return EulerPoinsotFrequencies(T, g_rate, g_rate * T / (2.0 * math.pi), m, regime)
+
+
+@checks_body
+def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDArray[np.float64]:
+    """The body-frame angular momentum of the free top at times ``t``, in closed form.
+
+    With the notation of the module: ``u = U sn(theta)``, ``theta = lambda t + theta0``, and
+    on the other two axes ``sqrt(A1/(p - r)) cn`` and ``sqrt(A2/(p - r)) dn`` (for
+    ``2h < q G^2``; ``dn`` and ``cn`` swap for ``2h > q G^2``), with the constant signs
+    that Euler's equations ``dG_i/dt = (a_k - a_j) G_j G_k`` ((i, j, k) cyclic) require:
+    the ``dn`` component keeps the sign it starts with, and the ``cn`` one has the sign
+    making ``du/dt = U lambda cn dn``. ``theta0`` is ``F(phi0 | k^2)`` with ``phi0`` the
+    amplitude of the initial state (``sn = u0/U``, ``cn`` from the ``cn`` component).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Distinct moments; ``mu`` is ignored.
+    G0 : array_like, shape (3,)
+        Initial ``(G1, G2, G3)``, off the separatrices (``2h != q G^2``).
+    t : array_like, shape (k,)
+        Times from ``t = 0``.
+
+    Returns
+    -------
+    ndarray, shape (k, 3)
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
+    >>> G = euler_poinsot_momentum(body, [0.3, 0.8, 0.5], [0.0, 10.0])
+    >>> bool(np.allclose(G[0], [0.3, 0.8, 0.5])), bool(np.isclose(np.linalg.norm(G[1]),
+    ...                                                             np.linalg.norm(G[0])))
+    (True, True)
+    """
+    g0 = np.asarray(G0, dtype=float)
+    if g0.shape != (3,) or not np.all(np.isfinite(g0)):
+        raise ValueError(f"G0 must be 3 finite numbers (G1, G2, G3), got {G0!r}")
+    times = np.asarray(t, dtype=float)
+    inv = np.array([body.a, body.b, body.c])
+    order = np.argsort(inv)[::-1]            # indices of p, q, r
+    ip, iq, ir = (int(i) for i in order)
+    p, q, r = inv[order]
+    if not p > q > r:
+        raise ValueError(f"euler_poinsot_momentum needs three distinct moments, got "
+                         f"A={body.A}, B={body.B}, C={body.C}")
+    G2 = float(g0 @ g0)
+    h2 = float(inv @ (g0 * g0))              # 2h
+    if abs(h2 - q * G2) <= 1e-14 * q * G2:
+        raise ValueError("2h = q G^2: the state is on a separatrix (no periodic solution)")
+    A1, B1, A2, B2 = h2 - r * G2, q - r, p * G2 - h2, p - q
+    # Euler: dG_q/dt = kq G_p G_r, kq = a_k - a_j for (q, j, k) cyclic.
+    j, k = (iq + 1) % 3, (iq + 2) % 3
+    kq = inv[k] - inv[j]
+    sq = math.copysign(1.0, kq)
+    if h2 < q * G2:   # about the axis of r: G_r = sr sqrt(A2/(p-r)) dn, G_p = sp ... cn
+        lam, m, U = math.sqrt(B1 * A2), B2 * A1 / (B1 * A2), math.sqrt(A1 / B1)
+        i_cn, i_dn, amp_cn, amp_dn = ip, ir, math.sqrt(A1 / (p - r)), math.sqrt(A2 / (p - r))
+    else:             # about the axis of p: G_p = sp sqrt(A1/(p-r)) dn, G_r = sr ... cn
+        lam, m, U = math.sqrt(B2 * A1), B1 * A2 / (B2 * A1), math.sqrt(A2 / B2)
+        i_cn, i_dn, amp_cn, amp_dn = ir, ip, math.sqrt(A2 / (p - r)), math.sqrt(A1 / (p - r))
+    s_dn = math.copysign(1.0, g0[i_dn])
+    # du/dt = kq G_p G_r = U lam cn dn  =>  sign(kq) s_cn s_dn = +1.
+    s_cn = sq * s_dn
+    phi0 = math.atan2(g0[iq] / U, s_cn * g0[i_cn] / amp_cn)
+    theta = lam * times + float(ellipkinc(phi0, m))
+    sn, cn, dn, _ = ellipj(theta, m)
+    out = np.empty((times.size, 3))
+    out[:, iq] = U * sn
+    out[:, i_cn] = s_cn * amp_cn * cn
+    out[:, i_dn] = s_dn * amp_dn * dn
+    return out
