@@ -255,8 +255,10 @@ def w4(cold: bool, runners: set[str]) -> list[Row]:
             env = dict(os.environ)
             with tempfile.TemporaryDirectory() as tmp:
                 if state == "cold":
+                    # Cold: empty Numba cache and an empty heyoka on-disk JIT cache (heyoka
+                    # keeps it under $XDG_CACHE_HOME/heyoka).
                     env.update(BENCH_COLD_CACHE=tmp, NUMBA_CACHE_DIR=os.path.join(tmp, "numba"),
-                               ANDOYER_CACHE_DIR=os.path.join(tmp, "andoyer"))
+                               XDG_CACHE_HOME=os.path.join(tmp, "xdg"))
                 _say(f"W4 {runner} {state} process ...")
                 out = subprocess.run([sys.executable, "-m", "benchmarks.startup", runner],
                                      env=env, capture_output=True, text=True, check=True,
