@@ -65,6 +65,17 @@ def test_outputs_are_checked_before_computing(capsys, tmp_path, monkeypatch, out
     assert list(tmp_path.iterdir()) == [tmp_path / "f"]  # nothing half-written
 
 
+def test_read_only_folder_is_refused_before_computing(capsys, tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    try:
+        code, err = run([*ORBIT, "--out", str(ro / "o.nc")], capsys)
+    finally:
+        ro.chmod(0o755)
+    assert code == 2 and "not writable" in err and not list(ro.iterdir())
+
+
 def test_section_out_must_be_netcdf_so_the_figure_cannot_overwrite_it(capsys):
     code, err = run(["section", "--out", "sec.png"], capsys)
     assert code == 2 and ".nc" in err

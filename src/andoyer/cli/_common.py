@@ -31,7 +31,9 @@ def _writable_folder(folder: Path, flag: str, text: str) -> None:
                          "first")
     if not folder.is_dir():
         raise ValueError(f"{flag} {text!r}: {str(folder)!r} is a file, not a folder")
-    if not os.access(folder, os.W_OK | os.X_OK):
+    # os.access says yes to root everywhere: a folder with no write bit at all is
+    # read-only on purpose, and is refused for root too.
+    if not os.access(folder, os.W_OK | os.X_OK) or not folder.stat().st_mode & 0o222:
         raise ValueError(f"{flag} {text!r}: folder {str(folder)!r} is not writable")
 
 
