@@ -100,7 +100,10 @@ class RigidBody:
             raise ValueError(
                 f"mu (weight x distance to the centre of mass) must be finite and >= 0, "
                 f"got {mu!r}")
-        r = np.asarray(self.r, dtype=float)
+        try:
+            r = np.asarray(self.r, dtype=float)
+        except (TypeError, ValueError):
+            r = np.full(1, np.nan)
         if r.shape != (3,) or not np.all(np.isfinite(r)):
             raise ValueError(f"r must be 3 finite numbers (e1, e2, e3), got {self.r!r}")
         norm = float(np.linalg.norm(r))
