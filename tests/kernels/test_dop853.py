@@ -17,16 +17,12 @@ Checked against what is known exactly:
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-import textwrap
-
 import numpy as np
 import pytest
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, to_andoyer, to_hess
 from andoyer.charts.euler_poisson import STATE
 from andoyer.kernels import dop853 as dop
@@ -365,24 +361,12 @@ def test_a_second_process_loads_the_compiled_kernels(
     p = kernel_params(general_body)
     dop.propagate(y_start[:1], np.array([0.0, 1.0]), p, TOL, TOL, MAX_STEPS)
     dop.locate_crossings(y_start[:1], p, KIND["G3"], 0.0, 1, 1, 50.0, TOL, TOL, MAX_STEPS)
-    script = textwrap.dedent(f"""
-        import json, time
-        import numpy as np
-        from andoyer.kernels import dop853 as dop
-        y0 = np.array({y_start[:1].tolist()})
-        p = np.array({p.tolist()})
-        t0 = time.perf_counter()
-        dop.propagate(y0, np.array([0.0, 1.0]), p, 1e-12, 1e-12, {MAX_STEPS})
-        dop.locate_crossings(y0, p, {KIND["G3"]}, 0.0, 1, 1, 50.0, 1e-12, 1e-12, {MAX_STEPS})
-        seconds = time.perf_counter() - t0
-        stats = [fn.stats for fn in (dop.propagate, dop.locate_crossings)]
-        print(json.dumps({{"seconds": seconds,
-                          "hits": [sum(s.cache_hits.values()) for s in stats],
-                          "misses": [sum(s.cache_misses.values()) for s in stats]}}))
-    """)
-    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                         check=True, timeout=300)
-    out = json.loads(run.stdout.strip().splitlines()[-1])
+    y0, pp = y_start[:1].tolist(), p.tolist()
+    out = fresh_process_cache_stats("andoyer.kernels.dop853", {
+        "propagate": f"m.propagate(np.array({y0}), np.array([0.0, 1.0]), np.array({pp}), "
+                     f"1e-12, 1e-12, {MAX_STEPS})",
+        "locate_crossings": f"m.locate_crossings(np.array({y0}), np.array({pp}), "
+                            f"{KIND['G3']}, 0.0, 1, 1, 50.0, 1e-12, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
     assert out["seconds"] < 5.0
 

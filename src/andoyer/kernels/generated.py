@@ -28,6 +28,58 @@ def ep_field(G1, G2, G3, gamma1, gamma2, gamma3, a, b, c, mu, e1, e2, e3):
     )
 
 
+def ep_jacobian(G1, G2, G3, gamma1, gamma2, gamma3, a, b, c, mu, e1, e2, e3):
+    """Jacobian of (1), row-major: J[6 i + j] = d f_i / d y_j (variational equations dw/dt = J w)."""
+    x0 = -c
+    x1 = -b - x0
+    x2 = e3*mu
+    x3 = e2*mu
+    x4 = a + x0
+    x5 = e1*mu
+    x6 = -a + b
+    x7 = G3*c
+    x8 = G2*b
+    x9 = G1*a
+    return (
+        0.0,
+        G3*x1,
+        G2*x1,
+        0.0,
+        x2,
+        -x3,
+        G3*x4,
+        0.0,
+        G1*x4,
+        -x2,
+        0.0,
+        x5,
+        G2*x6,
+        G1*x6,
+        0.0,
+        x3,
+        -x5,
+        0.0,
+        0.0,
+        -b*gamma3,
+        c*gamma2,
+        0.0,
+        x7,
+        -x8,
+        a*gamma3,
+        0.0,
+        -c*gamma1,
+        -x7,
+        0.0,
+        x9,
+        -a*gamma2,
+        b*gamma1,
+        0.0,
+        x8,
+        -x9,
+        0.0,
+    )
+
+
 def andoyer_hamiltonian(l, g, L, G, M, a, b, c, mu, e1, e2, e3):
     """H of Eq. (7) in Andoyer-Deprit variables."""
     x0 = sin(l)

@@ -13,6 +13,7 @@ from andoyer.kernels import generated as _g
 __all__ = [
     "ep_hamiltonian",
     "ep_field",
+    "ep_jacobian",
     "andoyer_hamiltonian",
     "andoyer_field",
     "hess_hamiltonian",
@@ -23,6 +24,7 @@ _jit = numba.njit(cache=True, fastmath=False, nogil=True)
 
 ep_hamiltonian = _jit(_g.ep_hamiltonian)
 ep_field = _jit(_g.ep_field)
+ep_jacobian = _jit(_g.ep_jacobian)
 andoyer_hamiltonian = _jit(_g.andoyer_hamiltonian)
 andoyer_field = _jit(_g.andoyer_field)
 hess_hamiltonian = _jit(_g.hess_hamiltonian)

@@ -33,6 +33,7 @@ __all__ = [
     "H_andoyer",
     "H_hess",
     "euler_poisson_field",
+    "euler_poisson_jacobian",
     "andoyer_field",
     "hess_field",
 ]
@@ -146,6 +147,18 @@ def euler_poisson_field() -> tuple[sp.Expr, ...]:
     Gdot = _cross(Gv, dH_dG) + _cross(gv, dH_dgamma)
     gdot = _cross(gv, dH_dG)
     return tuple(sp.expand(e) for e in (*Gdot, *gdot))
+
+
+@cache
+def euler_poisson_jacobian() -> tuple[sp.Expr, ...]:
+    """Jacobian ``J = d f / d y`` of the field (1), row-major: ``J[i][j] = d f_i / d y_j``.
+
+    The matrix of the variational (tangent) equations ``dw/dt = J(y) w`` of (1),
+    obtained by differentiating :func:`euler_poisson_field` (nothing typed by hand).
+    """
+    f = sp.Matrix(euler_poisson_field())
+    J = f.jacobian(sp.Matrix(S.y))
+    return tuple(sp.expand(J[i, j]) for i in range(len(S.y)) for j in range(len(S.y)))
 
 
 @cache
