@@ -133,7 +133,7 @@ def as_andoyer(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
     return arr
 
 
-def from_andoyer(x: ArrayLike) -> NDArray[np.float64]:
+def from_andoyer(x: ArrayLike, *, name: str = "x") -> NDArray[np.float64]:
     """Euler-Poisson state from Andoyer-Deprit coordinates, Eqs. (5)-(6).
 
     Parameters
@@ -152,7 +152,7 @@ def from_andoyer(x: ArrayLike) -> NDArray[np.float64]:
     >>> bool(np.allclose(to_andoyer(y), [0.3, 1.1, 0.2, 1.0, -0.4]))
     True
     """
-    arr = as_andoyer(x)
+    arr = as_andoyer(x, name)
     cols = andoyer_to_ep_expr(*np.moveaxis(arr, -1, 0), sin=np.sin, cos=np.cos,
                               sqrt=np.sqrt)
     return np.stack(np.broadcast_arrays(*cols), axis=-1)

@@ -114,7 +114,7 @@ def as_hess(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
 
 
 @checks_body
-def from_hess(body: RigidBody, x: ArrayLike) -> NDArray[np.float64]:
+def from_hess(body: RigidBody, x: ArrayLike, *, name: str = "x") -> NDArray[np.float64]:
     """Euler-Poisson state from Hess-chart coordinates, Eq. (15) then (5)-(6).
 
     Parameters
@@ -136,7 +136,7 @@ def from_hess(body: RigidBody, x: ArrayLike) -> NDArray[np.float64]:
     >>> bool(np.allclose(to_hess(body, from_hess(body, x)), x))
     True
     """
-    arr = as_hess(x)
+    arr = as_hess(x, name)
     args = [*np.moveaxis(arr, -1, 0), body.phi0]
     cols = hess_to_ep_expr(*args, sin=np.sin, cos=np.cos, sqrt=np.sqrt)
     return np.stack(np.broadcast_arrays(*cols), axis=-1)

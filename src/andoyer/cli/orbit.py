@@ -20,7 +20,7 @@ ORDER = 30
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from andoyer.integrate.api import propagate
+    from andoyer.integrate.api import initial_states, propagate
     from andoyer.io import write_netcdf
 
     out_path = output_file(args.out, ".nc")
@@ -30,12 +30,14 @@ def run(args: argparse.Namespace) -> int:
     if len(given) != 1:
         raise ValueError("give exactly one initial state: --y0, --andoyer or --hess")
     chart, text = given[0]
-    state = floats(text, 6 if chart == "euler_poisson" else 5, f"--{chart.split('_')[0]}")
+    flag = {"euler_poisson": "--y0", "andoyer": "--andoyer", "hess": "--hess"}[chart]
+    state = floats(text, 6 if chart == "euler_poisson" else 5, flag)
+    initial_states(body, state, chart, name=flag)  # errors name the flag, not y0
     if args.t_end <= 0 or args.n_out < 2:
         raise ValueError("--t-end must be > 0 and --n-out >= 2")
     t = np.linspace(0.0, args.t_end, args.n_out)
-    ds = propagate(body, state, t, engine=args.engine, rtol=args.rtol, atol=args.atol,
-                   chart=chart, progress=True)
+    ds = propagate(body, state, t, chart=chart, engine=args.engine, rtol=args.rtol, atol=args.atol,
+                   progress=True)
     out = write_netcdf(ds, out_path)
     drift = float(abs(ds.H_drift).max())
     print(f"wrote {out}: {args.n_out} states to t = {args.t_end:g} "

@@ -59,8 +59,8 @@ _MAX_SCRATCH = 256 * 2**20
 
 # ---------------------------------------------------------------------- validation
 @checks_body
-def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson"
-                   ) -> NDArray[np.float64]:
+def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson", *,
+                   name: str = "y0") -> NDArray[np.float64]:
     """Euler-Poisson initial states, shape (n, 6), from states given in ``chart``.
 
     ``chart="andoyer"`` takes ``(l, g, L, G, M)``, ``chart="hess"`` takes
@@ -71,17 +71,17 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson"
     if chart not in _CHARTS:
         raise ValueError(f"unknown chart {chart!r}; choose one of {', '.join(_CHARTS)}")
     if chart == "andoyer":
-        y = from_andoyer(y0)
+        y = from_andoyer(y0, name=name)
     elif chart == "hess":
-        y = from_hess(body, y0)
+        y = from_hess(body, y0, name=name)
     else:
-        y = as_state(y0, "y0").copy()
+        y = as_state(y0, name).copy()
         norm = np.linalg.norm(y[..., 3:], axis=-1)
         bad = np.abs(norm - 1.0) > GAMMA_TOL
         if np.any(bad):
             worst = float(np.max(np.abs(norm - 1.0)))
             raise ValueError(
-                f"y0: gamma must be a unit vector (|gamma| = 1 is the physical level of the "
+                f"{name}: gamma must be a unit vector (|gamma| = 1 is the physical level of the "
                 f"geometric integral); max ||gamma| - 1| = {worst:.3g} exceeds {GAMMA_TOL:g}. "
                 "Normalise gamma yourself if that is what you mean.")
         y[..., 3:] /= norm[..., None]
