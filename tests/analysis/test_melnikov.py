@@ -125,3 +125,30 @@ def test_invalid_inputs():
         melnikov_closed_form(RigidBody(2.5, 2.0, 2.2, 0.01, (1, 0, 0)), 0.0)
     with pytest.raises(ValueError, match="method"):
         melnikov_quadrature(body, 0.0, method="simpson")
+
+
+@pytest.mark.parametrize("branch", ["theta1=0", "theta1=4phi0"])
+@pytest.mark.parametrize("eps", [0.0, 1e-3, 0.1, -0.3])
+def test_off_hess_melnikov_closed_form_against_quadrature(branch, eps):
+    from andoyer.analysis.melnikov import melnikov_off_hess
+
+    th = np.linspace(0.0, 6.0, 7)
+    for body in (RigidBody.hess(2.5, 1.0, 1.6), RigidBody.paper()):
+        closed = melnikov_off_hess(body, eps, th, branch=branch)
+        quad = melnikov_off_hess(body, eps, th, branch=branch, method="trapezoid")
+        np.testing.assert_allclose(closed, quad, rtol=0, atol=1e-14)
+
+
+def test_off_hess_amplitude_on_the_hess_branch_is_explicit_in_epsilon():
+    from andoyer.analysis.melnikov import melnikov_off_hess, melnikov_rho
+
+    body = RigidBody.hess(2.5, 1.0, 1.6)
+    x = np.pi * melnikov_rho(body)
+    th = np.linspace(0.0, 2 * np.pi, 65)
+    for eps in (0.0, 1e-4, 0.05):
+        amp = np.abs(melnikov_off_hess(body, eps, th, branch="theta1=0")).max()
+        assert abs(amp - 2 * x / np.sinh(x) * abs(np.sin(eps))) < 1e-15
+    # at epsilon = 0 it is the Hess body's function
+    np.testing.assert_allclose(melnikov_off_hess(body, 0.0, th, branch="theta1=4phi0"),
+                               melnikov_closed_form(body, th, branch="theta1=4phi0"),
+                               rtol=0, atol=1e-15)

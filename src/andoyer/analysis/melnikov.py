@@ -96,6 +96,7 @@ __all__ = [
     "melnikov_function",
     "predicted_splitting",
     "melnikov_rho",
+    "melnikov_off_hess",
 ]
 
 #: The integrand is below ``exp(-TAIL)`` times its maximum beyond the truncation time.
@@ -330,3 +331,76 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
                                         "rule on the closed-form orbit",
                                         units="energy units x time", equation="(16)")
     return ds
+
+
+@checks_body
+def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
+                      J2: float = 1.0, branch: str = "theta1=0", sheet: int = 1,
+                      method: str = "closed_form") -> NDArray[np.float64]:
+    """The Melnikov function when the centre of mass is turned by ``epsilon`` off the Hess
+    direction (:meth:`~andoyer.body.RigidBody.near_hess`), on both separatrix branches.
+
+    The unperturbed orbits do not depend on ``r``, so the heteroclinic orbits and the
+    chart are those of the Hess ``body``; only ``H1 = (r, gamma)`` changes. At ``M = 0``
+    with ``r`` at the angle ``phi0 + epsilon`` (``cos J = (2 J1 - J2)/J2``)::
+
+        H1 = sin(theta2 + theta1/2) cos(theta1/2 + epsilon)
+             + cos J cos(theta2 + theta1/2) sin(theta1/2 + epsilon)
+
+    (at ``epsilon = 0`` the paper's ``[J1 sin(theta1 + theta2) + (J2 - J1) sin theta2]/J2``).
+    On a line ``theta1 = const`` only ``dH0/dtheta1 dH1/dJ1`` survives in ``{E, H1}``,
+    ``dH1/dJ1 = (2/J2) cos(theta2 + theta1/2) sin(theta1/2 + epsilon)``, and the integral
+    of the module notes gives
+
+        M(theta2_0) = -2 s (pi rho / sinh(pi rho)) sin(theta1/2 + epsilon)
+                      cos(theta2_0 + theta1/2),
+
+    so on the Hess branch ``theta1 = 0`` the amplitude is
+    ``2 (pi rho / sinh(pi rho)) |sin epsilon|``: zero exactly at ``epsilon = 0``, linear
+    in it. ``method="trapezoid"`` integrates ``{E, H1}`` of the turned body along the
+    orbits instead (:func:`melnikov_integrand`), an independent check.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The Hess body (its chart and its heteroclinic orbits).
+    epsilon : float
+        The turn of the centre of mass in the (e1, e2) plane.
+    theta2_0, J2, branch, sheet
+        As for :func:`melnikov_closed_form`.
+    method : {"closed_form", "trapezoid"}
+
+    Examples
+    --------
+    >>> body = RigidBody.hess(2.5, 1.0, 1.6)
+    >>> a = melnikov_off_hess(body, 0.01, [0.0, 1.0])
+    >>> b = melnikov_off_hess(body, 0.01, [0.0, 1.0], method="trapezoid")
+    >>> bool(np.allclose(a, b, rtol=0, atol=1e-13)), bool(abs(a[0]) > 0)
+    (True, True)
+    """
+    body.require_hess("melnikov_off_hess")
+    eps = float(epsilon)
+    if not math.isfinite(eps):
+        raise ValueError(f"epsilon must be finite, got {epsilon!r}")
+    if method == "trapezoid":
+        branch_sign = 1 if body.e2 >= 0.0 else -1
+        turned = RigidBody.near_hess(body.A, body.B, body.C, body.mu, eps, branch=branch_sign)
+        lam = heteroclinic_rate(body, J2)
+        omega = body.c * J2
+        T = (TAIL + math.log(2.0 * lam + 1.0)) / lam
+        h = min(math.tau / omega, math.tau / lam) / 32
+        n = math.ceil(T / h)
+        t = h * np.arange(-n, n + 1)
+        th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+        out = np.array([h * float(np.sum(melnikov_integrand(
+            turned, heteroclinic(body, J2, t, branch, sign=sheet, theta2_0=float(p)).y.values)))
+            for p in th.ravel()])
+        return out.reshape(np.shape(theta2_0))
+    if method != "closed_form":
+        raise ValueError(f"method must be 'closed_form' or 'trapezoid', got {method!r}")
+    theta1, s = heteroclinic_line(body, J2, branch, sheet)
+    x = math.pi * melnikov_rho(body, J2)
+    factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
+    th = np.asarray(theta2_0, dtype=float)
+    return np.asarray(-2.0 * s * factor * math.sin(0.5 * theta1 + eps)
+                      * np.cos(th + 0.5 * theta1))
