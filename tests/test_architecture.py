@@ -1,42 +1,80 @@
-"""Architecture rules that the import contracts (``lint-imports``) cannot express."""
+"""Architecture rules that the import contracts (``lint-imports``) cannot express.
+
+No private name crosses a module boundary: ``from andoyer.x import _y`` is refused outside
+``andoyer.x``, and a private module (``andoyer.cli._common``) is imported only from inside
+its own package. ``andoyer._version`` is the one private module open to every layer.
+"""
 
 import ast
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "andoyer"
-#: Package-private modules: importable anywhere in andoyer (their names are public).
-PRIVATE_MODULES = {"andoyer._validate", "andoyer._atomic", "andoyer._version"}
+#: Private modules that every andoyer module may import.
+OPEN_PRIVATE_MODULES = {"andoyer._version"}
+#: Today's offenders, ``"importer imports name from module"``; empty this list, do not grow it.
+ALLOWED: set[str] = set()
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _private_module_crossing(importer: str, target: str) -> bool:
+    """``target`` has a private part and ``importer`` lies outside the package holding it."""
+    if target in OPEN_PRIVATE_MODULES:
+        return False
+    parts = target.split(".")
+    for k, part in enumerate(parts):
+        if _private(part):
+            package = ".".join(parts[:k])
+            return not (importer + ".").startswith(package + ".")
+    return False
 
 
 def private_crossings(sources):
-    """``"mod imports _name from src"`` for every private name imported across modules."""
+    """``"mod imports name from src"`` for every private name or module used across modules."""
     out = []
     for module, text in sources:
         for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.Import):
+                out += [f"{module} imports {a.name}" for a in node.names
+                        if a.name.startswith("andoyer")
+                        and _private_module_crossing(module, a.name)]
             if not (isinstance(node, ast.ImportFrom)
                     and (node.module or "").startswith("andoyer")):
                 continue
+            src = node.module or ""
             for alias in node.names:
                 name = alias.name
-                if (name.startswith("_") and not name.startswith("__")
-                        and node.module != module
-                        and f"{node.module}.{name}" not in PRIVATE_MODULES):
-                    out.append(f"{module} imports {name} from {node.module}")
+                if ((_private(name) and src != module
+                     and f"{src}.{name}" not in OPEN_PRIVATE_MODULES)
+                        or _private_module_crossing(module, src)):
+                    out.append(f"{module} imports {name} from {src}")
     return out
 
 
 def _package_sources():
     for path in sorted(SRC.rglob("*.py")):
-        yield ".".join(path.relative_to(SRC.parent).with_suffix("").parts), path.read_text()
+        parts = path.relative_to(SRC.parent).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        yield ".".join(parts), path.read_text()
 
 
 def test_no_private_name_crosses_a_module_boundary():
-    assert private_crossings(_package_sources()) == []
+    assert set(private_crossings(_package_sources())) <= ALLOWED
 
 
 def test_the_rule_catches_a_crossing():
-    bad = [("andoyer.analysis.chaos", "from andoyer.integrate.api import _params, propagate")]
-    ok = [("andoyer.x", "from andoyer._validate import finite\nfrom andoyer import __version__")]
+    bad = [("andoyer.analysis.chaos", "from andoyer.integrate.api import _params, propagate"),
+           ("andoyer.explore.ui", "from andoyer.cli._common import floats"),
+           ("andoyer.explore.ui", "import andoyer.cli._common")]
+    ok = [("andoyer.x", "from andoyer.validation import finite\nfrom andoyer import __version__"),
+          ("andoyer.cli.orbit", "from andoyer.cli._common import floats"),
+          ("andoyer.cli", "from andoyer.cli._common import floats"),
+          ("andoyer.report.paper", "from andoyer._version import __version__")]
     assert private_crossings(bad) == [
-        "andoyer.analysis.chaos imports _params from andoyer.integrate.api"]
+        "andoyer.analysis.chaos imports _params from andoyer.integrate.api",
+        "andoyer.explore.ui imports floats from andoyer.cli._common",
+        "andoyer.explore.ui imports andoyer.cli._common"]
     assert private_crossings(ok) == []

@@ -21,8 +21,8 @@ from typing import ParamSpec, TypeVar
 
 import numpy as np
 
-from andoyer._validate import finite as _finite
 from andoyer.errors import ArgumentTypeError
+from andoyer.validation import finite as _finite
 
 __all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
 

@@ -42,13 +42,12 @@ from andoyer import (
 from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, singular_mask
 
 EPS = np.finfo(float).eps
-TWO_PI = 2.0 * math.pi
 FOUR_PI = 4.0 * math.pi
 HESS_BODIES = ["paper_body", "hess_minus_body"]
 
 
 # --------------------------------------------------------------------------- helpers
-def angle_gap(a, b, period=TWO_PI):
+def angle_gap(a, b, period=math.tau):
     """Distance between angles modulo ``period``."""
     d = np.mod(np.asarray(a) - np.asarray(b), period)
     return np.minimum(d, period - d)
@@ -98,7 +97,7 @@ def roundtrip_error(y: np.ndarray, y2: np.ndarray) -> float:
 # --------------------------------------------------------------------------- strategies
 magnitudes = st.floats(-3.0, 3.0).map(lambda e: 10.0**e)
 signs = st.sampled_from([1.0, -1.0])
-angles = st.floats(0.0, TWO_PI)
+angles = st.floats(0.0, math.tau)
 near = st.one_of(st.just(0.0), st.floats(-17.0, 0.0).map(lambda e: 10.0**e))
 
 
@@ -218,7 +217,7 @@ def test_andoyer_inverse_roundtrip(x):
     assert geometric_integral(y) == pytest.approx(1.0, abs=4 * EPS)
     x2, flags = to_andoyer(y, with_mask=True)
     assert flags == 0
-    assert np.all((x2[:2] >= 0.0) & (x2[:2] < TWO_PI))
+    assert np.all((x2[:2] >= 0.0) & (x2[:2] < math.tau))
     assert angle_gap(x2[:2], x[:2]).max() <= 1e-12
     assert np.abs(x2[2:] - x[2:]).max() <= 1e-12 * x[3]
 
@@ -272,7 +271,7 @@ def test_hess_roundtrip_regular(request, body_name, y):
     body = request.getfixturevalue(body_name)
     x, flags = to_hess(body, y, with_mask=True)
     assert flags == 0
-    assert 0.0 <= x[0] < FOUR_PI and 0.0 <= x[1] < TWO_PI
+    assert 0.0 <= x[0] < FOUR_PI and 0.0 <= x[1] < math.tau
     assert roundtrip_error(y, from_hess(body, x)) <= 1e-12
 
 
@@ -283,7 +282,7 @@ def test_hess_roundtrip_near_and_on_singular_sets(request, body_name, y):
     G, dL, dM = distances(y)
     x, flags = to_hess(body, y, with_mask=True)
     assert np.all(np.isfinite(x))
-    assert 0.0 <= x[0] < FOUR_PI and 0.0 <= x[1] < TWO_PI
+    assert 0.0 <= x[0] < FOUR_PI and 0.0 <= x[1] < math.tau
     assert 0.0 <= x[2] <= x[3]
     err = roundtrip_error(y, from_hess(body, x))
     # J1 -> 0 (L -> -G) keeps full accuracy; J1 -> J2 (L -> +G) is conditioned like (L, G).
@@ -297,7 +296,7 @@ def test_hess_inverse_roundtrip(request, body_name, x):
     body = request.getfixturevalue(body_name)
     x2, flags = to_hess(body, from_hess(body, x), with_mask=True)
     assert flags == 0
-    assert 0.0 <= x2[0] < FOUR_PI and 0.0 <= x2[1] < TWO_PI
+    assert 0.0 <= x2[0] < FOUR_PI and 0.0 <= x2[1] < math.tau
     assert angle_gap(x2[0], x[0], FOUR_PI) <= 1e-12
     assert angle_gap(x2[1], x[1]) <= 1e-12
     assert np.abs(x2[2:] - x[2:]).max() <= 1e-12 * x[3]
@@ -334,7 +333,7 @@ def test_hess_solution_is_theta1_zero(paper_body):
     for k in (0.7, -0.7):
         y = np.array([k * e2, -k * e1, 0.4, 0.1, 0.3, math.sqrt(0.9)])
         theta1 = to_hess(paper_body, y)[0]
-        assert min(theta1, FOUR_PI - theta1, abs(theta1 - TWO_PI)) <= 1e-15
+        assert min(theta1, FOUR_PI - theta1, abs(theta1 - math.tau)) <= 1e-15
     y = np.array([e1, e2, 0.4, 0.1, 0.3, math.sqrt(0.9)])  # off the relation
     assert abs(math.sin(to_hess(paper_body, y)[0] / 2)) == pytest.approx(1.0, abs=1e-15)
 

@@ -40,7 +40,6 @@ from andoyer.integrate import Section, poincare
 
 PAPER = RigidBody.paper()
 H0 = default_energy(PAPER)  # the energy of `andoyer section`
-TWO_PI = 2.0 * math.pi
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +105,7 @@ def test_seed_outside_region_says_so(settings: Settings) -> None:
 
 
 def test_seed_angle_taken_mod_period(settings: Settings) -> None:
-    a, b = seed(settings, 1.0, 0.5)[0], seed(settings, 1.0 + TWO_PI, 0.5)[0]
+    a, b = seed(settings, 1.0, 0.5)[0], seed(settings, 1.0 + math.tau, 0.5)[0]
     np.testing.assert_array_equal(a.y0, b.y0)
 
 
@@ -150,7 +149,7 @@ def test_stages_are_one_poincare_call(settings: Settings, engine: str, N: int, f
     ref = poincare(PAPER, sd.y0, s.section, N, engine=engine)
     x = np.concatenate([st.x for st in stages])
     y = np.concatenate([st.y for st in stages])
-    np.testing.assert_array_equal(x, np.mod(ref.theta1.values[0], TWO_PI))
+    np.testing.assert_array_equal(x, np.mod(ref.theta1.values[0], math.tau))
     np.testing.assert_array_equal(y, ref.J1.values[0])
     np.testing.assert_array_equal(stages[-1].ds.theta1.values, ref.theta1.values[0])
 
@@ -159,7 +158,7 @@ def test_plane_coordinates_period() -> None:
     ds = xr.Dataset({"theta1": ("crossing", [0.5, 7.0, 12.0]), "J1": ("crossing", [0.1] * 3)})
     x0, _ = plane_coordinates(make_settings(PAPER, h=0.3), ds)
     x1, _ = plane_coordinates(make_settings(PAPER, h=0.3, M=0.2), ds)
-    np.testing.assert_allclose(x0, [0.5, 7.0 - TWO_PI, 12.0 - TWO_PI])
+    np.testing.assert_allclose(x0, [0.5, 7.0 - math.tau, 12.0 - math.tau])
     np.testing.assert_allclose(x1, [0.5, 7.0, 12.0])
 
 
@@ -191,34 +190,34 @@ def _on_separatrix(body: RigidBody, h: float, l: np.ndarray, L: np.ndarray) -> n
 ])
 def test_separatrices_are_the_unperturbed_level(body: RigidBody) -> None:
     h = 0.23
-    curves = unperturbed_separatrices(body, h, PLANES["g"], TWO_PI)
+    curves = unperturbed_separatrices(body, h, PLANES["g"], math.tau)
     assert len(curves) >= 2
     for l, L in curves:
         assert np.max(np.abs(_on_separatrix(body, h, l, L))) < 1e-13
     # The Hess plane holds the same curves through theta1 = 2 (l + phi0), J1 = (G0 + L)/2.
     G0 = math.sqrt(2 * h / sorted([body.a, body.b, body.c])[1])
-    for t1, J1 in unperturbed_separatrices(body, h, PLANES["theta2"], 2 * TWO_PI):
+    for t1, J1 in unperturbed_separatrices(body, h, PLANES["theta2"], 2 * math.tau):
         l = t1 / 2 - body.phi0
         assert np.nanmax(np.abs(_on_separatrix(body, h, l, 2 * J1 - G0))) < 1e-13
 
 
 def test_separatrices_of_the_paper_body() -> None:
     phi0 = PAPER.phi0
-    lines = unperturbed_separatrices(PAPER, H0, PLANES["g"], TWO_PI)
+    lines = unperturbed_separatrices(PAPER, H0, PLANES["g"], math.tau)
     got = sorted(float(x[0]) for x, _ in lines)
-    np.testing.assert_allclose(got, [phi0, math.pi - phi0, math.pi + phi0, TWO_PI - phi0],
+    np.testing.assert_allclose(got, [phi0, math.pi - phi0, math.pi + phi0, math.tau - phi0],
                                atol=1e-14)
-    hess = unperturbed_separatrices(PAPER, H0, PLANES["theta2"], TWO_PI)
-    np.testing.assert_allclose(sorted(float(x[0]) for x, _ in hess), [0, 4 * phi0, TWO_PI],
+    hess = unperturbed_separatrices(PAPER, H0, PLANES["theta2"], math.tau)
+    np.testing.assert_allclose(sorted(float(x[0]) for x, _ in hess), [0, 4 * phi0, math.tau],
                                atol=1e-12)
-    assert unperturbed_separatrices(PAPER, -0.001, PLANES["g"], TWO_PI) == []
+    assert unperturbed_separatrices(PAPER, -0.001, PLANES["g"], math.tau) == []
     assert unperturbed_separatrices(RigidBody.lagrange(1.0, 2.0, 0.1), H0, PLANES["g"],
-                                    TWO_PI) == []
+                                    math.tau) == []
 
 
 def test_plane_view(settings: Settings) -> None:
     v = plane_view(settings, boundary_grid=60)
-    assert v.x_range == (0.0, TWO_PI) and v.y_range[0] == 0.0
+    assert v.x_range == (0.0, math.tau) and v.y_range[0] == 0.0
     assert v.accessible.shape == (60, 60) and v.accessible.any()
     assert np.isfinite(v.boundary_x).any() and len(v.separatrices) == 3
     with pytest.raises(ValueError, match="does not intersect"):
@@ -239,7 +238,7 @@ def test_indicators_and_underlay(settings: Settings) -> None:
     assert np.isnan(ds.fli.values[~ds.accessible.values]).all()
     img = _underlay_image(ds)
     assert img["image"][0].shape == (6, 6) and img["x"][0] == pytest.approx(0.0)
-    assert img["dw"][0] == pytest.approx(TWO_PI)
+    assert img["dw"][0] == pytest.approx(math.tau)
     alpha = img["image"][0] >> 24
     np.testing.assert_array_equal(alpha > 0, ds.accessible.values)
 

@@ -18,9 +18,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer._validate import positive as _positive
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
+from andoyer.validation import positive as _positive
 
 __all__ = [
     "AXES", "EquilibriumSet", "EulerPoissonEquilibrium", "PermanentRotation",

@@ -45,8 +45,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
-from andoyer._validate import finite, positive
 from andoyer.body import RigidBody, checks_body
+from andoyer.validation import finite, positive
 
 __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi",
            "euler_poinsot_momentum"]

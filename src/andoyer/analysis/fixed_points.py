@@ -77,7 +77,6 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer._validate import positive as _positive
 from andoyer.analysis.equilibria import (
     AXES,
     ROTATION_LABELS,
@@ -92,6 +91,7 @@ from andoyer.analysis.equilibria import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
+from andoyer.validation import positive as _positive
 
 __all__ = [
     "PermanentRotation",

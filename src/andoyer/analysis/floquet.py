@@ -15,7 +15,6 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer._validate import positive as _positive
 from andoyer.analysis.pendulum import (
     MOTIONS,
     STABILITY,
@@ -28,6 +27,7 @@ from andoyer.analysis.pendulum import (
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.integrate.results import provenance
+from andoyer.validation import positive as _positive
 
 __all__ = [
     "Floquet", "Monodromy", "floquet_multipliers", "floquet_scan", "hess_rotation_multiplier",

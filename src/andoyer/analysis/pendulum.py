@@ -74,9 +74,9 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc
 
-from andoyer._validate import positive as _positive
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance, states_dataset
+from andoyer.validation import positive as _positive
 
 __all__ = [
     "MOTIONS",

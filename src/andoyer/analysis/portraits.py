@@ -11,7 +11,6 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from andoyer._validate import positive as _positive
 from andoyer.analysis.separatrix import (
     FIG2_CAPTION,
     check_grid_size,
@@ -20,6 +19,7 @@ from andoyer.analysis.separatrix import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
+from andoyer.validation import positive as _positive
 
 __all__ = ["portrait_andoyer", "portrait_hess"]
 

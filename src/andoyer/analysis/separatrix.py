@@ -68,12 +68,12 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import expit
 
-from andoyer._validate import positive as _positive
 from andoyer.analysis.fixed_points import theta_text
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance
+from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
            "separatrix_andoyer", "separatrix_hess",

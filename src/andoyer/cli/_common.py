@@ -8,7 +8,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from andoyer._validate import floats
+from andoyer.validation import floats
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
            "floats", "output_file", "output_folder", "distinct_outputs"]
@@ -108,8 +108,8 @@ def add_body_args(p: argparse.ArgumentParser) -> None:
 
 def body_from_args(args: argparse.Namespace) -> Any:
     """The body of ``--body`` and its flags; a flag the body does not take is refused."""
-    from andoyer._validate import positive
     from andoyer.body import RigidBody
+    from andoyer.validation import positive
 
     extra = [n for n in ("A", "B", "C", "mu", "r") if getattr(args, n) is not None
              and n not in BODY_FLAGS[args.body]]

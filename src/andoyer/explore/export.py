@@ -156,7 +156,7 @@ def png_bytes(fig: Figure, dpi: int = 150) -> bytes:
 
 
 def _write_bytes(data: bytes, path: str | os.PathLike[str]) -> Path:
-    from andoyer._atomic import atomic_path
+    from andoyer.atomic import atomic_path
 
     out = Path(path)
     with atomic_path(out) as tmp:

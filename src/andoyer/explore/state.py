@@ -34,7 +34,6 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer._validate import finite as _finite
 from andoyer.body import RigidBody
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
@@ -44,6 +43,7 @@ from andoyer.integrate.engines import ENGINES
 from andoyer.integrate.fill import default_h
 from andoyer.integrate.section import SECTION_PLANES, Section
 from andoyer.integrate.section import SectionPlane as Plane
+from andoyer.validation import finite as _finite
 
 __all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage", "Orbit",
            "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",

@@ -631,7 +631,7 @@ class Explorer:
             if mode == "hess":
                 body = RigidBody.hess(A, B, C, mu)
             else:
-                from andoyer._validate import floats
+                from andoyer.validation import floats
 
                 r = floats(self.w_r.value or "", 3, "r = (e1, e2, e3)")
                 body = RigidBody(A, B, C, mu, (r[0], r[1], r[2]), "general")

@@ -37,7 +37,6 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq
 from scipy.stats import qmc
 
-from andoyer._validate import finite as _finite
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
@@ -47,6 +46,7 @@ from andoyer.integrate import budget
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
+from andoyer.validation import finite as _finite
 
 __all__ = ["fill_section", "section_roots", "default_h", "SECTION_PLANES", "SINGULAR_MARGIN"]
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from andoyer._atomic import atomic_path
+from andoyer.atomic import atomic_path
 
 __all__ = ["write_netcdf"]
 

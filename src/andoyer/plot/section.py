@@ -15,7 +15,7 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from andoyer._atomic import atomic_path
+from andoyer.atomic import atomic_path
 from andoyer.integrate.section import SECTION_PLANES
 from andoyer.notation import ANGLES, COORDINATES
 

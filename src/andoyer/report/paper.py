@@ -25,8 +25,8 @@ from typing import Any
 
 import xarray as xr
 
-from andoyer._atomic import atomic_path
 from andoyer._version import __version__
+from andoyer.atomic import atomic_path
 from andoyer.body import RigidBody
 from andoyer.io import write_netcdf
 from andoyer.plot.section import save_figure

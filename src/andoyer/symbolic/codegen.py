@@ -18,7 +18,7 @@ from pathlib import Path
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
-from andoyer._atomic import atomic_path
+from andoyer.atomic import atomic_path
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 
