@@ -2,8 +2,22 @@
 fixed points on |G| = G0) and the Euler-Poisson equilibria (hanging and upright), with
 their types from the linearised flow.
 
-Moved out of :mod:`andoyer.analysis.fixed_points`, which builds the chart fixed points of
-(9) and (16) on top of these.
+The chart fixed points of (9) and (16) are built on these in
+:mod:`andoyer.analysis.fixed_points`.
+
+Euler-Poisson equilibria
+------------------------
+At ``G = 0``, ``gamma = s r`` (``s = -1`` hanging: the centre of mass below the fixed
+point; ``s = +1`` upright) the linearisation on the symplectic leaf ``|gamma| = 1``,
+``(G, gamma) = 0`` (tangent space ``dG, dgamma`` orthogonal to ``r``) is
+``d^2 dG/dt^2 = s mu P I P dG``, ``P`` the projection orthogonal to ``r``. The two
+eigenvalues ``k`` of ``P I P`` on ``r^perp`` have sum ``a + b + c - (r, I r)`` and
+product ``b c e1^2 + c a e2^2 + a b e3^2``; the eigenvalues are ``+-i sqrt(mu k)``
+(hanging: centre-centre) and ``+-sqrt(mu k)`` (upright: saddle-saddle). On a Hess body
+``k = c`` twice (the circular sections of the gyration ellipsoid): a 1:1 resonance.
+The Euler-Poisson system has other equilibria in the body frame, the permanent
+rotations of Staude (``G`` parallel to the vertical, ``G != 0``); they are not
+treated here.
 """
 
 from __future__ import annotations

@@ -1,13 +1,15 @@
-"""Fixed points of the unperturbed system and equilibria of the Euler-Poisson equations.
+"""Fixed points of the unperturbed system in the Andoyer-Deprit and Hess charts.
 
-Three families, each found numerically and matched with its closed form:
+Two families, each found numerically and matched with its closed form:
 
 * the fixed points of the unperturbed system (9) of [1]_ in ``(l, L)`` at fixed
   ``G = G0`` (:func:`andoyer_fixed_points`);
 * the fixed points of its form in the Hess chart (14), ``(theta1, J1)`` at fixed
-  ``J2`` and ``M = 0`` (the "unperturbed system" after Fig. 3; :func:`hess_fixed_points`);
-* the equilibria ``G = 0, gamma = -+ r`` (hanging, upright) of the full Euler-Poisson
-  equations (1) (:func:`euler_poisson_equilibria`).
+  ``J2`` and ``M = 0`` (the "unperturbed system" after Fig. 3; :func:`hess_fixed_points`).
+
+Each point is tied to the permanent rotation(s) it stands for; those and the
+equilibria ``G = 0, gamma = -+ r`` of the full Euler-Poisson equations (1) live in
+:mod:`andoyer.analysis.equilibria`. Text tables: :func:`andoyer.io.tables.format_table`.
 
 The reduced fields and their Jacobians are derived with SymPy from the chart
 Hamiltonians of :mod:`andoyer.symbolic.hamiltonian` at ``mu = 0`` (nothing is typed
@@ -44,20 +46,6 @@ paper lists, ``(0, 0), (4 phi0, 0)`` on ``J1 = 0`` (-z) and ``(0, J2), (4 phi0, 
 ``J1 = J2`` (+z). The double cover ``[0, 4 pi)`` separates the two senses of each
 rotation: 12 points, one-to-one with those of ``(l, L)``.
 
-Euler-Poisson equilibria
-------------------------
-At ``G = 0``, ``gamma = s r`` (``s = -1`` hanging: the centre of mass below the fixed
-point; ``s = +1`` upright) the linearisation on the symplectic leaf ``|gamma| = 1``,
-``(G, gamma) = 0`` (tangent space ``dG, dgamma`` orthogonal to ``r``) is
-``d^2 dG/dt^2 = s mu P I P dG``, ``P`` the projection orthogonal to ``r``. The two
-eigenvalues ``k`` of ``P I P`` on ``r^perp`` have sum ``a + b + c - (r, I r)`` and
-product ``b c e1^2 + c a e2^2 + a b e3^2``; the eigenvalues are ``+-i sqrt(mu k)``
-(hanging: centre-centre) and ``+-sqrt(mu k)`` (upright: saddle-saddle). On a Hess body
-``k = c`` twice (the circular sections of the gyration ellipsoid): a 1:1 resonance.
-The Euler-Poisson system has other equilibria in the body frame, the permanent
-rotations of Staude (``G`` parallel to the vertical, ``G != 0``); they are not
-treated here.
-
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
@@ -68,7 +56,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from typing import Any, Literal
@@ -78,13 +66,8 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer.analysis.equilibria import (
-    AXES,
-    ROTATION_LABELS,
-    EquilibriumSet,
-    EulerPoissonEquilibrium,
     PermanentRotation,
     classify,
-    euler_poisson_equilibria,
     permanent_rotations,
     require_distinct_moments,
     sorted_eigenvalues,
@@ -93,22 +76,8 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
 from andoyer.validation import positive as _positive
 
-__all__ = [
-    "PermanentRotation",
-    "FixedPoint",
-    "FixedPointSet",
-    "EulerPoissonEquilibrium",
-    "EquilibriumSet",
-    "AXES",
-    "ROTATION_LABELS",
-    "classify",
-    "theta_text",
-    "permanent_rotations",
-    "andoyer_fixed_points",
-    "hess_fixed_points",
-    "euler_poisson_equilibria",
-    "format_table",
-]
+__all__ = ["FixedPoint", "FixedPointSet", "andoyer_fixed_points", "hess_fixed_points",
+           "theta_text"]
 
 ReducedChart = Literal["andoyer", "hess"]
 
@@ -193,7 +162,7 @@ class FixedPoint:
 
     @property
     def label(self) -> int:
-        """Digit of Fig. 2 (:data:`ROTATION_LABELS`)."""
+        """Digit of Fig. 2 (:data:`andoyer.analysis.equilibria.ROTATION_LABELS`)."""
         return self.motions[0].label
 
     @property
@@ -581,56 +550,3 @@ def hess_fixed_points(body: RigidBody, J2: float = 1.0, *, double_cover: bool = 
     period = 2.0 * math.tau if double_cover else math.tau
     nq, npp = _n_seed(n_seed)
     return _fixed_points(body, "hess", J2, period, (nq * (2 if double_cover else 1), npp))
-
-
-# ---------------------------------------------------------------------- text table
-def _eig_text(ev: Sequence[complex]) -> str:
-    vals = sorted({(round(abs(v.real), 10), round(abs(v.imag), 10)) for v in ev})
-    parts = []
-    for re, im in vals:
-        if im == 0.0:
-            parts.append(f"+-{re:.10g}")
-        elif re == 0.0:
-            parts.append(f"+-{im:.10g} i")
-        else:
-            parts.append(f"+-{re:.6g} +-{im:.6g} i")
-    return ", ".join(parts)
-
-
-def format_table(result: FixedPointSet | EquilibriumSet) -> str:
-    """A plain-text table of a fixed-point set or of the Euler-Poisson equilibria.
-
-    Examples
-    --------
-    >>> from andoyer import RigidBody
-    >>> print(format_table(hess_fixed_points(RigidBody.paper())).splitlines()[0])
-    Fixed points of the unperturbed system in (theta1, J1), J2 = 1, theta1 in [0, 2 pi)
-    """
-    if isinstance(result, EquilibriumSet):
-        lines = [f"Equilibria G = 0 of the Euler-Poisson equations (1), mu = "
-                 f"{result.body.mu:g}, r = ({', '.join(f'{v:.6g}' for v in result.body.r)})",
-                 f"{'name':<9} {'gamma':<34} {'type':<15} eigenvalues on the leaf"]
-        for e in result.equilibria:
-            g = "(" + ", ".join(f"{v:.6g}" for v in e.y[3:]) + ")"
-            lines.append(f"{e.name:<9} {g:<34} {e.linear_type:<15} {_eig_text(e.eigenvalues)}")
-        return "\n".join(lines)
-    qn, pn = ("l", "L") if result.chart == "andoyer" else ("theta1", "J1")
-    an = "G0" if result.chart == "andoyer" else "J2"
-    rng = "2 pi" if result.period < 7.0 else "4 pi"
-    lines = [f"Fixed points of the unperturbed system in ({qn}, {pn}), {an} = "
-             f"{result.action:g}, {qn} in [0, {rng})",
-             f"{'#':>2} {qn:>10} {pn:>9}  {'closed form':<24} {'chart type':<10} "
-             f"{'chart eigenvalues':<22} {'motion':<8} {'physical':<9} {'real':<5} label"]
-    for i, fp in enumerate(result.points):
-        lines.append(
-            f"{i:>2} {fp.q:>10.6f} {fp.p:>9.5f}  {fp.closed_form:<24} {fp.linear_type:<10} "
-            f"{_eig_text(fp.eigenvalues):<22} {fp.motion:<8} {fp.physical_type:<9} "
-            f"{'yes' if fp.real_equilibrium else 'no':<5} {fp.label}")
-    lines.append("Permanent rotations (Euler equations on |G| = G0, the regular route):")
-    for r in result.rotations:
-        lines.append(f"   {r.name:<3} moment {r.moment} = {r.moment_value:<8g} "
-                     f"{r.inertia_rank:<7} {r.linear_type:<7} {_eig_text(r.eigenvalues):<22} "
-                     f"label {r.label}")
-    lines.append("real = no: a point of a singular line of the chart (the whole line is one "
-                 "state, the rotation about +-z); its chart eigenvalues are not physical.")
-    return "\n".join(lines)

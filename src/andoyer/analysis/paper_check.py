@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from andoyer.charts.andoyer_deprit import from_andoyer, to_andoyer
 from andoyer.kernels import generated as K
 
-__all__ = ["Formula", "CheckRow", "FORMULAS", "paper_check", "format_table", "RTOL"]
+__all__ = ["Formula", "CheckRow", "FORMULAS", "paper_check", "RTOL"]
 
 #: Agreement threshold, relative to the largest magnitude of the derived value.
 RTOL = 1e-9
@@ -566,20 +566,3 @@ def paper_check(n: int = 200, seed: int = 20261121) -> list[CheckRow]:
                                  form.corrected_text if verdict != "holds" else "",
                                  corrected_holds))
     return rows
-
-
-def format_table(rows: list[CheckRow]) -> str:
-    """Plain-text table of :func:`paper_check` rows."""
-    lines = []
-    for r in rows:
-        lines.append(f"{r.label:<13} {r.verdict:<9} {r.name}")
-        if r.verdict != "holds":
-            lines.append(f"{'':<23}max rel. error {r.max_rel_error:.2e}: {r.nature}")
-            if r.corrected:
-                lines.append(f"{'':<23}corrected: {r.corrected}")
-    n_mis = sum(r.verdict == "misprint" for r in rows)
-    n_om = sum(r.verdict == "omission" for r in rows)
-    lines.append("")
-    lines.append(f"{len(rows)} formulas: {len(rows) - n_mis - n_om} hold, {n_mis} misprints, "
-                 f"{n_om} omissions or remarks. The code uses the derived forms.")
-    return "\n".join(lines)

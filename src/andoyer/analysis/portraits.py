@@ -38,11 +38,8 @@ def _grid_n(n: Any) -> tuple[int, int]:
 
 def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
               n_curve: int, double_cover: bool) -> xr.Dataset:
-    from andoyer.analysis.fixed_points import (
-        ROTATION_LABELS,
-        andoyer_fixed_points,
-        hess_fixed_points,
-    )
+    from andoyer.analysis.equilibria import ROTATION_LABELS
+    from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
     from andoyer.dynamics import hamiltonian
 
     nq, npp = _grid_n(n)

@@ -13,7 +13,8 @@ ORDER = 20
 
 
 def run(args: argparse.Namespace) -> int:
-    from andoyer.analysis.paper_check import format_table, paper_check
+    from andoyer.analysis.paper_check import paper_check
+    from andoyer.io.tables import format_table
 
     if args.points < 1:
         raise ValueError("--points must be a positive integer")

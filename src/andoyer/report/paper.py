@@ -77,7 +77,8 @@ class Item:
 
 # ---------------------------------------------------------------------- items
 def _paper_check(ctx: Context) -> Result:
-    from andoyer.analysis.paper_check import format_table, paper_check
+    from andoyer.analysis.paper_check import paper_check
+    from andoyer.io.tables import format_table
 
     rows = paper_check(n=50 if ctx.quick else 200)
     text = format_table(rows)
@@ -154,14 +155,11 @@ def _fig1(ctx: Context) -> Result:
 
 
 def _fig2(ctx: Context) -> Result:
-    from andoyer.analysis.fixed_points import (
-        andoyer_fixed_points,
-        euler_poisson_equilibria,
-        format_table,
-        hess_fixed_points,
-    )
+    from andoyer.analysis.equilibria import euler_poisson_equilibria
+    from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
     from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
     from andoyer.analysis.separatrix import FIG2_CAPTION
+    from andoyer.io.tables import format_table
     from andoyer.plot.portraits import plot_fig2
 
     ds_a = portrait_andoyer(ctx.body, 1.0)
