@@ -1,9 +1,10 @@
 """Chaos indicators of the heavy top: FLI, MEGNO, maximal Lyapunov exponent, chaos maps.
 
 All three come from one integration of the Euler-Poisson equations (1) with their
-first-order variational equations (:mod:`andoyer.integrate.variational`, built by
-heyoka from ``H = (G, IG)/2 + mu (r, gamma)``), for a tangent vector ``w`` with
-``w(0) = w0``, ``|w0| = 1``:
+first-order variational equations (:mod:`andoyer.integrate.variational`, derived from
+``H = (G, IG)/2 + mu (r, gamma)``: by heyoka's ``var_ode_sys``, or for
+``engine="numba"``, the default where heyoka is not installed, by SymPy's Jacobian on
+the Numba DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:
 
 * **FLI** (fast Lyapunov indicator, Froeschle, Lega & Gonczi 1997):
   :math:`\\mathrm{FLI}(t) = \\sup_{0 \\le s \\le t} \\ln \\|w(s)\\|`, the supremum taken
@@ -68,6 +69,7 @@ from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
+from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import VARIABLE_ATTRS, provenance
@@ -80,7 +82,8 @@ from andoyer.integrate.variational import (
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
 
-__all__ = ["indicators", "chaos_map", "initial_tangent", "INDICATORS", "TANGENT_SPACES"]
+__all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
+           "TANGENT_SPACES"]
 
 #: Indicators a chaos map can hold.
 INDICATORS = ("fli", "megno")
@@ -234,10 +237,11 @@ def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float
 
 
 def _check_engine(engine: str | None) -> Any:
-    name = "heyoka" if engine is None else engine
+    """The engine's name; ``None``: heyoka where installed, else numba."""
+    name = default_engine_name() if engine is None else engine
     if name not in ENGINES:
         raise ValueError(f"engine {name!r} cannot integrate the variational equations; "
-                         f"choose one of {', '.join(ENGINES)} (heyoka for maps)")
+                         f"choose one of {', '.join(ENGINES)}")
     return name
 
 
@@ -281,11 +285,30 @@ def _derived(x: NDArray[np.float64], t: NDArray[np.float64], scale: float
 # ----------------------------------------------------------------------------- single orbits
 
 
+def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.float64]:
+    """The output times of an indicator: ``t`` if given (checked: 1-D, increasing, finite,
+    starting at 0), else ``linspace(0, t_end, n_times)``.
+
+    >>> output_times(10.0, 3, None)
+    array([ 0.,  5., 10.])
+    """
+    if t is None:
+        T = _check_positive("t_end", t_end)
+        return np.linspace(0.0, T, _check_int("n_times", n_times, 2))
+    times = np.asarray(t, dtype=float)
+    if times.ndim != 1 or times.size < 2 or times[0] != 0.0 \
+            or np.any(np.diff(times) <= 0.0) or not np.all(np.isfinite(times)):
+        raise ValueError("t must be a 1-D array of increasing finite times starting "
+                         "at 0 (the indicators count from t = 0)")
+    return times
+
+
+
 @checks_body
 def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times: int = 101,
                t: ArrayLike | None = None, chart: str = "euler_poisson",
                tangent: Tangent = "leaf", w0: ArrayLike | None = None,
-               tol: float = 1e-12, engine: str | None = "heyoka") -> xr.Dataset:
+               tol: float = 1e-12, engine: str | None = None) -> xr.Dataset:
     """FLI, MEGNO and the maximal Lyapunov exponent of orbits as functions of time.
 
     Parameters
@@ -308,9 +331,10 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
         A direction to project onto that space instead of the fixed generic vector.
     tol : float, default 1e-12
         Tolerance of the Taylor integrator (DOP853 gets ``0.025 tol``).
-    engine : {"heyoka", "scipy"}
-        ``"scipy"``: ``solve_ivp(DOP853)`` on the same equations, one orbit at a time
-        (a slow independent check).
+    engine : {"heyoka", "numba", "scipy"}, optional
+        Default: heyoka where installed, else numba (the Numba DOP853, orbits in
+        parallel). ``"scipy"``: ``solve_ivp(DOP853)`` on the same equations, one orbit
+        at a time (a slow independent check; needs heyoka for the right-hand side).
 
     Returns
     -------
@@ -335,16 +359,8 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
     name = _check_engine(engine)
     tol = _check_tol(tol)
     y = initial_states(body, y0, chart)
-    if t is None:
-        T = _check_positive("t_end", t_end)
-        times = np.linspace(0.0, T, _check_int("n_times", n_times, 2))
-    else:
-        times = np.asarray(t, dtype=float)
-        if times.ndim != 1 or times.size < 2 or times[0] != 0.0 \
-                or np.any(np.diff(times) <= 0.0) or not np.all(np.isfinite(times)):
-            raise ValueError("t must be a 1-D array of increasing finite times starting "
-                             "at 0 (the indicators count from t = 0)")
-        T = float(times[-1])
+    times = output_times(t_end, n_times, t)
+    T = float(times[-1])
     budget.check("indicators", steps=3.0 * budget.estimate_steps(body, y, T, tol),
                  memory=8.0 * 20 * y.shape[0] * times.size)
     w = initial_tangent(body, y, tangent, w0)
@@ -373,11 +389,19 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
 
 def _provenance(body: RigidBody, engine: str, tol: float, tangent: str, T: float,
                 **extra: Any) -> dict[str, Any]:
+    if engine == "numba":
+        import numba
+
+        versions = {"numba_version": numba.__version__}
+        built = "the Jacobian of (1) derived by SymPy, Numba DOP853"
+    else:
+        versions = {"heyoka_version": hy.__version__}
+        built = "heyoka var_ode_sys"
     return provenance(
-        body, engine=engine, tolerance=tol, heyoka_version=hy.__version__, t_end=T,
+        body, engine=engine, tolerance=tol, **versions, t_end=T,
         tangent=tangent, megno_delta=MEGNO_DELTA,
         equations="Euler-Poisson equations (1) of Kyrychenko with their first-order "
-                  "variational equations (heyoka var_ode_sys), unit tangent vector "
+                  f"variational equations ({built}), unit tangent vector "
                   "w/|w| and ln|w| integrated (continuous renormalisation)",
         **extra)
 
@@ -407,7 +431,7 @@ def _grid_size(n: Any) -> tuple[int, int]:
 @checks_body
 def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
               t_end: float = 1000.0, indicator: Indicator = "fli", *,
-              engine: str | None = "heyoka", chunk: int = 1024, progress: bool | None = None,
+              engine: str | None = None, chunk: int = 1024, progress: bool | None = None,
               tol: float = 1e-12, n_samples: int = 64, root: str = "largest",
               plane_bounds: Any = None, tangent: Tangent = "leaf",
               batch_size: int | None = None, n_threads: int | None = None) -> xr.Dataset:
@@ -435,8 +459,9 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         Integration time of every orbit.
     indicator : {"fli", "megno", "both"}
         Which indicator(s) the dataset holds (one integration gives both).
-    engine : {"heyoka", "scipy"}
-        heyoka (batch mode and threads) is the one for maps.
+    engine : {"heyoka", "numba", "scipy"}, optional
+        Default: heyoka (batch mode and threads) where installed, else numba (orbits in
+        parallel); scipy is one orbit at a time, for checks.
     chunk : int, default 1024
         Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
         doubles; the progress line advances per chunk.
