@@ -1,5 +1,6 @@
-"""Where heyoka is missing (no wheel), every module imports, orbits, sections and the
-chaos indicators run on the numba engine, and what needs heyoka says so clearly."""
+"""Where heyoka is missing (no wheel), every module imports, orbits, sections, the chaos
+indicators, periodic orbits and Floquet multipliers run on the numba engine, and what
+needs heyoka says so clearly."""
 
 import subprocess
 import sys
@@ -29,6 +30,12 @@ SCRIPT = textwrap.dedent("""
     from andoyer.analysis.alignment import alignment_indices
     ds = alignment_indices(body, [0.3, 0, 0.3, 1, 0], 5.0, chart="andoyer", k=3)
     assert float(ds.gali.isel(orbit=0, time=-1)) > 0
+    import math
+    from andoyer.analysis.periodic import RotationSection, rotation_energy, rotation_orbit
+    orb = rotation_orbit(body, rotation_energy(body), 0.0, RotationSection(0.0, 1))
+    assert abs(orb.multipliers[0] / math.exp(2 * math.pi * body.sigma / body.c) - 1) < 1e-9
+    from andoyer.analysis.floquet import floquet_multipliers
+    assert floquet_multipliers(body, 5 * body.mu).stability == "hyperbolic"
     print("ok")
 """)
 

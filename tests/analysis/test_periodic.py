@@ -86,8 +86,14 @@ def test_monodromy_has_four_unit_multipliers():
     assert orb.multipliers.prod() == pytest.approx(1.0, abs=1e-12)
 
 
-def test_section_jacobian_matches_finite_differences():
-    """DP from the variational equations + event sensitivity vs central differences."""
+@pytest.mark.parametrize("engine", ["default", "numba"])
+def test_section_jacobian_matches_finite_differences(engine, monkeypatch):
+    """DP from the variational equations + event sensitivity vs central differences (on
+    the default engine, and on numba as where heyoka is missing)."""
+    if engine == "numba":
+        from andoyer.analysis import section_map
+
+        monkeypatch.setattr(section_map, "default_engine_name", lambda: "numba")
     h = rotation_energy(GENERAL)
     sec = RotationSection(0.4, -1)
     x0 = np.array([0.01, 0.15])

@@ -72,6 +72,7 @@ def test_same_kernels_as_symbolic_layer(regenerated):
         params = list(inspect.signature(getattr(committed, name)).parameters)
         assert params == [str(a) for a in args], name
     assert committed.SECTION_KINDS == regenerated.SECTION_KINDS
+    assert committed.EXTRA_SECTION_KINDS == regenerated.EXTRA_SECTION_KINDS
 
 
 def assert_same(a, b, rtol: float) -> None:
@@ -93,9 +94,12 @@ def test_committed_kernel_matches_regenerated(regenerated, name):
     assert_same(mine(*args), fresh(*args), rtol=1e-14)
 
 
-@pytest.mark.parametrize("kind", committed.SECTION_KINDS)
+ALL_KINDS = committed.SECTION_KINDS + committed.EXTRA_SECTION_KINDS
+
+
+@pytest.mark.parametrize("kind", ALL_KINDS)
 def test_committed_section_matches_regenerated(regenerated, kind):
-    index = committed.SECTION_KINDS.index(kind)
+    index = ALL_KINDS.index(kind)
     names = list(inspect.signature(committed.section).parameters)
     assert names == list(inspect.signature(regenerated.section).parameters)
     assert names[0] == "kind"

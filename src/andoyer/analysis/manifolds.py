@@ -86,6 +86,7 @@ from andoyer.analysis.periodic import (
     middle_axis_rate,
     section_state,
 )
+from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
 from andoyer.analysis.separatrix import BRANCHES
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
@@ -357,7 +358,7 @@ class ManifoldCurve:
              "flight_time": (("point",), self.t),
              "y": (("point", "component"), self.y)},
             coords={"point": np.arange(self.s.size), "component": list(STATE)},
-            attrs=provenance(body, engine="heyoka (Taylor)",
+            attrs=provenance(body, engine=FLOW_ENGINES[flow_engine()],
                              method="fundamental domain q(s) = p + delta Lambda^s v on the "
                                     "section psi = psi0, carried by the flow to L = 0; "
                                     "adaptive insertion",

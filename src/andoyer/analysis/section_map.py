@@ -3,6 +3,13 @@ of gamma about G) and L = 0 of the Euler-Poisson flow, states completed on a lev
 the flow to the next crossing with its variational Jacobian and event projector, and the
 return map in section coordinates. :mod:`andoyer.analysis.periodic` finds the periodic
 orbits on it by Newton's method.
+
+The flow to a section runs on heyoka's Taylor integrator where heyoka is installed, else
+(or with ``engine="numba"``) on the Numba DOP853 with the variational equations generated
+by SymPy (:func:`andoyer.integrate.tangent.tangent_crossings`). The DOP853 only steps
+forward in time; a backward flow uses the reversibility of (1): with
+``R = diag(-1, -1, -1, 1, 1, 1)``, ``y(-t; y0) = R y(t; R y0)``, so the crossing of the
+backward orbit is ``R`` of a forward crossing of ``R y0`` and ``dy(-t)/dy0 = R Phi(t) R``.
 """
 
 from __future__ import annotations
@@ -18,17 +25,22 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
+from andoyer.integrate.engines import default_engine_name
 from andoyer.kernels.constants import T_START
 
 __all__ = [
-    "Crossing", "DEFAULT_TOL", "RotationSection", "SectionReturn", "event_projector",
-    "flow_to_section", "gamma_phase", "middle_axis_rate", "return_map", "rotation_energy",
-    "section_coords", "section_state",
+    "Crossing", "DEFAULT_TOL", "FLOW_ENGINES", "NUMBA_TOL", "RotationSection", "SectionReturn",
+    "event_projector", "flow_engine", "flow_to_section", "gamma_phase", "middle_axis_rate",
+    "return_map", "rotation_energy", "section_coords", "section_state",
 ]
 
 
 #: heyoka's tolerance used by default for the periodic orbits and the manifolds.
 DEFAULT_TOL = 1e-15
+#: The smallest tolerance given to the numba route (DOP853 in double precision).
+NUMBA_TOL = 1e-13
+#: Time reversal of (1): ``y(-t; y0) = R y(t; R y0)``.
+_REVERSAL = np.array([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
 
 
 _I6 = np.eye(6)
@@ -196,6 +208,25 @@ class Crossing:
     stm: NDArray[np.float64] | None = None
 
 
+#: How each engine integrates the flow to a section (dataset provenance).
+FLOW_ENGINES = {"heyoka": "heyoka (Taylor, variational equations by var_ode_sys)",
+                "numba": "numba (DOP853, variational equations of the Jacobian derived by "
+                         "SymPy)"}
+
+
+def flow_engine(engine: str | None = None) -> str:
+    """The engine of :func:`flow_to_section`: ``engine``, else heyoka where installed,
+    else numba.
+
+    >>> flow_engine("numba")
+    'numba'
+    """
+    name = default_engine_name() if engine is None else engine
+    if name not in FLOW_ENGINES:
+        raise ValueError(f"engine must be 'heyoka' or 'numba', got {engine!r}")
+    return name
+
+
 def _pars(body: RigidBody, psi0: float) -> NDArray[np.float64]:
     return np.array([*body.params, math.cos(psi0), math.sin(psi0)])
 
@@ -204,8 +235,8 @@ def _pars(body: RigidBody, psi0: float) -> NDArray[np.float64]:
 def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *,
                     psi0: float = 0.0, backward: bool = False, t_max: float = 1e4,
                     tol: float = DEFAULT_TOL, stm: bool = False,
-                    long_double: bool = False) -> Crossing:
-    """Integrate (1) from ``y0`` to the first crossing of a section (heyoka, Taylor).
+                    long_double: bool = False, engine: str | None = None) -> Crossing:
+    """Integrate (1) from ``y0`` to the first crossing of a section.
 
     Parameters
     ----------
@@ -225,11 +256,13 @@ def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *
     t_max : float
         Give up (``RuntimeError``) after ``|t| = t_max``.
     tol : float
-        heyoka's tolerance.
+        heyoka's tolerance (the numba route gets ``max(tol, NUMBA_TOL)``).
     stm : bool
         Also integrate the variational equations and return ``dy(t)/dy0``.
     long_double : bool
-        Integrate in 80-bit extended precision (``numpy.longdouble``).
+        Integrate in 80-bit extended precision (``numpy.longdouble``; heyoka only).
+    engine : {"heyoka", "numba"}, optional
+        Default: heyoka where installed, else numba (see the module notes).
 
     Returns
     -------
@@ -243,6 +276,14 @@ def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *
     y0 = as_state(y0, "y0").reshape(6)
     if not (math.isfinite(tol) and 0.0 < tol < 1e-3):
         raise ValueError(f"tol must lie in (0, 1e-3), got {tol!r}")
+    name = flow_engine(engine)
+    if name == "numba":
+        if long_double:
+            raise ValueError("long_double needs engine='heyoka' (the numba DOP853 runs in "
+                             "double precision)")
+        y, t, phi = _numba_crossing(body, y0, kind, direction, psi0, backward, t_max,
+                                    max(float(tol), NUMBA_TOL), stm)
+        return _polish(body, kind, psi0, y, t, phi)
     ta = _integrator(kind, direction, bool(stm), float(tol), bool(long_double))
     fp: Any = np.longdouble if long_double else float
     ta.time = fp(0.0)
@@ -263,6 +304,47 @@ def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *
     y = np.array(ta.state[:6], dtype=float)
     t = float(ta.time)
     phi = np.array(ta.state[6:], dtype=float).reshape(6, 6) if stm else None
+    return _polish(body, kind, psi0, y, t, phi)
+
+
+def _numba_crossing(body: RigidBody, y0: NDArray[np.float64], kind: str, direction: int,
+                    psi0: float, backward: bool, t_max: float, tol: float, stm: bool
+                    ) -> tuple[NDArray[np.float64], float, NDArray[np.float64] | None]:
+    """The first crossing on the Numba DOP853 (backward by time reversal)."""
+    from andoyer.errors import IntegrationError
+    from andoyer.integrate.engines import get_engine
+    from andoyer.integrate.tangent import tangent_crossings
+    from andoyer.kernels.generated import EXTRA_SECTION_KINDS, SECTION_KINDS
+
+    index = (SECTION_KINDS + EXTRA_SECTION_KINDS).index("psi" if kind == "psi" else "L")
+    value = psi0 if kind == "psi" else 0.0
+    # Backward: the orbit of R y0 forward; f_psi(R y) = f_psi(y) and f_L(R y) = -f_L(y),
+    # so a psi crossing changes its direction and an L crossing keeps it.
+    z0 = _REVERSAL * y0 if backward else y0
+    d = -direction if (backward and kind == "psi") else direction
+    params = body.engine_params
+    if stm:
+        c = tangent_crossings(z0, np.eye(6), params, index, value, d, 1, t_max, tol=tol)
+        if not c.ok[0]:
+            raise IntegrationError("the numba DOP853 met a non-finite state")
+        found, tc, z = int(c.count[0]), float(c.t[0, 0]), c.y[0, 0]
+        phi: NDArray[np.float64] | None = np.ascontiguousarray(c.w[0, 0].T)
+    else:
+        cr = get_engine("numba").crossings(z0[None], params, index, value, d, 1, t_max,
+                                            tol, tol)
+        found, tc, z, phi = int(cr.count[0]), float(cr.t[0, 0]), cr.y[0, 0], None
+    if found == 0:
+        raise RuntimeError(
+            f"no crossing of the {kind!r} section within |t| = {t_max:g}: the orbit left "
+            "the neighbourhood it was started in")
+    if not backward:
+        return z, tc, phi
+    R = np.diag(_REVERSAL)
+    return _REVERSAL * z, -tc, (R @ phi @ R if phi is not None else None)
+
+
+def _polish(body: RigidBody, kind: str, psi0: float, y: NDArray[np.float64], t: float,
+            phi: NDArray[np.float64] | None) -> Crossing:
     # One Newton step in time onto f = 0 (heyoka stops on the Taylor root; this removes
     # the rounding of the event time).
     F = vector_field(body, y)
@@ -436,18 +518,20 @@ class SectionReturn:
 @checks_body
 def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                section: RotationSection | None = None, *, jacobian: bool = True,
-               tol: float = DEFAULT_TOL, long_double: bool = False) -> SectionReturn:
+               tol: float = DEFAULT_TOL, long_double: bool = False,
+               engine: str | None = None) -> SectionReturn:
     """The Poincare map of ``Sigma = {psi = psi0}`` in the coordinates ``(G1, G2)/|G|``.
 
     Returns an object with ``x`` (the image), ``y`` (its Euler-Poisson state), ``T``
     (return time), ``DP`` (the 2 x 2 Jacobian, from the variational equations and the
     event sensitivity, or None) and ``stm`` (the 6 x 6 state-transition matrix).
+    ``engine`` as in :func:`flow_to_section`.
     """
     sec = RotationSection() if section is None else section
     y0, dy_dx = section_state(body, x, h, M, sec, jacobian=True)
     T0 = 2.0 * math.pi / (body.c * float(np.linalg.norm(y0[:3])))
     cr = flow_to_section(body, y0, "psi", sec.sign, psi0=sec.psi0, t_max=20.0 * T0 + 100.0,
-                         tol=tol, stm=jacobian, long_double=long_double)
+                         tol=tol, stm=jacobian, long_double=long_double, engine=engine)
     x1 = section_coords(cr.y)
     if not jacobian:
         return SectionReturn(x1, cr.y, cr.t, None, None)

@@ -26,6 +26,7 @@ from andoyer.analysis.periodic import (
     RotationSection,
     continue_rotation_orbit,
 )
+from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance
@@ -117,7 +118,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
          "Delta_E": (("phase",), [r["Delta_E"] for r in rows]),
          "G_u": (("phase",), Gu), "G_s": (("phase",), Gs)},
         coords={"phase": phases},
-        attrs=provenance(body, engine="heyoka (Taylor)", branch=wu.branch.branch,
+        attrs=provenance(body, engine=FLOW_ENGINES[flow_engine()], branch=wu.branch.branch,
                          sheet=wu.branch.sheet, energy=wu.branch.h,
                          plane="Sigma_0 = {L = G3 = 0}, Darboux coordinates (g, G)",
                          heyoka_tol=wu.branch.orbit.tol,
@@ -331,7 +332,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     amp_pred = np.max(np.abs(pred_G), axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
-    attrs = provenance(body.with_mu(float(mus[-1])), engine="heyoka (Taylor)",
+    attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[flow_engine()],
                        branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
                        delta=delta, heyoka_tol=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],

@@ -225,10 +225,12 @@ def hess_field(theta1, theta2, J1, J2, J3, a, b, c, mu, phi0):
 
 
 SECTION_KINDS = ('G1', 'G2', 'G3', 'gamma1', 'gamma2', 'gamma3', 'L', 'G', 'J1', 'J2', 'l', 'g', 'theta1', 'theta2')
+#: Kinds after SECTION_KINDS: section angles that are not chart coordinates.
+EXTRA_SECTION_KINDS = ('psi',)
 
 
 def section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv):
-    """Section function ``(f, w)`` of ``SECTION_KINDS[kind] = value`` (see andoyer.symbolic.sections)."""
+    """Section function ``(f, w)`` of ``(SECTION_KINDS + EXTRA_SECTION_KINDS)[kind] = value`` (see andoyer.symbolic.sections)."""
     if kind == 0:  # G1
         return G1 - value, 1.0
     elif kind == 1:  # G2
@@ -276,4 +278,6 @@ def section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv):
         s7 = -s2*s4 + s5*s6
         s8 = s2*s6 + s4*s5
         return cv*s7 - s8*sv, cv*s8 + s7*sv
+    elif kind == 14:  # psi
+        return cv*gamma1 - gamma2*sv, cv*gamma2 + gamma1*sv
     return 0.0, -1.0

@@ -80,12 +80,15 @@ def _function_source(name: str, args: Sequence[sp.Symbol], exprs: Sequence[sp.Ex
 def _section_source() -> str:
     """One dispatch function ``section(kind, *SECTION_ARGS) -> (f, w)`` over all kinds."""
     printer = _Printer()
-    kinds = [*sec.SMOOTH, *sec.ANGLES]
+    public = [*sec.SMOOTH, *sec.ANGLES]
+    kinds = [*public, *sec.EXTRA_ANGLES]
     args = ", ".join(str(a) for a in sec.SECTION_ARGS)
-    lines = [f"SECTION_KINDS = {tuple(kinds)!r}", "", "",
+    lines = [f"SECTION_KINDS = {tuple(public)!r}",
+             "#: Kinds after SECTION_KINDS: section angles that are not chart coordinates.",
+             f"EXTRA_SECTION_KINDS = {tuple(sec.EXTRA_ANGLES)!r}", "", "",
              f"def section(kind, {args}):",
-             '    """Section function ``(f, w)`` of ``SECTION_KINDS[kind] = value`` '
-             '(see andoyer.symbolic.sections)."""']
+             '    """Section function ``(f, w)`` of ``(SECTION_KINDS + EXTRA_SECTION_KINDS)[kind] '
+             '= value`` (see andoyer.symbolic.sections)."""']
     for i, kind in enumerate(kinds):
         f, w = sec.section_function(kind)
         kw = "if" if i == 0 else "elif"

@@ -16,6 +16,13 @@ A Poincare section "coordinate = value" of any chart becomes a smooth function
 
 ``theta1`` sections are taken mod 2 pi (the period of H on M = 0).
 
+:data:`EXTRA_ANGLES` are section angles of the analysis modules that are not chart
+coordinates: ``psi = atan2(gamma1, gamma2)``, the phase of the vertical about the body
+axis 3 (the sections of the rotations about the middle axis,
+:mod:`andoyer.analysis.section_map`), ``(cos psi, sin psi) ~ (gamma2, gamma1)``. They are
+generated after the chart kinds (kernels take them by index) but are not offered as
+coordinates of :class:`andoyer.integrate.section.Section`.
+
 The pairs come from the inverse chart maps of :mod:`andoyer.charts.andoyer_deprit`:
 ``(cos l, sin l) ~ (G2, G1)`` and
 ``(cos g, sin g) ~ (G3 (G1 gamma1 + G2 gamma2) - gamma3 (G1^2 + G2^2),
@@ -30,7 +37,8 @@ import sympy as sp
 
 from andoyer.symbolic.hamiltonian import S
 
-__all__ = ["SMOOTH", "ANGLES", "SECTION_ARGS", "section_function", "angle_pair"]
+__all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "section_function",
+           "angle_pair"]
 
 value, cv, sv = sp.symbols("value cv sv", real=True)
 #: Arguments of every generated section function: state, phi0, value, cos/sin(value).
@@ -45,6 +53,8 @@ SMOOTH: dict[str, sp.Expr] = {
     "L": G3, "G": _G, "J1": (_G + G3) / 2, "J2": _G,
 }
 ANGLES = ("l", "g", "theta1", "theta2")
+#: Section angles that are not chart coordinates (see the module notes).
+EXTRA_ANGLES = ("psi",)
 
 
 @cache
@@ -56,6 +66,8 @@ def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
     c0, s0 = sp.cos(S.phi0), sp.sin(S.phi0)
     if name == "l":
         return cl, sl
+    if name == "psi":  # the phase of gamma about the body axis 3
+        return gamma2, gamma1
     if name == "g":
         return cg, sg
     # l + phi0
@@ -64,14 +76,14 @@ def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
         return cp**2 - sp_**2, 2 * sp_ * cp
     if name == "theta2":  # g - (l + phi0)
         return cg * cp + sg * sp_, sg * cp - cg * sp_
-    raise ValueError(f"{name!r} is not an angle of a chart; angles: {ANGLES}")
+    raise ValueError(f"{name!r} is not a section angle; angles: {ANGLES + EXTRA_ANGLES}")
 
 
 def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:
     """``(f, w)`` of the section ``coord = value`` as expressions in :data:`SECTION_ARGS`."""
     if coord in SMOOTH:
         return SMOOTH[coord] - value, sp.Integer(1)
-    if coord in ANGLES:
+    if coord in ANGLES or coord in EXTRA_ANGLES:
         C, Sn = angle_pair(coord)
         return Sn * cv - C * sv, C * cv + Sn * sv
     raise ValueError(
