@@ -32,6 +32,7 @@ def run(args: argparse.Namespace) -> int:
 
     matplotlib.use("Agg")
     from andoyer.analysis.chaos import chaos_map
+    from andoyer.integrate.engines import default_engine_name
     from andoyer.integrate.variational import warm_up
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_chaos_map
@@ -44,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
         from andoyer.integrate.fill import default_h
 
         args.h = default_h(body, args.M)
-    if args.engine == "heyoka":
+    if args.engine == "heyoka" or (args.engine is None and default_engine_name() == "heyoka"):
         source, seconds = warm_up(tol=args.tol)
         print(f"variational integrator: {source} in {seconds:.2f} s")
     t0 = time.perf_counter()
@@ -84,9 +85,9 @@ def register(sub: Any) -> None:
                    help="integration time of every orbit (default 1000)")
     p.add_argument("--indicator", choices=("fli", "megno", "both"), default="fli",
                    help="indicator to store and draw (default fli)")
-    p.add_argument("--engine", choices=("heyoka", "scipy"), default="heyoka",
-                   help="integrator of the variational equations (default heyoka; scipy "
-                        "is a slow independent check)")
+    p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
+                   help="integrator of the variational equations (default heyoka where "
+                        "installed, else numba; scipy is a slow independent check)")
     p.add_argument("--tol", type=float, default=1e-12, help="tolerance (default 1e-12)")
     p.add_argument("--root", choices=("largest", "smallest"), default="largest",
                    help="where the level has several sheets over a point, which action "

@@ -495,8 +495,9 @@ def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float =
     (:func:`andoyer.analysis.chaos.indicators`), and the relative energy drift."""
     from andoyer.analysis.chaos import indicators
 
-    engine = "scipy" if settings.engine == "scipy" else "heyoka"
-    ds = indicators(settings.body, y0, _finite("t_end", t_end), engine=engine,
+    # The variational engines are heyoka, numba and scipy: the orbit engine's name, or
+    # the default (heyoka where installed, else numba).
+    ds = indicators(settings.body, y0, _finite("t_end", t_end), engine=settings.engine,
                     tol=min(settings.rtol, settings.atol)).isel(orbit=0, time=-1)
     return {"fli": float(ds.fli), "megno": float(ds.megno), "mle": float(ds.mle),
             "H_drift": float(ds.H_drift), "t_end": float(t_end)}

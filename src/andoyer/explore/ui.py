@@ -106,14 +106,12 @@ _ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6
 
 
 def _chaos_module() -> Any | None:
-    """:mod:`andoyer.analysis.chaos`, or None where heyoka (which it needs) is missing:
-    the indicator controls are then disabled."""
-    from andoyer.integrate.engines.lazy import heyoka_available
-
-    if not heyoka_available():
+    """:mod:`andoyer.analysis.chaos` (on heyoka where installed, else on numba), or None
+    if it cannot be imported: the indicator controls are then disabled."""
+    try:
+        from andoyer.analysis import chaos
+    except ImportError:  # pragma: no cover - chaos needs no optional package
         return None
-    from andoyer.analysis import chaos
-
     return chaos
 
 
