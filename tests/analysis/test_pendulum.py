@@ -37,6 +37,7 @@ from andoyer.analysis.pendulum import (
 )
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate import Section, poincare, propagate
+from andoyer.integrate.engines.lazy import heyoka_available
 
 PAPER = RigidBody.paper()                                   # Hess: Oz the middle axis
 PLAIN = RigidBody(2.5, 2.0, 2.2, 0.01, (1.0, 0.0, 0.0))     # e3 = 0, not Hess
@@ -185,11 +186,15 @@ def test_hess_rotations_have_the_exact_multiplier(body):
     """Hess body: every rotation has lambda = exp(2 pi sigma / c) (unstable), whatever h."""
     lam = hess_rotation_multiplier(body)
     assert lam == pytest.approx(math.exp(2 * math.pi * sigma(body) / body.c))
+    # heyoka (Taylor, tol 1e-15): trace to 1e-11. The Numba DOP853 (tolerance floored at
+    # 1e-13) near the separatrix, h = 1.01 mu, measured 5.7e-11: round-off of the long
+    # period, the default where heyoka is missing.
+    rel_trace = 1e-11 if heyoka_available() else 1e-10
     for h_over_mu in (1.01, 2.0, 30.0):
         f = floquet_multipliers(body, h_over_mu * body.mu)
         assert f.stability == "hyperbolic"
         assert f.multipliers[0].real == pytest.approx(lam, rel=1e-10)
-        assert f.trace == pytest.approx(lam + 1 / lam, rel=1e-11)
+        assert f.trace == pytest.approx(lam + 1 / lam, rel=rel_trace)
 
 
 def test_hess_librations_are_parabolic_with_a_jordan_block():

@@ -136,6 +136,23 @@ def test_continuation_from_the_permanent_rotation():
         continue_rotation_orbit(body, h, mu=[0.01, 0.02])
 
 
+def test_the_engine_argument_reaches_the_flow_and_the_provenance():
+    """engine='numba' (no heyoka needed) finds the same orbit; the dataset says which."""
+    from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
+
+    body = RigidBody.paper(0.05)
+    h = rotation_energy(body)
+    orbits, ds = continue_rotation_orbit(body, h, 0.2, RotationSection(0.0, 1), steps=1,
+                                         engine="numba")
+    assert orbits[-1].engine == "numba" and ds.attrs["engine"] == FLOW_ENGINES["numba"]
+    ref = rotation_orbit(body, h, 0.2, RotationSection(0.0, 1), guess=orbits[-1].x)
+    assert ref.engine == flow_engine()
+    np.testing.assert_allclose(orbits[-1].x, ref.x, rtol=0, atol=1e-11)
+    assert orbits[-1].period == pytest.approx(ref.period, rel=1e-11)
+    with pytest.raises(ValueError, match="engine must be 'heyoka' or 'numba'"):
+        rotation_orbit(body, h, engine="scipy")
+
+
 def test_section_state_lies_on_the_level_and_the_section():
     body = GENERAL
     h, M = rotation_energy(body), -0.3

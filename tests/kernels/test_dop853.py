@@ -348,7 +348,7 @@ def test_angle_sections_have_no_spurious_crossings_at_the_wrap(
 
 # ------------------------------------------------------------------------ cache
 def test_entry_points_are_keyed_on_the_generated_kernels() -> None:
-    for fn in (dop.propagate, dop.locate_crossings, dop.integrate_fixed,
+    for fn in (dop.propagate_block, dop.locate_crossings_block, dop.integrate_fixed,
                dop.interpolate_step):
         assert fn.py_func.__closure__ is not None
         cells = [c.cell_contents for c in fn.py_func.__closure__]
@@ -363,9 +363,9 @@ def test_a_second_process_loads_the_compiled_kernels(
     dop.locate_crossings(y_start[:1], p, KIND["G3"], 0.0, 1, 1, 50.0, TOL, TOL, MAX_STEPS)
     y0, pp = y_start[:1].tolist(), p.tolist()
     out = fresh_process_cache_stats("andoyer.kernels.dop853", {
-        "propagate": f"m.propagate(np.array({y0}), np.array([0.0, 1.0]), np.array({pp}), "
+        "propagate_block": f"m.propagate(np.array({y0}), np.array([0.0, 1.0]), np.array({pp}), "
                      f"1e-12, 1e-12, {MAX_STEPS})",
-        "locate_crossings": f"m.locate_crossings(np.array({y0}), np.array({pp}), "
+        "locate_crossings_block": f"m.locate_crossings(np.array({y0}), np.array({pp}), "
                             f"{KIND['G3']}, 0.0, 1, 1, 50.0, 1e-12, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
     assert out["seconds"] < 5.0

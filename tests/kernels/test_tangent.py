@@ -174,9 +174,9 @@ def test_a_second_process_loads_the_compiled_kernels(paper_body: RigidBody) -> N
     T.locate_crossings(z0, p, 2, 0.0, 1, 1, 50.0, 1e-12, 1e-12, MAX_STEPS)
     z, pp = z0.tolist(), p.tolist()
     out = fresh_process_cache_stats("andoyer.kernels.tangent", {
-        "propagate": f"m.propagate(np.array({z}), np.array([0.0, 1.0]), np.array({pp}), "
+        "propagate_block": f"m.propagate(np.array({z}), np.array([0.0, 1.0]), np.array({pp}), "
                      f"1e-12, 1e-12, {MAX_STEPS})",
-        "locate_crossings": f"m.locate_crossings(np.array({z}), np.array({pp}), 2, 0.0, 1, "
+        "locate_crossings_block": f"m.locate_crossings(np.array({z}), np.array({pp}), 2, 0.0, 1, "
                             f"1, 50.0, 1e-12, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
     assert out["seconds"] < 5.0

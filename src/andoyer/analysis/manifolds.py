@@ -86,7 +86,7 @@ from andoyer.analysis.periodic import (
     middle_axis_rate,
     section_state,
 )
-from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
+from andoyer.analysis.section_map import FLOW_ENGINES
 from andoyer.analysis.separatrix import BRANCHES
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
@@ -180,7 +180,8 @@ class ManifoldBranch:
         t_max = 20.0 * self.orbit.period + 60.0 / (sigma * G)
         return flow_to_section(self.body, self.seed(s), "L", self.crossing_direction,
                                backward=self.stability == "stable", t_max=t_max,
-                               tol=self.orbit.tol, long_double=self.orbit.long_double)
+                               tol=self.orbit.tol, long_double=self.orbit.long_double,
+                               engine=self.orbit.engine)
 
     def attrs(self) -> dict[str, Any]:
         return {"stability": self.stability, "branch": self.branch, "sheet": self.sheet,
@@ -205,7 +206,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
                     branch: str = "theta1=4phi0", *, sheet: int = 1, psi0: float = 0.0,
                     delta: float = 1e-5, orbit: RotationOrbit | None = None,
                     mu_steps: int = 4, tol: float = DEFAULT_TOL,
-                    long_double: bool = False) -> ManifoldBranch:
+                    long_double: bool = False, engine: str | None = None) -> ManifoldBranch:
     """The branch of ``W^u`` / ``W^s`` that follows a heteroclinic line, ready to grow.
 
     Parameters
@@ -229,7 +230,10 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     orbit : RotationOrbit, optional
         The periodic orbit (default: continued in ``mu`` from 0 in ``mu_steps`` steps).
     tol, long_double :
-        heyoka tolerance and precision.
+        Integration tolerance and precision (extended precision needs heyoka).
+    engine : {"heyoka", "numba"}, optional
+        The engine of the flow when ``orbit`` is not given (default heyoka where
+        installed, else numba); a given ``orbit`` brings its own.
 
     Returns
     -------
@@ -261,7 +265,8 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     rot = leaves if stability == "unstable" else reaches
     if orbit is None:
         orbits, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, rot),
-                                            steps=mu_steps, tol=tol, long_double=long_double)
+                                            steps=mu_steps, tol=tol, long_double=long_double,
+                                            engine=engine)
         orbit = orbits[-1]
     elif orbit.section.sign != rot or orbit.body != body or orbit.M != 0.0:
         raise ValueError(f"orbit must be the rotation L = {'+' if rot > 0 else '-'}G of this "
@@ -358,7 +363,7 @@ class ManifoldCurve:
              "flight_time": (("point",), self.t),
              "y": (("point", "component"), self.y)},
             coords={"point": np.arange(self.s.size), "component": list(STATE)},
-            attrs=provenance(body, engine=FLOW_ENGINES[flow_engine()],
+            attrs=provenance(body, engine=FLOW_ENGINES[self.branch.orbit.engine],
                              method="fundamental domain q(s) = p + delta Lambda^s v on the "
                                     "section psi = psi0, carried by the flow to L = 0; "
                                     "adaptive insertion",

@@ -155,7 +155,11 @@ class RotationOrbit:
     residual : float
         ``|P(x) - x|`` at the returned point.
     tol : float
-        heyoka tolerance.
+        Integration tolerance.
+    long_double : bool
+        Extended precision (heyoka only).
+    engine : {"heyoka", "numba"}
+        The engine of the section map (:func:`~andoyer.analysis.section_map.flow_engine`).
     """
 
     body: RigidBody
@@ -173,6 +177,7 @@ class RotationOrbit:
     residual: float
     tol: float = DEFAULT_TOL
     long_double: bool = field(default=False)
+    engine: str = field(default_factory=flow_engine)
 
     @property
     def lyapunov_exponent(self) -> float:
@@ -200,7 +205,7 @@ def _eigen(DP: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.flo
 def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                    section: RotationSection | None = None, *, guess: ArrayLike | None = None,
                    tol: float = DEFAULT_TOL, xtol: float = 1e-13, max_iter: int = 12,
-                   long_double: bool = False) -> RotationOrbit:
+                   long_double: bool = False, engine: str | None = None) -> RotationOrbit:
     """Newton's method on the section map for the periodic orbit near the rotation.
 
     Parameters
@@ -222,7 +227,10 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     max_iter : int
         Raise ``RuntimeError`` if not converged after this many iterations.
     long_double : bool
-        Extended precision integration.
+        Extended precision integration (heyoka only).
+    engine : {"heyoka", "numba"}, optional
+        The engine of the section map; default heyoka where installed, else numba
+        (:func:`~andoyer.analysis.section_map.flow_engine`).
 
     Returns
     -------
@@ -238,6 +246,7 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     True
     """
     sec = RotationSection() if section is None else section
+    engine = flow_engine(engine)
     middle_axis_rate(body)
     x = np.zeros(2) if guess is None else np.asarray(guess, dtype=float).reshape(2).copy()
     step, iterations = np.inf, 0
@@ -245,18 +254,18 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
         if iterations == max_iter:
             raise RuntimeError(f"Newton's method did not converge in {max_iter} iterations "
                                f"(last step {step:.3g}); continue in mu with smaller steps")
-        r = return_map(body, x, h, M, sec, tol=tol, long_double=long_double)
+        r = return_map(body, x, h, M, sec, tol=tol, long_double=long_double, engine=engine)
         assert r.DP is not None
         step_v = np.linalg.solve(r.DP - np.eye(2), x - r.x)
         x = x + step_v
         step = float(np.linalg.norm(step_v))
         iterations += 1
-    r = return_map(body, x, h, M, sec, tol=tol, long_double=long_double)
+    r = return_map(body, x, h, M, sec, tol=tol, long_double=long_double, engine=engine)
     assert r.DP is not None and r.stm is not None
     w, V = _eigen(r.DP)
     y0 = section_state(body, x, h, M, sec)
     return RotationOrbit(body, float(h), float(M), sec, x, y0, r.T, w, V, r.DP, r.stm, iterations,
-                         float(np.linalg.norm(r.x - x)), tol, long_double)
+                         float(np.linalg.norm(r.x - x)), tol, long_double, engine)
 
 
 @checks_body
@@ -264,6 +273,7 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                             section: RotationSection | None = None, *,
                             mu: ArrayLike | None = None, steps: int = 4,
                             tol: float = DEFAULT_TOL, long_double: bool = False,
+                            engine: str | None = None,
                             ) -> tuple[list[RotationOrbit], xr.Dataset]:
     """Continue the periodic orbit in ``mu`` from the permanent rotation at ``mu = 0``.
 
@@ -271,7 +281,7 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     ----------
     body : RigidBody
         Its ``mu`` is the end of the continuation unless ``mu`` is given.
-    h, M, section :
+    h, M, section, tol, long_double, engine :
         As in :func:`rotation_orbit`.
     mu : array_like, optional
         Increasing values of ``mu`` starting at 0 (default ``steps + 1`` equal steps
@@ -302,7 +312,7 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
 
     def solve(m: float, guess: NDArray[np.float64]) -> RotationOrbit:
         return rotation_orbit(body.with_mu(m), h, M, sec, guess=guess, tol=tol,
-                              long_double=long_double)
+                              long_double=long_double, engine=engine)
 
     def reach(m0: float, x0: NDArray[np.float64], slope: NDArray[np.float64], m1: float,
               depth: int = 0) -> RotationOrbit:
@@ -345,7 +355,7 @@ def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
          "newton_iterations": (("mu",), [o.iterations for o in orbits]),
          "residual": (("mu",), [o.residual for o in orbits])},
         coords={"mu": mus, "component": list(STATE), "coord": ["x1", "x2"]},
-        attrs=provenance(first.body, engine=FLOW_ENGINES[flow_engine()],
+        attrs=provenance(first.body, engine=FLOW_ENGINES[first.engine],
                          method="Newton on the section map psi = psi0, Jacobian from the "
                                 "variational equations and the event sensitivity; "
                                 "continuation in mu from the permanent rotation",

@@ -118,7 +118,8 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
          "Delta_E": (("phase",), [r["Delta_E"] for r in rows]),
          "G_u": (("phase",), Gu), "G_s": (("phase",), Gs)},
         coords={"phase": phases},
-        attrs=provenance(body, engine=FLOW_ENGINES[flow_engine()], branch=wu.branch.branch,
+        attrs=provenance(body, engine=FLOW_ENGINES[wu.branch.orbit.engine],
+                         branch=wu.branch.branch,
                          sheet=wu.branch.sheet, energy=wu.branch.h,
                          plane="Sigma_0 = {L = G3 = 0}, Darboux coordinates (g, G)",
                          heyoka_tol=wu.branch.orbit.tol,
@@ -225,7 +226,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
                          psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
                          tol: float = DEFAULT_TOL, long_double: bool = False,
                          grow: dict[str, Any] | None = None, progress: bool | None = None,
-                         ) -> dict[str, xr.Dataset]:
+                         engine: str | None = None) -> dict[str, xr.Dataset]:
     """Measure the separatrix splitting for several ``mu`` and compare it with Melnikov.
 
     Parameters
@@ -244,11 +245,14 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     n_phase : int
         Phases of the splitting grid (even).
     tol, long_double :
-        heyoka tolerance and precision.
+        Integration tolerance and precision (extended precision needs heyoka).
     grow : dict, optional
         Keyword arguments of :func:`grow_manifold`.
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
+    engine : {"heyoka", "numba"}, optional
+        The engine of the flow (default heyoka where installed, else numba;
+        :func:`~andoyer.analysis.section_map.flow_engine`).
 
     Returns
     -------
@@ -286,6 +290,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
     body.require_hess("separatrix_splitting")
+    engine = flow_engine(engine)
     G = float(G)
     if not (math.isfinite(G) and G > 0.0):
         raise ValueError(f"G must be finite and > 0, got {G!r}")
@@ -296,10 +301,10 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     # Both rotation orbits, continued in mu once through every requested value.
     path = np.concatenate([[0.0], mus])
     orb_u, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, leaves), mu=path,
-                                       tol=tol, long_double=long_double)
+                                       tol=tol, long_double=long_double, engine=engine)
     bar.update(1)
     orb_s, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, reaches), mu=path,
-                                       tol=tol, long_double=long_double)
+                                       tol=tol, long_double=long_double, engine=engine)
     bar.update(1)
     splits, inters = [], []
     curves: dict[str, xr.Dataset] = {}
@@ -332,7 +337,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     amp_pred = np.max(np.abs(pred_G), axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
-    attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[flow_engine()],
+    attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[engine],
                        branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
                        delta=delta, heyoka_tol=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],

@@ -15,13 +15,16 @@ Everything here works on plain float arrays, ``y`` of shape ``(n_orbits, 6)`` an
 ``p`` = the 8 kernel parameters :data:`PARAMS`; there is no validation (the
 friendly layer validates) and no Python callback per step or per crossing.
 
-Entry points (compiled with ``cache=True``; ensembles run in a ``prange`` loop, one
-orbit per iteration, each orbit independent):
+Entry points (compiled with ``cache=True`` into the folder
+:func:`andoyer.kernels.cache.cache_folder`; each orbit independent):
 
 * :func:`propagate` -- states at given output times, read off the dense output;
 * :func:`locate_crossings` -- the first crossings of a section
   ``f(y) = 0`` (from :func:`andoyer.kernels.generated.section`), each root located
   on the dense output polynomial;
+* both run blocks of orbits in threads (:func:`andoyer.kernels.threads.over_orbits`)
+  through the compiled, nogil :func:`propagate_block` and
+  :func:`locate_crossings_block`;
 * :func:`integrate_fixed`, :func:`interpolate_step` -- fixed steps without control
   and the interpolant of one step, for measuring the orders of the method.
 
@@ -97,8 +100,10 @@ import numpy as np
 
 from andoyer.kernels import generated
 from andoyer.kernels import numba as _kernels
+from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.constants import T_START
 from andoyer.kernels.numba import ep_field
+from andoyer.kernels.threads import over_orbits
 
 __all__ = [
     "make_stepper",
@@ -116,6 +121,10 @@ __all__ = [
     "KERNEL_STAMP",
     "propagate",
     "locate_crossings",
+    "propagate_block",
+    "locate_crossings_block",
+    "ensemble_propagate",
+    "ensemble_crossings",
     "integrate_fixed",
     "interpolate_step",
 ]
@@ -854,88 +863,25 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
     variable, which Numba hashes into the cache key; an ``assert`` would not do: pytest
     rewrites asserts in modules it imports, which Numba cannot compile."""
 
-    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=FASTMATH)
-    def propagate(y0, t, p, rtol, atol, max_steps):
-        """States of many orbits at the output times ``t`` (dense output).
-
-        Parameters
-        ----------
-        y0 : ndarray, shape (n, 6)
-            Initial Euler-Poisson states at time ``t[0]``.
-        t : ndarray, shape (k,)
-            Output times, non-decreasing, ``k >= 1``.
-        p : ndarray, shape (8,)
-            Kernel parameters :data:`PARAMS`.
-        rtol, atol : float
-            Tolerances of the local error (componentwise ``atol + rtol |y|``).
-        max_steps : int
-            Maximum accepted steps per orbit.
-
-        Returns
-        -------
-        y : ndarray, shape (n, k, 6)
-            ``y[i, j] = y_i(t[j])``; NaN after a failure (see ``info``).
-        info : ndarray of int64, shape (n, 4)
-            Columns :data:`INFO`.
-        """
+    @cached_njit(nogil=True, fastmath=FASTMATH)
+    def propagate_block(y0, t, p, rtol, atol, max_steps, out, info):
+        """:func:`propagate` of a block of orbits on the calling thread, into ``out``
+        (n, k, 6) and ``info`` (n, 4)."""
         _ = len(stamp)  # keys the cache, see _build
-        n = y0.shape[0]
-        k = t.shape[0]
-        out = np.full((n, k, N), np.nan)
-        info = np.zeros((n, len(INFO)), dtype=np.int64)
-        for i in numba.prange(n):
+        for i in range(y0.shape[0]):
             _ep_propagate_orbit(y0[i], t, p, rtol, atol, max_steps, out[i], info[i])
-        return out, info
 
-    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=FASTMATH)
-    def locate_crossings(y0, p, kind, value, direction, n_crossings, t_max, rtol, atol,
-                         max_steps):
-        """The first crossings after t = 0 of a section, for many orbits.
-
-        Parameters
-        ----------
-        y0 : ndarray, shape (n, 6)
-            Initial Euler-Poisson states at t = 0.
-        p : ndarray, shape (8,)
-            Kernel parameters :data:`PARAMS`.
-        kind : int
-            Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
-        value : float
-            The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
-        direction : int
-            +1: f increasing, -1: decreasing, 0: both.
-        n_crossings : int
-            Stop an orbit after this many crossings.
-        t_max : float
-            Stop an orbit at this time.
-        rtol, atol : float
-            Tolerances.
-        max_steps : int
-            Maximum accepted steps per orbit.
-
-        Returns
-        -------
-        t : ndarray, shape (n, n_crossings)
-            Crossing times, NaN-padded.
-        y : ndarray, shape (n, n_crossings, 6)
-            States on the section, NaN-padded.
-        count : ndarray of int64, shape (n,)
-            Crossings found per orbit.
-        info : ndarray of int64, shape (n, 4)
-            Columns :data:`INFO`.
-        """
+    @cached_njit(nogil=True, fastmath=FASTMATH)
+    def locate_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
+                               tc, yc, count, info):
+        """:func:`locate_crossings` of a block of orbits on the calling thread, into
+        ``tc`` (n, n_crossings), ``yc`` (n, n_crossings, 6), ``count`` (n,), ``info``."""
         _ = len(stamp)  # keys the cache, see _build
-        n = y0.shape[0]
-        tc = np.full((n, n_crossings), np.nan)
-        yc = np.full((n, n_crossings, N), np.nan)
-        count = np.zeros(n, dtype=np.int64)
-        info = np.zeros((n, len(INFO)), dtype=np.int64)
-        for i in numba.prange(n):
-            count[i] = _ep_crossings_orbit(y0[i], p, kind, value, direction, t_max, rtol, atol,
-                                     max_steps, tc[i], yc[i], info[i])
-        return tc, yc, count, info
+        for i in range(y0.shape[0]):
+            count[i] = _ep_crossings_orbit(y0[i], p, kind, value, direction, t_max, rtol,
+                                           atol, max_steps, tc[i], yc[i], info[i])
 
-    @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
+    @cached_njit(nogil=True, fastmath=FASTMATH)
     def integrate_fixed(y0, p, h, n_steps):
         """``n_steps`` steps of size ``h`` without error control: shape (n_steps + 1, 6)."""
         _ = len(stamp)  # keys the cache, see _build
@@ -953,7 +899,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             out[m + 1] = y
         return out
 
-    @numba.njit(cache=True, nogil=True, fastmath=FASTMATH)
+    @cached_njit(nogil=True, fastmath=FASTMATH)
     def interpolate_step(y0, p, h, x):
         """One step of size ``h`` from ``y0``; its dense output at ``t = x h``,
         shape (len(x), 6)."""
@@ -972,7 +918,119 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             _dense_eval(F, y0, x[m], out[m])
         return out
 
-    return propagate, locate_crossings, integrate_fixed, interpolate_step
+    return propagate_block, locate_crossings_block, integrate_fixed, interpolate_step
 
 
-propagate, locate_crossings, integrate_fixed, interpolate_step = _build(KERNEL_STAMP)
+(propagate_block, locate_crossings_block, integrate_fixed,
+ interpolate_step) = _build(KERNEL_STAMP)
+
+
+def propagate(y0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float, atol: float,
+              max_steps: int, *, block: int = 1, threads: int | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """States of many orbits at the output times ``t`` (dense output), orbits in threads.
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states at time ``t[0]`` (C-contiguous floats).
+    t : ndarray, shape (k,)
+        Output times, non-decreasing, ``k >= 1``.
+    p : ndarray, shape (8,)
+        Kernel parameters :data:`PARAMS`.
+    rtol, atol : float
+        Tolerances of the local error (componentwise ``atol + rtol |y|``).
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads :
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    y : ndarray, shape (n, k, 6)
+        ``y[i, j] = y_i(t[j])``; NaN after a failure (see ``info``).
+    info : ndarray of int64, shape (n, 4)
+        Columns :data:`INFO`.
+    """
+    return ensemble_propagate(propagate_block, y0, t, p, rtol, atol, max_steps, block=block,
+                              threads=threads)
+
+
+def locate_crossings(y0: np.ndarray, p: np.ndarray, kind: int, value: float,
+                     direction: int, n_crossings: int, t_max: float, rtol: float,
+                     atol: float, max_steps: int, *, block: int = 1,
+                     threads: int | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The first crossings after t = 0 of a section, for many orbits, orbits in threads.
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states at t = 0.
+    p : ndarray, shape (8,)
+        Kernel parameters :data:`PARAMS`.
+    kind : int
+        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
+    value : float
+        The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
+    direction : int
+        +1: f increasing, -1: decreasing, 0: both.
+    n_crossings : int
+        Stop an orbit after this many crossings.
+    t_max : float
+        Stop an orbit at this time.
+    rtol, atol : float
+        Tolerances.
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads :
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    t : ndarray, shape (n, n_crossings)
+        Crossing times, NaN-padded.
+    y : ndarray, shape (n, n_crossings, 6)
+        States on the section, NaN-padded.
+    count : ndarray of int64, shape (n,)
+        Crossings found per orbit.
+    info : ndarray of int64, shape (n, 4)
+        Columns :data:`INFO`.
+    """
+    return ensemble_crossings(locate_crossings_block, y0, p, kind, value, direction,
+                              n_crossings, t_max, rtol, atol, max_steps, block=block,
+                              threads=threads)
+
+
+def ensemble_propagate(kernel: Any, y0: np.ndarray, t: np.ndarray, p: np.ndarray,
+                       rtol: float, atol: float, max_steps: int, *, block: int = 1,
+                       threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Allocate the outputs of :func:`propagate` for states of any width ``y0.shape[1]``
+    and run a ``propagate_block`` kernel (this module's or :mod:`andoyer.kernels.tangent`'s)
+    over blocks of orbits in threads."""
+    n = y0.shape[0]
+    out = np.full((n, t.shape[0], y0.shape[1]), np.nan)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    over_orbits(kernel, n, (y0,), (out, info),
+                (t, p, float(rtol), float(atol), int(max_steps)), block=block,
+                threads=threads)
+    return out, info
+
+
+def ensemble_crossings(kernel: Any, y0: np.ndarray, p: np.ndarray, kind: int, value: float,
+                       direction: int, n_crossings: int, t_max: float, rtol: float,
+                       atol: float, max_steps: int, *, block: int = 1,
+                       threads: int | None = None
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """As :func:`ensemble_propagate`, for :func:`locate_crossings` and a
+    ``locate_crossings_block`` kernel."""
+    n = y0.shape[0]
+    tc = np.full((n, int(n_crossings)), np.nan)
+    yc = np.full((n, int(n_crossings), y0.shape[1]), np.nan)
+    count = np.zeros(n, dtype=np.int64)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    over_orbits(kernel, n, (y0,), (tc, yc, count, info),
+                (p, int(kind), float(value), int(direction), float(t_max), float(rtol),
+                 float(atol), int(max_steps)), block=block, threads=threads)
+    return tc, yc, count, info
+

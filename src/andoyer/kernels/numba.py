@@ -1,14 +1,13 @@
 """Numba-compiled versions of the generated kernels (compiled on first use, cached).
 
-``cache=True`` stores the machine code next to the generated module (or in Numba's
-user cache directory when that is read-only), so a second process pays no compile time.
+``cache=True`` stores the machine code in andoyer's folder of the user's cache
+(:func:`andoyer.kernels.cache.cache_folder`), so a second process pays no compile time.
 """
 
 from __future__ import annotations
 
-import numba
-
 from andoyer.kernels import generated as _g
+from andoyer.kernels.cache import cached_njit
 
 __all__ = [
     "ep_hamiltonian",
@@ -20,7 +19,7 @@ __all__ = [
     "hess_field",
 ]
 
-_jit = numba.njit(cache=True, fastmath=False, nogil=True)
+_jit = cached_njit(fastmath=False, nogil=True)
 
 ep_hamiltonian = _jit(_g.ep_hamiltonian)
 ep_field = _jit(_g.ep_field)

@@ -25,9 +25,10 @@ field (1) (:func:`andoyer.symbolic.hamiltonian.euler_poisson_jacobian`); nothing
 by hand. The stepper is :func:`andoyer.kernels.dop853.make_stepper` on this field: the
 same DOP853, dense output and section crossings as the plain orbits.
 
-Entry points (``cache=True``, one orbit per ``prange`` iteration): :func:`propagate`
-and :func:`locate_crossings`, with the signatures and ``info`` of their namesakes in
-:mod:`andoyer.kernels.dop853` but states of :func:`dimension` ``(k)`` floats.
+Entry points (``cache=True``; blocks of orbits in threads, as in
+:mod:`andoyer.kernels.dop853`): :func:`propagate` and :func:`locate_crossings`, with the
+signatures and ``info`` of their namesakes in :mod:`andoyer.kernels.dop853` but states of
+:func:`dimension` ``(k)`` floats.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ import numpy as np
 from andoyer.kernels import dop853
 from andoyer.kernels import generated as _generated
 from andoyer.kernels import numba as _kernels
+from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.numba import ep_field, ep_jacobian
 
 __all__ = [
@@ -52,6 +54,8 @@ __all__ = [
     "tangent_rhs",
     "propagate",
     "locate_crossings",
+    "propagate_block",
+    "locate_crossings_block",
 ]
 
 #: Time shift of the MEGNO weights (as :data:`andoyer.integrate.variational.MEGNO_DELTA`).
@@ -146,59 +150,70 @@ _crossings_orbit = _STEPPER.crossings_orbit
 def _build(stamp: str) -> tuple[Any, Any]:
     """The cached entry points, keyed on ``stamp`` (see :mod:`andoyer.kernels.dop853`)."""
 
-    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=dop853.FASTMATH)
-    def propagate(z0, t, p, rtol, atol, max_steps):
-        """States with tangent vectors of many orbits at the output times ``t``.
-
-        Parameters
-        ----------
-        z0 : ndarray, shape (n, dimension(k))
-            Initial states (:func:`layout`) at time ``t[0]``.
-        t : ndarray, shape (m,)
-            Output times, non-decreasing.
-        p : ndarray, shape (8,)
-            Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
-        rtol, atol : float
-            Tolerances of the local error (componentwise ``atol + rtol |z|``).
-        max_steps : int
-            Maximum accepted steps per orbit.
-
-        Returns
-        -------
-        z : ndarray, shape (n, m, dimension(k))
-            NaN after a failure (see ``info``).
-        info : ndarray of int64, shape (n, 4)
-            Columns :data:`andoyer.kernels.dop853.INFO`.
-        """
+    @cached_njit(nogil=True, fastmath=dop853.FASTMATH)
+    def propagate_block(z0, t, p, rtol, atol, max_steps, out, info):
+        """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        n = z0.shape[0]
-        out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
-        info = np.zeros((n, len(dop853.INFO)), dtype=np.int64)
-        for i in numba.prange(n):
+        for i in range(z0.shape[0]):
             _propagate_orbit(z0[i], t, p, rtol, atol, max_steps, out[i], info[i])
-        return out, info
 
-    @numba.njit(cache=True, nogil=True, parallel=True, fastmath=dop853.FASTMATH)
-    def locate_crossings(z0, p, kind, value, direction, n_crossings, t_max, rtol, atol,
-                         max_steps):
-        """The first crossings after t = 0 of a section, with the tangent vectors there.
-
-        As :func:`andoyer.kernels.dop853.locate_crossings` (the section reads
-        ``z[:6]``); the crossing states ``z`` have shape
-        ``(n, n_crossings, dimension(k))``.
-        """
+    @cached_njit(nogil=True, fastmath=dop853.FASTMATH)
+    def locate_crossings_block(z0, p, kind, value, direction, t_max, rtol, atol, max_steps,
+                               tc, zc, count, info):
+        """:func:`locate_crossings` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        n = z0.shape[0]
-        tc = np.full((n, n_crossings), np.nan)
-        zc = np.full((n, n_crossings, z0.shape[1]), np.nan)
-        count = np.zeros(n, dtype=np.int64)
-        info = np.zeros((n, len(dop853.INFO)), dtype=np.int64)
-        for i in numba.prange(n):
+        for i in range(z0.shape[0]):
             count[i] = _crossings_orbit(z0[i], p, kind, value, direction, t_max, rtol,
                                         atol, max_steps, tc[i], zc[i], info[i])
-        return tc, zc, count, info
 
-    return propagate, locate_crossings
+    return propagate_block, locate_crossings_block
 
 
-propagate, locate_crossings = _build(TANGENT_STAMP)
+propagate_block, locate_crossings_block = _build(TANGENT_STAMP)
+
+
+def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float, atol: float,
+              max_steps: int, *, block: int = 1, threads: int | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """States with tangent vectors of many orbits at the output times ``t``.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, dimension(k))
+        Initial states (:func:`layout`) at time ``t[0]``.
+    t : ndarray, shape (m,)
+        Output times, non-decreasing.
+    p : ndarray, shape (8,)
+        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+    rtol, atol : float
+        Tolerances of the local error (componentwise ``atol + rtol |z|``).
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads :
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    z : ndarray, shape (n, m, dimension(k))
+        NaN after a failure (see ``info``).
+    info : ndarray of int64, shape (n, 4)
+        Columns :data:`andoyer.kernels.dop853.INFO`.
+    """
+    return dop853.ensemble_propagate(propagate_block, z0, t, p, rtol, atol, max_steps,
+                                     block=block, threads=threads)
+
+
+def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float,
+                     direction: int, n_crossings: int, t_max: float, rtol: float,
+                     atol: float, max_steps: int, *, block: int = 1,
+                     threads: int | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The first crossings after t = 0 of a section, with the tangent vectors there.
+
+    As :func:`andoyer.kernels.dop853.locate_crossings` (the section reads
+    ``z[:6]``); the crossing states ``z`` have shape
+    ``(n, n_crossings, dimension(k))``.
+    """
+    return dop853.ensemble_crossings(locate_crossings_block, z0, p, kind, value, direction,
+                                     n_crossings, t_max, rtol, atol, max_steps, block=block,
+                                     threads=threads)

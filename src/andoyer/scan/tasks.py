@@ -334,12 +334,8 @@ def _chaos_cost(options: Mapping[str, Any]) -> tuple[float, float]:
     return 3e-5 * nx * ny * options["t_end"], 6.0 * nx * ny
 
 
-def _chaos_engine(options: Mapping[str, Any], bodies: list[RigidBody],
+def _chaos_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
                   integ: Integrator) -> None:
-    if integ.engine not in ("heyoka", "scipy"):
-        raise ValueError(f"a chaos map integrates the variational equations with heyoka or "
-                         f"scipy; set [integrator] engine = \"heyoka\" (got "
-                         f"{integ.engine!r})")
     _needs_planar(options, bodies, integ)
 
 
@@ -372,7 +368,8 @@ def _splitting_point(body: RigidBody, h: float | None, M: float | None,
     try:
         out = manifolds.separatrix_splitting(
             body, [body.mu], G=options["G"], branch=options["branch"],
-            delta=options["delta"], n_phase=options["n_phase"], progress=False)
+            delta=options["delta"], n_phase=options["n_phase"], progress=False,
+            engine=integ.engine)
     except ValueError as exc:
         return Empty(str(exc))
     split = out["splitting"].isel(mu=0, drop=True)
@@ -398,9 +395,12 @@ def _splitting_cost(options: Mapping[str, Any]) -> tuple[float, float]:
 
 def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
                       integ: Integrator) -> None:
-    if integ.engine != "heyoka":
-        raise ValueError("the splitting task grows the manifolds with heyoka; set "
-                         "[integrator] engine = \"heyoka\"")
+    from andoyer.analysis.section_map import FLOW_ENGINES
+
+    if integ.engine not in FLOW_ENGINES:
+        raise ValueError(f"the splitting task grows the manifolds with heyoka or numba; set "
+                         f"[integrator] engine = \"heyoka\" or \"numba\" (got "
+                         f"{integ.engine!r})")
     for b in bodies:
         if not b.is_hess:
             raise ValueError(f"the splitting task needs a Hess body ([body] kind = \"hess\"), "
@@ -439,7 +439,7 @@ TASKS: dict[str, TaskKind] = {
          "t_end": Option(1000.0, _positive, "integration time of each orbit"),
          "indicator": Option("fli", _choice("fli", "megno"), "the chaos indicator")},
         _chaos_point, _chaos_cost,
-        validate=_chaos_engine,
+        validate=_chaos_bodies,
         static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",
                       "plane_y", "action", "root", "plane_equations", "definitions",
                       "heyoka_version", "tol")),

@@ -11,6 +11,7 @@ import importlib
 from functools import cache
 
 from andoyer.integrate.engines.base import Engine
+from andoyer.integrate.engines.lazy import heyoka_available
 
 __all__ = ["ENGINES", "get_engine", "available_engines", "default_engine_name"]
 
@@ -24,6 +25,9 @@ ENGINES = {
 
 @cache
 def _load(name: str) -> Engine:
+    if name == "heyoka" and not heyoka_available():
+        # The engine module imports heyoka lazily; refuse it here, not at the first step.
+        raise ImportError("heyoka is not installed (it has wheels for Linux only)")
     module, cls = ENGINES[name]
     engine: Engine = getattr(importlib.import_module(module), cls)()
     return engine

@@ -45,9 +45,10 @@ class LazyModule(types.ModuleType):
 
 #: heyoka.py, imported at first use.
 heyoka: Any = LazyModule(
-    "heyoka", "it has wheels for Linux only (pip install heyoka, or conda-forge). Orbits "
-              "and sections run on engine='numba' without it; the chaos indicators, periodic "
-              "orbits, manifolds and Floquet multipliers still need heyoka")
+    "heyoka", "it has wheels for Linux only (pip install heyoka, or conda-forge). Every "
+              "analysis runs on engine='numba' without it (orbits, sections, chaos "
+              "indicators, periodic orbits, manifolds, Floquet multipliers); only "
+              "engine='heyoka' itself needs it")
 
 
 def heyoka_available() -> bool:

@@ -2,8 +2,8 @@
 
 A thin adapter from the :class:`~andoyer.integrate.engines.base.Engine` protocol to
 the kernels of :mod:`andoyer.kernels.dop853`: it checks shapes, makes the arrays
-contiguous floats, runs the ensemble kernel (one orbit per ``prange`` iteration, all
-cores) and turns a failed orbit into an exception.
+contiguous floats, runs the ensemble kernel (blocks of orbits in Numba's number of
+threads, :mod:`andoyer.kernels.threads`) and turns a failed orbit into an exception.
 
 Tolerances. The DOP853 controller keeps the estimated local error of each component
 below ``f (atol + rtol |y|)`` with ``f = tolerance_factor``
@@ -12,13 +12,13 @@ below ``f (atol + rtol |y|)`` with ``f = tolerance_factor``
 rtol = atol = 1e-12 for a heavy top; with the default the engine meets the accuracy
 contract (drift below 1e-10 over t = 1e4 at 1e-12) like the heyoka engine.
 
-The machine code is cached on disk (``cache=True``): the first process on a machine
-compiles the kernels (tens of seconds), later processes load them (under a second).
+The machine code is cached on disk (``cache=True``, in the user's cache folder,
+:mod:`andoyer.kernels.cache`): the first process on a machine compiles the kernels it
+calls (5-8 s each), later processes load them (under a second).
 """
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 from numpy.typing import NDArray
 
@@ -69,8 +69,8 @@ class NumbaEngine:
     max_steps : int, default 10**9
         Accepted steps allowed per orbit before it is reported as failed.
     chunksize : int, default 1
-        Orbits handed to a thread at a time (``numba.parallel_chunksize``); 1 balances
-        orbits of unequal cost (0 would split the orbits evenly up front).
+        Orbits handed to a thread at a time (:func:`andoyer.kernels.threads.over_orbits`);
+        1 balances orbits of unequal cost (0 splits the orbits evenly up front).
     tolerance_factor : float, default :data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`
         The controller is given ``tolerance_factor * rtol`` and ``tolerance_factor *
         atol`` (see the module notes); 1.0 gives SciPy's meaning of the tolerances.
@@ -124,10 +124,10 @@ class NumbaEngine:
             raise ValueError(f"t must have shape (k,), got {times.shape}")
         if y.shape[0] == 0 or times.size == 0:
             return np.empty((y.shape[0], times.size, 6))
-        with numba.parallel_chunksize(self.chunksize):
-            out, info = dop853.propagate(y, times, _params(params),
-                                         self.tolerance_factor * float(rtol),
-                                         self.tolerance_factor * float(atol), self.max_steps)
+        out, info = dop853.propagate(y, times, _params(params),
+                                     self.tolerance_factor * float(rtol),
+                                     self.tolerance_factor * float(atol), self.max_steps,
+                                     block=self.chunksize)
         _raise_on_failure(info, "in propagate")
         return out
 
@@ -143,10 +143,9 @@ class NumbaEngine:
             return Crossings(np.full((n, n_crossings), np.nan),
                                   np.full((n, n_crossings, 6), np.nan),
                                   np.zeros(n, dtype=np.int64))
-        with numba.parallel_chunksize(self.chunksize):
-            tc, yc, count, info = dop853.locate_crossings(
-                y, _params(params), int(kind), float(value), int(direction), n_crossings,
-                float(t_max), self.tolerance_factor * float(rtol),
-                self.tolerance_factor * float(atol), self.max_steps)
+        tc, yc, count, info = dop853.locate_crossings(
+            y, _params(params), int(kind), float(value), int(direction), n_crossings,
+            float(t_max), self.tolerance_factor * float(rtol),
+            self.tolerance_factor * float(atol), self.max_steps, block=self.chunksize)
         _raise_on_failure(info, "while locating crossings")
         return Crossings(tc, yc, count)

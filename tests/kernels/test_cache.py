@@ -1,0 +1,67 @@
+"""The compiled kernels are cached in the user's cache folder, never in the package.
+
+A read-only install (site-packages owned by root, a shared cluster image) must still
+cache, and nothing may be written next to the sources: the machine code goes to
+:func:`andoyer.kernels.cache.cache_folder`, which ``ANDOYER_CACHE_DIR`` moves.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numba
+
+from andoyer.kernels import cache
+
+
+def test_folder_follows_the_environment(monkeypatch, tmp_path: Path) -> None:
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setenv(cache.CACHE_ENV, str(tmp_path))
+    assert cache.cache_folder() == tmp_path / "numba"
+    monkeypatch.delenv(cache.CACHE_ENV)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "mine"))
+    assert cache.cache_folder() == tmp_path / "mine"
+    monkeypatch.delenv("NUMBA_CACHE_DIR")
+    default = cache.cache_folder()
+    assert default.name == "numba" and default.parent.name == "andoyer"
+    assert not default.is_relative_to(Path(cache.__file__).parents[1])
+
+
+def test_decoration_leaves_numba_setting_alone(tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.setenv(cache.CACHE_ENV, str(tmp_path))
+    before = numba.config.CACHE_DIR
+
+    @cache.cached_njit(nogil=True)
+    def twice(x: float) -> float:
+        return 2.0 * x
+
+    assert numba.config.CACHE_DIR == before
+    assert twice(1.5) == 3.0
+    assert Path(twice._cache._cache_path).is_relative_to(tmp_path / "numba")
+
+
+def test_a_fresh_process_caches_outside_the_package(tmp_path: Path) -> None:
+    script = textwrap.dedent("""
+        import json
+        from pathlib import Path
+        import numpy as np
+        import andoyer.kernels.numba as k
+        k.ep_hamiltonian(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 2.5, 2.2, 1.0, 0.0, 0.0, 1.0)
+        print(json.dumps({"path": k.ep_hamiltonian._cache._cache_path,
+                          "package": str(Path(k.__file__).parents[1])}))
+    """)
+    env = dict(os.environ, ANDOYER_CACHE_DIR=str(tmp_path))
+    env.pop("NUMBA_CACHE_DIR", None)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         env=env, timeout=300)
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout.strip().splitlines()[-1])
+    path = Path(out["path"])
+    assert path.is_relative_to(tmp_path / "numba")
+    assert not path.is_relative_to(out["package"])
+    assert any(path.glob("*.nbi")) and any(path.glob("*.nbc"))
