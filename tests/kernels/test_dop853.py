@@ -26,6 +26,7 @@ from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, to_andoyer, to_hess
 from andoyer.charts.euler_poisson import STATE
 from andoyer.kernels import dop853 as dop
+from andoyer.kernels import dop853_coefficients as coef
 from andoyer.kernels import generated
 
 KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS)}
@@ -79,29 +80,29 @@ def y_start() -> NDArray[np.float64]:
 
 # ------------------------------------------------------------------------ tableau
 def test_tableau_identities() -> None:
-    assert dop.B.sum() == pytest.approx(1.0, abs=1e-15)
+    assert coef.B.sum() == pytest.approx(1.0, abs=1e-15)
     # Row sums of A are the nodes (stage i approximates y at t + c_i h).
-    np.testing.assert_allclose(dop.A.sum(axis=1), dop.C, atol=1e-14)
-    np.testing.assert_array_equal(np.triu(dop.A), 0.0)  # explicit
-    np.testing.assert_array_equal(dop.A[dop.N_STAGES, :dop.N_STAGES], dop.B)  # FSAL
-    assert dop.C[dop.N_STAGES] == 1.0
+    np.testing.assert_allclose(coef.A.sum(axis=1), coef.C, atol=1e-14)
+    np.testing.assert_array_equal(np.triu(coef.A), 0.0)  # explicit
+    np.testing.assert_array_equal(coef.A[coef.N_STAGES, :coef.N_STAGES], coef.B)  # FSAL
+    assert coef.C[coef.N_STAGES] == 1.0
     # Error weights annihilate constants: both embedded solutions are consistent.
-    assert dop.ER.sum() == pytest.approx(0.0, abs=1e-14)
-    assert dop.E3.sum() == pytest.approx(0.0, abs=1e-14)
-    assert dop.BHH.sum() == pytest.approx(1.0, abs=1e-15)
+    assert coef.ER.sum() == pytest.approx(0.0, abs=1e-14)
+    assert coef.E3.sum() == pytest.approx(0.0, abs=1e-14)
+    assert coef.BHH.sum() == pytest.approx(1.0, abs=1e-15)
     # Order conditions sum b_i c_i^(q-1) = 1/q up to q = 8.
     for q in range(1, 9):
-        assert dop.B @ dop.C[:dop.N_STAGES] ** (q - 1) == pytest.approx(1.0 / q, abs=1e-14)
+        assert coef.B @ coef.C[:coef.N_STAGES] ** (q - 1) == pytest.approx(1.0 / q, abs=1e-14)
 
 
 def test_coefficients_are_hairers_as_in_scipy() -> None:
     sc = pytest.importorskip("scipy.integrate._ivp.dop853_coefficients")
-    np.testing.assert_array_equal(dop.A, sc.A)
-    np.testing.assert_array_equal(dop.B, sc.B)
-    np.testing.assert_array_equal(dop.C, sc.C)
-    np.testing.assert_array_equal(dop.ER, sc.E5)
-    np.testing.assert_allclose(dop.E3, sc.E3, rtol=0, atol=1e-16)
-    np.testing.assert_array_equal(dop.D, sc.D)
+    np.testing.assert_array_equal(coef.A, sc.A)
+    np.testing.assert_array_equal(coef.B, sc.B)
+    np.testing.assert_array_equal(coef.C, sc.C)
+    np.testing.assert_array_equal(coef.ER, sc.E5)
+    np.testing.assert_allclose(coef.E3, sc.E3, rtol=0, atol=1e-16)
+    np.testing.assert_array_equal(coef.D, sc.D)
 
 
 # ------------------------------------------------------------------------ orders
