@@ -72,7 +72,7 @@ from andoyer.integrate.api import initial_states
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.integrate.fill import fill_section, section_roots
-from andoyer.integrate.results import VARIABLE_ATTRS, provenance
+from andoyer.integrate.results import VARIABLE_ATTRS, describe_variables, provenance
 from andoyer.integrate.variational import (
     ENGINES,
     MEGNO_DELTA,
@@ -410,9 +410,7 @@ def _describe(ds: xr.Dataset) -> None:
     for name, attrs in _ATTRS.items():
         if name in ds:
             ds[name].attrs.update(attrs)
-    for name, (sym, long, eqn) in VARIABLE_ATTRS.items():
-        if name in ds:
-            ds[name].attrs.update(symbol=sym, long_name=long, equation=eqn)
+    describe_variables(ds, units=False)
 
 
 # ----------------------------------------------------------------------------- maps

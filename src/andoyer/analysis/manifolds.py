@@ -92,7 +92,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 
 __all__ = [
     "Stability",
@@ -369,27 +369,19 @@ class ManifoldCurve:
                                     "adaptive insertion",
                              plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
                              **b.attrs()))
-        meta = {
+        meta: dict[str, VariableMeta] = {
             "s": ("s", "fundamental-domain parameter", "1", ""),
-            "g_angle": ("g", "Andoyer-Deprit angle g on L = 0", "rad", "(5)-(6)"),
             "g_unwrapped": ("g", "g unwrapped along the curve", "rad", "(5)-(6)"),
-            "G_action": ("G", "length of the angular momentum", "1", "(5)"),
-            "l_angle": ("l", "Andoyer-Deprit angle l", "rad", "(5)-(6)"),
-            "L_action": ("L", "L = G3 (zero on the section)", "1", "(5)"),
-            "theta1": ("\\theta_1", "Hess-chart angle 2(l + phi0)", "rad", "(14)"),
-            "theta2": ("\\theta_2", "Hess-chart angle g - l - phi0", "rad", "(14)"),
-            "J1": ("J_1", "Hess-chart action (G + L)/2", "1", "(14)"),
             "E": ("H_0 - c G^2/2", "Euler-Poinsot excess ((a-c)G1^2 + (b-c)G2^2)/2", "1",
                   "(12)-(13)"),
-            "H": ("H", "energy (check: constant)", "1", "(1)"),
             "arclength": ("", "arclength in the (g, G) plane", "1", ""),
             "flight_time": ("t", "time from the seed to Sigma_0 (negative: backwards)",
                             "body time units", ""),
             "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)"),
         }
-        for name, (sym, long, units, eq) in meta.items():
-            ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
-        return ds
+        return describe_variables(ds, meta, long_names={
+            "g_angle": "Andoyer-Deprit angle g on L = 0",
+            "L_action": "L = G3 (zero on the section)", "H": "energy (check: constant)"})
 
 
 def _needs_point(g: NDArray[np.float64], G: NDArray[np.float64], max_gap: float,

@@ -102,7 +102,7 @@ from andoyer.analysis.section_map import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.kernels.constants import T_START
 
 __all__ = [
@@ -360,22 +360,21 @@ def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
                                 "variational equations and the event sensitivity; "
                                 "continuation in mu from the permanent rotation",
                          **first.attrs()))
-    meta = {
-        "x1": ("x_1", "G1/|G| at the fixed point of the section map", "1"),
-        "x2": ("x_2", "G2/|G| at the fixed point of the section map", "1"),
-        "y": ("(G, \\gamma)", "Euler-Poisson state of the fixed point", "1"),
-        "period": ("T", "period (return time to the section)", "body time units"),
-        "Lambda_u": ("\\Lambda_u", "unstable multiplier", "1"),
-        "Lambda_s": ("\\Lambda_s", "stable multiplier", "1"),
+    meta: dict[str, VariableMeta] = {
+        "x1": ("x_1", "G1/|G| at the fixed point of the section map", "1", "(1)"),
+        "x2": ("x_2", "G2/|G| at the fixed point of the section map", "1", "(1)"),
+        "y": ("(G, \\gamma)", "Euler-Poisson state of the fixed point", "1", "(1)"),
+        "period": ("T", "period (return time to the section)", "body time units", "(1)"),
+        "Lambda_u": ("\\Lambda_u", "unstable multiplier", "1", "(1)"),
+        "Lambda_s": ("\\Lambda_s", "stable multiplier", "1", "(1)"),
         "lyapunov_exponent": ("\\ln|\\Lambda_u|/T", "Lyapunov exponent of the orbit",
-                              "1/body time unit"),
-        "v_unstable": ("v_u", "unstable eigenvector in (x1, x2)", "1"),
-        "v_stable": ("v_s", "stable eigenvector in (x1, x2)", "1"),
-        "newton_iterations": ("", "Newton iterations", "1"),
-        "residual": ("|P(x) - x|", "fixed-point residual", "1"),
+                              "1/body time unit", "(1)"),
+        "v_unstable": ("v_u", "unstable eigenvector in (x1, x2)", "1", "(1)"),
+        "v_stable": ("v_s", "stable eigenvector in (x1, x2)", "1", "(1)"),
+        "newton_iterations": ("", "Newton iterations", "1", "(1)"),
+        "residual": ("|P(x) - x|", "fixed-point residual", "1", "(1)"),
     }
-    for name, (sym, long, units) in meta.items():
-        ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation="(1)")
+    describe_variables(ds, meta)
     ds.mu.attrs.update(symbol="\\mu", long_name="weight x distance of the centre of mass",
                        units="1", equation="(1)")
     return ds

@@ -72,7 +72,7 @@ from andoyer.analysis.fixed_points import theta_text
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.charts.euler_poisson import STATE
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
@@ -228,20 +228,14 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1
          "lambda_rate": ((), lam),
          "sigma": ((), lam / (2.0 * J2))},
         coords={"time": times, "component": list(STATE)}, attrs=attrs)
-    meta = {"theta1": (r"\theta_1", "Hess-chart angle 2(l + phi0)", "rad", "(14)"),
-            "theta2": (r"\theta_2", "Hess-chart angle g - l - phi0 (unreduced)", "rad",
-                       "(14)"),
-            "J1": ("J_1", "Hess-chart action (G + L)/2", "1", "(14)"),
-            "J2": ("J_2", "Hess-chart action G", "1", "(14)"),
-            "J3": ("J_3", "Hess-chart action M (area integral)", "1", "(14)"),
+    meta: dict[str, VariableMeta] = {
             "J2_minus_J1": ("J_2 - J_1", "J2 - J1 = (G - L)/2", "1", "(14)"),
-            "L_action": ("L", "projection of G on body axis 3", "1", "(5)"),
             "y": ("(G, \\gamma)", "Euler-Poisson state", "1", "(1)"),
             "lambda_rate": ("\\lambda", "rate of the heteroclinic orbit, 2 sigma J2",
                             "1/body time units", "after Fig. 3"),
             "sigma": ("\\sigma", "sqrt((b - c)(c - a))", "1", "")}
-    for name, (sym, long, units, eq) in meta.items():
-        ds[name].attrs.update(symbol=sym, long_name=long, units=units, equation=eq)
+    describe_variables(ds, meta, long_names={
+        "theta2": "Hess-chart angle g - l - phi0 (unreduced)"})
     ds.time.attrs.update(long_name="time", units="body time units")
     return ds
 

@@ -43,7 +43,7 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate import budget
-from andoyer.integrate.results import VARIABLE_ATTRS, provenance
+from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
 from andoyer.validation import finite as _finite
@@ -632,9 +632,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
                 "plane_x": ("plane_x", xs, {"name": plane.storage[0], "symbol": s[0]}),
                 "plane_y": ("plane_y", ys, {"name": plane.storage[2], "symbol": s[2]})},
         attrs=attrs)
-    for name, (sym, long, eqn) in VARIABLE_ATTRS.items():
-        if name in ds:
-            ds[name].attrs.update(symbol=sym, long_name=long, equation=eqn)
+    describe_variables(ds, units=False)
     ds.residual.attrs.update(long_name="|H(y0) - h| / max(|h|, mu)", units="1")
     ds.section_rate.attrs.update(long_name=f"d{s[1]}/dt at the initial state")
     ds.accessible.attrs.update(long_name=f"some {s[3]} puts ({s[0]}, {s[2]}) on H = h")

@@ -23,13 +23,59 @@ from andoyer.charts.euler_poisson import (
 from andoyer.charts.hess import to_hess
 from andoyer.notation import COORDINATES, coordinates, storage_name
 
-__all__ = ["states_dataset", "provenance", "VARIABLE_ATTRS"]
+__all__ = ["states_dataset", "provenance", "describe_variables", "VARIABLE_ATTRS",
+           "VariableMeta"]
 
 #: Storage name -> (paper symbol, long name, equation), from :mod:`andoyer.notation`.
 VARIABLE_ATTRS: dict[str, tuple[str, str, str]] = {
     c.storage: (c.symbol, c.long_name, c.equation) for c in COORDINATES
     if c.code not in ("m", "theta3")}
 _UNITS = {c.storage: c.units for c in COORDINATES}
+
+#: ``(symbol, long name, units, equation)`` of a dataset variable.
+VariableMeta = tuple[str, str, str, str]
+
+
+def describe_variables(ds: xr.Dataset, meta: Mapping[str, VariableMeta] | None = None, *,
+                       long_names: Mapping[str, str] | None = None,
+                       units: bool = True) -> xr.Dataset:
+    """Set ``symbol``, ``long_name``, ``units`` and ``equation`` on the variables of
+    ``ds`` (in place; returned for chaining).
+
+    The coordinates of the table :data:`andoyer.notation.COORDINATES` take their
+    attributes from it, so a coordinate is described the same way in every dataset;
+    ``long_names`` may say more where a dataset constrains one (e.g. ``L = G3``, zero
+    on a section). Other variables take theirs from ``meta``. Names that are not in
+    ``ds`` are skipped.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    meta : mapping, optional
+        Variable name -> :data:`VariableMeta` for the variables outside the table.
+    long_names : mapping, optional
+        Coordinate storage name -> a more specific long name.
+    units : bool
+        Set the table's units on the coordinates too (False keeps units set before).
+
+    Examples
+    --------
+    >>> ds = xr.Dataset({"L_action": ("t", [0.0]), "s": ("t", [1.0])})
+    >>> _ = describe_variables(ds, {"s": ("s", "curve parameter", "1", "")},
+    ...                        long_names={"L_action": "L = G3, zero on the section"})
+    >>> ds.L_action.attrs["symbol"], ds.L_action.attrs["long_name"], ds.s.attrs["units"]
+    ('L', 'L = G3, zero on the section', '1')
+    """
+    extra = dict(long_names or {})
+    for name, (sym, long, eq) in VARIABLE_ATTRS.items():
+        if name in ds:
+            ds[name].attrs.update(symbol=sym, long_name=extra.get(name, long), equation=eq)
+            if units:
+                ds[name].attrs["units"] = _UNITS.get(name, "1")
+    for name, (sym, long, unit, eq) in (meta or {}).items():
+        if name in ds:
+            ds[name].attrs.update(symbol=sym, long_name=long, units=unit, equation=eq)
+    return ds
 
 
 def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
@@ -78,9 +124,4 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     data["singular"] = (dims, np.where(valid, flags, -1))
     if extra:
         data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
-    ds = xr.Dataset(data, coords=dict(coords), attrs=dict(attrs))
-    for name, (sym, long, eq) in VARIABLE_ATTRS.items():
-        if name in ds:
-            ds[name].attrs.update(symbol=sym, long_name=long, equation=eq,
-                                  units=_UNITS.get(name, "1"))
-    return ds
+    return describe_variables(xr.Dataset(data, coords=dict(coords), attrs=dict(attrs)))
