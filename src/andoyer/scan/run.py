@@ -1,6 +1,6 @@
 """Running a scan on Dask: bounded submission, streaming into the store, resume.
 
-One Dask task computes one chunk of the grid (:func:`andoyer.scan.tasks.run_chunk`) and
+One Dask task computes one chunk of the grid (:func:`run_chunk`) and
 sends its result back; this process writes it into the chunk's region of the Zarr
 store, then marks the chunk done (:mod:`andoyer.scan.store`). At most ``max_in_flight``
 tasks are submitted at any time (default: twice the cluster's threads), so neither the
@@ -29,13 +29,40 @@ import xarray as xr
 from andoyer.progress import Progress
 from andoyer.scan.config import ScanConfig, check_size, load_config
 from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
-from andoyer.scan.tasks import TASKS, ChunkResult, Empty, run_chunk
+from andoyer.scan.tasks import TASKS, Empty
 
-__all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB"]
+__all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB",
+           "ChunkResult", "run_point", "run_chunk"]
 
 #: Limits of the size check (see :func:`andoyer.scan.config.check_size`).
 DEFAULT_MAX_CORE_HOURS = 100.0
 DEFAULT_MAX_STORE_GB = 50.0
+
+
+# ---------------------------------------------------------------------- running
+@dataclass(frozen=True)
+class ChunkResult:
+    """What a worker sends back: one result per point of the chunk (C order)."""
+
+    block: tuple[int, ...]
+    points: list[xr.Dataset | Empty]
+    seconds: float
+
+
+def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
+    """Run the task at the grid point ``index`` (one index per swept parameter)."""
+    kind = TASKS[config.task]
+    values = config.point(index)
+    body = config.body_at(values)
+    return kind.run(body, values.get("h"), values.get("M"), dict(config.task_options),
+                    config.integrator)
+
+
+def run_chunk(config: ScanConfig, block: tuple[int, ...]) -> ChunkResult:
+    """Run every point of the chunk ``block`` (what one Dask task does)."""
+    t0 = time.perf_counter()
+    points = [run_point(config, index) for index in config.block_points(block)]
+    return ChunkResult(tuple(block), points, time.perf_counter() - t0)
 
 
 @dataclass(frozen=True)

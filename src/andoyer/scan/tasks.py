@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 import numbers
-import time
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -46,10 +45,8 @@ import xarray as xr
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
     from andoyer.integrate.engines.base import Engine
-    from andoyer.scan.config import ScanConfig
 
-__all__ = ["TASKS", "TaskKind", "Option", "Empty", "Integrator", "ChunkResult",
-           "REQUIRED", "run_chunk", "run_point"]
+__all__ = ["TASKS", "TaskKind", "Option", "Empty", "Integrator", "REQUIRED"]
 
 
 class _Required:
@@ -459,29 +456,3 @@ TASKS: dict[str, TaskKind] = {
                       "long_double", "n_phase", "plane", "relation"),
         levels=(), levels_note="its level is h = c G^2 / 2 (option G) at M = 0"),
 }
-
-
-# ---------------------------------------------------------------------- running
-@dataclass(frozen=True)
-class ChunkResult:
-    """What a worker sends back: one result per point of the chunk (C order)."""
-
-    block: tuple[int, ...]
-    points: list[xr.Dataset | Empty]
-    seconds: float
-
-
-def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
-    """Run the task at the grid point ``index`` (one index per swept parameter)."""
-    kind = TASKS[config.task]
-    values = config.point(index)
-    body = config.body_at(values)
-    return kind.run(body, values.get("h"), values.get("M"), dict(config.task_options),
-                    config.integrator)
-
-
-def run_chunk(config: ScanConfig, block: tuple[int, ...]) -> ChunkResult:
-    """Run every point of the chunk ``block`` (what one Dask task does)."""
-    t0 = time.perf_counter()
-    points = [run_point(config, index) for index in config.block_points(block)]
-    return ChunkResult(tuple(block), points, time.perf_counter() - t0)
