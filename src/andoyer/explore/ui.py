@@ -36,15 +36,8 @@ error messages shown so far). A browser test reads them through
 
 from __future__ import annotations
 
-import html
-import io
-import json
 import logging
 import math
-import threading
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
 from functools import partial
 from typing import Any
 
@@ -66,21 +59,32 @@ from bokeh.models.widgets.tables import (
 from bokeh.plotting import figure
 
 from andoyer.body import RigidBody
+from andoyer.explore.base import (
+    ANGLE_LABELS,
+    BODIES,
+    DIRECTIONS,
+    SECTIONS,
+    TIME_COLOURS,
+    TIME_COORDS,
+    ExplorerBase,
+    Job,
+    number,
+    orbit_columns,
+    orbit_info_html,
+    underlay_image,
+    widget,
+)
 from andoyer.explore.state import (
     PLANES,
     UNDERLAY_N,
     UNDERLAY_T_END,
-    OutsideRegionError,
     PlaneView,
     Seed,
-    Session,
     Settings,
     Stage,
     chaos_underlay,
     crossing_stages,
-    initial_charts,
     integral_drifts,
-    make_settings,
     orbit_indicators,
     plane_view,
     seed,
@@ -90,39 +94,9 @@ from andoyer.integrate.section import Section
 
 __all__ = ["Explorer"]
 
-log = logging.getLogger("andoyer.explore")
+log = logging.getLogger("andoyer.explore")  # the logger of andoyer.explore.base
 
-_BODIES = {"paper (Hess, A=2.5, B=2, C=2.2)": "paper", "Hess (A > C > B)": "hess",
-           "general (A, B, C, r)": "general"}
-_SECTIONS = {"θ2 = const: plane (θ1, J1)": "theta2", "g = const: plane (l, L)": "g"}
-_DIRECTIONS = {"increasing (+)": 1, "decreasing (−)": -1, "both": 0}
-_LEVEL_COLOURS = {"info": "#1b5e20", "busy": "#0d47a1", "warning": "#8a5a00",
-                  "error": "#b71c1c"}
-_TIME_COORDS = ("theta1", "theta2", "J1", "J2", "l_angle", "g_angle", "L_action",
-                "G_action", "G1", "G2", "G3", "gamma1", "gamma2", "gamma3", "H")
-_TIME_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#17becf")
-_ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6: "3π",
-                 7: "7π/2", 8: "4π"}
-
-
-def _chaos_module() -> Any | None:
-    """:mod:`andoyer.analysis.chaos` (on heyoka where installed, else on numba), or None
-    if it cannot be imported: the indicator controls are then disabled."""
-    try:
-        from andoyer.analysis import chaos
-    except ImportError:  # pragma: no cover - chaos needs no optional package
-        return None
-    return chaos
-
-
-@dataclass(frozen=True)
-class _Job:
-    generation: int   # the plane's settings it belongs to
-    epoch: int        # "clear all" presses before it
-    settings: Settings
-
-
-class Explorer:
+class Explorer(ExplorerBase):
     """One explorer page: controls, the section plane, the orbits and the side panel.
 
     Parameters
@@ -146,24 +120,9 @@ class Explorer:
 
     def __init__(self, body: RigidBody | None = None, *, boundary_grid: int = 160,
                  **settings: Any) -> None:
-        self.settings = make_settings(body, **settings)
-        self.session = Session(self.settings)
-        self.view: PlaneView | None = None
-        self.boundary_grid = int(boundary_grid)
-        self._generation = 0
-        self._epoch = 0
-        self._level = "info"
-        self._errors = 0  # error messages shown so far (the test hook reports it)
-        self._pending = 0
-        self._selected: int | None = None
+        super().__init__(body, boundary_grid=boundary_grid, **settings)
         self._last_tap: tuple[float, float] | None = None
         self._side_token = 0
-        self._lock = threading.RLock()
-        self._closed = False
-        self._doc = pn.state.curdoc
-        self._work = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore")
-        self._side = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore-side")
-        self._chaos = _chaos_module()
         self._build_plane()
         self._build_controls()
         self._build_side()
@@ -180,7 +139,7 @@ class Explorer:
         self.points = ColumnDataSource(
             {"x": [], "y": [], "orbit": [], "crossing": [], "colour": []},
             name="andoyer-points")
-        self.orbits = ColumnDataSource(self._orbit_columns(), name="andoyer-orbits")
+        self.orbits = ColumnDataSource(orbit_columns(self.session), name="andoyer-orbits")
         self.boundary = ColumnDataSource({"x": [], "y": []}, name="andoyer-boundary")
         self.separatrix = ColumnDataSource({"x": [], "y": []}, name="andoyer-separatrix")
         self.region = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []},
@@ -235,39 +194,39 @@ class Explorer:
         b = s.body
         mode = "paper" if b.name == "paper" else ("hess" if b.is_hess else "general")
         w = pn.widgets
-        self.w_body = _widget(w.Select, "body", options=_BODIES,
+        self.w_body = widget(w.Select, "body", options=BODIES,
                                value=mode, css_classes=["andoyer-body"])
-        self.w_A = _widget(w.FloatInput, "A", value=b.A, step=0.1, start=1e-9, width=85)
-        self.w_B = _widget(w.FloatInput, "B", value=b.B, step=0.1, start=1e-9, width=85)
-        self.w_C = _widget(w.FloatInput, "C", value=b.C, step=0.1, start=1e-9, width=85)
-        self.w_mu = _widget(w.FloatInput, "μ (weight × distance)", value=b.mu, step=0.005,
+        self.w_A = widget(w.FloatInput, "A", value=b.A, step=0.1, start=1e-9, width=85)
+        self.w_B = widget(w.FloatInput, "B", value=b.B, step=0.1, start=1e-9, width=85)
+        self.w_C = widget(w.FloatInput, "C", value=b.C, step=0.1, start=1e-9, width=85)
+        self.w_mu = widget(w.FloatInput, "μ (weight × distance)", value=b.mu, step=0.005,
                                  start=0.0, css_classes=["andoyer-mu"])
-        self.w_r = _widget(w.TextInput, "r = (e1, e2, e3) (general body)",
+        self.w_r = widget(w.TextInput, "r = (e1, e2, e3) (general body)",
                                value=", ".join(f"{v:.12g}" for v in b.r))
-        self.w_h = _widget(w.FloatInput, "h (energy)", value=s.h, step=0.005,
+        self.w_h = widget(w.FloatInput, "h (energy)", value=s.h, step=0.005,
                                 css_classes=["andoyer-h"])
-        self.w_M = _widget(w.FloatInput, "M (area constant)", value=s.M, step=0.05,
+        self.w_M = widget(w.FloatInput, "M (area constant)", value=s.M, step=0.05,
                                 css_classes=["andoyer-M"])
-        self.w_section = _widget(w.Select, "section", options=_SECTIONS,
+        self.w_section = widget(w.Select, "section", options=SECTIONS,
                                   value=s.section.coord)
-        self.w_value = _widget(w.FloatInput, "section value (rad)", value=s.section.value,
+        self.w_value = widget(w.FloatInput, "section value (rad)", value=s.section.value,
                                     step=0.1)
-        self.w_direction = _widget(w.Select, "crossing direction", options=_DIRECTIONS,
+        self.w_direction = widget(w.Select, "crossing direction", options=DIRECTIONS,
                                     value=s.section.direction)
-        self.w_crossings = _widget(w.IntInput, "crossings per orbit", value=s.n_crossings,
+        self.w_crossings = widget(w.IntInput, "crossings per orbit", value=s.n_crossings,
                                       step=100, start=1, css_classes=["andoyer-crossings"])
-        self.w_engine = _widget(w.Select, "engine", options=["default", *ENGINES],
+        self.w_engine = widget(w.Select, "engine", options=["default", *ENGINES],
                                  value=s.engine or "default")
-        self.w_root = _widget(w.Select, "solutions of H = h above a click",
+        self.w_root = widget(w.Select, "solutions of H = h above a click",
                                options=["smallest", "largest", "all"], value=s.root)
-        self.w_underlay = _widget(w.Checkbox, f"chaos-map underlay (FLI, {UNDERLAY_N}² "
+        self.w_underlay = widget(w.Checkbox, f"chaos-map underlay (FLI, {UNDERLAY_N}² "
                                   f"orbits to t = {UNDERLAY_T_END:g})", value=False,
                                   disabled=self._chaos is None)
-        self.w_clear = _widget(w.Button, "clear all orbits", button="warning")
-        self.w_remove = _widget(w.Button, "remove selected orbit", button="default")
-        self.w_nc = _widget(w.FileDownload, "NetCDF of the orbits", button="primary",
+        self.w_clear = widget(w.Button, "clear all orbits", button="warning")
+        self.w_remove = widget(w.Button, "remove selected orbit", button="default")
+        self.w_nc = widget(w.FileDownload, "NetCDF of the orbits", button="primary",
                             callback=self._download_netcdf, filename="andoyer-explore.nc")
-        self.w_png = _widget(w.FileDownload, "PNG of the plane", button="primary",
+        self.w_png = widget(w.FileDownload, "PNG of the plane", button="primary",
                              callback=self._download_png, filename="andoyer-explore.png")
         for wid in (self.w_body, self.w_A, self.w_B, self.w_C, self.w_mu, self.w_r,
                     self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
@@ -288,10 +247,10 @@ class Explorer:
     def _build_side(self) -> None:
         self.info = pn.pane.HTML("<i>no orbit selected</i>", width=340,
                                  css_classes=["andoyer-info"])
-        self.w_coords = _widget(
-            pn.widgets.MultiChoice, "time plot of", options=list(_TIME_COORDS),
+        self.w_coords = widget(
+            pn.widgets.MultiChoice, "time plot of", options=list(TIME_COORDS),
             value=[self.settings.plane.x, self.settings.plane.y])
-        self.w_span = _widget(pn.widgets.FloatInput, "time span", value=100.0, step=50.0,
+        self.w_span = widget(pn.widgets.FloatInput, "time span", value=100.0, step=50.0,
                                             start=1e-3)
         self.w_coords.param.watch(lambda _e: self._guard(self._request_side), "value")
         self.w_span.param.watch(lambda _e: self._guard(self._request_side), "value")
@@ -302,10 +261,10 @@ class Explorer:
         tfig.multi_line("xs", "ys", source=self.series, color="colour", legend_field="name")
         tfig.legend.label_text_font_size = "8pt"
         self.tfig = tfig
-        self.w_indicator = _widget(
+        self.w_indicator = widget(
             pn.widgets.Button, "FLI / MEGNO of the selected orbit",
             disabled=self._chaos is None)
-        self.w_indicator_t = _widget(pn.widgets.FloatInput, "indicator time", value=1000.0,
+        self.w_indicator_t = widget(pn.widgets.FloatInput, "indicator time", value=1000.0,
                                      step=500.0, start=1e-3)
         self.w_indicator.on_click(lambda _e: self._guard(self._request_indicator))
         self.indicator = pn.pane.HTML("" if self._chaos is not None else
@@ -316,86 +275,6 @@ class Explorer:
                                     self.w_coords, self.w_span, self.time_pane,
                                     self.w_indicator_t, self.w_indicator, self.indicator,
                                     width=360)
-
-    # ------------------------------------------------------------------ threads
-    def _schedule(self, fn: Callable[[], None]) -> None:
-        """Run ``fn`` on the event loop (server), or now under the lock (Jupyter)."""
-        if self._closed:
-            return
-        doc = self._doc
-        if doc is not None and doc.session_context is not None:
-            try:
-                doc.add_next_tick_callback(lambda: self._guard(fn))
-            except Exception:  # noqa: BLE001 - the session is gone: nothing to update
-                self.close()
-            return
-        with self._lock:
-            self._guard(fn)
-        try:  # a notebook: send the changed Bokeh models through Panel's comms
-            pn.io.push_notebook(self.plane_pane, self.time_pane)
-        except Exception:  # noqa: BLE001 - no notebook comm (plain Python): nothing to push
-            pass
-
-    def _guard(self, fn: Callable[[], None]) -> None:
-        """Run a UI callback; any error becomes a visible message, never a dead page."""
-        try:
-            fn()
-        except ValueError as exc:
-            self._status(str(exc), "error")
-        except Exception as exc:  # noqa: BLE001 - shown to the user, logged in full
-            log.exception("andoyer explore: callback failed")
-            self._status(f"{type(exc).__name__}: {exc}", "error")
-
-    def _background(self, pool: ThreadPoolExecutor, fn: Callable[[], None]) -> None:
-        """Run ``fn`` on a worker; its exceptions become messages on the page."""
-        def run() -> None:
-            try:
-                fn()
-            except OutsideRegionError as exc:
-                msg = str(exc)
-                self._schedule(lambda: self._status(msg, "warning"))
-            except ValueError as exc:
-                msg = str(exc)
-                self._schedule(lambda: self._status(msg, "error"))
-            except Exception as exc:  # noqa: BLE001 - shown to the user, logged in full
-                log.exception("andoyer explore: background job failed")
-                msg = f"{type(exc).__name__}: {exc}"
-                self._schedule(lambda: self._status(msg, "error"))
-        if not self._closed:
-            pool.submit(run)
-
-    def wait(self, timeout: float | None = 60.0) -> None:
-        """Block until the work queued so far is done (for scripts, notebooks, tests)."""
-        for pool in (self._work, self._side, self._work):
-            if not self._closed:
-                pool.submit(lambda: None).result(timeout)
-
-    def close(self) -> None:
-        """Stop the workers (queued jobs are dropped, a running stage finishes)."""
-        self._closed = True
-        self._generation += 1
-        self._work.shutdown(wait=False, cancel_futures=True)
-        self._side.shutdown(wait=False, cancel_futures=True)
-
-    # ------------------------------------------------------------------ status
-    def _status(self, text: str, level: str = "info") -> None:
-        self.status.text = (f'<div style="color:{_LEVEL_COLOURS[level]};font-size:110%;'
-                            f'padding:2px 4px"><b>{level}</b>: {html.escape(text)}</div>')
-        self.status.css_classes = ["andoyer-status", f"andoyer-level-{level}"]
-        self._level = level
-        self._errors += level == "error"
-        self._publish_state()
-
-    def _publish_state(self) -> None:
-        s = self.settings
-        state = {"generation": self._generation, "pending": self._pending,
-                 "h": s.h, "M": s.M, "section": f"{s.section.coord}={s.section.value!r}",
-                 "direction": s.section.direction, "n_crossings": s.n_crossings,
-                 "engine": s.engine, "body": s.body.attrs(), "view_ready":
-                 self.view is not None and self.view.settings == s,
-                 "n_orbits": len(self.session.orbits), "selected": self._selected,
-                 "level": self._level, "errors": self._errors}
-        self.state_div.text = json.dumps(state)
 
     # ------------------------------------------------------------------ the plane
     def _submit_view(self, settings: Settings, warm_up: bool = False) -> None:
@@ -453,7 +332,7 @@ class Explorer:
         ticks = [float(v * math.pi / 2) for v in k]
         self.fig.xaxis.ticker = FixedTicker(ticks=ticks)
         self.fig.xaxis.major_label_overrides = {
-            t: _ANGLE_LABELS.get(int(v), f"{int(v)}π/2") for t, v in zip(ticks, k,
+            t: ANGLE_LABELS.get(int(v), f"{int(v)}π/2") for t, v in zip(ticks, k,
                                                                           strict=True)}
         arrow = {1: "+", -1: "−", 0: "±"}[s.section.direction]
         title = self.fig.title
@@ -480,7 +359,7 @@ class Explorer:
 
     def _seed_click(self, x: float, y: float) -> None:
         """Queue an orbit through the plane point ``(x, y)`` (also the API for tests)."""
-        job = _Job(self._generation, self._epoch, self.settings)
+        job = Job(self._generation, self._epoch, self.settings)
         with self._lock:
             self._pending += 1
             ahead = self._pending - 1
@@ -495,10 +374,10 @@ class Explorer:
                 self._schedule(self._job_done)
         self._background(self._work, work)
 
-    def _live(self, job: _Job) -> bool:
+    def _live(self, job: Job) -> bool:
         return job.generation == self._generation and job.epoch == self._epoch
 
-    def _run_click(self, job: _Job, x: float, y: float) -> None:
+    def _run_click(self, job: Job, x: float, y: float) -> None:
         if not self._live(job):
             return
         seeds = seed(job.settings, x, y)
@@ -510,7 +389,7 @@ class Explorer:
                     return
                 self._schedule(partial(self._add_stage, job, oid, stage))
 
-    def _add_orbits(self, job: _Job, ids: list[int], seeds: list[Seed]) -> None:
+    def _add_orbits(self, job: Job, ids: list[int], seeds: list[Seed]) -> None:
         if not self._live(job):
             return
         s = job.settings
@@ -529,7 +408,7 @@ class Explorer:
         if notes:
             self._status("; ".join(notes), "warning")
 
-    def _add_stage(self, job: _Job, oid: int, stage: Stage) -> None:
+    def _add_stage(self, job: Job, oid: int, stage: Stage) -> None:
         if not self._live(job) or not self.session.extend(oid, stage):
             return
         o = self.session.orbits[oid]
@@ -550,24 +429,8 @@ class Explorer:
             self._status(f"orbit {oid}: {stage.stop} of {o.settings.n_crossings} crossings …",
                          "busy")
 
-    def _orbit_columns(self) -> dict[str, list[Any]]:
-        cols: dict[str, list[Any]] = {k: [] for k in (
-            "id", "colour", "seed_x", "seed_y", "action", "crossings", "status",
-            "G1", "G2", "G3", "gamma1", "gamma2", "gamma3")}
-        for o in self.session.orbits.values():
-            cols["id"].append(o.id)
-            cols["colour"].append(o.colour)
-            cols["seed_x"].append(o.seed.x)
-            cols["seed_y"].append(o.seed.y)
-            cols["action"].append(o.seed.action)
-            cols["crossings"].append(int(o.x.size))
-            cols["status"].append(o.status)
-            for k, name in enumerate(("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")):
-                cols[name].append(float(o.seed.y0[k]))
-        return cols
-
     def _refresh_orbit_table(self) -> None:
-        self.orbits.data = self._orbit_columns()
+        self.orbits.data = orbit_columns(self.session)
         ids = list(self.session.orbits)
         want = [ids.index(self._selected)] if self._selected in ids else []
         if list(self.orbits.selected.indices) != want:
@@ -621,11 +484,11 @@ class Explorer:
 
     def _settings_from_widgets(self) -> Settings:
         mode = self.w_body.value
-        mu = _number(self.w_mu)
+        mu = number(self.w_mu)
         if mode == "paper":
             body = RigidBody.paper(mu)
         else:
-            A, B, C = _number(self.w_A), _number(self.w_B), _number(self.w_C)
+            A, B, C = number(self.w_A), number(self.w_B), number(self.w_C)
             if mode == "hess":
                 body = RigidBody.hess(A, B, C, mu)
             else:
@@ -633,11 +496,11 @@ class Explorer:
 
                 r = floats(self.w_r.value or "", 3, "r = (e1, e2, e3)")
                 body = RigidBody(A, B, C, mu, (r[0], r[1], r[2]), "general")
-        section = Section(self.w_section.value, _number(self.w_value),
+        section = Section(self.w_section.value, number(self.w_value),
                           self.w_direction.value)
         engine = None if self.w_engine.value == "default" else self.w_engine.value
-        return Settings(body, _number(self.w_h), _number(self.w_M), section,
-                        int(_number(self.w_crossings)), engine, self.w_root.value)
+        return Settings(body, number(self.w_h), number(self.w_M), section,
+                        int(number(self.w_crossings)), engine, self.w_root.value)
 
     def _on_control(self, event: Any) -> None:
         self._guard(lambda: self._apply_controls(event))
@@ -682,30 +545,12 @@ class Explorer:
     # ------------------------------------------------------------------ side panel
     def _show_info(self) -> None:
         o = self.session.orbits.get(self._selected) if self._selected is not None else None
-        if o is None:
-            self.info.object = "<i>no orbit selected</i>"
-            return
-        charts = initial_charts(o.settings, o.seed.y0)
-        rows = []
-        for chart, values in charts.items():
-            cells = "".join(f"<tr><td>{html.escape(k)}</td><td style='text-align:right'>"
-                            f"{v:.12g}</td></tr>" for k, v in values.items())
-            rows.append(f"<b>{chart}</b><table style='font-size:85%'>{cells}</table>")
-        drift = ""
-        if o.ds is not None:
-            d = integral_drifts(o.ds, o.settings.h, o.settings.M, o.settings.body.mu)
-            drift = (f"<b>drift at the section points</b><br>|H − h|/max(|h|, μ) ≤ "
-                     f"{d['H']:.1e}<br>|(G, γ) − M|/|G| ≤ {d['area']:.1e}<br>"
-                     f"||γ|² − 1| ≤ {d['geometric']:.1e}")
-        self.info.object = (f"<div><b style='color:{o.colour}'>● orbit {o.id}</b> "
-                            f"({o.status}, {o.x.size} crossings; {o.settings.plane.text[2]}"
-                            f" = {o.seed.action:.12g}, solution {o.seed.root_index + 1} of "
-                            f"{o.seed.n_roots})<br>{''.join(rows)}{drift}</div>")
+        self.info.object = "<i>no orbit selected</i>" if o is None else orbit_info_html(o)
 
     def _request_side(self) -> None:
         self._side_token += 1
         token = self._side_token
-        span = _number(self.w_span)
+        span = number(self.w_span)
         if not (math.isfinite(span) and span > 0):
             raise ValueError(f"time span must be a positive number, got {span!r}")
         o = self.session.orbits.get(self._selected) if self._selected is not None else None
@@ -726,7 +571,7 @@ class Explorer:
             shown = [c for c in coords if c in ds]
             data = {"xs": [t for _ in shown],
                     "ys": [np.asarray(ds[c].values, dtype=float) for c in shown],
-                    "name": shown, "colour": [_TIME_COLOURS[k % len(_TIME_COLOURS)]
+                    "name": shown, "colour": [TIME_COLOURS[k % len(TIME_COLOURS)]
                                               for k in range(len(shown))]}
             missing = sorted(set(coords) - set(shown))
 
@@ -747,7 +592,7 @@ class Explorer:
         if o is None:
             self._status("select an orbit in the table first", "warning")
             return
-        t_end = _number(self.w_indicator_t)
+        t_end = number(self.w_indicator_t)
         settings, y0, oid = o.settings, o.seed.y0, o.id
 
         def job() -> None:
@@ -778,7 +623,7 @@ class Explorer:
             return  # drawn when the plane is ready (_show_view asks again)
 
         def job() -> None:
-            img = _underlay_image(chaos_underlay(view.settings, view))
+            img = underlay_image(chaos_underlay(view.settings, view))
 
             def show() -> None:
                 if gen == self._generation and self.w_underlay.value:
@@ -788,70 +633,3 @@ class Explorer:
             self._schedule(show)
         self._status("computing the chaos map …", "busy")
         self._background(self._side, job)
-
-    # ------------------------------------------------------------------ exports
-    def netcdf(self) -> bytes:
-        """NetCDF bytes of the orbits on screen (:func:`~andoyer.explore.export.orbits_dataset`)."""
-        from andoyer.explore.export import netcdf_bytes, orbits_dataset
-
-        return netcdf_bytes(orbits_dataset(self.session))
-
-    def png(self) -> bytes:
-        """PNG bytes of the plane as on screen (:func:`~andoyer.explore.export.plane_figure`)."""
-        from andoyer.explore.export import orbits_dataset, plane_figure, png_bytes
-
-        if self.view is None:
-            raise ValueError("the plane is not ready yet: wait for the accessible region")
-        return png_bytes(plane_figure(orbits_dataset(self.session), self.view))
-
-    def _download(self, make: Callable[[], bytes]) -> io.BytesIO:
-        try:
-            data = make()
-        except Exception as exc:  # noqa: BLE001 - a message on the page, not a dead button
-            log.exception("andoyer explore: export failed")
-            self._status(f"export failed: {exc}", "error")
-            data = b""
-        return io.BytesIO(data)
-
-    def _download_netcdf(self) -> io.BytesIO:
-        return self._download(self.netcdf)
-
-    def _download_png(self) -> io.BytesIO:
-        return self._download(self.png)
-
-
-def _widget(cls: Any, label: str, *, button: str | None = None, **kwargs: Any) -> Any:
-    """A Panel widget with a label (``label=`` since Panel 1.9, ``name=`` before)."""
-    kwargs["label" if "label" in cls.param else "name"] = label
-    if button is not None:
-        kwargs["color" if "color" in cls.param else "button_type"] = button
-    return cls(**kwargs)
-
-
-def _number(widget: Any) -> float:
-    """A numeric widget's value, or a ValueError naming the empty field."""
-    v = widget.value
-    if v is None:
-        label = getattr(widget, "label", "") or widget.name
-        raise ValueError(f"{label} is empty: type a number")
-    return float(v)
-
-
-def _underlay_image(ds: Any) -> dict[str, list[Any]]:
-    """The FLI of a :func:`chaos_underlay` map as an RGBA image, pale to red."""
-    z = np.asarray(ds.fli.values, dtype=float)  # dims (plane y, plane x): rows are y
-    ok = np.isfinite(z)
-    lo, hi = np.nanpercentile(z, [5, 95]) if ok.any() else (0.0, 1.0)
-    u = np.clip((np.where(ok, z, lo) - lo) / max(hi - lo, 1e-300), 0.0, 1.0)
-    r = np.full(z.shape, 250, dtype=np.uint32)
-    g = (245 - 190 * u).astype(np.uint32)
-    b = (235 - 215 * u).astype(np.uint32)
-    alpha = np.where(ok, 190, 0).astype(np.uint32)
-    img = (alpha << 24) | (b << 16) | (g << 8) | r
-    xs = np.asarray(ds[ds.fli.dims[1]].values, dtype=float)
-    ys = np.asarray(ds[ds.fli.dims[0]].values, dtype=float)
-    dx, dy = xs[1] - xs[0], ys[1] - ys[0]  # cell centres
-    return {"image": [img], "x": [xs[0] - dx / 2], "y": [ys[0] - dy / 2],
-            "dw": [xs[-1] - xs[0] + dx], "dh": [ys[-1] - ys[0] + dy]}
-
-
