@@ -226,8 +226,8 @@ def test_plane_view(settings: Settings) -> None:
 
 def test_indicators_and_underlay(settings: Settings) -> None:
     pytest.importorskip("andoyer.analysis.chaos")
-    from andoyer.explore.state import chaos_underlay, orbit_indicators
     from andoyer.explore.base import underlay_image as _underlay_image
+    from andoyer.explore.state import chaos_underlay, orbit_indicators
 
     regular = orbit_indicators(settings, seed(settings, 1.6, 0.5)[0].y0, 300.0)
     assert 1.5 < regular["megno"] < 2.5 and abs(regular["H_drift"]) < 1e-10

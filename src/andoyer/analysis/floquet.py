@@ -70,7 +70,7 @@ NUMBA_TOL = 1e-13
 
 @cache
 def _variational_integrator_cached(tol: float) -> Any:
-    from andoyer.integrate.engines.heyoka_engine import heyoka_system
+    from andoyer.integrate.engines.heyoka_symbolic import heyoka_system
     from andoyer.integrate.engines.lazy import heyoka as hy
 
     # The one SymPy -> heyoka builder; heyoka derives the variational equations.

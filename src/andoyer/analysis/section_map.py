@@ -149,7 +149,7 @@ def _heyoka_system() -> tuple[Any, tuple[Any, ...], tuple[Any, ...]]:
     runtime parameters ``par[0..6] = (a, b, c, mu, e1, e2, e3)``,
     ``par[7], par[8] = cos psi0, sin psi0``.
     """
-    from andoyer.integrate.engines.heyoka_engine import heyoka_state_vars, heyoka_system
+    from andoyer.integrate.engines.heyoka_symbolic import heyoka_state_vars, heyoka_system
     from andoyer.integrate.engines.lazy import heyoka as hy
 
     system = heyoka_system()  # the one SymPy -> heyoka builder

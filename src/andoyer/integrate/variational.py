@@ -86,7 +86,8 @@ from andoyer.charts.euler_poisson import STATE
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
-from andoyer.integrate.engines.heyoka_engine import heyoka_state_vars, heyoka_system, tolerance
+from andoyer.integrate.engines.heyoka_engine import tolerance
+from andoyer.integrate.engines.heyoka_symbolic import heyoka_state_vars, heyoka_system
 from andoyer.integrate.engines.lazy import heyoka as hy
 
 __all__ = [

@@ -2,8 +2,9 @@
 
 The Euler-Poisson vector field (1) and every section function are taken from the
 SymPy expressions of :mod:`andoyer.symbolic` and converted with
-:func:`heyoka.from_sympy`; nothing is typed by hand. The body and the section enter
-as runtime parameters ``par[i]`` in the order of :data:`PARAMETERS`
+:func:`heyoka.from_sympy` (:mod:`andoyer.integrate.engines.heyoka_symbolic`); nothing is
+typed by hand. The body and the section enter as runtime parameters ``par[i]`` in the
+order of :data:`~andoyer.integrate.engines.heyoka_symbolic.PARAMETERS`
 (``a, b, c, mu, e1, e2, e3, phi0, value, cv, sv``), so one compiled integrator
 serves every body, section value and initial state.
 
@@ -85,26 +86,28 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
-from functools import cache, partial
+from functools import partial
 from typing import Any, NamedTuple, TypeVar
 
 import numpy as np
-import sympy as sp
 from numpy.typing import NDArray
 
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import Crossings, Params
+from andoyer.integrate.engines.heyoka_symbolic import (
+    field_at,
+    field_cfunc,
+    heyoka_system,
+    section_cfunc,
+    section_exprs,
+)
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.kernels.constants import T_START
 from andoyer.kernels.generated import SECTION_KINDS
-from andoyer.symbolic.hamiltonian import S, euler_poisson_field
-from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
-__all__ = ["HeyokaEngine", "PARAMETERS", "T_START", "tolerance", "warm_up", "heyoka_system",
-           "heyoka_state_vars"]
-
-#: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
-PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
+# The expressions (heyoka_system, section functions, PARAMETERS) are built in
+# andoyer.integrate.engines.heyoka_symbolic, the one SymPy -> heyoka builder.
+__all__ = ["HeyokaEngine", "T_START", "tolerance", "warm_up"]
 
 #: Crossing direction -> name of heyoka's event_direction (looked up at use: heyoka is
 #: imported lazily).
@@ -123,58 +126,6 @@ def tolerance(rtol: float, atol: float) -> float:
     return float(min(rtol, atol))
 
 
-
-
-# ----------------------------------------------------------------------------- symbolic
-
-
-@cache
-def heyoka_state_vars() -> tuple[Any, ...]:
-    """The heyoka variables of the Euler-Poisson state, named as in ``STATE``."""
-    return tuple(hy.make_vars(*(str(s) for s in S.y)))
-
-
-@cache
-def _symbol_map() -> dict[sp.Basic, Any]:
-    """SymPy symbol -> heyoka variable (state) or runtime parameter (everything else)."""
-    smap: dict[sp.Basic, Any] = dict(zip(S.y, heyoka_state_vars(), strict=True))
-    smap.update({s: hy.par[i] for i, s in enumerate(PARAMETERS)})
-    return smap
-
-
-@cache
-def heyoka_system() -> tuple[tuple[Any, Any], ...]:
-    """The Euler-Poisson equations (1) as heyoka ``(variable, rhs)`` pairs."""
-    smap = _symbol_map()
-    return tuple((x, hy.from_sympy(e, smap))
-                 for x, e in zip(heyoka_state_vars(), euler_poisson_field(), strict=True))
-
-
-@cache
-def _section_exprs(kind: int) -> tuple[Any, Any, Any]:
-    """``(f, w, df/dt)`` of section ``kind`` as heyoka expressions.
-
-    ``f`` and ``w`` come from :func:`andoyer.symbolic.sections.section_function`;
-    ``df/dt = grad f . F`` (the Lie derivative along (1)) is differentiated by heyoka.
-    """
-    smap = _symbol_map()
-    f, w = (hy.from_sympy(sp.sympify(e), smap) for e in section_function(SECTION_KINDS[kind]))
-    fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in heyoka_system()])
-    return f, w, fdot
-
-
-_CFUNC_LOCK = threading.Lock()
-
-
-@cache
-def _section_cfunc_cached(kind: int) -> Any:
-    return hy.cfunc(list(_section_exprs(kind)), list(heyoka_state_vars()))
-
-
-def _section_cfunc(kind: int) -> Any:
-    """Compiled ``y, par -> (f, w, df/dt)`` (vectorised over columns)."""
-    with _CFUNC_LOCK:
-        return _section_cfunc_cached(kind)
 
 
 # ----------------------------------------------------------------------------- integrators
@@ -239,7 +190,7 @@ def _build(key: _Key) -> _Slot:
         else:
             ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)), **common)
         return _Slot(ta, None, int(np.shape(ta.pars)[0]))
-    f = _section_exprs(key.kind)[0]
+    f = section_exprs(key.kind)[0]
     direction = getattr(hy.event_direction, _DIRECTIONS[key.direction])
     if key.batch_size == 1:
         ev = hy.nt_event(f, _Recorder(), direction=direction)
@@ -282,7 +233,7 @@ def warm_up(*, batch_size: int = 1, kind: int = _NO_SECTION, direction: int = 1,
     with _integrator(_Key(batch_size, kind, direction, tol)):
         pass
     if kind != _NO_SECTION:
-        _section_cfunc(kind)
+        section_cfunc(kind)
 
 
 def _par_vector(params: Params, value: float) -> NDArray[np.float64]:
@@ -347,7 +298,7 @@ def _accept(kind: int, t: Sequence[float] | NDArray[np.float64],
         return _Found(np.empty(0), np.empty((0, 6)), np.empty(0, dtype=np.int64))
     T = np.asarray(t, dtype=float)
     Y = np.array(y, dtype=float)  # (r, 6)
-    cf = _section_cfunc(kind)
+    cf = section_cfunc(kind)
     P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, T.size))
     f, w, fdot = cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -355,28 +306,11 @@ def _accept(kind: int, t: Sequence[float] | NDArray[np.float64],
     # Expected |dt|: a few ulp of t. A larger step (a nearly tangent crossing) is not
     # taken: the first-order update below would not be accurate.
     dt = np.where(np.abs(dt) <= _MAX_POLISH, dt, 0.0)
-    F = _field(Y, pars)
+    F = field_at(Y, pars)
     Y = Y + dt[:, None] * F
     T = T + dt
     keep = (w > 0.0) & (T > T_START)
     return _Found(T[keep], Y[keep], None if lane is None else lane[keep])
-
-
-def _field(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function."""
-    cf = _field_cfunc()
-    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, Y.shape[0]))
-    return np.asarray(cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))).T
-
-
-@cache
-def _field_cfunc_cached() -> Any:
-    return hy.cfunc([rhs for _, rhs in heyoka_system()], list(heyoka_state_vars()))
-
-
-def _field_cfunc() -> Any:
-    with _CFUNC_LOCK:
-        return _field_cfunc_cached()
 
 
 def _chunk_steps(n_missing: int, steps: int, found: int) -> int:
@@ -676,8 +610,8 @@ class HeyokaEngine:
         if n == 0 or n_crossings == 0:
             return Crossings(t_out, y_out, count)
         m = self._batch(n)
-        _section_cfunc(kind)  # compile once, outside the threads
-        _field_cfunc()
+        section_cfunc(kind)  # compile once, outside the threads
+        field_cfunc()
         key = _Key(m, kind, direction, tol)
         results: list[_Found | None]
         if m == 1:

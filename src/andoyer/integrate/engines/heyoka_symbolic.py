@@ -1,0 +1,98 @@
+"""The Euler-Poisson equations (1) and the section functions as heyoka expressions.
+
+The one SymPy -> heyoka builder: the vector field (1) and every section function are
+taken from :mod:`andoyer.symbolic` and converted with :func:`heyoka.from_sympy`
+(nothing typed by hand); the body and the section enter as runtime parameters
+``par[i]`` in the order of :data:`PARAMETERS`. The heyoka engine, the variational
+equations (:mod:`andoyer.integrate.variational`) and the section maps of
+:mod:`andoyer.analysis` all build their integrators from :func:`heyoka_system`.
+heyoka is imported at first use (:mod:`andoyer.integrate.engines.lazy`).
+"""
+
+from __future__ import annotations
+
+import threading
+from functools import cache
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from numpy.typing import NDArray
+
+from andoyer.integrate.engines.lazy import heyoka as hy
+from andoyer.kernels.generated import SECTION_KINDS
+from andoyer.symbolic.hamiltonian import S, euler_poisson_field
+from andoyer.symbolic.sections import SECTION_ARGS, section_function
+
+__all__ = ["PARAMETERS", "heyoka_state_vars", "symbol_map", "heyoka_system", "section_exprs",
+           "section_cfunc", "field_cfunc", "field_at"]
+
+#: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
+PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
+
+
+
+@cache
+def heyoka_state_vars() -> tuple[Any, ...]:
+    """The heyoka variables of the Euler-Poisson state, named as in ``STATE``."""
+    return tuple(hy.make_vars(*(str(s) for s in S.y)))
+
+
+@cache
+def symbol_map() -> dict[sp.Basic, Any]:
+    """SymPy symbol -> heyoka variable (state) or runtime parameter (everything else)."""
+    smap: dict[sp.Basic, Any] = dict(zip(S.y, heyoka_state_vars(), strict=True))
+    smap.update({s: hy.par[i] for i, s in enumerate(PARAMETERS)})
+    return smap
+
+
+@cache
+def heyoka_system() -> tuple[tuple[Any, Any], ...]:
+    """The Euler-Poisson equations (1) as heyoka ``(variable, rhs)`` pairs."""
+    smap = symbol_map()
+    return tuple((x, hy.from_sympy(e, smap))
+                 for x, e in zip(heyoka_state_vars(), euler_poisson_field(), strict=True))
+
+
+@cache
+def section_exprs(kind: int) -> tuple[Any, Any, Any]:
+    """``(f, w, df/dt)`` of section ``kind`` as heyoka expressions.
+
+    ``f`` and ``w`` come from :func:`andoyer.symbolic.sections.section_function`;
+    ``df/dt = grad f . F`` (the Lie derivative along (1)) is differentiated by heyoka.
+    """
+    smap = symbol_map()
+    f, w = (hy.from_sympy(sp.sympify(e), smap) for e in section_function(SECTION_KINDS[kind]))
+    fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in heyoka_system()])
+    return f, w, fdot
+
+
+_CFUNC_LOCK = threading.Lock()
+
+
+@cache
+def _section_cfunc_cached(kind: int) -> Any:
+    return hy.cfunc(list(section_exprs(kind)), list(heyoka_state_vars()))
+
+
+def section_cfunc(kind: int) -> Any:
+    """Compiled ``y, par -> (f, w, df/dt)`` (vectorised over columns)."""
+    with _CFUNC_LOCK:
+        return _section_cfunc_cached(kind)
+
+
+def field_at(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function."""
+    cf = field_cfunc()
+    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, Y.shape[0]))
+    return np.asarray(cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))).T
+
+
+@cache
+def _field_cfunc_cached() -> Any:
+    return hy.cfunc([rhs for _, rhs in heyoka_system()], list(heyoka_state_vars()))
+
+
+def field_cfunc() -> Any:
+    with _CFUNC_LOCK:
+        return _field_cfunc_cached()
