@@ -192,7 +192,7 @@ class ManifoldBranch:
                 "theta1_line": self.theta1_line, "energy": self.h, "area": self.orbit.M,
                 "multiplier_u": float(self.orbit.multipliers[0]),
                 "multiplier_s": float(self.orbit.multipliers[1]),
-                "period": self.orbit.period, "heyoka_tol": self.orbit.tol}
+                "period": self.orbit.period, "tolerance": self.orbit.tol}
 
 
 def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int

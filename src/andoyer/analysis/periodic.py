@@ -186,7 +186,7 @@ class RotationOrbit:
 
     def attrs(self) -> dict[str, Any]:
         return {**self.section.attrs(), "energy": self.h, "area": self.M,
-                "heyoka_tol": self.tol, "long_double": int(self.long_double)}
+                "tolerance": self.tol, "long_double": int(self.long_double)}
 
 
 def _eigen(DP: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -221,7 +221,8 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     guess : array_like (2,), optional
         Starting point ``(x1, x2)``; default the permanent rotation ``(0, 0)``.
     tol : float
-        heyoka tolerance.
+        Integration tolerance (heyoka's ``tol``; the numba engine's DOP853 gets
+        ``max(tol, 1e-13)`` for both ``rtol`` and ``atol``).
     xtol : float
         Stop when the Newton step is below ``xtol``.
     max_iter : int

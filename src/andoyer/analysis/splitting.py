@@ -122,7 +122,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
                          branch=wu.branch.branch,
                          sheet=wu.branch.sheet, energy=wu.branch.h,
                          plane="Sigma_0 = {L = G3 = 0}, Darboux coordinates (g, G)",
-                         heyoka_tol=wu.branch.orbit.tol,
+                         tolerance=wu.branch.orbit.tol,
                          delta_u=wu.branch.delta, delta_s=ws.branch.delta))
     split.phase.attrs.update(symbol="g", long_name="phase: Andoyer-Deprit angle g on L = 0",
                              units="rad", equation="(5)-(6)")
@@ -339,7 +339,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
         rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
     attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[engine],
                        branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
-                       delta=delta, heyoka_tol=tol, long_double=int(long_double),
+                       delta=delta, tolerance=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
                        melnikov_amplitude=mel.attrs["amplitude"],
                        plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",

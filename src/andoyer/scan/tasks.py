@@ -439,7 +439,7 @@ TASKS: dict[str, TaskKind] = {
         validate=_chaos_bodies,
         static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",
                       "plane_y", "action", "root", "plane_equations", "definitions",
-                      "heyoka_version", "tol")),
+                      "engine", "heyoka_version", "numba_version", "tolerance")),
     "splitting": TaskKind(
         "splitting", "separatrix splitting of the rotations about the middle axis",
         {"G": Option(1.0, _positive, "the level h = c G^2 / 2 of the rotation about the "
@@ -452,7 +452,7 @@ TASKS: dict[str, TaskKind] = {
                          "distance of the fundamental domains from the periodic orbits")},
         _splitting_point, _splitting_cost, ("phase", "intersection"),
         validate=_splitting_bodies,
-        static_attrs=("branch", "sheet", "G_level", "psi0", "delta", "heyoka_tol",
+        static_attrs=("branch", "sheet", "G_level", "psi0", "delta", "tolerance",
                       "long_double", "n_phase", "plane", "relation"),
         levels=(), levels_note="its level is h = c G^2 / 2 (option G) at M = 0"),
 }
