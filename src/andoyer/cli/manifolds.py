@@ -109,7 +109,8 @@ def register(sub: Any) -> None:
                    help="fundamental domain's distance from the periodic orbit (default 1e-5)")
     p.add_argument("--psi0", type=float, default=0.0,
                    help="section psi = atan2(gamma1, gamma2) = psi0 of the orbits (default 0)")
-    p.add_argument("--tol", type=float, default=1e-15, help="integration tolerance (default 1e-15; the numba engine uses at least 1e-13)")
+    p.add_argument("--tol", type=float, default=1e-15,
+                   help="integration tolerance (default 1e-15; numba uses at least 1e-13)")
     p.add_argument("--long-double", action="store_true",
                    help="integrate in 80-bit extended precision")
     p.add_argument("--no-hess-check", dest="hess_check", action="store_false",
