@@ -72,7 +72,12 @@ from andoyer.integrate.api import initial_states
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.integrate.fill import fill_section, section_roots
-from andoyer.integrate.results import VARIABLE_ATTRS, describe_variables, provenance
+from andoyer.integrate.results import (
+    VARIABLE_ATTRS,
+    describe_variables,
+    provenance,
+    values_from_attrs,
+)
 from andoyer.integrate.variational import (
     ENGINES,
     MEGNO_DELTA,
@@ -599,6 +604,9 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
             units="dimensionless: moments of inertia, mu, energies, actions and time in "
                   "the body's units; angles in rad"))
     _describe(ds)
+    values_from_attrs(ds, {
+        "n_accessible": ("", "grid points where the level meets the plane", "1", ""),
+        "n_failed": ("", "grid points whose integration failed (NaN)", "1", "")})
     ds.accessible.attrs.update(long_name=f"the level H = h meets ({xname}, {yname})")
     ds[action].attrs.update(long_name=f"{action} solved from H = h ({root} root)")
     ds.H_error.attrs.update(long_name="|H(t_end) - h| / max(|h|, mu)", units="1")

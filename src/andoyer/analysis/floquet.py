@@ -27,7 +27,7 @@ from andoyer.analysis.pendulum import (
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.integrate.engines import default_engine_name
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import provenance, values_from_attrs
 from andoyer.validation import positive as _positive
 
 __all__ = [
@@ -355,6 +355,9 @@ def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
     if body.is_hess:
         attrs["hess_rotation_multiplier"] = hess_rotation_multiplier(body)
     ds.attrs.update(attrs)
+    values_from_attrs(ds, {"hess_rotation_multiplier": (
+        "\\exp(2\\pi\\sigma/c)", "Floquet multiplier of every rotation of a Hess body",
+        "1", "")})
     ds.H.attrs.update(symbol="H", long_name="energy of the pendulum orbit", units="1",
                       equation="(1)")
     ds.H_over_mu.attrs.update(symbol="H/\\mu", long_name="energy over mu (libration < 1 < "

@@ -86,7 +86,7 @@ from andoyer.analysis.separatrix import BRANCHES, heteroclinic, heteroclinic_rat
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import provenance, values_from_attrs
 
 __all__ = [
     "heteroclinic_line",
@@ -318,6 +318,14 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         lambda_rate=heteroclinic_rate(body, J2),
         amplitude=abs(2.0 * factor * math.sin(theta1 / 2.0)),
         pi_rho_over_sinh=factor))
+    values_from_attrs(ds, {
+        "amplitude": ("\\max|M|", "amplitude of the Melnikov function", "energy units x time",
+                      "(16)"),
+        "rho": ("\\rho", "rho = c J2/lambda", "1", ""),
+        "lambda_rate": ("\\lambda", "rate of the heteroclinic orbit, 2 sigma J2",
+                        "1/body time units", "after Fig. 3"),
+        "pi_rho_over_sinh": ("\\pi\\rho/\\sinh\\pi\\rho", "the factor pi rho/sinh(pi rho)", "1",
+                             "")})
     ds.theta2_0.attrs.update(symbol="\\theta_2^0", long_name="theta2 where the unperturbed "
                              "heteroclinic orbit crosses L = 0", units="rad", equation="(14)")
     ds["M"].attrs.update(symbol="M", long_name="Melnikov function, closed form",

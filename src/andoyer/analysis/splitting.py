@@ -29,7 +29,7 @@ from andoyer.analysis.periodic import (
 from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import provenance, values_from_attrs
 
 __all__ = ["measure_splitting", "separatrix_splitting", "splitting_at"]
 
@@ -369,6 +369,12 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     splitting.mu.attrs.update(symbol="\\mu", long_name="weight x distance of the centre of "
                               "mass", units="1", equation="(1)")
     splitting.phase.attrs.update(splits[0].phase.attrs)
+    values_from_attrs(splitting, {
+        "rho": ("\\rho", "rho = c J2/lambda of the unperturbed separatrix", "1", ""),
+        "melnikov_amplitude": ("\\max|M|", "amplitude of the Melnikov function (per mu: "
+                               "Delta E = mu M)", "energy units x time", "(16)"),
+        "theta1_line": ("\\theta_1", "theta1 of the unperturbed heteroclinic line", "rad",
+                        "(14)")})
 
     n_max = max([it.sizes["intersection"] for it in inters] + [0])
     data: dict[str, Any] = {}

@@ -23,8 +23,8 @@ from andoyer.charts.euler_poisson import (
 from andoyer.charts.hess import to_hess
 from andoyer.notation import COORDINATES, coordinates, storage_name
 
-__all__ = ["states_dataset", "provenance", "describe_variables", "VARIABLE_ATTRS",
-           "VariableMeta"]
+__all__ = ["states_dataset", "provenance", "describe_variables", "values_from_attrs",
+           "VARIABLE_ATTRS", "VariableMeta"]
 
 #: Storage name -> (paper symbol, long name, equation), from :mod:`andoyer.notation`.
 VARIABLE_ATTRS: dict[str, tuple[str, str, str]] = {
@@ -89,6 +89,23 @@ def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
                  units="dimensionless: moments of inertia, mu and time in the body's units")
     attrs.update({k: v for k, v in extra.items() if v is not None})
     return attrs
+
+
+def values_from_attrs(ds: xr.Dataset, meta: Mapping[str, VariableMeta]) -> xr.Dataset:
+    """The numbers a user reads off as 0-d variables too (in place; returned).
+
+    Each name of ``meta`` present in ``ds.attrs`` (a rate, an amplitude, a count) is
+    copied into a variable of that name, described by ``meta``; the attribute stays
+    (older readers look there).
+
+    >>> ds = xr.Dataset(attrs={"rho": 0.5})
+    >>> float(values_from_attrs(ds, {"rho": ("\\rho", "c J2/lambda", "1", "")}).rho)
+    0.5
+    """
+    for name in meta:
+        if name in ds.attrs and name not in ds:
+            ds[name] = ((), ds.attrs[name])
+    return describe_variables(ds, {k: v for k, v in meta.items() if k in ds.data_vars})
 
 
 @checks_body
