@@ -13,12 +13,13 @@ import xarray as xr
 
 from andoyer.analysis.separatrix import (
     FIG2_CAPTION,
+    SEPARATRIX_LEVEL,
     check_grid_size,
     separatrix_curves,
     separatrix_energy,
 )
 from andoyer.body import RigidBody, checks_body
-from andoyer.integrate.results import provenance
+from andoyer.integrate.results import provenance, values_from_attrs
 from andoyer.validation import positive as _positive
 
 __all__ = ["portrait_andoyer", "portrait_hess"]
@@ -143,7 +144,7 @@ def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
         label_convention=("1: rotation about +z (L = G, J1 = J2); 2: about -z (L = -G, "
                           "J1 = 0) -- the rotations the pendulum motions approach; 3: about "
                           "+-y; 4: about +-x"))
-    return ds
+    return values_from_attrs(ds, SEPARATRIX_LEVEL)
 
 
 @checks_body

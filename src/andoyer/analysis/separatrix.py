@@ -72,12 +72,18 @@ from andoyer.analysis.fixed_points import theta_text
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.charts.euler_poisson import STATE
-from andoyer.integrate.results import VariableMeta, describe_variables, provenance
+from andoyer.integrate.results import (
+    VariableMeta,
+    describe_variables,
+    provenance,
+    values_from_attrs,
+)
 from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
            "separatrix_andoyer", "separatrix_hess",
-           "FIG2_CAPTION", "check_grid_size", "separatrix_curves", "separatrix_on_level"]
+           "FIG2_CAPTION", "SEPARATRIX_LEVEL", "check_grid_size", "separatrix_curves",
+           "separatrix_on_level"]
 
 #: The two heteroclinic lines of the Hess chart at ``mu = 0`` (theta1 mod 2 pi).
 BRANCHES = ("theta1=0", "theta1=4phi0")
@@ -370,7 +376,12 @@ def separatrix_curves(body: RigidBody, chart: str, action: float, period: float,
         long_name="1: the separatrix theta1 = 0 (l = -phi0 mod pi) that the Hess solutions "
                   "approach as mu -> 0")
     ds.attrs.update(separatrix_H0=h, chart=chart, angle_period=period)
-    return ds
+    return values_from_attrs(ds, SEPARATRIX_LEVEL)
+
+
+#: The separatrix level ``H0`` as a dataset variable (portraits, separatrix curves).
+SEPARATRIX_LEVEL: dict[str, VariableMeta] = {
+    "separatrix_H0": ("H_0", "energy of the separatrix level (the saddle's)", "1", "(9)")}
 
 
 def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:

@@ -25,6 +25,7 @@ import xarray as xr
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.api import poincare, propagate
 from andoyer.integrate.fill import fill_section
+from andoyer.integrate.results import values_from_attrs
 
 __all__ = ["fig3_trajectories", "fig3_section", "separatrix_energy", "zoom_box", "DEFAULT_J1"]
 
@@ -124,7 +125,8 @@ def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
                      H_max_drift=float(abs(ds.H_drift).max()),
                      zoom_theta1_min=x0_, zoom_theta1_max=x1_, zoom_J1_min=y0_,
                      zoom_J1_max=y1_, phi0=body.phi0)
-    return out
+    return values_from_attrs(out, {"H_max_drift": (
+        "", "largest relative energy drift over the trajectories", "1", "(16)")})
 
 
 @checks_body
