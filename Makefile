@@ -1,11 +1,12 @@
 # Two commands do all the set-up on a fresh machine (Python >= 3.11, pip, make):
 #   make run    install into .venv and run the main job on defaults (andoyer paper)
 #   make test   install into .venv (with test tools) and run lint, types and tests
+#   make docs   build the documentation site into docs/_build/html
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: run test install clean
+.PHONY: run test docs install clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -26,5 +27,15 @@ test: install
 	$(BIN)/lint-imports
 	$(BIN)/python -m pytest -m "not slow" --doctest-modules src tests
 
+# The documentation site (notebooks executed; any warning or failed cell fails it).
+$(VENV)/.docs: pyproject.toml | $(VENV)/.installed
+	$(BIN)/python -m pip install -q -e ".[test,docs]"
+	touch $@
+
+docs: $(VENV)/.docs
+	rm -rf docs/_build docs/api/generated
+	$(BIN)/python -m sphinx -W --keep-going -b html docs docs/_build/html
+	$(BIN)/python -m sphinx -W --keep-going -b doctest docs docs/_build/doctest
+
 clean:
-	rm -rf $(VENV) build src/*.egg-info
+	rm -rf $(VENV) build src/*.egg-info docs/_build docs/api/generated

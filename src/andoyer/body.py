@@ -62,7 +62,7 @@ class RigidBody:
     -----
     The Hamiltonian is :math:`H = \\tfrac12 (\\mathbf G, \\mathbf I \\mathbf G) + \\mu
     (\\mathbf r, \\boldsymbol\\gamma)` with :math:`\\mathbf I = \\mathrm{diag}(a, b, c)
-    = \\mathrm{diag}(1/A, 1/B, 1/C)`, Eq. (1) of [1]_.
+    = \\mathrm{diag}(1/A, 1/B, 1/C)`, Eq. (1) of the paper.
 
     Examples
     --------

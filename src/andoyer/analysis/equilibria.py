@@ -1,5 +1,5 @@
 """Equilibria of the heavy top: permanent rotations of the free top (the Euler-Poinsot
-fixed points on |G| = G0) and the Euler-Poisson equilibria (hanging and upright), with
+fixed points on ``|G| = G0``) and the Euler-Poisson equilibria (hanging and upright), with
 their types from the linearised flow.
 
 The chart fixed points of (9) and (16) are built on these in

@@ -1,6 +1,6 @@
 """Periods of the Hess solution against the energy: the closed form through complete
 elliptic integrals K(m) (:func:`andoyer.analysis.hess_solution.period`) beside periods
-measured on integrated Euler-Poisson orbits (crossings of a level of |G|).
+measured on integrated Euler-Poisson orbits (crossings of a level of ``|G|``).
 
 Examples
 --------

@@ -138,7 +138,7 @@ def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
 
 @checks_body
 def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
-    """``{E, H1}(y) = grad E . X_{H1}`` in the Euler-Poisson variables, shape ``(...)``.
+    """``{E, H1}(y) = (grad E, X_{H1})`` in the Euler-Poisson variables, shape ``(...)``.
 
     ``E = H0 - c |G|^2/2`` so ``grad_G E = I G - c G``, ``grad_gamma E = 0``;
     ``X_{H1}`` is the Lie-Poisson field (1) of ``H1 = (r, gamma)``, the difference of the

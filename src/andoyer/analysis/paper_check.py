@@ -204,7 +204,7 @@ def _gamma_paper(P: Any) -> Array:
 
 
 def _fixed_points_residual(P: Any, theta1: Array, J1: Array) -> Array:
-    """|field| of the unperturbed (theta1, J1) system at given points (derived)."""
+    """``|field|`` of the unperturbed (theta1, J1) system at given points (derived)."""
     # The points lie on the singular lines J1 = 0, J2: approach them to 1e-13.
     eps = 1e-13 * P.J2
     J1 = np.clip(J1, eps, P.J2 - eps)

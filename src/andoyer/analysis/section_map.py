@@ -370,7 +370,7 @@ def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
 @checks_body
 def event_projector(body: RigidBody, y: NDArray[np.float64], kind: str,
                     psi0: float = 0.0) -> NDArray[np.float64]:
-    """``I - F grad(f)^T / (grad(f) . F)``: the event sensitivity at a crossing ``y``."""
+    """``I - F grad(f)^T / (grad(f), F)``: the event sensitivity at a crossing ``y``."""
     F = vector_field(body, y)
     grad = _section_gradient(kind, psi0)
     return _I6 - np.outer(F, grad) / float(grad @ F)

@@ -105,7 +105,7 @@ def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     float
         ``lambda = 2 sqrt((b - c)(c - a)) J2``. This is the rate of the chart action
         ``J1`` (and the chart Jacobian's eigenvalue at the points ``(0, 0)``,
-        ``(4 phi0, J2)``, ... of the unperturbed system after Fig. 3 of [1]_); the
+        ``(4 phi0, J2)``, ... of the unperturbed system after Fig. 3 of the paper); the
         physical exponent of the rotation about z in ``(G1, G2)`` is ``lambda / 2``.
 
     Examples

@@ -98,7 +98,7 @@ def andoyer_to_ep_expr(l: Any, g: Any, L: Any, G: Any, M: Any, *, sin: Any, cos:
     """Map ``(l, g, L, G, M) -> (G1, G2, G3, gamma1, gamma2, gamma3)`` written once.
 
     ``sin, cos, sqrt`` come from NumPy (numbers) or SymPy (derivations); the map is
-    the rotation chain of the module docstring, so it equals Eqs. (5)-(6) of [1]_.
+    the rotation chain of the module docstring, so it equals Eqs. (5)-(6) of the paper.
     Radicands are written as products, ``(G - L)(G + L)``, so that they keep their
     relative accuracy near ``L = +-G``.
     """

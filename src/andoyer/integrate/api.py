@@ -38,7 +38,7 @@ from andoyer.progress import Progress
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
            "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
 
-#: |gamma| may differ from 1 by this much (then it is renormalised); more is an error.
+#: ``|gamma|`` may differ from 1 by this much (then it is renormalised); more is an error.
 GAMMA_TOL = 1e-12
 _CHARTS = ("euler_poisson", "andoyer", "hess")
 #: Every crossing :func:`poincare` reports satisfies ``|section_residual| <= RESIDUAL_BOUND``

@@ -10,8 +10,8 @@ estimate and how to raise the limit. Parameter scans have their own, finer budge
 The step estimate is that of an 8th-order method at ``rtol = 1e-12``, measured on the
 numba engine: about ``8 omega T`` steps for an orbit of duration ``T``, where
 ``omega = |G|max max(a, b, c) + sqrt(2 mu max(a, b, c))`` is the fastest rate of the
-body on the orbit's energy level (measured: paper's body at |G| = 1, 3.7 steps per time
-unit, estimated 5.3; at |G| = 10, 36; Hess(3, 1, 2) with mu = 1, 12: the estimate errs
+body on the orbit's energy level (measured: paper's body at ``|G| = 1``, 3.7 steps per time
+unit, estimated 5.3; at ``|G| = 10``, 36; Hess(3, 1, 2) with mu = 1, 12: the estimate errs
 high, by less than 3.1x), scaled by
 ``(1e-12 / rtol)^(1/8)``. A step costs about 0.4 us on one core (numba engine).
 

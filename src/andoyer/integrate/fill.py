@@ -518,7 +518,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
     H is bounded below by the kinetic energy at the smallest moment minus the potential
     bound, :math:`H \\ge \\tfrac12 \\min(a, b, c) G^2 - \\mu`, so the action is sought on
     :math:`\\max(|L|, |M|) < G \\le G_{max}` (resp. :math:`\\max(J_1, |J_3|) < J_2 \\le
-    G_{max}`), Eqs. (1), (7), (14)-(15) of [1]_.
+    G_{max}`), Eqs. (1), (7), (14)-(15) of the paper.
 
     References
     ----------

@@ -115,7 +115,7 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     """Dataset of states ``y`` (shape ``(*shape, 6)``, NaN allowed for padding).
 
     Holds the Euler-Poisson state, the Andoyer-Deprit and (for ``e3 = 0``) Hess-chart
-    coordinates, the integrals H, (G, gamma), |gamma|^2, and the singular flags.
+    coordinates, the integrals H, (G, gamma), ``|gamma|^2``, and the singular flags.
     """
     dims = tuple(dims)
     valid = np.all(np.isfinite(y), axis=-1)

@@ -24,13 +24,13 @@ __all__ = ["Section", "SectionPlane", "SECTION_PLANES", "SECTION_KINDS", "SECTIO
 
 #: A crossing of an angle section counts only where the state's relative distance to
 #: every singular set the angle depends on (G = 0 relative to the orbit's momentum
-#: scale, L = +-G, |M| = G) exceeds this: closer, the angle is resolved no better than
+#: scale, L = +-G, ``|M| = G``) exceeds this: closer, the angle is resolved no better than
 #: (state error) / distance, i.e. to worse than ~1e-6 rad, and at the set itself it is
 #: undefined (a "singular passage", reported apart from the crossings).
 SECTION_SINGULAR_RTOL = 1e-6
 
 #: Columns of :func:`andoyer.charts.andoyer_deprit.singular_distances` an angle needs:
-#: 0 (G = 0), 1 (L = +-G: the node of the invariant and body planes), 2 (|M| = G: the
+#: 0 (G = 0), 1 (L = +-G: the node of the invariant and body planes), 2 (``|M| = G``: the
 #: node of the invariant and horizontal planes).
 _ANGLE_NEEDS = {"l": (0, 1), "theta1": (0, 1), "g": (0, 1, 2), "theta2": (0, 1, 2)}
 

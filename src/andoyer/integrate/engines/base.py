@@ -40,8 +40,8 @@ class Crossings(NamedTuple):
 #: asked for (``rtol, atol`` of the Engine contract). The controller bounds an
 #: *estimate* of each step's local error by ``atol + rtol |y|``; the integrals then
 #: drift linearly, by ~1e-13 per time unit at rtol = atol = 1e-12 for a heavy top
-#: (mu ~ 0.5, |G| ~ 1): 1e-9 at t = 1e4. With the factor the drift of H, (G, gamma)
-#: and |gamma|^2 stays below ~2e-11 over t = 1e4 at a requested 1e-12 (paper's body
+#: (mu ~ 0.5, ``|G| ~ 1``): 1e-9 at t = 1e4. With the factor the drift of H, (G, gamma)
+#: and ``|gamma|^2`` stays below ~2e-11 over t = 1e4 at a requested 1e-12 (paper's body
 #: and mu = 0.5, 0.7 bodies, 18 orbits each), for ~1.6x the steps. 0.025 keeps a
 #: requested 1e-12 above SciPy's floor rtol >= 100 eps. The kernels never apply it:
 #: the engines do (numba and scipy engines).
