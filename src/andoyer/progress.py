@@ -14,6 +14,7 @@ Examples
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 from typing import Any
 
@@ -35,7 +36,10 @@ class Progress:
 
     def __init__(self, total: int, label: str, enabled: bool | None = None,
                  postfix: str | None = None, initial: int = 0) -> None:
-        from tqdm.auto import tqdm
+        if importlib.util.find_spec("ipywidgets") is not None:
+            from tqdm.auto import tqdm  # a widget bar in notebooks
+        else:  # tqdm.auto would warn in a notebook without ipywidgets: a text bar
+            from tqdm.std import tqdm
 
         self.total, self.done = int(total), 0
         # tqdm's disable=None hides the bar when the stream is not a terminal.
