@@ -1,4 +1,4 @@
-"""The table of names is the one the code uses, and the README shows it."""
+"""The table of names is the one the code uses, and the user guide shows it."""
 
 from pathlib import Path
 
@@ -7,11 +7,11 @@ from andoyer.integrate import propagate
 from andoyer.integrate.results import VARIABLE_ATTRS
 from andoyer.notation import COORDINATE, COORDINATES, NOTATION, storage_name
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+GUIDE = Path(__file__).resolve().parents[1] / "docs" / "guide.md"
 
 
-def test_readme_notation_table_is_the_table():
-    text = README.read_text()
+def test_guide_notation_table_is_the_table():
+    text = GUIDE.read_text()
     rows = [line for line in text.splitlines() if line.startswith("| `")]
     for sym in NOTATION:
         assert any(f"`{sym.code}`" in r and f"`{sym.storage}`" in r and sym.equation in r
