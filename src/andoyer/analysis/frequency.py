@@ -138,7 +138,7 @@ def frequency_drift(z: ArrayLike, dt: float, *, window: int = 2) -> float:
     return float(abs(w1 - w2) / scale)
 
 
-#: Largest order |k1| + |k2| of a labelled resonance k1 omega_l + k2 omega_g = 0.
+#: Largest order ``|k1| + |k2|`` of a labelled resonance ``k1 omega_l + k2 omega_g = 0``.
 RESONANCE_ORDER = 8
 #: Orbits whose frequencies drift more than this get no resonance label (not a torus).
 RESONANCE_DRIFT = 1e-6
@@ -280,7 +280,7 @@ def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float
     Initial states fill the plane (:func:`andoyer.integrate.fill_section`, one orbit per
     point, the smallest root of the missing action); each orbit's frequencies come from
     :func:`orbit_frequencies`. On a torus the drift is at NAFF's accuracy; in a chaotic
-    zone it is orders of magnitude larger ([1]_); resonant tori carry a ``p:q`` label.
+    zone it is orders of magnitude larger (Laskar 1993); resonant tori carry a ``p:q`` label.
 
     Parameters
     ----------
