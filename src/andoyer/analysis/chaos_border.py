@@ -1,0 +1,250 @@
+r"""Where chaos begins: the chaotic fraction of a section and the width of the layer
+around the former Hess separatrix.
+
+An orbit is called chaotic when its MEGNO :math:`\langle Y\rangle(t)` at ``t_end``
+exceeds a threshold chosen from *regular reference orbits*: the same grid of the same
+section plane, on the same level, for the top with the same moments and ``mu = 0``
+(Euler-Poinsot, integrable: every orbit is regular). On a torus
+:math:`\langle Y\rangle \to 2` (0 on a stable periodic orbit), and at a finite ``t_end``
+the reference values spread a little above and below 2 (the largest is
+``reference_max``, 2.0-2.1 at ``t_end = 300`` on the bodies of the tests); a chaotic
+orbit with Lyapunov exponent :math:`\lambda` has
+:math:`\langle Y\rangle \approx \lambda t / 2` [1]_. The threshold is
+``reference_max + margin`` (``margin`` = 1 by default: a Lyapunov time shorter than
+about ``t_end / 2`` above the regular spread). Its sensitivity is reported: the fraction
+at ``threshold -+ margin / 2``.
+
+The *chaotic layer* around the former Hess separatrix in the plane ``(theta1, J1)`` of
+``theta2 = const`` (at ``M = 0``, ``theta1`` in ``[0, 2 pi)``): the line ``theta1 = 0``
+of a Hess body, ``theta1 = 2 epsilon`` of a body turned by ``epsilon``
+(:func:`hess_line`); in each row of constant ``J1`` the run of chaotic cells that
+contains the line; its width in radians, and the median over the rows that meet the
+level. A cell of the grid is ``2 pi / nx`` wide: a layer thinner than the cells shows as
+the two cells beside the line (orbits near a hyperbolic set keep a large MEGNO for long
+times), so resolve it with ``nx`` and ``t_end`` before reading its width. On a Hess
+body that separatrix carries the Hess solutions and does not split; a centre of mass
+turned by ``epsilon`` (:meth:`andoyer.body.RigidBody.near_hess`) splits it to first order
+(:func:`andoyer.analysis.melnikov.melnikov_off_hess`).
+
+References
+----------
+.. [1] P. M. Cincotta, C. M. Giordano and C. Simo, "Phase space structure of
+   multi-dimensional systems by means of the mean exponential growth factor of nearby
+   orbits", Physica D 182, 151-178 (2003).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Any, cast
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from andoyer.analysis.chaos import chaos_map
+from andoyer.body import RigidBody, checks_body
+from andoyer.integrate.results import describe_variables
+from andoyer.integrate.section import Section
+from andoyer.validation import finite, positive
+
+__all__ = ["chaos_border", "regular_reference", "layer_width", "hess_line", "MARGIN"]
+
+#: Default margin of the threshold above the regular reference's largest <Y>.
+MARGIN = 1.0
+
+
+def _section(section: Any) -> Section:
+    sec = Section.parse(section) if isinstance(section, str) else (
+        Section(str(section[0]), float(section[1])) if isinstance(section, tuple | list)
+        else section)
+    if sec.coord not in ("theta2", "g"):
+        raise ValueError(f"section must be theta2 = const or g = const, got {sec.coord!r}")
+    return sec
+
+
+@lru_cache(maxsize=32)
+def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, value: float,
+               n: tuple[int, int], t_end: float, engine: str | None, tol: float) -> float:
+    free = RigidBody(A, B, C, 0.0, (1.0, 0.0, 0.0), "Euler-Poinsot reference")
+    ds = chaos_map(free, h, M, (coord, value), n=n, t_end=t_end, indicator="megno",
+                   engine=engine, tol=tol, progress=False)
+    Y = ds.megno.values
+    if not np.any(np.isfinite(Y)):
+        raise ValueError(f"the level h = {h:g}, M = {M:g} of the free top does not meet the "
+                         f"plane {coord} = {value:g}: no regular reference")
+    return float(np.nanmax(Y))
+
+
+def regular_reference(body: RigidBody, h: float, M: float = 0.0,
+                      section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
+                      t_end: float = 300.0, engine: str | None = None,
+                      tol: float = 1e-12) -> float:
+    """The largest MEGNO ``<Y>(t_end)`` over the grid for the free top (``mu = 0``) of
+    the same moments: every orbit regular. Cached per process (one value serves every
+    ``mu``, ``epsilon`` of a sweep).
+
+    >>> ref = regular_reference(RigidBody.hess(3.0, 1.0, 2.0, mu=1.0), 1.0, n=8, t_end=100.0)
+    >>> bool(1.5 < ref < 2.5)
+    True
+    """
+    sec = _section(section)
+    if np.ndim(n) == 0:
+        k = int(cast(int, n))
+        nn = (k, k)
+    else:
+        nx, ny = cast(tuple[int, int], n)
+        nn = (int(nx), int(ny))
+    return _reference(body.A, body.B, body.C, float(h), float(M), sec.coord,
+                      float(sec.value), nn, float(t_end), engine, float(tol))
+
+
+def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
+                theta1: NDArray[np.float64], line: float = 0.0
+                ) -> tuple[NDArray[np.float64], float]:
+    """Width (rad) of the chaotic run through the line ``theta1 = line`` in each row, and
+    its median over the rows that meet the level.
+
+    ``chaotic``, ``accessible``: shape ``(ny, nx)`` over rows of ``J1`` and columns of
+    ``theta1`` (cell centres over ``[0, 2 pi)``, increasing). The cells on either side of
+    the line (mod ``2 pi``) border it.
+
+    >>> c = np.array([[1, 1, 0, 0, 0, 1], [0, 0, 0, 0, 0, 0]], dtype=bool)
+    >>> th = (np.arange(6) + 0.5) * 2 * np.pi / 6
+    >>> w, med = layer_width(c, np.ones_like(c), th)
+    >>> np.round(w / (2 * np.pi / 6), 6).tolist(), round(med / (2 * np.pi / 6), 6)
+    ([3.0, 0.0], 1.5)
+    """
+    ny, nx = chaotic.shape
+    dx = float(theta1[1] - theta1[0]) if nx > 1 else 2.0 * math.pi
+    order = np.argsort(np.mod(np.asarray(theta1) - line, 2.0 * math.pi), kind="stable")
+    chaotic, accessible = chaotic[:, order], accessible[:, order]
+    widths = np.full(ny, np.nan)
+    for j in range(ny):
+        if not accessible[j].any():
+            continue
+        row = chaotic[j] & accessible[j]
+        if row.all():
+            widths[j] = nx * dx
+            continue
+        right = int(np.argmin(row)) if row[0] else 0           # run from theta1 = 0+
+        left = int(np.argmin(row[::-1])) if row[-1] else 0     # run from 2 pi-
+        widths[j] = (right + left) * dx
+    rows = widths[np.isfinite(widths)]
+    return widths, float(np.median(rows)) if rows.size else math.nan
+
+
+def hess_line(body: RigidBody) -> float:
+    """``theta1`` of the former Hess separatrix in ``body``'s Hess chart, in ``[0, 2 pi)``.
+
+    The unperturbed separatrix ``l = -phi0_H`` is fixed by the moments (``phi0_H`` of the
+    Hess conditions (2) for these moments, the sign nearer ``body.phi0``); the chart
+    measures ``theta1 = 2 (l + phi0)`` with the body's own ``phi0``, so the line sits at
+    ``2 (phi0 - phi0_H)``: ``2 epsilon`` for :meth:`~andoyer.body.RigidBody.near_hess`.
+    NaN when the moments admit no Hess body (``A > C > B`` fails).
+
+    >>> round(hess_line(RigidBody.near_hess(3.0, 1.0, 2.0, mu=0.1, epsilon=0.05)), 12)
+    0.1
+    """
+    try:
+        candidates = [RigidBody.hess(body.A, body.B, body.C, 0.0, branch=s).phi0
+                      for s in (1, -1)]
+    except ValueError:
+        return math.nan
+    phi_h = min(candidates, key=lambda p: abs(math.remainder(body.phi0 - p, math.tau)))
+    return float(np.mod(2.0 * (body.phi0 - phi_h), math.tau))
+
+
+@checks_body
+def chaos_border(body: RigidBody, h: float, M: float = 0.0,
+                 section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
+                 t_end: float = 300.0, margin: float = MARGIN, engine: str | None = None,
+                 tol: float = 1e-12, progress: bool | None = None) -> xr.Dataset:
+    """The chaotic fraction of a section plane and the chaotic layer around ``theta1 = 0``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Any body whose plane exists (the Hess plane needs ``e3 = 0``), e.g.
+        :meth:`~andoyer.body.RigidBody.near_hess`.
+    h, M : float
+        The level ``H = h``, ``(G, gamma) = M``.
+    section : (coord, value) or str
+        ``theta2 = const`` (plane ``(theta1, J1)``, the layer width is measured) or
+        ``g = const`` (plane ``(l, L)``; no layer width).
+    n : int or (nx, ny)
+        Grid of the plane (:func:`andoyer.analysis.chaos.chaos_map`).
+    t_end : float
+        Integration time of every orbit.
+    margin : float
+        Threshold above the regular reference (see the module notes).
+    engine, tol, progress :
+        As in :func:`~andoyer.analysis.chaos.chaos_map`.
+
+    Returns
+    -------
+    xarray.Dataset
+        The MEGNO map (``megno``, ``accessible``, ``chaotic``) and the values
+        ``chaotic_fraction`` (of the accessible cells), ``chaotic_fraction_low`` and
+        ``_high`` (threshold ``-+ margin/2``), ``threshold``, ``reference_max``,
+        ``layer_width`` (median, rad; NaN for ``g`` sections), ``layer_width_row``
+        (per row), ``n_accessible``.
+
+    Examples
+    --------
+    >>> ds = chaos_border(RigidBody.hess(3.0, 1.0, 2.0, mu=1.0), 1.0, n=8, t_end=100.0)
+    >>> bool(0.1 < float(ds.chaotic_fraction) < 0.9)
+    True
+    """
+    sec = _section(section)
+    finite("h", h)
+    finite("M", M)
+    positive("margin", margin)
+    ref = regular_reference(body, h, M, sec, n=n, t_end=t_end, engine=engine, tol=tol)
+    ds = chaos_map(body, float(h), float(M), (sec.coord, sec.value), n=n, t_end=t_end,
+                   indicator="megno", engine=engine, tol=tol, progress=progress)
+    Y = ds.megno.values
+    acc = ds.accessible.values.astype(bool) & np.isfinite(Y)
+    n_acc = int(acc.sum())
+    threshold = ref + float(margin)
+
+    def fraction(th: float) -> float:
+        return float(np.sum(acc & (Y > th)) / n_acc) if n_acc else math.nan
+
+    chaotic = acc & (Y > threshold)
+    out = ds[["megno", "accessible"]].copy()
+    out["chaotic"] = (ds.megno.dims, chaotic)
+    out["chaotic_fraction"] = ((), fraction(threshold))
+    out["chaotic_fraction_low"] = ((), fraction(threshold - 0.5 * margin))
+    out["chaotic_fraction_high"] = ((), fraction(threshold + 0.5 * margin))
+    out["threshold"] = ((), threshold)
+    out["reference_max"] = ((), ref)
+    out["n_accessible"] = ((), n_acc)
+    line = hess_line(body) if sec.coord == "theta2" else math.nan
+    out["hess_line"] = ((), line)
+    if math.isfinite(line):
+        x = ds[ds.megno.dims[1]].values
+        widths, med = layer_width(chaotic, acc, np.asarray(x, dtype=float), line)
+        out["layer_width_row"] = ((ds.megno.dims[0],), widths)
+        out["layer_width"] = ((), med)
+    else:
+        out["layer_width"] = ((), math.nan)
+    out.attrs.update(ds.attrs)
+    out.attrs.update(margin=float(margin), rule="chaotic where MEGNO <Y>(t_end) > "
+                     "reference_max + margin; reference: the free top (mu = 0) on the "
+                     "same grid and level")
+    return describe_variables(out, {
+        "chaotic": ("", "MEGNO above the threshold", "1", ""),
+        "chaotic_fraction": ("f_c", "fraction of the accessible cells that are chaotic",
+                             "1", ""),
+        "chaotic_fraction_low": ("", "chaotic fraction at threshold - margin/2", "1", ""),
+        "chaotic_fraction_high": ("", "chaotic fraction at threshold + margin/2", "1", ""),
+        "threshold": ("Y^*", "MEGNO threshold of chaos", "1", ""),
+        "reference_max": ("", "largest MEGNO of the regular reference (mu = 0)", "1", ""),
+        "n_accessible": ("", "cells where the level meets the plane", "1", ""),
+        "hess_line": ("\\theta_1^H", "theta1 of the former Hess separatrix", "rad", "(14)"),
+        "layer_width": ("w", "median width of the chaotic run through the former Hess "
+                        "separatrix", "rad", "(14)"),
+        "layer_width_row": ("", "width of the chaotic run through the former Hess "
+                            "separatrix, per row", "rad", "(14)")})
