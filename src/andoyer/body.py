@@ -326,6 +326,35 @@ class RigidBody:
         (see :meth:`near_hess`)."""
         return (self.c - self.b) * self.e1**2 - (self.a - self.c) * self.e2**2
 
+    def nearest_hess(self) -> RigidBody:
+        """The Hess body of the same moments and ``mu`` whose centre of mass is nearest
+        this one's (the branch of (2) with ``phi0`` nearer :attr:`phi0`); ``self`` if the
+        body is Hess.
+
+        Its chart (14) and its heteroclinic lines ``theta1 = 0``, ``4 phi0`` describe the
+        unperturbed (``mu = 0``) motion of every body with these moments, since the
+        Euler-Poinsot flow does not see ``r``. ``ValueError`` unless the centre of mass is
+        in the (e1, e2) plane and ``A > C > B``.
+
+        >>> b = RigidBody.near_hess(2.5, 2.0, 2.2, mu=0.01, epsilon=0.05)
+        >>> b.nearest_hess().is_hess, round(b.hess_epsilon, 12)
+        (True, 0.05)
+        """
+        if self.is_hess:
+            return self
+        self.require_planar("the nearest Hess body")
+        twins = [RigidBody.hess(self.A, self.B, self.C, self.mu, branch=s, name=self.name)
+                 for s in (1, -1)]
+        return min(twins, key=lambda t: abs(math.remainder(self.phi0 - t.phi0, math.tau)))
+
+    @property
+    def hess_epsilon(self) -> float:
+        """The turn ``epsilon`` in ``(-pi, pi]`` of the centre of mass off the nearest Hess
+        direction (:meth:`nearest_hess`): ``phi0 - phi0_H``; 0 on a Hess body. In the Hess
+        chart of this body the former Hess separatrix ``l = -phi0_H`` sits at
+        ``theta1 = 2 epsilon``."""
+        return float(math.remainder(self.phi0 - self.nearest_hess().phi0, math.tau))
+
     @classmethod
     def paper(cls, mu: float = 0.01) -> RigidBody:
         """The paper's body: Hess, A = 2.5, B = 2.0, C = 2.2, mu = 0.01 (Fig. 3)."""

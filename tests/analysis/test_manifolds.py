@@ -153,9 +153,12 @@ def test_cli_writes_netcdf_and_png(tmp_path, capsys):
 
 
 def test_invalid_inputs(tmp_path):
-    body = RigidBody(2.5, 2.0, 2.2, 0.01, (0.6, 0.8, 0.0))
-    with pytest.raises(ValueError, match="Hess body"):
+    body = RigidBody(2.0, 2.5, 3.0, 0.01, (0.6, 0.8, 0.0))     # no Hess body: C not middle
+    with pytest.raises(ValueError, match="A > C > B"):
         separatrix_splitting(body, [0.01])
+    lifted = RigidBody(2.5, 2.0, 2.2, 0.01, (0.6, 0.0, 0.8))    # off the (e1, e2) plane
+    with pytest.raises(ValueError, match="e3 = 0"):
+        separatrix_splitting(lifted, [0.01])
     with pytest.raises(ValueError, match="increasing"):
         separatrix_splitting(TEST_BODY, [0.02, 0.01])
     with pytest.raises(ValueError, match="> 0"):

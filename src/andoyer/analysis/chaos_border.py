@@ -138,22 +138,20 @@ def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
 def hess_line(body: RigidBody) -> float:
     """``theta1`` of the former Hess separatrix in ``body``'s Hess chart, in ``[0, 2 pi)``.
 
-    The unperturbed separatrix ``l = -phi0_H`` is fixed by the moments (``phi0_H`` of the
-    Hess conditions (2) for these moments, the sign nearer ``body.phi0``); the chart
-    measures ``theta1 = 2 (l + phi0)`` with the body's own ``phi0``, so the line sits at
-    ``2 (phi0 - phi0_H)``: ``2 epsilon`` for :meth:`~andoyer.body.RigidBody.near_hess`.
-    NaN when the moments admit no Hess body (``A > C > B`` fails).
+    The unperturbed separatrix ``l = -phi0_H`` is fixed by the moments
+    (:meth:`~andoyer.body.RigidBody.nearest_hess`); the chart measures
+    ``theta1 = 2 (l + phi0)`` with the body's own ``phi0``, so the line sits at
+    ``2 (phi0 - phi0_H) = 2 epsilon`` (:attr:`~andoyer.body.RigidBody.hess_epsilon`).
+    NaN when the moments admit no Hess body (``A > C > B`` fails) or ``e3 != 0``.
 
     >>> round(hess_line(RigidBody.near_hess(3.0, 1.0, 2.0, mu=0.1, epsilon=0.05)), 12)
     0.1
     """
     try:
-        candidates = [RigidBody.hess(body.A, body.B, body.C, 0.0, branch=s).phi0
-                      for s in (1, -1)]
+        eps = body.hess_epsilon
     except ValueError:
         return math.nan
-    phi_h = min(candidates, key=lambda p: abs(math.remainder(body.phi0 - p, math.tau)))
-    return float(np.mod(2.0 * (body.phi0 - phi_h), math.tau))
+    return float(np.mod(2.0 * eps, math.tau))
 
 
 @checks_body

@@ -144,7 +144,8 @@ class ManifoldBranch:
     delta : float
         Distance of the fundamental domain from ``p`` (in ``(x1, x2)``).
     theta1_line : float
-        ``theta1`` of the unperturbed line in ``[0, 4 pi)``.
+        ``theta1`` of the unperturbed line in ``[0, 4 pi)``, in the chart of
+        :meth:`~andoyer.body.RigidBody.nearest_hess`.
     crossing_direction : int
         Sign of ``dL/dt`` where the branch crosses ``Sigma_0``.
     """
@@ -212,8 +213,11 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     Parameters
     ----------
     body : RigidBody
-        A Hess body (the lines ``theta1 = 0``, ``4 phi0`` are the separatrices);
-        the area constant is ``M = 0``.
+        A Hess body (the lines ``theta1 = 0``, ``4 phi0`` are the separatrices), or a
+        body turned off it in the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.
+        near_hess`; the lines are then those of :meth:`~andoyer.body.RigidBody.
+        nearest_hess`, which the unperturbed flow follows whatever ``r``); the area
+        constant is ``M = 0``.
     h : float
         Energy level (e.g. :func:`~andoyer.analysis.periodic.rotation_energy`).
     stability : {"unstable", "stable"}
@@ -250,7 +254,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     >>> bool(np.ptp(curve.g) > 2 * np.pi)                  # one fundamental domain: a full turn
     True
     """
-    body.require_hess("manifold_branch")
+    hess = body.nearest_hess()
     if stability not in ("unstable", "stable"):
         raise ValueError(f"stability must be 'unstable' or 'stable', got {stability!r}")
     if branch not in BRANCHES:
@@ -259,7 +263,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
         raise ValueError(f"sheet must be +1 or -1, got {sheet!r}")
     if not (math.isfinite(delta) and 0.0 < delta < 0.1):
         raise ValueError(f"delta must lie in (0, 0.1), got {delta!r}")
-    theta1_line, j1_dir = heteroclinic_line_of(body, h, branch, sheet)
+    theta1_line, j1_dir = heteroclinic_line_of(hess, h, branch, sheet)
     # J1 increasing: the line leaves L = -G (J1 = 0) and reaches L = +G (J1 = J2).
     leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
     rot = leaves if stability == "unstable" else reaches
@@ -281,7 +285,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     trial = ManifoldBranch(orbit, stability, branch, sheet, v, factor, float(delta),
                            theta1_line, -rot if stability == "unstable" else rot)
     # Orient v: the traced point must arrive near the line's l = theta1/2 - phi0 (mod 2 pi).
-    l_line = theta1_line / 2.0 - body.phi0
+    l_line = theta1_line / 2.0 - hess.phi0
     l_seen = float(to_andoyer(trial.trace(0.5).y)[0])
     if abs(math.remainder(l_seen - l_line, math.tau)) > math.pi / 2:
         trial = replace(trial, vector=-v)

@@ -267,7 +267,11 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     Parameters
     ----------
     body : RigidBody
-        A Hess body.
+        A Hess body, or any body with its centre of mass in the (e1, e2) plane and
+        ``A > C > B``: then the lines and the chart are those of
+        :meth:`~andoyer.body.RigidBody.nearest_hess` and the function is
+        :func:`melnikov_off_hess` at ``epsilon =`` :attr:`~andoyer.body.RigidBody.
+        hess_epsilon`.
     theta2_0 : array_like, optional
         Phases (``theta2`` at ``L = 0``); default ``n`` equal steps of ``[0, 2 pi)``.
     J2, branch, sheet :
@@ -279,14 +283,21 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     -------
     xarray.Dataset
         Dim ``theta2_0``: ``M`` (closed form), ``M_quadrature``, ``g`` (the phase on
-        ``L = 0``), ``Delta_G_per_mu = -M/(c J2)``. Attrs ``rho``, ``lambda_rate``,
-        ``amplitude`` (of ``M``), ``theta1_line``, ``J1_direction``.
+        ``L = 0``), ``Delta_G_per_mu = -M/(c J2)``. Values ``rho``, ``lambda_rate``,
+        ``amplitude`` (of ``M``), ``epsilon``; attrs ``theta1_line``, ``J1_direction``.
 
     Examples
     --------
     >>> ds = melnikov_function(RigidBody.paper(), n=8, quadrature=False)
     >>> f"{ds.attrs['amplitude']:.4e}"
     '3.3829e-05'
+
+    A turned centre of mass splits the Hess branch too, linearly in ``epsilon``:
+
+    >>> turned = RigidBody.near_hess(2.5, 2.0, 2.2, epsilon=0.1)
+    >>> ds = melnikov_function(turned, n=8, branch="theta1=0", quadrature=False)
+    >>> f"{float(ds.amplitude):.4e}", round(float(ds.epsilon), 12)
+    ('3.3913e-06', 0.1)
     """
     if theta2_0 is None:
         if int(n) != n or n < 1:
@@ -296,29 +307,41 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
         if th.ndim != 1 or not np.all(np.isfinite(th)):
             raise ValueError("theta2_0 must be a 1-D array of finite phases")
-    theta1, s = heteroclinic_line(body, J2, branch, sheet)
-    rho = melnikov_rho(body, J2)
+    hess = body.nearest_hess()
+    eps = body.hess_epsilon
+    theta1, s = heteroclinic_line(hess, J2, branch, sheet)
+    rho = melnikov_rho(hess, J2)
     x = math.pi * rho
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
-    M = melnikov_closed_form(body, th, J2=J2, branch=branch, sheet=sheet)
+    if eps == 0.0:
+        M = melnikov_closed_form(hess, th, J2=J2, branch=branch, sheet=sheet)
+        closed = ("M = -s pi rho/sinh(pi rho) [sin(theta1 + theta2_0) - sin(theta2_0)], "
+                  "rho = c J2/lambda")
+    else:
+        M = melnikov_off_hess(hess, eps, th, J2=J2, branch=branch, sheet=sheet)
+        closed = ("M = -2 s pi rho/sinh(pi rho) sin(theta1/2 + epsilon) cos(theta2_0 + "
+                  "theta1/2), rho = c J2/lambda (centre of mass turned by epsilon)")
     data: dict[str, Any] = {"M": (("theta2_0",), M),
                             "g": (("theta2_0",), np.mod(th + theta1 / 2.0, math.tau)),
                             "Delta_G_per_mu": (("theta2_0",), -M / (body.c * J2))}
     if quadrature:
         data["M_quadrature"] = (("theta2_0",), melnikov_quadrature(
-            body, th, J2=J2, branch=branch, sheet=sheet))
+            hess, th, J2=J2, branch=branch, sheet=sheet) if eps == 0.0 else
+            melnikov_off_hess(hess, eps, th, J2=J2, branch=branch, sheet=sheet,
+                              method="trapezoid"))
     ds = xr.Dataset(data, coords={"theta2_0": th}, attrs=provenance(
         body.with_mu(0.0), engine="closed form and trapezoidal rule",
         equations="M(theta2_0) = int {E, H1} dt along the unperturbed heteroclinic orbit, "
                   "E = H0 - c J2^2/2",
-        closed_form="M = -s pi rho/sinh(pi rho) [sin(theta1 + theta2_0) - sin(theta2_0)], "
-                    "rho = c J2/lambda",
+        closed_form=closed,
         branch=branch, sheet=sheet, J2=J2, theta1_line=theta1,
         J1_direction="increasing" if s > 0 else "decreasing", rho=rho,
-        lambda_rate=heteroclinic_rate(body, J2),
-        amplitude=abs(2.0 * factor * math.sin(theta1 / 2.0)),
-        pi_rho_over_sinh=factor))
+        lambda_rate=heteroclinic_rate(hess, J2),
+        amplitude=abs(2.0 * factor * math.sin(theta1 / 2.0 + eps)),
+        pi_rho_over_sinh=factor, epsilon=eps))
     values_from_attrs(ds, {
+        "epsilon": ("\\epsilon", "turn of the centre of mass off the Hess direction", "rad",
+                    "(2)"),
         "amplitude": ("\\max|M|", "amplitude of the Melnikov function", "energy units x time",
                       "(16)"),
         "rho": ("\\rho", "rho = c J2/lambda", "1", ""),

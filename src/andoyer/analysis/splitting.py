@@ -31,7 +31,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance, values_from_attrs
 
-__all__ = ["measure_splitting", "separatrix_splitting", "splitting_at"]
+__all__ = ["measure_splitting", "separatrix_splitting", "splitting_at", "splitting_vs_epsilon"]
 
 
 # ----------------------------------------------------------------------------- splitting
@@ -232,7 +232,13 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     Parameters
     ----------
     body : RigidBody
-        A Hess body (its own ``mu`` is ignored).
+        A Hess body, or a body with the same moments whose centre of mass is turned in
+        the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.near_hess`): its own ``mu``
+        is ignored. The lines and the Melnikov phase are those of
+        :meth:`~andoyer.body.RigidBody.nearest_hess`; the prediction is
+        :func:`~andoyer.analysis.melnikov.melnikov_off_hess` at ``epsilon =``
+        :attr:`~andoyer.body.RigidBody.hess_epsilon` (the Hess branch ``theta1 = 0``
+        splits by ``2 mu (pi rho/sinh pi rho) |sin epsilon| / (c G)``).
     mu : sequence of float
         Increasing values ``mu > 0``.
     G : float
@@ -289,13 +295,13 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
         raise ValueError("mu must be a non-empty list of finite values > 0")
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
-    body.require_hess("separatrix_splitting")
+    hess = body.nearest_hess()
     engine = flow_engine(engine)
     G = float(G)
     if not (math.isfinite(G) and G > 0.0):
         raise ValueError(f"G must be finite and > 0, got {G!r}")
     h = 0.5 * body.c * G * G
-    theta1_line, j1_dir = heteroclinic_line_of(body, h, branch, sheet)
+    theta1_line, j1_dir = heteroclinic_line_of(hess, h, branch, sheet)
     leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
     bar = Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
     # Both rotation orbits, continued in mu once through every requested value.
@@ -341,6 +347,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
                        branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
                        delta=delta, tolerance=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
+                       epsilon=mel.attrs["epsilon"],
                        melnikov_amplitude=mel.attrs["amplitude"],
                        plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
                        relation="Delta_E = mu M(theta2_0) + O(mu^2); Delta_G = -Delta_E/(c G)"
@@ -374,7 +381,9 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
         "melnikov_amplitude": ("\\max|M|", "amplitude of the Melnikov function (per mu: "
                                "Delta E = mu M)", "energy units x time", "(16)"),
         "theta1_line": ("\\theta_1", "theta1 of the unperturbed heteroclinic line", "rad",
-                        "(14)")})
+                        "(14)"),
+        "epsilon": ("\\epsilon", "turn of the centre of mass off the Hess direction", "rad",
+                    "(2)")})
 
     n_max = max([it.sizes["intersection"] for it in inters] + [0])
     data: dict[str, Any] = {}
@@ -398,3 +407,101 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     return {"splitting": splitting, "intersections": intersections, "melnikov": mel,
             "orbit_leaves": orbits_dataset(orb_u), "orbit_reaches": orbits_dataset(orb_s),
             **curves}
+
+
+@checks_body
+def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
+                         mu: Sequence[float] | ArrayLike, *, branch: str = "theta1=0",
+                         G: float = 1.0, n_phase: int = 16, delta: float = 1e-5,
+                         tol: float = DEFAULT_TOL, progress: bool | None = None,
+                         engine: str | None = None) -> xr.Dataset:
+    """The splitting of a separatrix branch as the centre of mass turns off the Hess
+    direction: measured (:func:`separatrix_splitting`) against the first-order Melnikov
+    prediction (:func:`~andoyer.analysis.melnikov.melnikov_off_hess`) over ``epsilon``.
+
+    On the Hess branch ``theta1 = 0`` the amplitude is
+    ``mu 2 (pi rho/sinh pi rho) |sin epsilon| / (c G) + O(mu^2)``: it vanishes at
+    ``epsilon = 0`` (the Hess relation (3) is invariant, the manifolds coincide) and
+    grows linearly with ``epsilon``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (:meth:`~andoyer.body.RigidBody.nearest_hess` of a planar body);
+        the turned bodies are :meth:`~andoyer.body.RigidBody.near_hess` of its moments.
+    epsilon : sequence of float
+        Turns of the centre of mass (rad), each in ``(-pi/2, pi/2)``.
+    mu : sequence of float
+        Increasing values ``mu > 0``.
+    branch, G, n_phase, delta, tol, engine :
+        As in :func:`separatrix_splitting`.
+    progress : bool, optional
+        A progress bar over ``epsilon`` (default: when stderr is a terminal).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(epsilon, mu)``: ``amplitude`` (measured ``max |Delta G|``),
+        ``amplitude_melnikov``, ``relative_error`` (over the phase, of the predicted
+        amplitude; NaN where the prediction is 0), ``g_intersection`` (the first
+        heteroclinic point). Values ``rho``, ``theta1_line``.
+
+    Examples
+    --------
+    >>> ds = splitting_vs_epsilon(RigidBody.hess(2.5, 1.0, 1.6), [0.0, 0.1], [0.01],
+    ...                           n_phase=8)
+    >>> float(ds.amplitude[0, 0]) < 1e-12, float(ds.relative_error[1, 0]) < 0.01
+    (True, True)
+    """
+    from andoyer.progress import Progress
+
+    hess = body.nearest_hess()
+    eps = np.atleast_1d(np.asarray(epsilon, dtype=float))
+    if eps.ndim != 1 or eps.size == 0 or not np.all(np.abs(eps) < 0.5 * math.pi):
+        raise ValueError(f"epsilon must be a non-empty list of turns in (-pi/2, pi/2), got "
+                         f"{epsilon!r}")
+    mus = np.atleast_1d(np.asarray(mu, dtype=float))
+    sign = 1 if hess.e2 >= 0.0 else -1
+    amp = np.full((eps.size, mus.size), np.nan)
+    pred, rel, g_star = amp.copy(), amp.copy(), amp.copy()
+    last: xr.Dataset | None = None
+    bar = Progress(eps.size, f"splitting vs epsilon, {branch}", progress)
+    for i, e in enumerate(eps):
+        turned = RigidBody.near_hess(hess.A, hess.B, hess.C, 0.0, float(e), branch=sign,
+                                     name=hess.name)
+        out = separatrix_splitting(turned, mus, G=G, branch=branch, n_phase=n_phase,
+                                   delta=delta, tol=tol, progress=False, engine=engine)
+        sp, it = out["splitting"], out["intersections"]
+        amp[i], pred[i], rel[i] = (sp.amplitude.values, sp.amplitude_melnikov.values,
+                                   sp.relative_error.values)
+        if it.sizes["intersection"]:
+            g_star[i] = it.g.values[:, 0]
+        last = sp
+        bar.update(1)
+    bar.close()
+    assert last is not None
+    attrs = provenance(hess.with_mu(float(mus[-1])), engine=last.attrs["engine"],
+                       branch=branch, energy=0.5 * hess.c * G * G, G_level=G,
+                       n_phase=n_phase, delta=delta, tolerance=tol,
+                       theta1_line=float(last.theta1_line), rho=float(last.rho),
+                       relation="max|Delta G| = mu 2 (pi rho/sinh pi rho) |sin(theta1/2 + "
+                                "epsilon)| / (c G) + O(mu^2)")
+    attrs["body_mu"] = "see the mu coordinate"
+    ds = xr.Dataset({"amplitude": (("epsilon", "mu"), amp),
+                     "amplitude_melnikov": (("epsilon", "mu"), pred),
+                     "relative_error": (("epsilon", "mu"), rel),
+                     "g_intersection": (("epsilon", "mu"), g_star)},
+                    coords={"epsilon": eps, "mu": mus}, attrs=attrs)
+    values_from_attrs(ds, {
+        "rho": ("\\rho", "rho = c J2/lambda of the unperturbed separatrix", "1", ""),
+        "theta1_line": ("\\theta_1", "theta1 of the unperturbed heteroclinic line", "rad",
+                        "(14)")})
+    ds.epsilon.attrs.update(symbol="\\epsilon", long_name="turn of the centre of mass off "
+                            "the Hess direction", units="rad", equation="(2)")
+    ds.mu.attrs.update(last.mu.attrs)
+    for name in ("amplitude", "amplitude_melnikov", "relative_error"):
+        ds[name].attrs.update(last[name].attrs)
+    ds.g_intersection.attrs.update(symbol="g^*", long_name="phase of the first heteroclinic "
+                                   "point on L = 0 (pi/2 by the reversing symmetry)",
+                                   units="rad")
+    return ds
