@@ -338,9 +338,15 @@ BAD = [
                                            r"'section'\?\)"),
     (_with(TINY, "task", kind="splitting"), r"\[parameters\] h: the splitting task does "
                                             r"not take it \(its level is h = c G\^2 / 2"),
-    ({"body": {"kind": "general", "r": [0.6, 0.8, 0.0]},
+    ({"body": {"kind": "general", "r": [0.6, 0.0, 0.8]},
       "parameters": {"A": 2.5, "B": 2.0, "C": 2.2, "mu": [0.01, 0.02]},
       "task": {"kind": "splitting"}}, "the splitting task needs a Hess body"),
+    ({"body": {"kind": "general", "r": [0.6, 0.8, 0.0]},
+      "parameters": {"A": 2.5, "B": 2.0, "C": 2.2, "mu": [0.01, 0.02], "epsilon": 0.1,
+                     "h": 0.3},
+      "task": {"kind": "chaos_border"}}, "epsilon turns a Hess body's centre of mass"),
+    (TINY | {"task": {"kind": "chaos_border", "section": "G3=0"}}, "'theta2=VALUE'"),
+    (TINY | {"task": {"kind": "chaos_border", "margin": 0.0}}, "margin must be"),
     ({"parameters": {"mu": [0.0, 0.01]}, "task": {"kind": "splitting"}},
      r"needs mu > 0 \(at mu = 0 the separatrices coincide\)"),
     ({"parameters": {"mu": [0.01, 0.02]}, "task": {"kind": "splitting", "n_phase": 7}},
@@ -416,6 +422,50 @@ def test_chaos_atlas_draws_images(chaos_store):
     panels = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
     assert len(panels) == 2 and all(len(ax.collections) == 1 for ax in panels)
     assert panels[0].get_xlabel() == r"$\theta_1$" and panels[0].get_ylabel() == "$J_1$"
+
+
+BORDER = {"body": {"kind": "hess", "name": "rho~1"},
+          "parameters": {"A": 2.5, "B": 1.0, "C": 1.6, "mu": [0.01, 0.05],
+                         "epsilon": [0.0, 0.3], "h": 0.3125},
+          "task": {"kind": "chaos_border", "n": [8, 6], "t_end": 60.0}}
+
+
+@pytest.fixture(scope="module")
+def border_store(tmp_path_factory) -> Path:
+    store = tmp_path_factory.mktemp("border") / "border.zarr"
+    scan(BORDER, store, scheduler="serial", progress=False)
+    return store
+
+
+def test_border_scan_points_are_the_public_api_result(border_store):
+    from andoyer.analysis.chaos_border import chaos_border
+
+    ds = xr.open_zarr(border_store).load()
+    assert ds.epsilon.attrs["units"] == "rad" and ds.chaotic_fraction.dims == ("mu", "epsilon")
+    for i, j in ((0, 0), (1, 1)):
+        p = ds.isel(mu=i, epsilon=j)
+        body = RigidBody.near_hess(2.5, 1.0, 1.6, float(p.mu), float(p.epsilon))
+        direct = chaos_border(body, 0.3125, 0.0, n=(8, 6), t_end=60.0)
+        for name in ("megno", "chaotic", "chaotic_fraction", "layer_width", "threshold",
+                     "hess_line"):
+            assert np.array_equal(p[name].values, direct[name].values, equal_nan=True), name
+        assert np.allclose([float(p.e1), float(p.e2)], body.r[:2], rtol=0, atol=1e-15)
+    # the turned line: theta1 = 2 epsilon
+    assert float(ds.hess_line[0, 1]) == pytest.approx(0.6, abs=1e-12)
+
+
+def test_border_atlas_draws_the_fraction_and_the_width(border_store, tmp_path, capsys):
+    from andoyer.plot.atlas import plot_border
+
+    fig = plot_border(xr.open_zarr(border_store))
+    panels = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
+    assert len(panels) == 2 and panels[0].get_xlabel().startswith(r"$\epsilon$")
+    assert panels[0].get_ylabel() == r"$\mu$"
+    assert main(["atlas", str(border_store), "--out", str(tmp_path / "b.png")]) == 0
+    assert (tmp_path / "b.png").stat().st_size > 10_000
+    assert main(["atlas", str(border_store), "--maps", "--out", str(tmp_path / "m.png")]) == 0
+    with pytest.raises(ValueError, match="not of a chaos_border scan"):
+        plot_border(xr.open_zarr(border_store).assign_attrs(scan_task="chaos_map"))
 
 
 @pytest.mark.slow

@@ -18,8 +18,21 @@ The *chaotic layer* around the former Hess separatrix in the plane ``(theta1, J1
 ``theta2 = const`` (at ``M = 0``, ``theta1`` in ``[0, 2 pi)``): the line ``theta1 = 0``
 of a Hess body, ``theta1 = 2 epsilon`` of a body turned by ``epsilon``
 (:func:`hess_line`); in each row of constant ``J1`` the run of chaotic cells that
-contains the line; its width in radians, and the median over the rows that meet the
-level. A cell of the grid is ``2 pi / nx`` wide: a layer thinner than the cells shows as
+contains the line; its width in radians, and the median over the rows of the middle half
+of the accessible ``J1`` range (away from the rotations ``P+-`` at ``J1 = 0, J2``, where
+the layers of the two separatrix branches meet).
+
+What it shows (measured on the body ``A, B, C = 2.5, 1, 1.6``, ``rho = 1.08``,
+``mu = 0.05``, 96 x 48 cells, ``t_end = 300``): on a Hess body the line ``theta1 = 0``
+is a regular invariant surface (the manifolds coincide), yet it lies inside a chaotic
+layer about 0.3 rad wide, as wide as the layer of the splitting branch
+``theta1 = 4 phi0``: orbits beside it pass by the saddles ``P+-`` and leave along the
+split branch. Turning the centre of mass by ``epsilon = 0.3`` moves the layer with the
+line (to ``theta1 = 2 epsilon``) and keeps its width (0.29 and 0.33 rad); the chaotic
+fraction of the plane is set by ``mu`` (0.05-0.07 at ``mu = 0.01``, about 0.3 at
+``mu = 0.05``) and changes little with ``epsilon``.
+
+A cell of the grid is ``2 pi / nx`` wide: a layer thinner than the cells shows as
 the two cells beside the line (orbits near a hyperbolic set keep a large MEGNO for long
 times), so resolve it with ``nx`` and ``t_end`` before reading its width. On a Hess
 body that separatrix carries the Hess solutions and does not split; a centre of mass
@@ -66,10 +79,11 @@ def _section(section: Any) -> Section:
 
 @lru_cache(maxsize=32)
 def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, value: float,
-               n: tuple[int, int], t_end: float, engine: str | None, tol: float) -> float:
+               n: tuple[int, int], t_end: float, engine: str | None, tol: float,
+               n_threads: int | None) -> float:
     free = RigidBody(A, B, C, 0.0, (1.0, 0.0, 0.0), "Euler-Poinsot reference")
     ds = chaos_map(free, h, M, (coord, value), n=n, t_end=t_end, indicator="megno",
-                   engine=engine, tol=tol, progress=False)
+                   engine=engine, tol=tol, n_threads=n_threads, progress=False)
     Y = ds.megno.values
     if not np.any(np.isfinite(Y)):
         raise ValueError(f"the level h = {h:g}, M = {M:g} of the free top does not meet the "
@@ -80,7 +94,7 @@ def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, val
 def regular_reference(body: RigidBody, h: float, M: float = 0.0,
                       section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                       t_end: float = 300.0, engine: str | None = None,
-                      tol: float = 1e-12) -> float:
+                      tol: float = 1e-12, n_threads: int | None = None) -> float:
     """The largest MEGNO ``<Y>(t_end)`` over the grid for the free top (``mu = 0``) of
     the same moments: every orbit regular. Cached per process (one value serves every
     ``mu``, ``epsilon`` of a sweep).
@@ -97,7 +111,7 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
         nx, ny = cast(tuple[int, int], n)
         nn = (int(nx), int(ny))
     return _reference(body.A, body.B, body.C, float(h), float(M), sec.coord,
-                      float(sec.value), nn, float(t_end), engine, float(tol))
+                      float(sec.value), nn, float(t_end), engine, float(tol), n_threads)
 
 
 def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
@@ -158,7 +172,8 @@ def hess_line(body: RigidBody) -> float:
 def chaos_border(body: RigidBody, h: float, M: float = 0.0,
                  section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                  t_end: float = 300.0, margin: float = MARGIN, engine: str | None = None,
-                 tol: float = 1e-12, progress: bool | None = None) -> xr.Dataset:
+                 tol: float = 1e-12, n_threads: int | None = None,
+                 progress: bool | None = None) -> xr.Dataset:
     """The chaotic fraction of a section plane and the chaotic layer around ``theta1 = 0``.
 
     Parameters
@@ -177,7 +192,7 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
         Integration time of every orbit.
     margin : float
         Threshold above the regular reference (see the module notes).
-    engine, tol, progress :
+    engine, tol, n_threads, progress :
         As in :func:`~andoyer.analysis.chaos.chaos_map`.
 
     Returns
@@ -186,8 +201,9 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
         The MEGNO map (``megno``, ``accessible``, ``chaotic``) and the values
         ``chaotic_fraction`` (of the accessible cells), ``chaotic_fraction_low`` and
         ``_high`` (threshold ``-+ margin/2``), ``threshold``, ``reference_max``,
-        ``layer_width`` (median, rad; NaN for ``g`` sections), ``layer_width_row``
-        (per row), ``n_accessible``.
+        ``layer_width`` (median over the middle half of the ``J1`` range, rad; NaN for
+        ``g`` sections), ``layer_width_row`` (per row), ``hess_line``,
+        ``n_accessible``.
 
     Examples
     --------
@@ -199,9 +215,11 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
     finite("h", h)
     finite("M", M)
     positive("margin", margin)
-    ref = regular_reference(body, h, M, sec, n=n, t_end=t_end, engine=engine, tol=tol)
+    ref = regular_reference(body, h, M, sec, n=n, t_end=t_end, engine=engine, tol=tol,
+                            n_threads=n_threads)
     ds = chaos_map(body, float(h), float(M), (sec.coord, sec.value), n=n, t_end=t_end,
-                   indicator="megno", engine=engine, tol=tol, progress=progress)
+                   indicator="megno", engine=engine, tol=tol, n_threads=n_threads,
+                   progress=progress)
     Y = ds.megno.values
     acc = ds.accessible.values.astype(bool) & np.isfinite(Y)
     n_acc = int(acc.sum())
@@ -223,9 +241,15 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
     out["hess_line"] = ((), line)
     if math.isfinite(line):
         x = ds[ds.megno.dims[1]].values
-        widths, med = layer_width(chaotic, acc, np.asarray(x, dtype=float), line)
+        widths, _ = layer_width(chaotic, acc, np.asarray(x, dtype=float), line)
+        # Rows of the middle half of the accessible J1 range: away from the rotations
+        # P+- (J1 = 0, J2), where the layers of both separatrix branches meet.
+        J1 = np.asarray(ds[ds.megno.dims[0]].values, dtype=float)
+        rows = acc.any(axis=1)
+        lo, hi = (float(J1[rows].min()), float(J1[rows].max())) if rows.any() else (0, 0)
+        mid = rows & (np.abs(J1 - 0.5 * (lo + hi)) <= 0.25 * (hi - lo))
         out["layer_width_row"] = ((ds.megno.dims[0],), widths)
-        out["layer_width"] = ((), med)
+        out["layer_width"] = ((), float(np.median(widths[mid])) if mid.any() else math.nan)
     else:
         out["layer_width"] = ((), math.nan)
     out.attrs.update(ds.attrs)

@@ -18,7 +18,7 @@ def run(args: argparse.Namespace) -> int:
     import xarray as xr
 
     from andoyer.cli._common import distinct_outputs, floats, output_file
-    from andoyer.plot.atlas import plot_atlas
+    from andoyer.plot.atlas import plot_atlas, plot_border
     from andoyer.plot.section import save_figure
 
     png = output_file(args.out, ".png")
@@ -34,7 +34,10 @@ def run(args: argparse.Namespace) -> int:
         if not sep:
             raise ValueError(f"--select {item!r}: write NAME=VALUE, e.g. M_level=0")
         select[name.strip()] = floats(value, 1, f"--select {name}")[0]
-    fig = plot_atlas(ds, rows=args.rows, cols=args.cols, select=select, width=args.width)
+    if ds.attrs.get("scan_task") == "chaos_border" and not args.maps:
+        fig = plot_border(ds, x=args.cols, y=args.rows, select=select, width=args.width)
+    else:
+        fig = plot_atlas(ds, rows=args.rows, cols=args.cols, select=select, width=args.width)
     out = save_figure(fig, png, pdf=args.pdf)
     done = int(ds["done"].sum())
     print(f"wrote {', '.join(map(str, out))} ({done} of {ds['done'].size} points done)")
@@ -47,11 +50,15 @@ def register(sub: Any) -> None:
     p.add_argument("--out", default="atlas.png", help="output PNG (default atlas.png)")
     p.add_argument("--pdf", action="store_true", help="also write a PDF beside the PNG")
     p.add_argument("--rows", default=None,
-                   help="swept dim along the rows (mu, h_level, M_level, A, B, C; default: "
-                        "the first swept)")
+                   help="swept dim along the rows (mu, epsilon, h_level, M_level, A, B, C; "
+                        "default: the first swept; for the border of chaos: mu)")
     p.add_argument("--cols", default=None,
-                   help="swept dim along the columns (default: the second swept)")
+                   help="swept dim along the columns (default: the second swept; for the "
+                        "border of chaos: epsilon)")
     p.add_argument("--select", action="append", metavar="NAME=VALUE",
                    help="value of another swept dim (nearest; default: its first value)")
+    p.add_argument("--maps", action="store_true",
+                   help="for a chaos_border scan: draw its MEGNO maps instead of the "
+                        "border of chaos (chaotic fraction and layer width)")
     p.add_argument("--width", type=float, default=7.0, help="figure width, inches")
     p.set_defaults(func=run)

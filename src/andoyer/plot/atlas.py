@@ -19,10 +19,11 @@ from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, new_figure, paper_style
 
-__all__ = ["plot_atlas", "SYMBOLS"]
+__all__ = ["plot_atlas", "plot_border", "SYMBOLS"]
 
 #: Storage name of a swept parameter -> its symbol (mathtext).
-SYMBOLS = {"mu": r"\mu", "h_level": "h", "M_level": "M", "A": "A", "B": "B", "C": "C"}
+SYMBOLS = {"mu": r"\mu", "epsilon": r"\epsilon", "h_level": "h", "M_level": "M", "A": "A",
+           "B": "B", "C": "C"}
 _INDICATORS = ("fli", "megno")
 _ANGLES = ANGLES
 
@@ -190,4 +191,99 @@ def plot_atlas(ds: xr.Dataset, *, rows: str | None = None, cols: str | None = No
                 fig.colorbar(image, ax=list(axes.ravel()), shrink=0.8, label=ind.upper())
         fig.suptitle(_heading(ds, task, {d: float(sub[d].values) for d in fixed}),
                      fontsize=8)
+    return fig
+
+
+def _grid_edges(v: np.ndarray) -> np.ndarray:
+    """Cell edges around grid values (uniform or not) for ``pcolormesh``."""
+    v = np.asarray(v, dtype=float)
+    if v.size == 1:
+        return np.array([v[0] - 0.5, v[0] + 0.5]) if v[0] == 0 else v[0] * np.array([0.5, 1.5])
+    mid = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+
+def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
+                select: Mapping[str, float] | None = None, width: float = 7.0) -> Figure:
+    """The border of chaos from a ``chaos_border`` scan: the chaotic fraction and the
+    width of the chaotic layer around the former Hess separatrix over two swept
+    parameters (by default ``epsilon`` across and ``mu`` up).
+
+    Each cell is annotated with the fraction and, below it, the fraction's range when the
+    MEGNO threshold moves by ``-+ margin/2`` (its sensitivity). Points not done are blank.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The store of a ``chaos_border`` scan (``xarray.open_zarr``).
+    x, y : str, optional
+        Swept dims across and up (default ``epsilon`` and ``mu`` when swept, else the
+        first two swept dims).
+    select : mapping, optional
+        Values of the other swept dims (nearest); default their first value.
+    width : float
+        Figure width in inches.
+    """
+    swept = _swept(ds)
+    if str(ds.attrs.get("scan_task")) != "chaos_border":
+        raise ValueError("plot_border: the store is not of a chaos_border scan (scan_task = "
+                         f"{ds.attrs.get('scan_task')!r}); use plot_atlas")
+    if x is None:
+        x = "epsilon" if "epsilon" in swept else swept[-1]
+    if y is None:
+        rest = [d for d in swept if d != x]
+        y = "mu" if "mu" in rest else (rest[0] if rest else None)
+    for name, d in (("x", x), ("y", y)):
+        if d is not None and d not in swept:
+            raise ValueError(f"plot_border: {name} = {d!r} is not a swept dim "
+                             f"({', '.join(swept)})")
+    sel = dict(select or {})
+    fixed = {d: sel.get(d, float(ds[d].values[0])) for d in swept if d not in (x, y)}
+    sub = ds.sel(fixed, method="nearest") if fixed else ds
+    dims = (y, x) if y is not None else (x,)
+    done = np.asarray(sub["done"].transpose(*dims).values, dtype=bool)
+    empty = np.asarray(sub["empty"].transpose(*dims).values, dtype=bool)
+
+    def grid(name: str) -> np.ndarray:
+        v = np.asarray(sub[name].transpose(*dims).values, dtype=float)
+        v = np.where(done & ~empty, v, np.nan)
+        return v if y is not None else v[None, :]
+
+    f, lo, hi = grid("chaotic_fraction"), grid("chaotic_fraction_high"), grid(
+        "chaotic_fraction_low")
+    w = grid("layer_width")
+    xs = np.asarray(sub[x].values, dtype=float)
+    ys = np.asarray(sub[y].values, dtype=float) if y is not None else np.array([0.0])
+    with paper_style():
+        fig = new_figure(1, 2, width=width, aspect=0.8)
+        for ax, v, label, cmap in ((fig.axes[0], f, "chaotic fraction", "magma"),
+                                   (fig.axes[1], w, "layer width (rad)", "viridis")):
+            mesh = ax.pcolormesh(_grid_edges(xs), _grid_edges(ys), v, cmap=cmap,
+                                 vmin=0.0, vmax=max(float(np.nanmax(v)), 1e-12)
+                                 if np.isfinite(v).any() else 1.0, shading="flat")
+            fig.colorbar(mesh, ax=ax, shrink=0.85, label=label)
+            ax.set_xlabel(f"${SYMBOLS.get(x, x)}$" + (" (rad)" if x == "epsilon" else ""))
+            if y is not None:
+                ax.set_ylabel(f"${SYMBOLS.get(y, y)}$")
+            else:
+                ax.set_yticks([])
+            if xs.size <= 12 and ys.size <= 12:
+                for i in range(v.shape[0]):
+                    for j in range(v.shape[1]):
+                        if not np.isfinite(v[i, j]):
+                            continue
+                        text = f"{v[i, j]:.2f}"
+                        if v is f:
+                            text += f"\n[{lo[i, j]:.2f}, {hi[i, j]:.2f}]"
+                        ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=6,
+                                color="w" if v[i, j] < 0.6 * np.nanmax(v) else "k")
+            ax.tick_params(labelsize=6.5)
+        a = ds.attrs
+        head = [f"body {a.get('body_name', '?')}: border of chaos (MEGNO > reference + "
+                f"{float(a.get('margin', 1.0)):g})"]
+        for key in ("h_level", "M_level"):
+            if key in a:
+                head.append(_label(key, float(a[key])))
+        head += [_label(d, float(sub[d].values)) for d in fixed]
+        fig.suptitle(", ".join(head), fontsize=8)
     return fig

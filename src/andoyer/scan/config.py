@@ -96,17 +96,21 @@ __all__ = ["ScanConfig", "Cost", "load_config", "parse_config", "estimate_cost",
            "check_size", "PARAMETERS", "STORAGE_NAMES", "PARAMETER_ATTRS", "MAX_POINTS",
            "CONFIG_FORMAT"]
 
-#: What can be swept: the body's mu, A, B, C and the levels h (energy), M (area).
-PARAMETERS = ("mu", "h", "M", "A", "B", "C")
+#: What can be swept: the body's mu, A, B, C, the turn epsilon of a Hess body's centre of
+#: mass (:meth:`~andoyer.body.RigidBody.near_hess`) and the levels h (energy), M (area).
+PARAMETERS = ("mu", "epsilon", "h", "M", "A", "B", "C")
 
 #: Parameter -> name of its dim in the store. ``h`` and ``M`` are levels of the
 #: integrals; their storage names differ ignoring case from ``H`` (the energy at each
 #: crossing) and ``M_action`` (case-insensitive file systems hold Zarr stores too).
-STORAGE_NAMES = {"mu": "mu", "h": "h_level", "M": "M_level", "A": "A", "B": "B", "C": "C"}
+STORAGE_NAMES = {"mu": "mu", "epsilon": "epsilon", "h": "h_level", "M": "M_level", "A": "A",
+                 "B": "B", "C": "C"}
 
 #: Parameter -> (symbol, long name, equation, units) of its coordinate.
 PARAMETER_ATTRS: dict[str, tuple[str, str, str, str]] = {
     "mu": ("\\mu", "weight x distance of the centre of mass", "(1)", "1"),
+    "epsilon": ("\\epsilon", "turn of the centre of mass off the Hess direction in the "
+                "(e1, e2) plane", "(2)", "rad"),
     "h": ("h", "energy level H = h", "(1)", "1"),
     "M": ("M", "area constant (G, gamma) = M", "(4)", "1"),
     "A": ("A", "principal moment of inertia A", "(1)", "1"),
@@ -115,7 +119,7 @@ PARAMETER_ATTRS: dict[str, tuple[str, str, str, str]] = {
 }
 
 #: Defaults of a Hess body: the paper's body (Fig. 3) on the area level M = 0.
-HESS_DEFAULTS = {"A": 2.5, "B": 2.0, "C": 2.2, "mu": 0.01, "M": 0.0}
+HESS_DEFAULTS = {"A": 2.5, "B": 2.0, "C": 2.2, "mu": 0.01, "epsilon": 0.0, "M": 0.0}
 
 #: A grid of more points than this is refused whatever its cost.
 MAX_POINTS = 1_000_000
@@ -269,6 +273,10 @@ class ScanConfig:
         """The body at a point (``values`` holds A, B, C, mu)."""
         A, B, C, mu = (values[k] for k in ("A", "B", "C", "mu"))
         if self.body_kind == "hess":
+            eps = float(values.get("epsilon", 0.0))
+            if eps != 0.0:
+                return RigidBody.near_hess(A, B, C, mu, eps, branch=self.branch,
+                                           name=self.body_name)
             return RigidBody.hess(A, B, C, mu, self.branch, name=self.body_name)
         assert self.r is not None
         return RigidBody(A, B, C, mu, self.r, self.body_name)
@@ -367,8 +375,13 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
     tk = TASKS[task]
 
     # [parameters]
-    used = tuple(k for k in PARAMETERS if k not in ("h", "M") or k in tk.levels)
+    used = tuple(k for k in PARAMETERS if (k not in ("h", "M") or k in tk.levels)
+                 and (k != "epsilon" or kind == "hess"))
     ptab = _table(data, "parameters", where)
+    if kind != "hess" and "epsilon" in ptab:
+        raise ValueError(f"{where}: [parameters] epsilon turns a Hess body's centre of mass; "
+                         "a general body gives its direction r in [body]: remove epsilon or "
+                         "use [body] kind = \"hess\"")
     for k in ptab:
         if k in PARAMETERS and k not in used:
             raise ValueError(f"{where}: [parameters] {k}: the {task} task does not take it "
@@ -460,14 +473,15 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
 
 def _check_bodies_and_levels(cfg: ScanConfig, where: str) -> None:
     """Every grid point must make a body, and a level set H = h, (G, gamma) = M."""
-    names = ("A", "B", "C", "mu")
+    names = ("A", "B", "C", "mu") + (("epsilon",) if cfg.body_kind == "hess" else ())
     bodies: list[RigidBody] = []
     for combo in itertools.product(*(cfg.values(k) for k in names)):
         values = dict(zip(names, combo, strict=True))
         try:
             bodies.append(cfg.body_at(values))
         except ValueError as exc:
-            point = ", ".join(f"{k} = {v:g}" for k, v in values.items())
+            point = ", ".join(f"{k} = {v:g}" for k, v in values.items()
+                              if k != "epsilon" or v != 0.0)
             swept = [k for k in names if k in cfg.swept]
             raise ValueError(
                 f"{where}: [parameters] the grid point {point} makes no {cfg.body_kind} "
@@ -525,7 +539,7 @@ def load_config(source: str | os.PathLike[str] | Mapping[str, Any]) -> ScanConfi
     ...              "task": {"kind": "section"}})
     Traceback (most recent call last):
     ...
-    ValueError: config: [parameters]: unknown key 'D'; allowed keys: mu, h, M, A, B, C
+    ValueError: config: [parameters]: unknown key 'D'; allowed keys: mu, epsilon, h, M, A, B, C
     """
     if isinstance(source, Mapping):
         return parse_config(source)

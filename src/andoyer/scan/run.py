@@ -297,7 +297,7 @@ def summary(report: ScanReport) -> str:
              f"{report.resumed} done before) in {report.seconds:.1f} s"]
     if report.empty:
         vals, why = report.empty[0]
-        at = ", ".join(f"{k} = {v:g}" for k, v in vals.items() if k in ("mu", "h", "M"))
+        at = ", ".join(f"{k} = {v:g}" for k, v in vals.items() if k in ("mu", "epsilon", "h", "M"))
         lines.append(f"{len(report.empty)} points had nothing to compute (stored empty), "
                      f"e.g. at {at}: {why}")
     return "\n".join(lines)

@@ -126,8 +126,9 @@ def _check_names(cfg: ScanConfig, schema: Schema) -> None:
 
 
 def _body_coords(cfg: ScanConfig) -> dict[str, tuple[tuple[str, ...], Any, dict[str, str]]]:
-    """``e1, e2, e3`` over the swept moments (a Hess body's r follows A, B, C)."""
-    moments = [k for k in cfg.swept if k in ("A", "B", "C")]
+    """``e1, e2, e3`` over the swept moments and turn (a Hess body's r follows A, B, C
+    and epsilon)."""
+    moments = [k for k in cfg.swept if k in ("A", "B", "C", "epsilon")]
     if cfg.body_kind != "hess" or not moments:
         return {}
     shape = tuple(len(cfg.values(k)) for k in moments)
@@ -153,7 +154,7 @@ def _attrs(cfg: ScanConfig, first_attrs: Mapping[str, Any]) -> dict[str, Any]:
     for k in cfg.swept:
         if k in ("A", "B", "C", "mu"):
             attrs[f"body_{k}"] = f"swept: coordinate {STORAGE_NAMES[k]}"
-    if cfg.body_kind == "hess" and any(k in cfg.swept for k in "ABC"):
+    if cfg.body_kind == "hess" and any(k in cfg.swept for k in ("A", "B", "C", "epsilon")):
         for k in _BODY_COORDS:
             attrs[f"body_{k}"] = f"swept: coordinate {k}"
     if cfg.task in ("section", "chaos_map"):

@@ -17,7 +17,13 @@ Registered kinds (:data:`TASKS`):
 ``splitting``
     :func:`andoyer.analysis.splitting.separatrix_splitting` at the point's mu: the
     splitting of the separatrices of the rotations about the middle axis, measured and
-    predicted by Melnikov (sweep mu, and A, B, C, to see how it scales).
+    predicted by Melnikov (sweep mu, and A, B, C, to see how it scales; sweep epsilon
+    to split the Hess branch ``theta1 = 0``).
+``chaos_border``
+    :func:`andoyer.analysis.chaos_border.chaos_border`: the chaotic fraction of the
+    section plane from MEGNO (threshold from the regular free top) and the width of the
+    chaotic layer around the former Hess separatrix; sweep ``mu`` and ``epsilon`` for
+    the border of chaos (``andoyer atlas`` draws it).
 
 Determinism
 -----------
@@ -378,7 +384,7 @@ def _splitting_point(body: RigidBody, h: float | None, M: float | None,
                           for k in inter.data_vars})
     ds = xr.merge([split, inter], compat="override", combine_attrs="override")
     ds.attrs = dict(out["splitting"].attrs)
-    for key in ("energy", "theta1_line", "rho", "melnikov_amplitude"):
+    for key in ("energy", "theta1_line", "rho", "melnikov_amplitude", "epsilon"):
         if key in ds.attrs:
             ds[key] = ((), float(ds.attrs[key]))
     return ds
@@ -399,12 +405,42 @@ def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
                          f"[integrator] engine = \"heyoka\" or \"numba\" (got "
                          f"{integ.engine!r})")
     for b in bodies:
-        if not b.is_hess:
-            raise ValueError(f"the splitting task needs a Hess body ([body] kind = \"hess\"), "
-                             f"got A, B, C = {b.A:g}, {b.B:g}, {b.C:g}")
+        try:
+            b.nearest_hess()
+        except ValueError:
+            raise ValueError(f"the splitting task needs a Hess body ([body] kind = \"hess\", "
+                             f"turned by epsilon if you like), got A, B, C = {b.A:g}, "
+                             f"{b.B:g}, {b.C:g}, r = {b.r}") from None
         if b.mu <= 0.0:
             raise ValueError(f"the splitting task needs mu > 0 (at mu = 0 the separatrices "
                              f"coincide), got mu = {b.mu:g}")
+
+
+# ---------------------------------------------------------------------- chaos border
+def _border_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
+                  integ: Integrator) -> xr.Dataset | Empty:
+    """Chaotic fraction and layer width, :func:`andoyer.analysis.chaos_border.
+    chaos_border` (one thread; tolerance ``min(rtol, atol)``)."""
+    from andoyer.analysis.chaos_border import chaos_border
+    from andoyer.integrate.section import Section
+
+    sec = Section.parse(options["section"])
+    try:
+        ds = chaos_border(body, h, M, (sec.coord, sec.value), n=tuple(options["n"]),
+                          t_end=options["t_end"], margin=options["margin"],
+                          engine=integ.engine, tol=min(integ.rtol, integ.atol),
+                          n_threads=1, progress=False)
+    except ValueError as exc:  # the level misses the section (arguments were validated)
+        return Empty(str(exc))
+    return ds.drop_dims("boundary_vertex", errors="ignore")
+
+
+def _border_cost(options: Mapping[str, Any]) -> tuple[float, float]:
+    # Measured (heyoka, one core, MEGNO on the body A, B, C = 2.5, 1, 1.6 at t_end = 300):
+    # 0.5 s for a 24 x 24 map, 4-8 s for 96 x 48 with the free-top reference (computed
+    # once per worker and level, cached); ~4 stored values per cell.
+    nx, ny = options["n"]
+    return 4e-6 * nx * ny * options["t_end"], 4.0 * nx * ny
 
 
 # ---------------------------------------------------------------------- registry
@@ -455,4 +491,18 @@ TASKS: dict[str, TaskKind] = {
         static_attrs=("branch", "sheet", "G_level", "psi0", "delta", "tolerance",
                       "long_double", "n_phase", "plane", "relation"),
         levels=(), levels_note="its level is h = c G^2 / 2 (option G) at M = 0"),
+    "chaos_border": TaskKind(
+        "chaos_border", "chaotic fraction (MEGNO) and the chaotic layer around the former "
+                        "Hess separatrix",
+        {"section": Option("theta2=0", _section_text(True), "the section plane: theta2 "
+                           "(the layer width is measured) or g"),
+         "n": Option([32, 32], _pair_of_ints, "grid [nx, ny] of the plane"),
+         "t_end": Option(300.0, _positive, "integration time of each orbit"),
+         "margin": Option(1.0, _positive, "MEGNO threshold above the regular reference")},
+        _border_point, _border_cost,
+        validate=_chaos_bodies,
+        static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",
+                      "plane_y", "action", "root", "plane_equations", "definitions",
+                      "engine", "heyoka_version", "numba_version", "tolerance", "margin",
+                      "rule")),
 }
