@@ -88,3 +88,25 @@ def test_paper_command_unknown_item(tmp_path):
     with pytest.raises(SystemExit) as exc:
         main(["paper", "--out", str(tmp_path), "--only", "fig9"])
     assert exc.value.code == 2
+
+
+def test_border_of_chaos_item(tmp_path):
+    """The report's border-of-chaos section: the Hess branch splits only off the Hess
+    direction, as Melnikov says; the chaotic fraction grows with mu."""
+    import json
+
+    out = tmp_path / "paper"
+    assert main(["paper", "--out", str(out), "--quick", "--only", "border"]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"border-of-chaos.png", "splitting-vs-epsilon.nc", "border-of-chaos.nc",
+            "frequency-map.nc"} <= names
+    import xarray as xr
+    with xr.open_dataset(out / "splitting-vs-epsilon.nc") as sp:
+        assert float(sp.amplitude[0, 0]) < 1e-12                  # epsilon = 0
+        assert float(sp.relative_error[1, 0]) < 0.02               # epsilon = 0.2
+    with xr.open_dataset(out / "border-of-chaos.nc") as b:
+        f = b.chaotic_fraction.values
+        assert np.all(f[1] >= f[0]) and f[1].sum() > f[0].sum()     # mu = 0.1 vs 0.01
+    numbers = json.loads((out / "summary.json").read_text())["items"]["border"]["numbers"]
+    assert numbers["border_splitting_eps0"] < 1e-12
+    assert "border of chaos" in (out / "index.html").read_text()

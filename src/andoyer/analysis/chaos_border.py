@@ -62,7 +62,8 @@ from andoyer.integrate.results import describe_variables
 from andoyer.integrate.section import Section
 from andoyer.validation import finite, positive
 
-__all__ = ["chaos_border", "regular_reference", "layer_width", "hess_line", "MARGIN"]
+__all__ = ["chaos_border", "chaos_border_map", "regular_reference", "layer_width", "hess_line",
+           "MARGIN"]
 
 #: Default margin of the threshold above the regular reference's largest <Y>.
 MARGIN = 1.0
@@ -270,3 +271,78 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
                         "separatrix", "rad", "(14)"),
         "layer_width_row": ("", "width of the chaotic run through the former Hess "
                             "separatrix, per row", "rad", "(14)")})
+
+
+def chaos_border_map(body: RigidBody, mu: Any, epsilon: Any, h: float, M: float = 0.0,
+                     section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
+                     t_end: float = 300.0, margin: float = MARGIN,
+                     engine: str | None = None, tol: float = 1e-12,
+                     progress: bool | None = None) -> xr.Dataset:
+    """:func:`chaos_border` over a grid of ``(mu, epsilon)``, in this process: the border
+    of chaos at a modest resolution (a scan with the ``chaos_border`` task computes the
+    same on Dask, streamed to Zarr).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Gives the moments and the branch of the Hess direction (its ``mu`` and turn are
+        replaced: each point is :meth:`~andoyer.body.RigidBody.near_hess`).
+    mu, epsilon : sequence of float
+        The grid.
+    h, M, section, n, t_end, margin, engine, tol :
+        As in :func:`chaos_border`.
+    progress : bool, optional
+        A progress bar over the points.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(mu, epsilon)``: ``chaotic_fraction``, ``chaotic_fraction_low``,
+        ``chaotic_fraction_high``, ``layer_width``, ``threshold``, ``hess_line``,
+        ``n_accessible``.
+
+    Examples
+    --------
+    >>> ds = chaos_border_map(RigidBody.hess(2.5, 1.0, 1.6), [0.01, 0.05], [0.0, 0.3],
+    ...                       0.3125, n=8, t_end=60.0)
+    >>> ds.chaotic_fraction.dims, bool(ds.chaotic_fraction.max() < 1)
+    (('mu', 'epsilon'), True)
+    """
+    from andoyer.progress import Progress
+
+    hess = body.nearest_hess()
+    sign = 1 if hess.e2 >= 0.0 else -1
+    mus = np.atleast_1d(np.asarray(mu, dtype=float))
+    eps = np.atleast_1d(np.asarray(epsilon, dtype=float))
+    if mus.ndim != 1 or eps.ndim != 1 or not (mus.size and eps.size):
+        raise ValueError("mu and epsilon must be non-empty 1-D lists of values")
+    names = ("chaotic_fraction", "chaotic_fraction_low", "chaotic_fraction_high",
+             "layer_width", "threshold", "hess_line", "n_accessible")
+    grids = {k: np.full((mus.size, eps.size), np.nan) for k in names}
+    first: xr.Dataset | None = None
+    bar = Progress(mus.size * eps.size, "border of chaos", progress)
+    for i, m in enumerate(mus):
+        for j, e in enumerate(eps):
+            b = RigidBody.near_hess(hess.A, hess.B, hess.C, float(m), float(e), branch=sign,
+                                    name=hess.name)
+            ds = chaos_border(b, h, M, section, n=n, t_end=t_end, margin=margin,
+                              engine=engine, tol=tol, progress=False)
+            first = ds if first is None else first
+            for k in names:
+                grids[k][i, j] = float(ds[k])
+            bar.update(1)
+    bar.close()
+    assert first is not None
+    out = xr.Dataset({k: (("mu", "epsilon"), v) for k, v in grids.items()},
+                     coords={"mu": mus, "epsilon": eps})
+    out.attrs.update(first.attrs)
+    out.attrs.update(body_mu="see the mu coordinate", h_level=float(h), M_level=float(M),
+                     **{f"body_{k}": "turned by epsilon (see the epsilon coordinate)"
+                        for k in ("e1", "e2", "is_hess")})
+    for k in names:
+        out[k].attrs.update(first[k].attrs)
+    out.mu.attrs.update(symbol="\\mu", long_name="weight x distance of the centre of mass",
+                        units="1", equation="(1)")
+    out.epsilon.attrs.update(symbol="\\epsilon", long_name="turn of the centre of mass off "
+                             "the Hess direction", units="rad", equation="(2)")
+    return out

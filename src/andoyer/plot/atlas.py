@@ -19,7 +19,7 @@ from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, new_figure, paper_style
 
-__all__ = ["plot_atlas", "plot_border", "SYMBOLS"]
+__all__ = ["plot_atlas", "plot_border", "border_panel", "SYMBOLS"]
 
 #: Storage name of a swept parameter -> its symbol (mathtext).
 SYMBOLS = {"mu": r"\mu", "epsilon": r"\epsilon", "h_level": "h", "M_level": "M", "A": "A",
@@ -203,11 +203,72 @@ def _grid_edges(v: np.ndarray) -> np.ndarray:
     return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
 
+def _border_dims(ds: xr.Dataset) -> list[str]:
+    if "chaotic_fraction" not in ds:
+        raise ValueError("plot_border: no chaotic_fraction in the dataset: give a "
+                         "chaos_border scan store or chaos_border_map's result")
+    if "scan_dims" in ds.attrs:
+        if str(ds.attrs.get("scan_task")) != "chaos_border":
+            raise ValueError("plot_border: the store is not of a chaos_border scan "
+                             f"(scan_task = {ds.attrs.get('scan_task')!r}); use plot_atlas")
+        return _swept(ds)
+    return [str(d) for d in ds["chaotic_fraction"].dims]
+
+
+def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: str,
+                 y: str | None, label: str | None = None, annotate: bool = True) -> Any:
+    """One heat map of ``name`` over the swept ``(x, y)`` of a border-of-chaos dataset
+    (other dims already selected); the chaotic fraction is annotated with its range under
+    ``threshold -+ margin/2``. Returns the colour mesh."""
+    dims = (y, x) if y is not None else (x,)
+    ok = np.ones(ds["chaotic_fraction"].shape, dtype=bool)
+    if "done" in ds:
+        ok = np.asarray(ds["done"].values, dtype=bool) & ~np.asarray(ds["empty"].values,
+                                                                      dtype=bool)
+    okg = xr.DataArray(ok, dims=ds["chaotic_fraction"].dims).transpose(*dims).values
+
+    def grid(var: str) -> np.ndarray:
+        v = np.where(okg, np.asarray(ds[var].transpose(*dims).values, dtype=float), np.nan)
+        return v if y is not None else v[None, :]
+
+    v = grid(name)
+    # One equal cell per grid value (parameter grids are often uneven), ticked with it.
+    xv = np.asarray(ds[x].values, dtype=float)
+    yv = np.asarray(ds[y].values, dtype=float) if y is not None else np.array([0.0])
+    xs, ys = np.arange(xv.size, dtype=float), np.arange(yv.size, dtype=float)
+    top = float(np.nanmax(v)) if np.isfinite(v).any() else 1.0
+    mesh = ax.pcolormesh(_grid_edges(xs), _grid_edges(ys), v, shading="flat", vmin=0.0,
+                         vmax=max(top, 1e-12),
+                         cmap="magma" if name.startswith("chaotic") else "viridis")
+    ax.set_xticks(xs, [f"{t:.3g}" for t in xv])
+    ax.set_yticks(ys, [f"{t:.3g}" for t in yv])
+    ax.set_xlabel(f"${SYMBOLS.get(x, x)}$" + (" (rad)" if x == "epsilon" else ""))
+    if y is not None:
+        ax.set_ylabel(f"${SYMBOLS.get(y, y)}$")
+    else:
+        ax.set_yticks([])
+    if annotate and xs.size <= 10 and ys.size <= 10:
+        lo, hi = (grid("chaotic_fraction_high"), grid("chaotic_fraction_low"))
+        for i in range(v.shape[0]):
+            for j in range(v.shape[1]):
+                if not np.isfinite(v[i, j]):
+                    continue
+                text = f"{v[i, j]:.2f}"
+                if name == "chaotic_fraction" and xs.size <= 5:
+                    text += f"\n[{lo[i, j]:.2f}, {hi[i, j]:.2f}]"
+                ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=5.5,
+                        color="w" if v[i, j] < 0.6 * top else "k")
+    if label:
+        ax.set_title(label, fontsize=8)
+    ax.tick_params(labelsize=6.5)
+    return mesh
+
+
 def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
                 select: Mapping[str, float] | None = None, width: float = 7.0) -> Figure:
-    """The border of chaos from a ``chaos_border`` scan: the chaotic fraction and the
-    width of the chaotic layer around the former Hess separatrix over two swept
-    parameters (by default ``epsilon`` across and ``mu`` up).
+    """The border of chaos: the chaotic fraction and the width of the chaotic layer
+    around the former Hess separatrix over two swept parameters (by default
+    ``epsilon`` across and ``mu`` up).
 
     Each cell is annotated with the fraction and, below it, the fraction's range when the
     MEGNO threshold moves by ``-+ margin/2`` (its sensitivity). Points not done are blank.
@@ -215,7 +276,8 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     Parameters
     ----------
     ds : xarray.Dataset
-        The store of a ``chaos_border`` scan (``xarray.open_zarr``).
+        The store of a ``chaos_border`` scan (``xarray.open_zarr``), or the result of
+        :func:`andoyer.analysis.chaos_border.chaos_border_map`.
     x, y : str, optional
         Swept dims across and up (default ``epsilon`` and ``mu`` when swept, else the
         first two swept dims).
@@ -224,10 +286,7 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     width : float
         Figure width in inches.
     """
-    swept = _swept(ds)
-    if str(ds.attrs.get("scan_task")) != "chaos_border":
-        raise ValueError("plot_border: the store is not of a chaos_border scan (scan_task = "
-                         f"{ds.attrs.get('scan_task')!r}); use plot_atlas")
+    swept = _border_dims(ds)
     if x is None:
         x = "epsilon" if "epsilon" in swept else swept[-1]
     if y is None:
@@ -240,44 +299,12 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     sel = dict(select or {})
     fixed = {d: sel.get(d, float(ds[d].values[0])) for d in swept if d not in (x, y)}
     sub = ds.sel(fixed, method="nearest") if fixed else ds
-    dims = (y, x) if y is not None else (x,)
-    done = np.asarray(sub["done"].transpose(*dims).values, dtype=bool)
-    empty = np.asarray(sub["empty"].transpose(*dims).values, dtype=bool)
-
-    def grid(name: str) -> np.ndarray:
-        v = np.asarray(sub[name].transpose(*dims).values, dtype=float)
-        v = np.where(done & ~empty, v, np.nan)
-        return v if y is not None else v[None, :]
-
-    f, lo, hi = grid("chaotic_fraction"), grid("chaotic_fraction_high"), grid(
-        "chaotic_fraction_low")
-    w = grid("layer_width")
-    xs = np.asarray(sub[x].values, dtype=float)
-    ys = np.asarray(sub[y].values, dtype=float) if y is not None else np.array([0.0])
     with paper_style():
         fig = new_figure(1, 2, width=width, aspect=0.8)
-        for ax, v, label, cmap in ((fig.axes[0], f, "chaotic fraction", "magma"),
-                                   (fig.axes[1], w, "layer width (rad)", "viridis")):
-            mesh = ax.pcolormesh(_grid_edges(xs), _grid_edges(ys), v, cmap=cmap,
-                                 vmin=0.0, vmax=max(float(np.nanmax(v)), 1e-12)
-                                 if np.isfinite(v).any() else 1.0, shading="flat")
+        for ax, name, label in ((fig.axes[0], "chaotic_fraction", "chaotic fraction"),
+                                (fig.axes[1], "layer_width", "layer width (rad)")):
+            mesh = border_panel(ax, sub, name, x=x, y=y)
             fig.colorbar(mesh, ax=ax, shrink=0.85, label=label)
-            ax.set_xlabel(f"${SYMBOLS.get(x, x)}$" + (" (rad)" if x == "epsilon" else ""))
-            if y is not None:
-                ax.set_ylabel(f"${SYMBOLS.get(y, y)}$")
-            else:
-                ax.set_yticks([])
-            if xs.size <= 12 and ys.size <= 12:
-                for i in range(v.shape[0]):
-                    for j in range(v.shape[1]):
-                        if not np.isfinite(v[i, j]):
-                            continue
-                        text = f"{v[i, j]:.2f}"
-                        if v is f:
-                            text += f"\n[{lo[i, j]:.2f}, {hi[i, j]:.2f}]"
-                        ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=6,
-                                color="w" if v[i, j] < 0.6 * np.nanmax(v) else "k")
-            ax.tick_params(labelsize=6.5)
         a = ds.attrs
         head = [f"body {a.get('body_name', '?')}: border of chaos (MEGNO > reference + "
                 f"{float(a.get('margin', 1.0)):g})"]

@@ -1,0 +1,82 @@
+"""The border of chaos near the Hess case in one figure: the splitting of the former Hess
+separatrix against the turn ``epsilon`` of the centre of mass, the chaotic fraction over
+``(mu, epsilon)``, and a frequency map.
+
+Every panel takes a dataset of the analysis layer
+(:func:`andoyer.analysis.splitting.splitting_vs_epsilon`,
+:func:`andoyer.analysis.chaos_border.chaos_border_map`,
+:func:`andoyer.analysis.frequency.frequency_map`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+
+from andoyer.plot.atlas import border_panel
+from andoyer.plot.section import LABELS
+from andoyer.plot.style import COLOURS, angle_ticks, new_figure, paper_style
+
+__all__ = ["plot_splitting_vs_epsilon", "plot_frequency_map", "plot_border_of_chaos"]
+
+
+def plot_splitting_vs_epsilon(ds: xr.Dataset, *, ax: Any) -> Any:
+    """Measured splitting amplitude (markers) and the first-order Melnikov prediction
+    (line) against ``epsilon``, one colour per ``mu`` (linear axes: the amplitude of the
+    Hess branch is linear in ``sin epsilon`` and zero at ``epsilon = 0``)."""
+    eps = np.asarray(ds.epsilon.values, dtype=float)
+    palette = (COLOURS["centre"], COLOURS["saddle"], COLOURS["chaotic"], COLOURS["orbit"])
+    for k, m in enumerate(np.asarray(ds.mu.values, dtype=float)):
+        c = palette[k % len(palette)]
+        meas = np.asarray(ds.amplitude.values[:, k], dtype=float)
+        pred = np.asarray(ds.amplitude_melnikov.values[:, k], dtype=float)
+        ax.plot(eps, pred, "-", color=c, lw=1.0, label=f"$\\mu = {m:g}$: Melnikov")
+        ax.plot(eps, meas, "o", color=c, ms=3.5, mfc="none", label="measured")
+    ax.set_ylim(bottom=0.0)
+    ax.set_xlabel("$\\epsilon$ (rad)")
+    ax.set_ylabel("max $|\\Delta G|$ on $L = 0$")
+    ax.legend(fontsize=6, frameon=False)
+    return ax
+
+
+def plot_frequency_map(ds: xr.Dataset, *, ax: Any) -> Any:
+    """Seeds of a frequency map on their section plane, coloured by ``log10`` of the
+    frequency drift (dark: tori; bright: chaotic). Returns the scatter."""
+    x = str(ds.attrs.get("plane_x", "theta1"))
+    y = str(ds.attrs.get("plane_y", "J1"))
+    X = np.asarray(ds[x].values, dtype=float)
+    Y = np.asarray(ds[y].values, dtype=float)
+    d = np.asarray(ds.log10_drift.values, dtype=float)
+    ok = np.isfinite(X) & np.isfinite(Y) & np.isfinite(d)
+    sc = ax.scatter(X[ok], Y[ok], c=d[ok], s=9, cmap="magma", vmin=max(float(d[ok].min()),
+                    -14.0) if ok.any() else -14.0, vmax=0.0, linewidths=0)
+    if x in ("theta1", "l", "g", "theta2"):
+        angle_ticks(ax, 0.0, 2 * np.pi)
+        ax.set_xlim(0.0, 2 * np.pi)
+    ax.set_xlabel(LABELS.get(x, x))
+    ax.set_ylabel(LABELS.get(y, y))
+    return sc
+
+
+def plot_border_of_chaos(splitting: xr.Dataset, border: xr.Dataset,
+                         frequencies: xr.Dataset, *, width: float = 10.0) -> Figure:
+    """Three panels: (a) :func:`plot_splitting_vs_epsilon`, (b) the chaotic fraction over
+    ``(epsilon, mu)`` (:func:`~andoyer.plot.atlas.border_panel`), (c)
+    :func:`plot_frequency_map`."""
+    with paper_style():
+        fig = new_figure(1, 3, width=width, aspect=0.85)
+        a, b, c = fig.axes
+        plot_splitting_vs_epsilon(splitting, ax=a)
+        a.set_title(f"(a) splitting of $\\theta_1 = 0$, $\\rho = {float(splitting.rho):.3g}$",
+                    fontsize=8)
+        mesh = border_panel(b, border, "chaotic_fraction", x="epsilon", y="mu",
+                            label="(b) chaotic fraction, MEGNO")
+        fig.colorbar(mesh, ax=b, shrink=0.85)
+        sc = plot_frequency_map(frequencies, ax=c)
+        mu = frequencies.attrs.get("body_mu", frequencies.attrs.get("mu", ""))
+        c.set_title(f"(c) frequency drift, $\\mu = {float(mu):g}$", fontsize=8)
+        fig.colorbar(sc, ax=c, shrink=0.85, label="log$_{10}$ drift")
+    return fig
