@@ -214,10 +214,10 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     ----------
     body : RigidBody
         A Hess body (the lines ``theta1 = 0``, ``4 phi0`` are the separatrices), or a
-        body turned off it in the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.
-        near_hess`; the lines are then those of :meth:`~andoyer.body.RigidBody.
-        nearest_hess`, which the unperturbed flow follows whatever ``r``); the area
-        constant is ``M = 0``.
+        body turned off it in the (e1, e2) plane
+        (:meth:`~andoyer.body.RigidBody.near_hess`; the lines are then those of
+        :meth:`~andoyer.body.RigidBody.nearest_hess`, which the unperturbed flow follows
+        whatever ``r``); the area constant is ``M = 0``.
     h : float
         Energy level (e.g. :func:`~andoyer.analysis.periodic.rotation_energy`).
     stability : {"unstable", "stable"}

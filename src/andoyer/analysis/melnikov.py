@@ -270,8 +270,8 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         A Hess body, or any body with its centre of mass in the (e1, e2) plane and
         ``A > C > B``: then the lines and the chart are those of
         :meth:`~andoyer.body.RigidBody.nearest_hess` and the function is
-        :func:`melnikov_off_hess` at ``epsilon =`` :attr:`~andoyer.body.RigidBody.
-        hess_epsilon`.
+        :func:`melnikov_off_hess` at ``epsilon =``
+        :attr:`~andoyer.body.RigidBody.hess_epsilon`.
     theta2_0 : array_like, optional
         Phases (``theta2`` at ``L = 0``); default ``n`` equal steps of ``[0, 2 pi)``.
     J2, branch, sheet :

@@ -419,8 +419,9 @@ def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
 # ---------------------------------------------------------------------- chaos border
 def _border_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
                   integ: Integrator) -> xr.Dataset | Empty:
-    """Chaotic fraction and layer width, :func:`andoyer.analysis.chaos_border.
-    chaos_border` (one thread; tolerance ``min(rtol, atol)``)."""
+    """Chaotic fraction and layer width by
+    :func:`~andoyer.analysis.chaos_border.chaos_border` (one thread; tolerance
+    ``min(rtol, atol)``)."""
     from andoyer.analysis.chaos_border import chaos_border
     from andoyer.integrate.section import Section
 
