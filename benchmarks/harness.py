@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from benchmarks import limits as L
 from benchmarks import reference as R
 from benchmarks import workloads as W
 
@@ -86,7 +87,7 @@ def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     def andoyer(engine: str) -> Callable[[], np.ndarray]:
         def run() -> np.ndarray:
             ds = propagate(b, y0, t, engine=engine, rtol=tol, atol=tol, progress=False)
-            return np.array([float(ds[v][0, -1]) for v in STATE])
+            return np.array([ds[v].values[0, -1] for v in STATE])
         return run
 
     table: dict[str, tuple[Callable[[], np.ndarray], int]] = {
@@ -107,6 +108,14 @@ def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
         rows.append(Row("W1", f"1 orbit to t = {t[-1]:g}, {t.size} outputs", name, wall, cpu,
                         walls, err, err, "max |y(t_end) - y_ref|",
                         note="" if not slow else f"{repeat} run(s), no warm-up"))
+        if name in ("andoyer heyoka", "andoyer numba"):
+            limit = (L.heyoka_limit if name.endswith("heyoka") else L.numba_limit)(
+                b, y0[None], np.array([t[-1]]), tol, single_orbit=True)
+            rows[-1].extra["limit"] = asdict(limit)
+            if name == "andoyer heyoka":  # the dataset's cost, measured apart
+                ds = propagate(b, y0, t, engine="heyoka", rtol=tol, atol=tol, progress=False)
+                rows[-1].extra["dataset_load_s"] = timed(lambda ds=ds: ds.copy(deep=True)
+                                                         .load(), sizes.repeat)[0]
     return rows
 
 
@@ -166,6 +175,11 @@ def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
             _say(f"W2 {name} {runner} ...")
             wall, cpu, walls, (T, Y) = timed(fn, sizes.repeat)
             em, ex, extra = _errors(T, Y, t_ref, y_ref)
+            if runner in ("andoyer heyoka", "andoyer numba"):
+                _say(f"W2 {name} {runner}: machine limit ...")
+                limit = (L.heyoka_limit if runner.endswith("heyoka") else L.numba_limit)(
+                    b, y0, np.asarray(t_ref, dtype=float), tol)
+                extra["limit"] = asdict(limit)
             rows.append(Row("W2", case, runner, wall, cpu, walls, em, ex,
                             f"max-norm error of the state at crossing {N}", extra=extra))
         # scipy: a subset of the orbits, extrapolated by integrated time
@@ -227,9 +241,17 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     fli = np.asarray(ds.fli.values)
     ok = np.isfinite(fli_ref)
     err = np.abs(fli - fli_ref)[ok]
+    _say("W3 machine limit (steps of a sample of the points) ...")
+    y0, w0, _ = fli_heyoka.inputs(ds, b, sizes.w3_t_end)
+    pick = W.subset(y0.shape[0], min(y0.shape[0], 256))
+    limit = L.heyoka_limit(b, y0[pick], np.array([sizes.w3_t_end]), sizes.tol,
+                           variational=True, w0=w0[pick])
+    scale = y0.shape[0] / pick.size
+    limit.steps, limit.limit_s = round(limit.steps * scale), limit.limit_s * scale
+    limit.note += f"; steps of {pick.size} of {y0.shape[0]} points, scaled"
     rows = [Row("W3", case, DEFAULT, wall, cpu, walls, float(np.median(err)),
                 float(np.max(err)), "|FLI - FLI_ref| over the accessible points",
-                extra={"points": int(ok.sum())})]
+                extra={"points": int(ok.sum()), "limit": asdict(limit)})]
     if "heyoka hand-tuned" in runners:
         _say("W3 heyoka hand-tuned (var_ode_sys, batch, threads) ...")
         y0, w0, t_out = fli_heyoka.inputs(ds, b, sizes.w3_t_end)
@@ -240,6 +262,39 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
         rows.append(Row("W3", case, "heyoka hand-tuned", wall, cpu, walls,
                         float(np.median(e)), float(np.max(e)),
                         "|FLI - FLI_ref| over the accessible points"))
+    if sizes.w3_big:
+        rows += w3_big(sizes, runners)
+    return rows
+
+
+def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
+    """The large map, timed once each (compiled integrators are warm from W3's runs):
+    andoyer against the hand-written heyoka ensemble of the variational system, their
+    FLI compared point by point (no extended-precision reference at this size)."""
+    from andoyer.analysis.chaos import chaos_map
+    from benchmarks.peers import fli_heyoka
+
+    b = W.body()
+    n = sizes.w3_big
+    case = f"FLI map {n} x {n}, t = {sizes.w3_t_end:g}"
+    _say(f"W3 {n} x {n} andoyer heyoka (once) ...")
+    wall, cpu, walls, ds = timed(
+        lambda: chaos_map(b, W.energy_level(b), 0.0, ("theta2", 0.0), n=(n, n),
+                          t_end=sizes.w3_t_end, indicator="fli", tol=sizes.tol,
+                          progress=False), 1, warm_up=False)
+    rows = [Row("W3", case, DEFAULT, wall, cpu, walls,
+                note="timed once", extra={"points": int(ds.accessible.values.sum())})]
+    if "heyoka hand-tuned" in runners:
+        _say(f"W3 {n} x {n} heyoka hand-tuned (once) ...")
+        y0, w0, t_out = fli_heyoka.inputs(ds, b, sizes.w3_t_end)
+        wall, cpu, walls, f = timed(lambda: fli_heyoka.fli_map(W.params(b), y0, w0, t_out,
+                                                               sizes.tol), 1, warm_up=False)
+        d = np.abs(np.asarray(ds.fli.values)[ds.accessible.values] - f)
+        d = d[np.isfinite(d)]
+        rows.append(Row("W3", case, "heyoka hand-tuned", wall, cpu, walls,
+                        float(np.median(d)), float(np.max(d)),
+                        "|FLI_andoyer - FLI_hand-tuned| (no reference at this size)",
+                        note="timed once"))
     return rows
 
 
@@ -273,6 +328,25 @@ def w4(cold: bool, runners: set[str]) -> list[Row]:
                      f"compilation/cache load paid {paid:.2f} s",
                 extra={**r, "compile_paid_s": paid, "caches": state}))
     return rows
+
+
+# ----------------------------------------------------------------------------- W5
+
+
+def w5(repeat: int) -> list[Row]:
+    """The main job, ``andoyer paper``, in fresh processes: one to warm the on-disk
+    caches, then ``repeat`` timed (each into a new folder)."""
+    walls = []
+    for k in range(repeat + 1):
+        _say(f"W5 andoyer paper ({'warm-up' if k == 0 else f'run {k}'}) ...")
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "andoyer", "paper", "--out",
+                            os.path.join(tmp, "paper")], check=True, capture_output=True)
+            if k:
+                walls.append(time.perf_counter() - t0)
+    return [Row("W5", "andoyer paper in a fresh process, warm on-disk caches", DEFAULT,
+                statistics.median(walls), math.nan, walls, note=f"{repeat} run(s)")]
 
 
 # ----------------------------------------------------------------------------- output
@@ -333,8 +407,21 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
                         "limit": [h.error_median, h.error_max],
                         "met": bool(d.error_median <= h.error_median * 1.5
                                     and d.error_max <= max(h.error_max * 1.5, 1e-6))})
-    ratio("W1: andoyer default / plain heyoka <= 1.5", get("W1", "", DEFAULT),
-          get("W1", "", "heyoka plain"), 1.5, False)
+        fastest = min((r for r in rows if r.workload == "W2" and f"of {sec} " in r.case
+                       and r.runner.startswith("andoyer")), key=lambda r: r.wall_s,
+                      default=None)
+        ratio(f"W2 {sec}: andoyer default / fastest andoyer engine <= 1.1", d, fastest, 1.1,
+              False)
+    ratio("W1: andoyer default / plain heyoka <= 1.2", get("W1", "", DEFAULT),
+          get("W1", "", "heyoka plain"), 1.2, False)
+    big = [r for r in rows if r.workload == "W3" and r.note == "timed once"]
+    if len(big) == 2:
+        ratio(f"W3 {big[0].case}: andoyer default / hand-written heyoka ensemble <= 1",
+              big[0], big[1], 1.0, False)
+    paper = get("W5", "", DEFAULT)
+    if paper is not None:
+        out.append({"target": "W5: andoyer paper, warm caches, <= 20 s", "value": paper.wall_s,
+                    "limit": 20.0, "met": bool(paper.wall_s <= 20.0)})
     for r in rows:
         if r.workload == "W4" and r.extra.get("caches") == "warm" and \
                 r.runner.startswith("andoyer"):
@@ -371,7 +458,7 @@ def markdown(result: dict[str, Any]) -> str:
         "(long double, tol 1e-19). **x default** = this runner's time / andoyer's default "
         "(heyoka engine): above 1 means andoyer is that many times faster.",
         ""]
-    for wl in ("W1", "W2", "W3", "W4"):
+    for wl in ("W1", "W2", "W3", "W4", "W5"):
         sub = [r for r in rows if r.workload == wl]
         for case in dict.fromkeys(r.case for r in sub):
             cs = [r for r in sub if r.case == case]
@@ -396,6 +483,28 @@ def markdown(result: dict[str, Any]) -> str:
                              f"{_fmt(r.error_median)} | {_fmt(r.error_max)} | {r.note} |")
             what = next((r.error_what for r in cs if r.error_what), "")
             lines += ["", f"Error: {what}." if what else "", ""]
+    lim = [r for r in rows if "limit" in r.extra]
+    if lim:
+        lines += ["## Machine limits", "",
+                  "The limit of the method on this machine (`benchmarks/limits.py`): the "
+                  "integration steps of the workload, counted by the engine's own step "
+                  "counter, times the cost of one step with every SIMD lane and core busy "
+                  "(the bare integrator: no events, no output, no Python). **x limit** = "
+                  "andoyer's time / the limit.", "",
+                  "| workload | runner | andoyer | steps | cost per step | limit | x limit "
+                  "| how the step was costed |", "|---|---|---|---|---|---|---|---|"]
+        for r in lim:
+            d = r.extra["limit"]
+            lines.append(f"| {r.workload}: {r.case} | {r.runner} | {_fmt(r.wall_s, 's')} | "
+                         f"{d['steps']:,} | {d['step_s'] * 1e9:.0f} ns | "
+                         f"{_fmt(d['limit_s'], 's')} | {r.wall_s / d['limit_s']:.2f} | "
+                         f"{d['note']} |")
+        load = [r for r in rows if "dataset_load_s" in r.extra]
+        if load:
+            lines += ["", f"W1 dataset: reading every derived variable of the propagate "
+                      f"dataset (charts, integrals, drifts; computed lazily at first read) "
+                      f"costs {_fmt(load[0].extra['dataset_load_s'], 's')} more."]
+        lines.append("")
     lines += ["## Targets", ""]
     if m["mode"] == "quick":
         lines += ["Quick mode: the problems are smaller than the ones the targets are set "
@@ -411,7 +520,7 @@ def markdown(result: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4"),
+def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5"),
         runners: set[str] | None = None, full_scipy: bool = False, cold: bool | None = None,
         out_dir: Path | None = None, sizes: W.Sizes | None = None,
         sections: tuple[tuple[str, float], ...] = W.SECTIONS) -> dict[str, Any]:
@@ -436,6 +545,8 @@ def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4
         rows += w3(sizes, runners)
     if "W4" in workloads:
         rows += w4(cold, {r.replace("-", " ") for r in runners})
+    if "W5" in workloads and DEFAULT in runners:
+        rows += w5(1 if quick else 3)
     result = {"meta": meta("quick" if quick else "full",
                            {"workloads": list(workloads), "full_scipy": full_scipy,
                             "cold": cold, "sizes": asdict(sizes)}),

@@ -35,13 +35,14 @@ class Sizes:
     scipy_orbits: int = 2  # orbits of the scipy W2 runs (x2 for the pool), extrapolated
     w3_grid: int = 64
     w3_t_end: float = 1000.0
+    w3_big: int = 256  # the large map (timed once against the hand-written ensemble; 0: none)
     repeat: int = 5
     tol: float = 1e-12
 
 
 FULL = Sizes()
 QUICK = Sizes(w1_t_end=1e3, w1_points=101, w2_orbits=8, w2_crossings=50, scipy_orbits=1,
-              w3_grid=8, w3_t_end=100.0, repeat=3)
+              w3_grid=8, w3_t_end=100.0, w3_big=0, repeat=3)
 
 
 def body() -> RigidBody:

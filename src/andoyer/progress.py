@@ -16,9 +16,16 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+from functools import cache
 from typing import Any
 
 __all__ = ["Progress"]
+
+
+@cache
+def _widgets() -> bool:
+    """Whether ipywidgets is installed (looked up once: a short call makes many bars)."""
+    return importlib.util.find_spec("ipywidgets") is not None
 
 
 class Progress:
@@ -36,7 +43,7 @@ class Progress:
 
     def __init__(self, total: int, label: str, enabled: bool | None = None,
                  postfix: str | None = None, initial: int = 0) -> None:
-        if importlib.util.find_spec("ipywidgets") is not None:
+        if _widgets():
             from tqdm.auto import tqdm  # a widget bar in notebooks
         else:  # tqdm.auto would warn in a notebook without ipywidgets: a text bar
             from tqdm.std import tqdm

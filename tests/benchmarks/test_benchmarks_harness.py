@@ -102,6 +102,10 @@ def test_harness_end_to_end_on_a_tiny_problem(tmp_path, monkeypatch) -> None:
     assert "| andoyer heyoka |" in text and "## Targets" in text
     names = [t["target"] for t in data["targets"]]
     assert any(n.startswith("W2 G3: andoyer default / hand-tuned") for n in names)
+    # the machine limit of the default engine, from heyoka's step counter
+    limit = rows[("W2", "andoyer heyoka")]["extra"]["limit"]
+    assert limit["steps"] > 0 and 0 < limit["limit_s"] and limit["engine"] == "heyoka"
+    assert "## Machine limits" in text and "x limit" in text
     assert len(list((tmp_path / "reference").glob("crossing-G3-*.json"))) == 1
 
 
@@ -131,12 +135,29 @@ def test_targets_and_table_from_rows() -> None:
     assert t["W2 G3: andoyer default / hand-tuned heyoka <= 1.0"]["met"]
     assert math.isclose(t["W2 G3: plain heyoka loop / andoyer default >= 3"]["value"], 3.5)
     assert not t["W2 G3: andoyer numba / hand-tuned heyoka <= 3"]["met"]
-    assert not t["W1: andoyer default / plain heyoka <= 1.5"]["met"]
+    assert not t["W1: andoyer default / plain heyoka <= 1.2"]["met"]
+    # the default (heyoka) is the fastest andoyer engine here: ratio 1
+    assert t["W2 G3: andoyer default / fastest andoyer engine <= 1.1"]["value"] == 1.0
     text = harness.markdown({"meta": harness.meta("test", {}), "load_before": [0, 0, 0],
                              "load_after": [0, 0, 0], "targets": harness.targets(rows),
                              "rows": [harness.asdict(r) for r in rows]})
     assert "| heyoka hand-tuned | 1.20 s | 1.20 s | 1.20 |" in text
-    assert "| W1: andoyer default / plain heyoka <= 1.5 | 2.00 | 1.5 | **no** |" in text
+    assert "| W1: andoyer default / plain heyoka <= 1.2 | 2.00 | 1.2 | **no** |" in text
+
+
+@pytest.mark.parametrize("engine", ["heyoka", "numba"])
+def test_machine_limit_counts_the_engines_steps(engine) -> None:
+    from benchmarks import limits
+
+    b = workloads.body()
+    y0 = workloads.initial_states(2)
+    fn = limits.heyoka_limit if engine == "heyoka" else limits.numba_limit
+    one, two = (fn(b, y0, np.array([t, t]), 1e-12) for t in (50.0, 100.0))
+    # steps grow in proportion to the span (a quasi-periodic orbit steps at a steady rate)
+    assert 1.8 < two.steps / one.steps < 2.2
+    assert one.step_s > 0 and math.isclose(one.limit_s, one.steps * one.step_s)
+    single = fn(b, y0[:1], np.array([100.0]), 1e-12, single_orbit=True)
+    assert single.steps < two.steps and "one orbit" in single.note
 
 
 def test_command_line_rejects_unknown_names() -> None:

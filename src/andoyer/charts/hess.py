@@ -144,14 +144,17 @@ def from_hess(body: RigidBody, x: ArrayLike, *, name: str = "x") -> NDArray[np.f
 
 @overload
 @checks_body
-def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[False] = ...
+def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[False] = ...,
+            andoyer: tuple[NDArray[np.float64], NDArray[np.int_]] | None = ...
             ) -> NDArray[np.float64]: ...
 @overload
 @checks_body
-def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[True]
+def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: Literal[True],
+            andoyer: tuple[NDArray[np.float64], NDArray[np.int_]] | None = ...
             ) -> tuple[NDArray[np.float64], NDArray[np.int_]]: ...
 @checks_body
-def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False
+def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False,
+            andoyer: tuple[NDArray[np.float64], NDArray[np.int_]] | None = None
             ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.int_]]:
     """Hess-chart coordinates of Euler-Poisson states, Eq. (14).
 
@@ -167,10 +170,13 @@ def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False
     y : array_like, shape (..., 6)
     with_mask : bool
         Also return the singular flags (conventions of the Andoyer-Deprit chart).
+    andoyer : tuple of ndarray, optional
+        ``to_andoyer(y, with_mask=True)`` when the caller has it already (the Hess chart
+        is computed through the Andoyer-Deprit one; a dataset needs both).
     """
     arr = as_state(y)
     phi0 = body.phi0
-    x, flags = to_andoyer(arr, with_mask=True)
+    x, flags = to_andoyer(arr, with_mask=True) if andoyer is None else andoyer
     l, g, L, G, M = np.moveaxis(x, -1, 0)
     theta1, theta2, J1, J2, J3 = andoyer_to_hess_expr(l, g, L, G, M, phi0)
     rho = np.hypot(arr[..., 0], arr[..., 1])

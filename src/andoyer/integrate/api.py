@@ -19,10 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer, to_andoyer
 from andoyer.charts.euler_poisson import (
-    area_integral,
     as_state,
-    energy,
-    geometric_integral,
     momentum_bound,
 )
 from andoyer.charts.hess import from_hess, to_hess
@@ -193,21 +190,10 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
     parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, rtol, atol),
                         y.shape[0], f"propagate ({name})", progress)
     Y = np.concatenate(parts, axis=0)
-    # Drifts in NumPy, handed to the dataset in one go (xarray arithmetic and item
-    # assignment align and merge at every operation: most of a short propagate's cost).
-    H, area, geometric = energy(body, Y), area_integral(Y), geometric_integral(Y)
-    H0, area0 = H[:, :1], area[:, :1]
-    G0 = np.linalg.norm(Y[:, :1, :3], axis=-1)
-    drifts = {"H_drift": (H - H0) / np.where(np.abs(H0) > 0, np.abs(H0), 1.0),
-              "area_drift": (area - area0) / np.where(G0 > 0, G0, 1.0),
-              "geometric_drift": geometric - geometric[:, :1]}
     ds = states_dataset(
         body, Y, ("orbit", "time"), {"orbit": np.arange(Y.shape[0]), "time": times},
         provenance(body, engine=name, rtol=rtol, atol=atol, initial_chart=chart),
-        extra={v: (("orbit", "time"), values) for v, values in drifts.items()})
-    for v in drifts:
-        ds.variables[v].attrs.update(units="1",
-                                     long_name=f"drift of {v.split('_')[0]} since t[0]")
+        drifts=True)
     ds.variables["time"].attrs.update(units="body time units", long_name="time")
     return ds
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
 from typing import Any
@@ -9,6 +10,8 @@ from typing import Any
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
+from xarray.backends import BackendArray
+from xarray.core import indexing
 
 from andoyer._version import __version__
 from andoyer.body import RigidBody, checks_body
@@ -23,8 +26,8 @@ from andoyer.charts.euler_poisson import (
 from andoyer.charts.hess import to_hess
 from andoyer.notation import COORDINATES, coordinates, storage_name
 
-__all__ = ["states_dataset", "provenance", "describe_variables", "values_from_attrs",
-           "VARIABLE_ATTRS", "VariableMeta"]
+__all__ = ["states_dataset", "derived_values", "provenance", "describe_variables",
+           "values_from_attrs", "VARIABLE_ATTRS", "VariableMeta"]
 
 #: Storage name -> (paper symbol, long name, equation), from :mod:`andoyer.notation`.
 VARIABLE_ATTRS: dict[str, tuple[str, str, str]] = {
@@ -67,14 +70,18 @@ def describe_variables(ds: xr.Dataset, meta: Mapping[str, VariableMeta] | None =
     ('L', 'L = G3, zero on the section', '1')
     """
     extra = dict(long_names or {})
+    # ds.variables, not ds[name]: no DataArray is built per name (a short propagate
+    # would spend more time here than integrating).
+    variables = ds.variables
     for name, (sym, long, eq) in VARIABLE_ATTRS.items():
-        if name in ds:
-            ds[name].attrs.update(symbol=sym, long_name=extra.get(name, long), equation=eq)
+        if name in variables:
+            variables[name].attrs.update(symbol=sym, long_name=extra.get(name, long),
+                                         equation=eq)
             if units:
-                ds[name].attrs["units"] = _UNITS.get(name, "1")
+                variables[name].attrs["units"] = _UNITS.get(name, "1")
     for name, (sym, long, unit, eq) in (meta or {}).items():
-        if name in ds:
-            ds[name].attrs.update(symbol=sym, long_name=long, units=unit, equation=eq)
+        if name in variables:
+            variables[name].attrs.update(symbol=sym, long_name=long, units=unit, equation=eq)
     return ds
 
 
@@ -108,37 +115,127 @@ def values_from_attrs(ds: xr.Dataset, meta: Mapping[str, VariableMeta]) -> xr.Da
     return describe_variables(ds, {k: v for k, v in meta.items() if k in ds.data_vars})
 
 
-@checks_body
-def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
-                   coords: Mapping[str, Any], attrs: Mapping[str, Any],
-                   extra: Mapping[str, tuple[Sequence[str], Any]] | None = None) -> xr.Dataset:
-    """Dataset of states ``y`` (shape ``(*shape, 6)``, NaN allowed for padding).
+def _derived_names(body: RigidBody, drifts: bool) -> tuple[str, ...]:
+    """Names of the variables :func:`states_dataset` derives from the states."""
+    charts = ("andoyer", "hess") if abs(body.e3) <= 1e-12 else ("andoyer",)
+    return (*(storage_name(c) for chart in charts for c in coordinates(chart)),
+            "H", "area", "geometric", "singular",
+            *(("H_drift", "area_drift", "geometric_drift") if drifts else ()))
 
-    Holds the Euler-Poisson state, the Andoyer-Deprit and (for ``e3 = 0``) Hess-chart
-    coordinates, the integrals H, (G, gamma), ``|gamma|^2``, and the singular flags.
+
+def derived_values(body: RigidBody, y: NDArray[np.float64], drifts: bool = False
+                   ) -> dict[str, NDArray[Any]]:
+    """Chart coordinates, integrals, singular flags (and drifts) of states ``y``.
+
+    Every array is computed once, the Hess chart from the Andoyer-Deprit coordinates;
+    NaN states (padding) give NaN values and the flag -1. The drifts are taken along
+    the last axis of ``y[..., 0]``, from its first entry: ``H_drift`` relative to
+    ``|H(0)|``, ``area_drift`` relative to ``|G(0)|``.
     """
-    dims = tuple(dims)
     valid = np.all(np.isfinite(y), axis=-1)
     safe = np.where(valid[..., None], y, np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0]))
-    data: dict[str, tuple[tuple[str, ...], Any]] = {
-        name: (dims, y[..., i]) for i, name in enumerate(STATE)}
+    nan = np.where(valid, 1.0, np.nan)
     x, flags = to_andoyer(safe, with_mask=True)
     H = energy(body, safe)
     # G = 0 relative to the orbit's momentum scale (the largest |G| on its energy level),
     # not only where |G| is exactly 0.
-    flags = np.where(x[..., 3] <= SINGULAR_RTOL * momentum_bound(body, safe, H),
-                     int(Singular.G_ZERO), flags)
-    nan = np.where(valid, 1.0, np.nan)
-    for i, name in enumerate(map(storage_name, coordinates("andoyer"))):
-        data[name] = (dims, x[..., i] * nan)
+    G_zero = x[..., 3] <= SINGULAR_RTOL * momentum_bound(body, safe, H)
+    out: dict[str, NDArray[Any]] = {
+        name: x[..., i] * nan for i, name in enumerate(map(storage_name, coordinates("andoyer")))}
     if abs(body.e3) <= 1e-12:
-        xh = to_hess(body, safe)
-        for i, name in enumerate(map(storage_name, coordinates("hess"))):
-            data[name] = (dims, xh[..., i] * nan)
-    data["H"] = (dims, H * nan)
-    data["area"] = (dims, area_integral(safe) * nan)
-    data["geometric"] = (dims, geometric_integral(safe) * nan)
-    data["singular"] = (dims, np.where(valid, flags, -1))
+        xh = to_hess(body, safe, andoyer=(x, flags))
+        out.update({name: xh[..., i] * nan
+                    for i, name in enumerate(map(storage_name, coordinates("hess")))})
+    area, geometric = area_integral(safe), geometric_integral(safe)
+    out.update(H=H * nan, area=area * nan, geometric=geometric * nan,
+               singular=np.where(valid, np.where(G_zero, int(Singular.G_ZERO), flags), -1))
+    if drifts:
+        H0, area0 = H[..., :1], area[..., :1]
+        G0 = np.linalg.norm(safe[..., :1, :3], axis=-1)
+        out.update(H_drift=(H - H0) / np.where(np.abs(H0) > 0, np.abs(H0), 1.0) * nan,
+                   area_drift=(area - area0) / np.where(G0 > 0, G0, 1.0) * nan,
+                   geometric_drift=(geometric - geometric[..., :1]) * nan)
+    return out
+
+
+class _Derived:
+    """:func:`derived_values` of one dataset's states, computed at first use, once."""
+
+    def __init__(self, body: RigidBody, y: NDArray[np.float64], drifts: bool) -> None:
+        self.body, self.y, self.drifts = body, y, drifts
+        self.values: dict[str, NDArray[Any]] | None = None
+        self.lock = threading.Lock()
+
+    def get(self, name: str) -> NDArray[Any]:
+        with self.lock:
+            if self.values is None:
+                self.values = derived_values(self.body, self.y, self.drifts)
+                self.y = np.empty((0, 6))  # the dataset holds the states
+        return self.values[name]
+
+    def __getstate__(self) -> dict[str, Any]:  # pickled into Dask workers: no lock
+        return {k: v for k, v in self.__dict__.items() if k != "lock"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state, lock=threading.Lock())
+
+
+class _LazyColumn(BackendArray):
+    """One derived variable, read from :class:`_Derived` when its values are asked for
+    (xarray's backend-array protocol: the dataset is built before anything is derived)."""
+
+    def __init__(self, derived: _Derived, name: str, shape: tuple[int, ...]) -> None:
+        self.derived, self.name, self.shape = derived, name, shape
+        self.dtype = np.dtype(np.int64 if name == "singular" else np.float64)
+
+    def __getitem__(self, key: indexing.ExplicitIndexer) -> Any:
+        return indexing.explicit_indexing_adapter(
+            key, self.shape, indexing.IndexingSupport.OUTER, self._raw)
+
+    def _raw(self, key: tuple[Any, ...]) -> NDArray[Any]:
+        return self.derived.get(self.name)[key]
+
+
+@checks_body
+def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
+                   coords: Mapping[str, Any], attrs: Mapping[str, Any],
+                   extra: Mapping[str, tuple[Sequence[str], Any]] | None = None, *,
+                   drifts: bool = False) -> xr.Dataset:
+    """Dataset of states ``y`` (shape ``(*shape, 6)``, NaN allowed for padding).
+
+    Holds the Euler-Poisson state, the Andoyer-Deprit and (for ``e3 = 0``) Hess-chart
+    coordinates, the integrals H, (G, gamma), ``|gamma|^2``, and the singular flags.
+    With ``drifts=True`` (orbits along the last dimension, from its first entry) also
+    ``H_drift`` (relative to ``|H(0)|``), ``area_drift`` (relative to ``|G(0)|``) and
+    ``geometric_drift``.
+
+    The derived variables are lazy: :func:`derived_values` runs once, when the first of
+    them is read (``.values``, arithmetic, plotting, ``load()``, writing to disk). A
+    dataset nobody reads the charts of costs no chart map: a short orbit's dataset
+    costs a fraction of its integration (``benchmarks``, W1).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody.paper()
+    >>> ds = states_dataset(body, np.array([[0.0, 0.6, 0.8, 0.0, 0.6, 0.8]]), ("time",),
+    ...                     {"time": [0.0]}, {})
+    >>> round(float(ds.G_action[0]), 12), ds.H.attrs["symbol"]
+    (1.0, 'H')
+    """
+    dims = tuple(dims)
+    y = np.asarray(y, dtype=float)
+    shape = y.shape[:-1]
+    data: dict[str, Any] = {name: (dims, y[..., i]) for i, name in enumerate(STATE)}
+    derived = _Derived(body, y, drifts)
+    for name in _derived_names(body, drifts):
+        data[name] = xr.Variable(dims, indexing.LazilyIndexedArray(
+            _LazyColumn(derived, name, shape)))
     if extra:
         data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
-    return describe_variables(xr.Dataset(data, coords=dict(coords), attrs=dict(attrs)))
+    ds = describe_variables(xr.Dataset(data, coords=dict(coords), attrs=dict(attrs)))
+    if drifts:
+        for name in ("H_drift", "area_drift", "geometric_drift"):
+            ds.variables[name].attrs.update(
+                units="1", long_name=f"drift of {name.split('_')[0]} since t[0]")
+    return ds
