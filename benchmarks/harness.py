@@ -28,6 +28,7 @@ import numpy as np
 
 from benchmarks import limits as L
 from benchmarks import reference as R
+from benchmarks import scaling as S
 from benchmarks import workloads as W
 
 DEFAULT = "andoyer heyoka"
@@ -505,6 +506,8 @@ def markdown(result: dict[str, Any]) -> str:
                       f"dataset (charts, integrals, drifts; computed lazily at first read) "
                       f"costs {_fmt(load[0].extra['dataset_load_s'], 's')} more."]
         lines.append("")
+    if result.get("scaling"):
+        lines += S.markdown(result["scaling"])
     lines += ["## Targets", ""]
     if m["mode"] == "quick":
         lines += ["Quick mode: the problems are smaller than the ones the targets are set "
@@ -520,7 +523,8 @@ def markdown(result: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5"),
+def run(quick: bool = False,
+        workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5", "S"),
         runners: set[str] | None = None, full_scipy: bool = False, cold: bool | None = None,
         out_dir: Path | None = None, sizes: W.Sizes | None = None,
         sections: tuple[tuple[str, float], ...] = W.SECTIONS) -> dict[str, Any]:
@@ -547,14 +551,18 @@ def run(quick: bool = False, workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4
         rows += w4(cold, {r.replace("-", " ") for r in runners})
     if "W5" in workloads and DEFAULT in runners:
         rows += w5(1 if quick else 3)
+    scaling = S.run(quick, say=_say) if "S" in workloads else []
     result = {"meta": meta("quick" if quick else "full",
                            {"workloads": list(workloads), "full_scipy": full_scipy,
                             "cold": cold, "sizes": asdict(sizes)}),
               "load_before": load_before,
               "load_after": [round(x, 2) for x in os.getloadavg()],
-              "rows": [asdict(r) for r in rows], "targets": targets(rows)}
+              "rows": [asdict(r) for r in rows], "targets": targets(rows),
+              "scaling": scaling}
     out_dir = Path(__file__).parent if out_dir is None else Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
+    if scaling:
+        S.plot(scaling, out_dir / "scaling.png")
     for name, text in (("results.json", json.dumps(result, indent=1, default=float)),
                        ("RESULTS.md", markdown(result))):
         tmp = out_dir / (name + ".tmp")

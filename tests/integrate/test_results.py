@@ -62,3 +62,21 @@ def test_padding_gives_nan_and_flag_minus_one() -> None:
     ds = states_dataset(body, y, ("crossing",), {}, {})
     assert np.isfinite(ds.H.values[0]) and np.isnan(ds.H.values[1])
     assert ds.singular.values.tolist()[1] == -1
+
+
+def test_copies_are_independent_and_derive_once(orbit, monkeypatch) -> None:
+    import andoyer.integrate.results as results
+
+    body, _, y = orbit
+    calls = []
+    real = results.derived_values
+    monkeypatch.setattr(results, "derived_values",
+                        lambda *a, **k: calls.append(1) or real(*a, **k))
+    ds = states_dataset(body, y, ("orbit", "time"), {}, {}, drifts=True)
+    assert not calls  # nothing derived until read
+    deep = ds.copy(deep=True).load()
+    assert len(calls) == 1  # once for every variable, not once per variable
+    deep.H.values[0, 0] = 99.0
+    got = ds.H.values
+    got[0, 0] = -99.0  # writing into a read does not reach the source
+    assert ds.H.values[0, 0] == energy(body, y[0, 0])

@@ -110,3 +110,24 @@ def test_border_of_chaos_item(tmp_path):
     numbers = json.loads((out / "summary.json").read_text())["items"]["border"]["numbers"]
     assert numbers["border_splitting_eps0"] < 1e-12
     assert "border of chaos" in (out / "index.html").read_text()
+
+
+def test_items_in_two_processes_match_one(tmp_path):
+    """Two processes build the same report as one (the schedule changes nothing but the
+    time); the summary lists the items in the report's order."""
+    import json
+
+    from andoyer.report.paper import ITEMS, build_paper, default_jobs
+
+    only = ["heteroclinic", "fig2", "paper-check"]
+    numbers = []
+    for jobs in (1, 2):
+        _, done = build_paper(tmp_path / f"j{jobs}", quick=True, only=only, jobs=jobs,
+                              progress=False)
+        assert [i.key for i, _, _ in done] == [i.key for i in ITEMS if i.key in only]
+        summary = json.loads((tmp_path / f"j{jobs}" / "summary.json").read_text())
+        numbers.append({k: v["numbers"] for k, v in summary["items"].items()})
+    assert numbers[0] == numbers[1]
+    assert default_jobs([i for i in ITEMS if i.key in only]) == 1  # 0.8 s: no worker
+    with pytest.raises(ValueError, match="jobs"):
+        build_paper(tmp_path / "bad", only=only, jobs=0, progress=False)

@@ -15,7 +15,7 @@ def run(args: argparse.Namespace) -> int:
 
     output_folder(args.out)
     index, done = build_paper(args.out, engine=args.engine, quick=args.quick,
-                              only=args.only or None, progress=True)
+                              only=args.only or None, progress=True, jobs=args.jobs)
     print(f"andoyer paper: {len(done)} items written to {index.parent}/; open {index}")
     return 0
 
@@ -31,6 +31,9 @@ def register(sub: Any) -> None:
                    help="integration engine (default: heyoka where installed, else numba)")
     p.add_argument("--quick", action="store_true",
                    help="smaller grids and shorter runs (a smoke test, not the figures)")
+    p.add_argument("--jobs", type=int, default=None, metavar="N",
+                   help="processes building items at once (default: 2 on two or more "
+                        "cores, else 1)")
     p.add_argument("--only", nargs="+", metavar="ITEM",
                    help="build only these items (e.g. fig3 paper-check)")
     p.set_defaults(func=run)

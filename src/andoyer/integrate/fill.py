@@ -15,7 +15,8 @@ The equation for the action is solved on its whole admissible interval and **all
 roots are found: a scan (nodes dense near the lower end, where H has a square-root
 singularity) brackets the sign changes, every discrete extremum of the scan that does
 not change sign is refined by golden-section search (two roots closer than the scan
-step are found too), and each bracket is closed by :func:`scipy.optimize.brentq`.
+step are found too), and the brackets are closed all at once by
+:func:`scipy.optimize.elementwise.find_root`.
 
 The accessible region is where ``min over the action of H <= h``: it is reported on a
 fine grid of the plane (``accessible``) and as the contour polylines of that minimum at
@@ -34,8 +35,6 @@ import contourpy
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
-from scipy.optimize import brentq
-from scipy.stats import qmc
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
@@ -178,11 +177,26 @@ class _Equation:
         """All admissible roots ``A`` of ``f(p, q, A) = 0`` per plane point, ascending."""
         pts, lo, hi, zpts, zA = self.brackets(p, q)
         found: list[list[float]] = [[] for _ in range(p.size)]
-        for i, a, b in zip(pts, lo, hi, strict=True):
-            pi, qi = float(p[i]), float(q[i])
-            r = brentq(lambda A, pi=pi, qi=qi: float(self.f(pi, qi, A)), float(a), float(b),
-                       xtol=1e-14 * self.act_max, rtol=4 * np.finfo(float).eps, maxiter=200)
-            found[i].append(r)
+        if pts.size:
+            # Imported here, as qmc below: scipy.stats costs 0.4 s of import time, and
+            # importing andoyer.integrate should not pay it.
+            from scipy.optimize.elementwise import find_root
+
+            # All brackets at once (Chandrupatla's method, vectorised): one call of the
+            # energy kernel per iteration for every bracket, instead of a Python-level
+            # brentq per bracket (measured: 0.59 -> 0.05 s for the two maps of the
+            # paper's chaos item, 39 000 scalar kernel calls).
+            res = find_root(lambda A, pi, qi: self.f(pi, qi, A), (lo, hi),
+                            args=(p[pts], q[pts]),
+                            tolerances={"xatol": 1e-14 * self.act_max,
+                                        "xrtol": 4 * np.finfo(float).eps, "fatol": 0.0,
+                                        "frtol": 0.0}, maxiter=200)
+            if not np.all(res.success):
+                bad = int(np.count_nonzero(~res.success))
+                raise RuntimeError(f"energy-level root finding failed for {bad} of "
+                                   f"{pts.size} brackets (status {np.unique(res.status)})")
+            for i, r in zip(pts.tolist(), res.x.tolist(), strict=True):
+                found[i].append(r)
         for i, A in zip(zpts, zA, strict=True):
             found[i].append(float(A))
         out = []
@@ -353,6 +367,8 @@ def _qmc_points(eq: _Equation, box: tuple[float, float, float, float, float], n:
                 method: str, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The first n accessible points of a scrambled Sobol or Halton sequence in the box."""
     x0, x1, y0, y1, frac = box
+    from scipy.stats import qmc
+
     engine = (qmc.Sobol if method == "sobol" else qmc.Halton)(d=2, scramble=True, rng=seed)
     # Sobol points keep their balance in blocks of a power of 2.
     m = 2 ** max(1, math.ceil(math.log2(1.25 * n / max(frac, 1e-6))))

@@ -173,6 +173,12 @@ class _Derived:
                 self.y = np.empty((0, 6))  # the dataset holds the states
         return self.values[name]
 
+    def __deepcopy__(self, memo: dict[int, Any]) -> _Derived:
+        # Shared by the copies: its arrays are never handed out, only copies of them
+        # (:meth:`_LazyColumn._raw`), so a copied dataset is as independent as a deep
+        # copy, and it derives once instead of once per variable.
+        return self
+
     def __getstate__(self) -> dict[str, Any]:  # pickled into Dask workers: no lock
         return {k: v for k, v in self.__dict__.items() if k != "lock"}
 
@@ -193,7 +199,8 @@ class _LazyColumn(BackendArray):
             key, self.shape, indexing.IndexingSupport.OUTER, self._raw)
 
     def _raw(self, key: tuple[Any, ...]) -> NDArray[Any]:
-        return self.derived.get(self.name)[key]
+        # A copy: writing into what a reader got must not change the dataset's source.
+        return np.array(self.derived.get(self.name)[key])
 
 
 @checks_body

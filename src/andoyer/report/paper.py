@@ -3,9 +3,10 @@
 Each *item* of the report is built by one function of this module from the library's
 analysis (data) and plot (figures) layers. It writes its figures (PNG and PDF), their
 data (NetCDF) and says, for ``index.html``, what the paper prints there and what this
-package corrected or added. :func:`build_paper` runs the items in order with a progress
-line each, and writes ``index.html`` last (atomically), so a folder with an index is a
-complete one.
+package corrected or added. :func:`build_paper` runs the items with a progress line
+each -- on two cores the longest first, in this process and one worker process that
+take the next item as they free up -- and writes ``index.html`` last (atomically), so a
+folder with an index is a complete one.
 
 Examples
 --------
@@ -16,9 +17,13 @@ Examples
 from __future__ import annotations
 
 import json
+import multiprocessing
+import os
 import sys
+import threading
 import time
 from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,7 +36,7 @@ from andoyer.body import RigidBody
 from andoyer.io import write_netcdf
 from andoyer.plot.section import save_figure
 
-__all__ = ["Item", "Result", "Context", "ITEMS", "build_paper", "DEFAULT_OUT"]
+__all__ = ["Item", "Result", "Context", "ITEMS", "build_paper", "default_jobs", "DEFAULT_OUT"]
 
 #: Default output folder of ``andoyer paper``.
 DEFAULT_OUT = "andoyer-paper"
@@ -73,6 +78,8 @@ class Item:
     key: str
     title: str
     build: Callable[[Context], Result]
+    #: Seconds it takes (measured, warm caches, 2 cores): items start longest first.
+    cost: float = 1.0
 
 
 # ---------------------------------------------------------------------- items
@@ -452,17 +459,18 @@ def _border(ctx: Context) -> Result:
 
 
 ITEMS: list[Item] = [
-    Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", _fig1),
-    Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points", _fig2),
-    Item("heteroclinic", "Heteroclinic orbits in closed form", _heteroclinic),
-    Item("solutions", "The Hess solution and the physical pendulum", _solutions),
+    Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", _fig1, 1.4),
+    Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points", _fig2,
+         0.7),
+    Item("heteroclinic", "Heteroclinic orbits in closed form", _heteroclinic, 0.1),
+    Item("solutions", "The Hess solution and the physical pendulum", _solutions, 1.2),
     Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
-         "θ2 = 0", _fig3),
+         "θ2 = 0", _fig3, 2.0),
     Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
-         _manifolds),
-    Item("chaos", "Beyond the paper: chaos maps (FLI)", _chaos),
-    Item("border", "Beyond the paper: the border of chaos near the Hess case", _border),
-    Item("paper-check", "Every printed formula against the derivation", _paper_check),
+         _manifolds, 2.2),
+    Item("chaos", "Beyond the paper: chaos maps (FLI)", _chaos, 6.2),
+    Item("border", "Beyond the paper: the border of chaos near the Hess case", _border, 4.6),
+    Item("paper-check", "Every printed formula against the derivation", _paper_check, 0.0),
 ]
 
 
@@ -535,9 +543,90 @@ def _write_index(out: Path, ctx: Context, done: list[tuple[Item, Result, float]]
 
 
 # ---------------------------------------------------------------------- driver
+#: A worker process starts in about 2 s (its imports): worth it above this much work.
+_WORKER_WORTH_S = 5.0
+
+
+def default_jobs(items: list[Item]) -> int:
+    """Processes for ``items``: 2 when two cores are free and the items take more than
+    :data:`_WORKER_WORTH_S` (the heavy items use every core themselves; two processes
+    keep the cores busy between them), else 1.
+
+    >>> default_jobs(ITEMS[2:3])  # one item of 0.1 s
+    1
+    """
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (
+        os.cpu_count() or 1)
+    if len(items) < 2 or sum(i.cost for i in items) < _WORKER_WORTH_S:
+        return 1
+    return max(1, min(2, cores))
+
+
+def _build_item(item: Item, ctx: Context) -> tuple[Result, float]:
+    t0 = time.perf_counter()
+    res = item.build(ctx)
+    return res, time.perf_counter() - t0
+
+
+def _run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
+               ) -> dict[str, tuple[Result, float]]:
+    """Build ``items``: here, and with ``jobs = 2`` in one worker process too.
+
+    Both take the next item from one queue, longest first (:attr:`Item.cost`), so the
+    worker's start-up (its imports) overlaps the first item here. Figures are drawn on
+    each process's main thread (matplotlib is not thread-safe); a thread here only
+    hands items to the worker and waits.
+    """
+    queue = sorted(items, key=lambda i: -i.cost) if jobs > 1 else list(items)
+    lock = threading.Lock()
+    out: dict[str, tuple[Result, float]] = {}
+    failed: list[BaseException] = []
+
+    def take() -> Item | None:
+        with lock:
+            return queue.pop(0) if queue and not failed else None
+
+    def record(item: Item, res: Result, dt: float) -> None:
+        with lock:
+            out[item.key] = (res, dt)
+            k = len(out)
+        if progress:
+            print(f"[{k}/{len(items)}] {item.title} ... {dt:.1f} s", file=sys.stderr,
+                  flush=True)
+
+    def feed(pool: ProcessPoolExecutor) -> None:
+        try:
+            while (item := take()) is not None:
+                record(item, *pool.submit(_build_item, item, ctx).result())
+        except BaseException as exc:  # re-raised on the main thread
+            with lock:
+                failed.append(exc)
+
+    pool = helper = None
+    if jobs > 1:
+        # spawn: a fresh interpreter (forking a process that may run threads is unsafe).
+        pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+        helper = threading.Thread(target=feed, args=(pool,), daemon=True)
+        helper.start()
+    try:
+        while (item := take()) is not None:
+            record(item, *_build_item(item, ctx))
+    except BaseException as exc:
+        with lock:
+            failed.append(exc)
+    finally:
+        if helper is not None and pool is not None:
+            helper.join()
+            pool.shutdown(cancel_futures=True)
+    if failed:
+        raise failed[0]
+    return out
+
+
 def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
                 engine: str | None = None, quick: bool = False,
-                only: list[str] | None = None, progress: bool = True
+                only: list[str] | None = None, progress: bool = True,
+                jobs: int | None = None
                 ) -> tuple[Path, list[tuple[Item, Result, float]]]:
     """Build the report: every item's figures and data, then ``index.html``.
 
@@ -554,7 +643,10 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
     only : list of str, optional
         Keys of the items to build (default: all, see :data:`ITEMS`).
     progress : bool
-        One line per item on stderr.
+        One line per item on stderr (as items finish).
+    jobs : int, optional
+        Processes building items at once (default :func:`default_jobs`: 2 on two or
+        more cores). The results do not depend on it.
 
     Returns
     -------
@@ -569,17 +661,12 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
     items = [i for i in ITEMS if not only or i.key in only]
     ctx = Context(Path(out), RigidBody.paper() if body is None else body, engine, quick)
     ctx.out.mkdir(parents=True, exist_ok=True)
-    done = []
     t_all = time.perf_counter()
-    for k, item in enumerate(items, 1):
-        if progress:
-            print(f"[{k}/{len(items)}] {item.title} ...", end="", file=sys.stderr, flush=True)
-        t0 = time.perf_counter()
-        res = item.build(ctx)
-        dt = time.perf_counter() - t0
-        done.append((item, res, dt))
-        if progress:
-            print(f" {dt:.1f} s", file=sys.stderr, flush=True)
+    n_jobs = default_jobs(items) if jobs is None else int(jobs)
+    if n_jobs < 1:
+        raise ValueError(f"jobs must be a positive integer, got {jobs!r}")
+    times = _run_items(items, ctx, min(n_jobs, len(items)), progress)
+    done = [(item, *times[item.key]) for item in items]
     summary = {"andoyer_version": __version__, "body": ctx.body.attrs(),
                "engine": ctx.engine or "default", "quick": quick,
                "items": {i.key: {"title": i.title, "seconds": round(dt, 3),
