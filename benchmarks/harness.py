@@ -523,6 +523,56 @@ def markdown(result: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: Markers of the block of README.md that :func:`summary` rewrites after a full run.
+README_START, README_END = "<!-- benchmarks:start -->", "<!-- benchmarks:end -->"
+
+
+def summary(result: dict[str, Any]) -> str:
+    """The short table (README, user guide): one row per workload, medians, x limit."""
+    m = result["meta"]
+    rows = [Row(**r) for r in result["rows"]]
+    cols = [("andoyer (default: heyoka)", (DEFAULT,)), ("andoyer numba", ("andoyer numba",)),
+            ("heyoka plain", ("heyoka plain",)), ("heyoka hand-tuned", ("heyoka hand-tuned",)),
+            ("scipy DOP853", ("scipy DOP853", "scipy DOP853 pool(2)"))]
+    lines = [f"Measured {m['date'][:10]} by `python -m benchmarks` ({m['mode']} run, "
+             f"{m['cpus']} cores, commit {m['commit']}); every number, with CPU times, "
+             "errors and start-up, in `benchmarks/RESULTS.md`.", "",
+             "| workload | " + " | ".join(c for c, _ in cols) + " | default / machine limit |",
+             "|---|" + "---|" * (len(cols) + 1)]
+    cases = dict.fromkeys((r.workload, r.case) for r in rows if r.workload in ("W1", "W2", "W3"))
+    for wl, case in cases:
+        cs = {r.runner: r for r in rows if (r.workload, r.case) == (wl, case)}
+        cells = []
+        for _, names in cols:
+            r = next((cs[n] for n in names if n in cs), None)
+            cells.append("–" if r is None else _fmt(r.wall_s, "s") + (
+                " (extrapolated)" if "extrapolated" in r.note else ""))
+        d = cs.get(DEFAULT)
+        lim = "–" if d is None or "limit" not in d.extra else \
+            f"{d.wall_s / d.extra['limit']['limit_s']:.1f}x"
+        lines.append(f"| {wl}: {case} | " + " | ".join(cells) + f" | {lim} |")
+    paper = next((r for r in rows if r.workload == "W5"), None)
+    if paper is not None:
+        lines += ["", f"`andoyer paper` (the main job), fresh process, warm caches: "
+                      f"{_fmt(paper.wall_s, 's')}."]
+    return "\n".join(lines) + "\n"
+
+
+def update_readme(text: str, path: Path) -> bool:
+    """Put ``text`` between the benchmark markers of ``path`` (atomically); False when
+    the file has no markers."""
+    if not path.exists():
+        return False
+    old = path.read_text()
+    i, j = old.find(README_START), old.find(README_END)
+    if i < 0 or j < i:
+        return False
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_text(old[:i + len(README_START)] + "\n" + text + old[j:])
+    tmp.replace(path)
+    return True
+
+
 def run(quick: bool = False,
         workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5", "S"),
         runners: set[str] | None = None, full_scipy: bool = False, cold: bool | None = None,
@@ -564,8 +614,10 @@ def run(quick: bool = False,
     if scaling:
         S.plot(scaling, out_dir / "scaling.png")
     for name, text in (("results.json", json.dumps(result, indent=1, default=float)),
-                       ("RESULTS.md", markdown(result))):
+                       ("RESULTS.md", markdown(result)), ("SUMMARY.md", summary(result))):
         tmp = out_dir / (name + ".tmp")
         tmp.write_text(text)
         tmp.replace(out_dir / name)
+    if not quick and out_dir == Path(__file__).parent and set(workloads) >= {"W1", "W2", "W3"}:
+        update_readme(summary(result), out_dir.parent / "README.md")
     return result

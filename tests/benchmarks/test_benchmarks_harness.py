@@ -165,3 +165,21 @@ def test_command_line_rejects_unknown_names() -> None:
         main(["--workloads", "W9"])
     with pytest.raises(SystemExit):
         main(["--runners", "fortran"])
+
+
+def test_summary_table_goes_between_the_readme_markers(tmp_path) -> None:
+    row = harness.Row("W1", "1 orbit", "andoyer heyoka", 0.01, 0.01, [0.01],
+                      extra={"limit": {"limit_s": 0.004}})
+    paper = harness.Row("W5", "andoyer paper", "andoyer heyoka", 17.5, math.nan, [17.5])
+    result = {"meta": harness.meta("full", {}), "rows": [harness.asdict(row),
+                                                         harness.asdict(paper)]}
+    text = harness.summary(result)
+    assert "| W1: 1 orbit | 10.0 ms | – |" in text and "| 2.5x |" in text
+    assert "17.50 s" in text
+    readme = tmp_path / "README.md"
+    readme.write_text(f"intro\n{harness.README_START}\nold\n{harness.README_END}\nend\n")
+    assert harness.update_readme(text, readme)
+    new = readme.read_text()
+    assert "old" not in new and text in new and new.endswith(f"{harness.README_END}\nend\n")
+    (tmp_path / "plain.md").write_text("no markers")
+    assert not harness.update_readme(text, tmp_path / "plain.md")

@@ -236,8 +236,10 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     data: dict[str, Any] = {name: (dims, y[..., i]) for i, name in enumerate(STATE)}
     derived = _Derived(body, y, drifts)
     for name in _derived_names(body, drifts):
-        data[name] = xr.Variable(dims, indexing.LazilyIndexedArray(
-            _LazyColumn(derived, name, shape)))
+        # Lazily indexed, then cached in memory at first read, as xarray's own backends
+        # do: from then on ``.values`` is one array, and writes into it stay.
+        data[name] = xr.Variable(dims, indexing.MemoryCachedArray(
+            indexing.LazilyIndexedArray(_LazyColumn(derived, name, shape))))
     if extra:
         data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
     ds = describe_variables(xr.Dataset(data, coords=dict(coords), attrs=dict(attrs)))

@@ -98,6 +98,7 @@ from andoyer.integrate.engines.heyoka_symbolic import (
     field_at,
     field_cfunc,
     heyoka_system,
+    par_vector,
     section_cfunc,
     section_exprs,
 )
@@ -234,13 +235,6 @@ def warm_up(*, batch_size: int = 1, kind: int = _NO_SECTION, direction: int = 1,
         pass
     if kind != _NO_SECTION:
         section_cfunc(kind)
-
-
-def _par_vector(params: Params, value: float) -> NDArray[np.float64]:
-    if len(params) != 8:
-        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
-                         f"got {len(params)} values")
-    return np.array([*map(float, params), value, math.cos(value), math.sin(value)])
 
 
 def _check(outcome: Any, what: str) -> None:
@@ -571,7 +565,7 @@ class HeyokaEngine:
         """States at times ``t`` (k,) of the orbits from ``y0`` (n, 6): shape (n, k, 6)."""
         y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
         t = np.ascontiguousarray(t, dtype=float).reshape(-1)
-        pars = _par_vector(params, 0.0)
+        pars = par_vector(params, 0.0)
         tol = tolerance(rtol, atol)
         n = y0.shape[0]
         if n == 0 or t.size == 0:
@@ -601,7 +595,7 @@ class HeyokaEngine:
             raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
         kind, direction, n_crossings = int(kind), int(direction), int(n_crossings)
         y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
-        pars = _par_vector(params, float(value))
+        pars = par_vector(params, float(value))
         tol = tolerance(rtol, atol)
         n = y0.shape[0]
         t_out = np.full((n, n_crossings), np.nan)

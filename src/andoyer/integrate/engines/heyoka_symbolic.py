@@ -11,7 +11,9 @@ heyoka is imported at first use (:mod:`andoyer.integrate.engines.lazy`).
 
 from __future__ import annotations
 
+import math
 import threading
+from collections.abc import Sequence
 from functools import cache
 from typing import Any
 
@@ -24,11 +26,31 @@ from andoyer.kernels.generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
-__all__ = ["PARAMETERS", "heyoka_state_vars", "symbol_map", "heyoka_system", "section_exprs",
-           "section_cfunc", "field_cfunc", "field_at"]
+__all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "par_vector", "heyoka_state_vars",
+           "symbol_map", "heyoka_system", "section_exprs", "section_cfunc", "field_cfunc",
+           "field_at"]
 
-#: Runtime parameters ``par[0..10]`` of every compiled integrator, in this order.
-PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):])
+#: ``cos phi0``, ``sin phi0`` as runtime parameters of their own in the section functions:
+#: heyoka would expand ``cos(par)``, ``sin(par)`` by their Taylor recursions at every step
+#: (measured on the theta2 = 0 event: 392 -> 315 ns per lane-step, 8 lanes).
+COS_PHI0, SIN_PHI0 = sp.symbols("cos_phi0 sin_phi0", real=True)
+#: Runtime parameters ``par[0..12]`` of every compiled integrator, in this order.
+PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):], COS_PHI0, SIN_PHI0)
+
+
+def par_vector(params: Sequence[float], value: float = 0.0) -> NDArray[np.float64]:
+    """The runtime parameters :data:`PARAMETERS` of a body (``params``, the engines'
+    ``(a, b, c, mu, e1, e2, e3, phi0)``) and a section value.
+
+    >>> par_vector((0.4, 0.5, 0.5, 0.01, 1.0, 0.0, 0.0, 0.0), 0.0)[-5:].tolist()
+    [0.0, 1.0, 0.0, 1.0, 0.0]
+    """
+    if len(params) != 8:
+        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
+                         f"got {len(params)} values")
+    phi0 = float(params[7])
+    return np.array([*map(float, params), value, math.cos(value), math.sin(value),
+                     math.cos(phi0), math.sin(phi0)])
 
 
 
@@ -62,7 +84,9 @@ def section_exprs(kind: int) -> tuple[Any, Any, Any]:
     ``df/dt = grad f . F`` (the Lie derivative along (1)) is differentiated by heyoka.
     """
     smap = symbol_map()
-    f, w = (hy.from_sympy(sp.sympify(e), smap) for e in section_function(SECTION_KINDS[kind]))
+    trig = {sp.cos(S.phi0): COS_PHI0, sp.sin(S.phi0): SIN_PHI0}
+    f, w = (hy.from_sympy(sp.sympify(e).subs(trig), smap)
+            for e in section_function(SECTION_KINDS[kind]))
     fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in heyoka_system()])
     return f, w, fdot
 
