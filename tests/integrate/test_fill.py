@@ -294,3 +294,16 @@ def test_hess_section_needs_planar_centre_of_mass():
     ds = fill_section(body, 1.0, 0.2, ("g", 0.3), n=10, boundary_grid=40)
     assert float(ds.residual.max()) <= 1e-12
     assert np.max(_angle_diff(to_andoyer(ds.y0.values)[:, 1], 0.3)) <= 1e-12
+
+
+def test_roots_in_chunks_equal_roots_at_once() -> None:
+    """The energy-level roots are found 4096 points at a time (bounded memory): the
+    same roots whichever way the points are split."""
+    body = RigidBody.paper()
+    rng = np.random.default_rng(0)
+    p, q = rng.uniform(0, 2 * np.pi, 5000), rng.uniform(0, 1.2, 5000)
+    whole = section_roots(body, body.c / 2, 0.0, ("theta2", 0.0), p, q)
+    parts = (section_roots(body, body.c / 2, 0.0, ("theta2", 0.0), p[:2500], q[:2500])
+             + section_roots(body, body.c / 2, 0.0, ("theta2", 0.0), p[2500:], q[2500:]))
+    assert len(whole) == len(parts) == 5000 and sum(r.size for r in whole) > 3000
+    assert all(np.array_equal(a, b) for a, b in zip(whole, parts, strict=True))
