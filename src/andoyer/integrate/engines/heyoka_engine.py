@@ -183,7 +183,7 @@ class _Slot(NamedTuple):
 
 
 def _build(key: _Key) -> _Slot:
-    system = list(heyoka_system())
+    system = list(heyoka_system(scalar=key.batch_size == 1))
     common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
     if key.kind == _NO_SECTION:
         if key.batch_size == 1:
