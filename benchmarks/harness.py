@@ -518,8 +518,8 @@ def markdown(result: dict[str, Any]) -> str:
         vs = ", ".join(f"{x:.2g}" for x in v) if isinstance(v, list) else f"{v:.2f}"
         ls = ", ".join(f"{x:.2g}" for x in lim) if isinstance(lim, list) else f"{lim:g}"
         lines.append(f"| {t['target']} | {vs} | {ls} | {'yes' if t['met'] else '**no**'} |")
-    lines += ["", "Reproduce: `python -m benchmarks` (full, about 10 minutes on 2 cores) or "
-              "`python -m benchmarks --quick` (under a minute); see `benchmarks/README.md`.", ""]
+    lines += ["", "Reproduce: `python -m benchmarks` (full, about 35 minutes on 2 cores) or "
+              "`python -m benchmarks --quick` (about 3 minutes); see `benchmarks/README.md`.", ""]
     return "\n".join(lines)
 
 

@@ -57,7 +57,7 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
     if variational:
         from andoyer.integrate.variational import variational_system
 
-        system = list(variational_system())
+        system = batch_system = list(variational_system())
         pars = np.array([*body.engine_params, 1.0 / float(np.max(t_end))])
         assert w0 is not None
         x0 = np.concatenate([y0, w0, np.zeros((y0.shape[0], 3))], axis=1)
@@ -65,7 +65,8 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
     else:
         from andoyer.integrate.engines.heyoka_symbolic import heyoka_system
 
-        system = list(heyoka_system())
+        # each integrator on the form andoyer gives it (the scalar one is rewritten)
+        system, batch_system = list(heyoka_system(scalar=True)), list(heyoka_system())
         pars = np.array([*body.engine_params, 0.0, 1.0, 0.0])
         x0 = y0
         compact = False
@@ -86,7 +87,7 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
         return Limit("heyoka", steps, scalar, steps * scalar,
                      "one orbit: one lane of one core (scalar integrator)")
     m = int(hy.recommended_simd_size())
-    tb = hy.taylor_adaptive_batch(system, np.zeros((dim, m)), tol=tol, compact_mode=compact)
+    tb = hy.taylor_adaptive_batch(batch_system, np.zeros((dim, m)), tol=tol, compact_mode=compact)
     tb.pars[:] = pars[:len(ta.pars), None]
     rows = np.resize(np.arange(x0.shape[0]), m)
     best = np.inf
