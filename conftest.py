@@ -20,9 +20,10 @@ from _pytest.doctest import DoctestItem
 
 HEYOKA = importlib.util.find_spec("heyoka") is not None
 HEYOKA_REASON = "needs heyoka itself, which is not installed here"
-#: Modules whose doctests build heyoka integrators.
+#: Modules (or single functions) whose doctests build heyoka integrators or expressions.
 HEYOKA_DOCTEST_MODULES = ("andoyer.integrate.variational",
-                          "andoyer.integrate.engines.heyoka_engine")
+                          "andoyer.integrate.engines.heyoka_engine",
+                          "andoyer.integrate.engines.heyoka_symbolic.taylor_form")
 
 
 def _needs_heyoka(item: pytest.Item) -> bool:
