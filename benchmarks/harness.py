@@ -402,7 +402,10 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
               "andoyer numba"), get("W2", f"of {sec} ", "heyoka hand-tuned"), 3.0, False)
         h = get("W2", f"of {sec} ", "heyoka hand-tuned")
         if d is not None and h is not None:
-            out.append({"target": f"W2 {sec}: error at the last crossing no worse than "
+            # 1.5x: the errors of a 1000-crossing run at tol 1e-12 vary that much between
+            # correct integrators (theta2, max: plain 2.0e-11, hand-tuned 1.5e-11, numba
+            # 4.3e-11; their step sequences differ).
+            out.append({"target": f"W2 {sec}: error at the last crossing within 1.5x of "
                                   "hand-tuned heyoka (median, max)",
                         "value": [d.error_median, d.error_max],
                         "limit": [h.error_median, h.error_max],
