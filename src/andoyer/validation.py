@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any
 
-__all__ = ["finite", "positive", "floats"]
+__all__ = ["finite", "positive", "integer", "floats"]
 
 
 def finite(name: str, value: Any) -> float:
@@ -35,6 +36,40 @@ def positive(name: str, value: Any) -> float:
     if v <= 0.0:
         raise ValueError(f"{name} must be finite and > 0, got {v!r}")
     return v
+
+
+def integer(name: str, value: Any, minimum: int | None = None,
+            maximum: int | None = None) -> int:
+    """``int(value)``, or ``ValueError`` naming ``name`` unless a whole number in range.
+
+    Counts, sizes and seeds: an integer (Python or NumPy) or a float with an integral
+    value (``1e4``); not a bool, a string, a fraction, NaN or infinity.
+
+    >>> integer("n_crossings", 1e3, minimum=1)
+    1000
+    >>> integer("n_crossings", 2.5, minimum=1)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_crossings must be an integer >= 1, got 2.5
+    """
+    if minimum is not None and maximum is not None:
+        want = f"an integer in [{minimum}, {maximum}]"
+    elif minimum is not None:
+        want = f"an integer >= {minimum}"
+    elif maximum is not None:
+        want = f"an integer <= {maximum}"
+    else:
+        want = "an integer"
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        k = int(value)
+    elif (isinstance(value, numbers.Real) and not isinstance(value, bool)
+          and math.isfinite(value) and float(value).is_integer()):
+        k = int(float(value))
+    else:
+        raise ValueError(f"{name} must be {want}, got {value!r}")
+    if (minimum is not None and k < minimum) or (maximum is not None and k > maximum):
+        raise ValueError(f"{name} must be {want}, got {value!r}")
+    return k
 
 
 def floats(text: str, n: int, what: str) -> list[float]:

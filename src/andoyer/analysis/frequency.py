@@ -52,6 +52,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import describe_variables, provenance
+from andoyer.validation import integer
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
            "resonance_label", "RESONANCE_ORDER", "RESONANCE_DRIFT"]
@@ -101,10 +102,8 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
         raise ValueError("z must be finite")
     if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0):
         raise ValueError(f"dt must be finite and > 0, got {dt!r}")
-    if int(n_freq) != n_freq or n_freq < 1 or n_freq > n // 4:
-        raise ValueError(f"n_freq must be an integer in [1, {n // 4}], got {n_freq!r}")
-    if int(window) != window or window < 1:
-        raise ValueError(f"window must be a positive integer, got {window!r}")
+    n_freq = integer("n_freq", n_freq, 1, n // 4)
+    window = integer("window", window, 1)
     # nafflib analyses x - i px with tunes Q in turns per sample: omega = -2 pi Q / dt
     # and the amplitudes are conjugated.
     A, Q = nafflib.harmonics(zz.real, zz.imag, num_harmonics=int(n_freq),
@@ -221,9 +220,8 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
     T = float(t_end)
     if not (math.isfinite(T) and T > 0.0):
         raise ValueError(f"t_end must be finite and > 0, got {t_end!r}")
-    if int(n_samples) != n_samples or n_samples < 64:
-        raise ValueError(f"n_samples must be an integer >= 64, got {n_samples!r}")
-    t = np.linspace(0.0, T, int(n_samples))
+    n_samples = integer("n_samples", n_samples, 64)
+    t = np.linspace(0.0, T, n_samples)
     dt = float(t[1] - t[0])
     ds = propagate(body, y0, t, chart=chart, engine=engine, progress=progress)
     L = ds.L_action.values

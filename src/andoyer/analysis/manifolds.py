@@ -93,6 +93,7 @@ from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
+from andoyer.validation import integer
 
 __all__ = [
     "Stability",
@@ -427,8 +428,7 @@ def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float
     """
     import warnings
 
-    if int(n_initial) != n_initial or n_initial < 4:
-        raise ValueError(f"n_initial must be an integer >= 4, got {n_initial!r}")
+    n_initial = integer("n_initial", n_initial, 4)
     for name, v in (("max_gap", max_gap), ("max_angle", max_angle)):
         if not (math.isfinite(v) and v > 0.0):
             raise ValueError(f"{name} must be finite and > 0, got {v!r}")

@@ -87,6 +87,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance, values_from_attrs
+from andoyer.validation import integer
 
 __all__ = [
     "heteroclinic_line",
@@ -300,9 +301,8 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     ('3.3913e-06', 0.1)
     """
     if theta2_0 is None:
-        if int(n) != n or n < 1:
-            raise ValueError(f"n must be a positive integer, got {n!r}")
-        th = math.tau * np.arange(int(n)) / int(n)
+        n = integer("n", n, 1)
+        th = math.tau * np.arange(n) / n
     else:
         th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
         if th.ndim != 1 or not np.all(np.isfinite(th)):

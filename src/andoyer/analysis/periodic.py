@@ -104,6 +104,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.kernels.constants import T_START
+from andoyer.validation import integer
 
 __all__ = [
     "DEFAULT_TOL",
@@ -301,9 +302,8 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     """
     sec = RotationSection() if section is None else section
     if mu is None:
-        if int(steps) != steps or steps < 1:
-            raise ValueError(f"steps must be a positive integer, got {steps!r}")
-        mus = np.linspace(0.0, body.mu, int(steps) + 1) if body.mu > 0 else np.zeros(1)
+        steps = integer("steps", steps, 1)
+        mus = np.linspace(0.0, body.mu, steps + 1) if body.mu > 0 else np.zeros(1)
     else:
         mus = np.atleast_1d(np.asarray(mu, dtype=float))
         if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)):

@@ -31,7 +31,7 @@ def _grid_n(n: Any) -> tuple[int, int]:
         k = check_grid_size(n, "n")
         return k, k // 2 + 1
     try:
-        nq, npp = (int(v) for v in n)
+        nq, npp = n
     except (TypeError, ValueError):
         raise ValueError(f"n must be an int or a pair (n_angle, n_action), got {n!r}") from None
     return check_grid_size(nq, "n[0]"), check_grid_size(npp, "n[1]", 3)

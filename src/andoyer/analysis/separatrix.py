@@ -78,6 +78,7 @@ from andoyer.integrate.results import (
     provenance,
     values_from_attrs,
 )
+from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
@@ -385,13 +386,8 @@ SEPARATRIX_LEVEL: dict[str, VariableMeta] = {
 
 
 def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:
-    try:
-        k = int(n)
-    except (TypeError, ValueError):
-        raise ValueError(f"{what} must be an integer, got {n!r}") from None
-    if k < minimum:
-        raise ValueError(f"{what} = {k} is too small: use at least {minimum}")
-    return k
+    """A sample count ``n`` of at least ``minimum`` (``ValueError`` naming ``what``)."""
+    return integer(what, n, minimum)
 
 
 @checks_body

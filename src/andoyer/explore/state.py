@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import numbers
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -44,6 +43,7 @@ from andoyer.integrate.fill import default_h
 from andoyer.integrate.section import SECTION_PLANES, Section
 from andoyer.integrate.section import SectionPlane as Plane
 from andoyer.validation import finite as _finite
+from andoyer.validation import integer
 
 __all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage", "Orbit",
            "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",
@@ -136,12 +136,8 @@ class Settings:
         object.__setattr__(self, "section", sec)
         object.__setattr__(self, "h", _finite("h (energy)", self.h))
         object.__setattr__(self, "M", _finite("M (area constant)", self.M))
-        n = self.n_crossings
-        if isinstance(n, bool) or not isinstance(n, numbers.Integral) \
-                or not 1 <= n <= MAX_CROSSINGS:
-            raise ValueError(f"crossings per orbit must be an integer in [1, {MAX_CROSSINGS}],"
-                             f" got {n!r}")
-        object.__setattr__(self, "n_crossings", int(n))
+        object.__setattr__(self, "n_crossings",
+                           integer("crossings per orbit", self.n_crossings, 1, MAX_CROSSINGS))
         if self.engine is not None and self.engine not in ENGINES:
             raise ValueError(f"unknown engine {self.engine!r}; choose one of "
                              f"{', '.join(ENGINES)}")

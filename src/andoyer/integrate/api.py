@@ -31,6 +31,7 @@ from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
 from andoyer.notation import coordinates, storage_name
 from andoyer.progress import Progress
+from andoyer.validation import integer
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
            "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
@@ -262,8 +263,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         raise ValueError(f"section must be a Section or a string like 'g=0', got {section!r}")
     if sec.chart == "hess":
         body.require_planar(f"the Hess-chart section {sec.coord!r}")
-    if not isinstance(n_crossings, (int, np.integer)) or n_crossings < 1:
-        raise ValueError(f"n_crossings must be a positive integer, got {n_crossings!r}")
+    n_crossings = integer("n_crossings", n_crossings, 1)
     rtol, atol = check_tolerances(rtol, atol)
     t_end = 1000.0 * n_crossings if t_max is None else float(t_max)
     if not (math.isfinite(t_end) and t_end > 0):

@@ -26,7 +26,6 @@ level h (``boundary_x``, ``boundary_y``, NaN-separated).
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -46,6 +45,7 @@ from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
 from andoyer.validation import finite as _finite
+from andoyer.validation import integer
 
 __all__ = ["fill_section", "section_roots", "default_h", "SECTION_PLANES", "SINGULAR_MARGIN"]
 
@@ -561,16 +561,13 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
     """
     plane, value = _parse_section(section)
     h, M = _finite("h", h), _finite("M", M)
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
-        raise ValueError(f"n (number of plane points) must be an integer >= 1, got {n!r}")
+    n = integer("n (number of plane points)", n, 1)
     if method not in ("grid", "sobol", "halton"):
         raise ValueError(f"unknown method {method!r}; choose 'grid', 'sobol' or 'halton'")
     if root not in ("all", "smallest", "largest"):
         raise ValueError(f"unknown root choice {root!r}; choose 'all', 'smallest' or "
                          "'largest'")
-    if isinstance(boundary_grid, bool) or not isinstance(boundary_grid, numbers.Integral) \
-            or boundary_grid < 8:
-        raise ValueError(f"boundary_grid must be an integer >= 8, got {boundary_grid!r}")
+    boundary_grid = integer("boundary_grid", boundary_grid, 8)
     # Roots of n points (~500 bytes each) and the boundary grid (~100 bytes a point).
     budget.check("fill_section", memory=500.0 * n + 100.0 * float(boundary_grid) ** 2)
     energy_fn = _energy_kernel(body, plane)  # the Hess chart raises here if e3 != 0

@@ -89,6 +89,7 @@ from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
 from andoyer.integrate.engines.heyoka_engine import tolerance
 from andoyer.integrate.engines.heyoka_symbolic import heyoka_state_vars, heyoka_system
 from andoyer.integrate.engines.lazy import heyoka as hy
+from andoyer.validation import integer
 
 __all__ = [
     "VARIATIONAL_STATE", "TANGENT", "N_VARIATIONAL", "MEGNO_DELTA", "SCALE_PAR",
@@ -232,9 +233,7 @@ def clear_memory_cache() -> None:
 
 
 def _check_batch(batch_size: int) -> int:
-    if isinstance(batch_size, bool) or int(batch_size) != batch_size or batch_size < 1:
-        raise ValueError(f"batch_size must be a positive integer, got {batch_size!r}")
-    return int(batch_size)
+    return integer("batch_size", batch_size, 1)
 
 
 # ----------------------------------------------------------------------------- propagation

@@ -35,6 +35,7 @@ from andoyer.atomic import atomic_path
 from andoyer.body import RigidBody
 from andoyer.io import write_netcdf
 from andoyer.plot.section import save_figure
+from andoyer.validation import integer
 
 __all__ = ["Item", "Result", "Context", "ITEMS", "build_paper", "default_jobs", "DEFAULT_OUT"]
 
@@ -662,9 +663,7 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
     ctx = Context(Path(out), RigidBody.paper() if body is None else body, engine, quick)
     ctx.out.mkdir(parents=True, exist_ok=True)
     t_all = time.perf_counter()
-    n_jobs = default_jobs(items) if jobs is None else int(jobs)
-    if n_jobs < 1:
-        raise ValueError(f"jobs must be a positive integer, got {jobs!r}")
+    n_jobs = default_jobs(items) if jobs is None else integer("jobs", jobs, 1)
     times = _run_items(items, ctx, min(n_jobs, len(items)), progress)
     done = [(item, *times[item.key]) for item in items]
     summary = {"andoyer_version": __version__, "body": ctx.body.attrs(),

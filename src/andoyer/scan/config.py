@@ -91,6 +91,7 @@ import numpy as np
 
 from andoyer.body import RigidBody
 from andoyer.scan.tasks import REQUIRED, TASKS, Integrator
+from andoyer.validation import integer
 
 __all__ = ["ScanConfig", "Cost", "load_config", "parse_config", "estimate_cost",
            "check_size", "PARAMETERS", "STORAGE_NAMES", "PARAMETER_ATTRS", "MAX_POINTS",
@@ -169,9 +170,7 @@ def _values(where: str, v: Any) -> Value:
             raise ValueError(f"{where}: a range needs start, stop and num; missing "
                              f"{', '.join(missing)}")
         start, stop = _number(f"{where}.start", v["start"]), _number(f"{where}.stop", v["stop"])
-        num = v["num"]
-        if isinstance(num, bool) or not isinstance(num, numbers.Integral) or num < 1:
-            raise ValueError(f"{where}.num must be an integer >= 1, got {num!r}")
+        num = integer(f"{where}.num", v["num"], 1)
         spacing = v.get("spacing", "linear")
         if spacing == "linear":
             vals = np.linspace(start, stop, int(num))
@@ -459,11 +458,8 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
                              f"(swept: {', '.join(swept)})")
     chunks = []
     for k, n in zip(swept, shape, strict=True):
-        c = ctab.get(k, 1)
-        if isinstance(c, bool) or not isinstance(c, numbers.Integral) or c < 1:
-            raise ValueError(f"{where}: [store] chunks.{k} must be an integer >= 1, "
-                             f"got {c!r}")
-        chunks.append(min(int(c), n))
+        c = integer(f"{where}: [store] chunks.{k}", ctab.get(k, 1), 1)
+        chunks.append(min(c, n))
 
     cfg = ScanConfig(kind, name, int(branch), r, parameters, task, tuple(options),
                      Integrator(str(engine), rtol, atol), tuple(chunks))

@@ -30,6 +30,7 @@ from andoyer.progress import Progress
 from andoyer.scan.config import ScanConfig, check_size, load_config
 from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
 from andoyer.scan.tasks import TASKS, Empty
+from andoyer.validation import integer
 
 __all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB",
            "ChunkResult", "run_point", "run_chunk"]
@@ -218,10 +219,8 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     cfg = config if isinstance(config, ScanConfig) else load_config(config)
     if client is not None and scheduler is not None:
         raise ValueError("give either client= or scheduler=, not both")
-    if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
-        raise ValueError(f"retries must be an integer >= 0, got {retries!r}")
-    if n_workers is not None and (not isinstance(n_workers, int) or n_workers < 1):
-        raise ValueError(f"n_workers must be a positive integer, got {n_workers!r}")
+    retries = integer("retries", retries, 0)
+    n_workers = None if n_workers is None else integer("n_workers", n_workers, 1)
     check_size(cfg, max_core_hours, max_store_gb)
     path = Path(store)
     if not path.parent.exists():

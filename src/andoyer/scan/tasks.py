@@ -48,6 +48,8 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 import xarray as xr
 
+from andoyer.validation import integer
+
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
     from andoyer.integrate.engines.base import Engine
@@ -132,9 +134,7 @@ class TaskKind:
 # ---------------------------------------------------------------------- option checks
 def _int_at_least(lo: int) -> Callable[[str, Any], int]:
     def check(key: str, v: Any) -> int:
-        if isinstance(v, bool) or not isinstance(v, numbers.Integral) or int(v) < lo:
-            raise ValueError(f"{key} must be an integer >= {lo}, got {v!r}")
-        return int(v)
+        return integer(key, v, lo)
     return check
 
 

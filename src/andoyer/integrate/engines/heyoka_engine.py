@@ -105,6 +105,7 @@ from andoyer.integrate.engines.heyoka_symbolic import (
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.kernels.constants import T_START
 from andoyer.kernels.generated import SECTION_KINDS
+from andoyer.validation import integer
 
 # The expressions (heyoka_system, section functions, PARAMETERS) are built in
 # andoyer.integrate.engines.heyoka_symbolic, the one SymPy -> heyoka builder.
@@ -544,9 +545,7 @@ class HeyokaEngine:
     name = "heyoka"
 
     def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
-        if batch_size is not None and (int(batch_size) != batch_size or batch_size < 1):
-            raise ValueError(f"batch_size must be a positive integer, got {batch_size!r}")
-        self.batch_size = None if batch_size is None else int(batch_size)
+        self.batch_size = None if batch_size is None else integer("batch_size", batch_size, 1)
         self.n_threads = int(n_threads) if n_threads is not None else (os.cpu_count() or 1)
         if self.n_threads < 1:
             raise ValueError(f"n_threads must be >= 1, got {n_threads!r}")
@@ -589,8 +588,7 @@ class HeyokaEngine:
                              f"(0..{len(SECTION_KINDS) - 1}), got {kind!r}")
         if direction not in (-1, 0, 1):
             raise ValueError(f"direction must be -1, 0 or +1, got {direction!r}")
-        if int(n_crossings) != n_crossings or n_crossings < 0:
-            raise ValueError(f"n_crossings must be a non-negative integer, got {n_crossings!r}")
+        n_crossings = integer("n_crossings", n_crossings, 0)
         if not (math.isfinite(t_max) and t_max > 0.0):
             raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
         kind, direction, n_crossings = int(kind), int(direction), int(n_crossings)

@@ -30,6 +30,7 @@ from andoyer.integrate.engines.base import (
     check_tolerance_factor,
 )
 from andoyer.kernels import dop853
+from andoyer.validation import integer
 
 __all__ = ["NumbaEngine"]
 
@@ -98,11 +99,9 @@ class NumbaEngine:
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  tolerance_factor: float = TOLERANCE_FACTOR) -> None:
-        if int(max_steps) != max_steps or max_steps < 1:
-            raise ValueError(f"max_steps must be a positive integer, got {max_steps!r}")
-        if int(chunksize) != chunksize or chunksize < 0:
-            raise ValueError(f"chunksize must be a non-negative integer, got {chunksize!r}")
-        self.max_steps = int(max_steps)
+        max_steps = integer("max_steps", max_steps, 1)
+        chunksize = integer("chunksize", chunksize, 0)
+        self.max_steps = max_steps
         self.chunksize = int(chunksize)
         self.tolerance_factor = check_tolerance_factor(tolerance_factor)
 

@@ -1,0 +1,68 @@
+"""Counts and sizes: one check (``andoyer.validation.integer``) everywhere, so that a
+bool, a fraction, a string or NaN is refused with a message naming the argument, and a
+whole number written as a float (``1e3``) is accepted."""
+
+import math
+
+import numpy as np
+import pytest
+
+from andoyer import RigidBody
+from andoyer.analysis.frequency import naff
+from andoyer.analysis.melnikov import melnikov_function
+from andoyer.analysis.portraits import portrait_andoyer
+from andoyer.integrate import fill_section, poincare
+from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
+from andoyer.integrate.engines.numba_engine import NumbaEngine
+from andoyer.validation import integer
+
+B = RigidBody.paper()
+Y0 = [0.0, 0.0, 1.0, 0.0, 0.6, 0.8]
+
+
+@pytest.mark.parametrize("value, expected", [
+    (3, 3), (np.int64(4), 4), (5.0, 5), (np.float64(6.0), 6), (1e3, 1000), (0, 0)])
+def test_integer_accepts_whole_numbers(value, expected):
+    k = integer("n", value)
+    assert k == expected and type(k) is int
+
+
+@pytest.mark.parametrize("value", [True, False, "3", 2.5, math.nan, math.inf, None, [3],
+                                   np.array([3])])
+def test_integer_refuses_what_is_not_a_whole_number(value):
+    with pytest.raises(ValueError, match=r"^n_things must be an integer, got "):
+        integer("n_things", value)
+
+
+@pytest.mark.parametrize("value, message", [
+    (0, r"an integer >= 1, got 0"), (11, r"an integer in \[1, 10\], got 11"),
+    (-1, r"an integer in \[1, 10\], got -1")])
+def test_integer_range_is_in_the_message(value, message):
+    hi = None if value == 0 else 10
+    with pytest.raises(ValueError, match=message):
+        integer("n", value, 1, hi)
+
+
+CALLS = {
+    "n_crossings": lambda v: poincare(B, Y0, "G3=0", v, engine="numba"),
+    r"n \(number of plane points\)": lambda v: fill_section(B, h=0.2466, M=0.0,
+                                                           section=("theta2", 0.0), n=v),
+    "n_freq": lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, v),
+    "window": lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, 1, window=v),
+    "n": lambda v: melnikov_function(B, n=v, quadrature=False),
+    "n_levels": lambda v: portrait_andoyer(B, n=16, n_levels=v),
+    "max_steps": lambda v: NumbaEngine(max_steps=v),
+    "batch_size": lambda v: HeyokaEngine(batch_size=v),
+}
+
+
+@pytest.mark.parametrize("name", list(CALLS))
+@pytest.mark.parametrize("value", [True, 2.5, "4", math.nan])
+def test_public_counts_refuse_non_integers_naming_the_argument(name, value):
+    with pytest.raises(ValueError, match=rf"^{name} must be an integer"):
+        CALLS[name](value)
+
+
+def test_a_whole_float_is_a_count():
+    ds = poincare(B, Y0, "G3=0", 2.0, engine="numba")
+    assert ds.sizes["crossing"] == 2
