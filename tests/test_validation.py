@@ -10,10 +10,12 @@ import pytest
 from andoyer import RigidBody
 from andoyer.analysis.frequency import naff
 from andoyer.analysis.melnikov import melnikov_function
+from andoyer.analysis.paper_check import paper_check
 from andoyer.analysis.portraits import portrait_andoyer
 from andoyer.integrate import fill_section, poincare
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
 from andoyer.integrate.engines.numba_engine import NumbaEngine
+from andoyer.integrate.tangent import propagate_tangent
 from andoyer.validation import integer
 
 B = RigidBody.paper()
@@ -43,24 +45,29 @@ def test_integer_range_is_in_the_message(value, message):
         integer("n", value, 1, hi)
 
 
-CALLS = {
-    "n_crossings": lambda v: poincare(B, Y0, "G3=0", v, engine="numba"),
-    r"n \(number of plane points\)": lambda v: fill_section(B, h=0.2466, M=0.0,
-                                                           section=("theta2", 0.0), n=v),
-    "n_freq": lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, v),
-    "window": lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, 1, window=v),
-    "n": lambda v: melnikov_function(B, n=v, quadrature=False),
-    "n_levels": lambda v: portrait_andoyer(B, n=16, n_levels=v),
-    "max_steps": lambda v: NumbaEngine(max_steps=v),
-    "batch_size": lambda v: HeyokaEngine(batch_size=v),
-}
+# (argument named in the message, call)
+CALLS = [
+    ("n_crossings", lambda v: poincare(B, Y0, "G3=0", v, engine="numba")),
+    (r"n \(number of plane points\)", lambda v: fill_section(B, h=0.2466, M=0.0,
+                                                           section=("theta2", 0.0), n=v)),
+    ("n_freq", lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, v)),
+    ("window", lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, 1, window=v)),
+    ("n", lambda v: melnikov_function(B, n=v, quadrature=False)),
+    ("n_levels", lambda v: portrait_andoyer(B, n=16, n_levels=v)),
+    ("max_steps", lambda v: NumbaEngine(max_steps=v)),
+    ("max_steps", lambda v: propagate_tangent(Y0, np.eye(6)[:1], [0.0, 1.0], B.engine_params,
+                                              max_steps=v)),
+    ("batch_size", lambda v: HeyokaEngine(batch_size=v)),
+    ("n_threads", lambda v: HeyokaEngine(n_threads=v)),
+    ("seed", lambda v: paper_check(n=4, seed=v)),
+]
 
 
-@pytest.mark.parametrize("name", list(CALLS))
+@pytest.mark.parametrize("name, call", CALLS, ids=[f"{i}-{n}" for i, (n, _) in enumerate(CALLS)])
 @pytest.mark.parametrize("value", [True, 2.5, "4", math.nan])
-def test_public_counts_refuse_non_integers_naming_the_argument(name, value):
+def test_public_counts_refuse_non_integers_naming_the_argument(name, call, value):
     with pytest.raises(ValueError, match=rf"^{name} must be an integer"):
-        CALLS[name](value)
+        call(value)
 
 
 def test_a_whole_float_is_a_count():

@@ -301,7 +301,7 @@ def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float
     """
     from andoyer.integrate.fill import fill_section
 
-    fill = fill_section(body, h, M, section, n=int(n), root="smallest")
+    fill = fill_section(body, h, M, section, n=n, root="smallest")
     if fill.sizes["orbit"] == 0:
         raise ValueError(f"the level h = {h:g}, M = {M:g} does not meet the plane {section}")
     res = orbit_frequencies(body, fill.y0.values, t_end, n_samples=n_samples,

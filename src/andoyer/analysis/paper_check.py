@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from andoyer.charts.andoyer_deprit import from_andoyer, to_andoyer
 from andoyer.kernels import generated as K
+from andoyer.validation import integer
 
 __all__ = ["Formula", "CheckRow", "FORMULAS", "paper_check", "RTOL"]
 
@@ -546,6 +547,7 @@ def paper_check(n: int = 200, seed: int = 20261121) -> list[CheckRow]:
     >>> next(r.verdict for r in rows if r.label == "(12)")
     'misprint'
     """
+    n, seed = integer("n", n, 1), integer("seed", seed, 0)
     rows = []
     cache: dict[str, SimpleNamespace] = {}
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.charts.euler_poisson import STATE
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
+from andoyer.validation import integer
 
 __all__ = [
     "TangentResult",
@@ -174,8 +175,9 @@ def propagate_tangent(y0: ArrayLike, w0: ArrayLike, t: ArrayLike, params: Params
     z0, k = _initial(y0, w0)
     p = _check_params(params)
     f = float(tolerance_factor) * _check_tol(tol)
+    max_steps = integer("max_steps", max_steps, 1)
     tk = _kernels()
-    out, info = tk.propagate(z0, times, p, f, f, int(max_steps))
+    out, info = tk.propagate(z0, times, p, f, f, max_steps)
     ok = (info[:, 0] == 0) & np.all(np.isfinite(out), axis=(1, 2))
     out[~ok] = np.nan
     L = tk.layout(k)
@@ -239,10 +241,12 @@ def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
     z0, k = _initial(y0, w0)
     p = _check_params(params)
     f = float(tolerance_factor) * _check_tol(tol)
+    n_crossings = integer("n_crossings", n_crossings, 0)
+    max_steps = integer("max_steps", max_steps, 1)
     tk = _kernels()
     tc, zc, count, info = tk.locate_crossings(z0, p, int(kind), float(value),
-                                              int(direction), int(n_crossings),
-                                              float(t_max), f, f, int(max_steps))
+                                              int(direction), n_crossings,
+                                              float(t_max), f, f, max_steps)
     ok = info[:, 0] == 0
     L = tk.layout(k)
     n, c = tc.shape

@@ -428,9 +428,7 @@ def propagate_variational(y0: NDArray[np.float64], w0: NDArray[np.float64],
         return VariationalResult(out, ok)
     simd = int(hy.recommended_simd_size())
     m = _check_batch(batch_size) if batch_size is not None else (simd if n >= simd else 1)
-    threads = int(n_threads) if n_threads is not None else (os.cpu_count() or 1)
-    if threads < 1:
-        raise ValueError(f"n_threads must be >= 1, got {n_threads!r}")
+    threads = integer("n_threads", n_threads, 1) if n_threads is not None else (os.cpu_count() or 1)
     key = _Key(m, tol)
     _template(key)  # compile or load once, before the threads start
     tasks = _Counter(n, m)

@@ -546,9 +546,8 @@ class HeyokaEngine:
 
     def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
         self.batch_size = None if batch_size is None else integer("batch_size", batch_size, 1)
-        self.n_threads = int(n_threads) if n_threads is not None else (os.cpu_count() or 1)
-        if self.n_threads < 1:
-            raise ValueError(f"n_threads must be >= 1, got {n_threads!r}")
+        self.n_threads = (integer("n_threads", n_threads, 1) if n_threads is not None
+                          else (os.cpu_count() or 1))
 
     def __repr__(self) -> str:
         return f"HeyokaEngine(batch_size={self.batch_size}, n_threads={self.n_threads})"
