@@ -8,11 +8,13 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
+from andoyer.analysis.chaos import chaos_map
 from andoyer.analysis.frequency import naff
-from andoyer.analysis.melnikov import melnikov_function
+from andoyer.analysis.melnikov import melnikov_function, melnikov_rho
 from andoyer.analysis.paper_check import paper_check
 from andoyer.analysis.portraits import portrait_andoyer
-from andoyer.integrate import fill_section, poincare
+from andoyer.analysis.separatrix import separatrix_on_level
+from andoyer.integrate import fill_section, poincare, propagate
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
 from andoyer.integrate.engines.numba_engine import NumbaEngine
 from andoyer.integrate.tangent import propagate_tangent
@@ -73,3 +75,28 @@ def test_public_counts_refuse_non_integers_naming_the_argument(name, call, value
 def test_a_whole_float_is_a_count():
     ds = poincare(B, Y0, "G3=0", 2.0, engine="numba")
     assert ds.sizes["crossing"] == 2
+
+
+# (argument named in the message, call): real numbers refuse a bool and a non-number
+REALS = [
+    ("mu", lambda v: RigidBody(2.5, 2.0, 2.2, v, (1.0, 0.0, 0.0))),
+    ("t_max", lambda v: poincare(B, Y0, "G3=0", 2, t_max=v, engine="numba")),
+    ("t_end", lambda v: chaos_map(B, 0.2466, 0.0, "theta2=0", n=3, t_end=v)),
+    ("J2", lambda v: melnikov_rho(B, J2=v)),
+    ("J2", lambda v: melnikov_function(B, n=4, J2=v, quadrature=False)),
+    ("h", lambda v: separatrix_on_level(B, v, "andoyer")),
+    ("rtol", lambda v: propagate(B, Y0, [0.0, 1.0], rtol=v)),
+]
+
+
+@pytest.mark.parametrize("name, call", REALS, ids=[f"{i}-{n}" for i, (n, _) in enumerate(REALS)])
+@pytest.mark.parametrize("value", [True, "abc", [0.1]])
+def test_public_reals_refuse_non_numbers_naming_the_argument(name, call, value):
+    with pytest.raises(ValueError, match=rf"^{name} must be a (real|finite) number"):
+        call(value)
+
+
+def test_numpy_scalars_are_tolerances():
+    ds = propagate(B, Y0, [0.0, 1.0], rtol=np.float32(1e-10), atol=np.float32(1e-10),
+                   engine="numba")
+    assert ds.attrs["rtol"] == pytest.approx(1e-10)

@@ -92,6 +92,8 @@ class RigidBody:
                 raise ValueError(
                     f"moments A={A}, B={B}, C={C} violate the triangle inequality {nx}: "
                     "no mass distribution has them")
+        if isinstance(self.mu, bool):  # float(True) = 1.0 would hide a wrong argument
+            raise ValueError(f"mu must be a real number, got {self.mu!r}")
         try:
             mu = float(self.mu)
         except (TypeError, ValueError):

@@ -86,6 +86,7 @@ from andoyer.integrate.variational import (
 )
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
+from andoyer.validation import positive
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
            "TANGENT_SPACES"]
@@ -250,16 +251,6 @@ def _check_engine(engine: str | None) -> Any:
     return name
 
 
-def _check_positive(name: str, v: Any) -> float:
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a positive number, got {v!r}") from None
-    if not (math.isfinite(x) and x > 0.0):
-        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-    return x
-
-
 def _check_int(name: str, v: Any, lo: int) -> int:
     if isinstance(v, bool) or not isinstance(v, numbers.Integral) or v < lo:
         raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
@@ -267,7 +258,7 @@ def _check_int(name: str, v: Any, lo: int) -> int:
 
 
 def _check_tol(tol: Any) -> float:
-    t = _check_positive("tol", tol)
+    t = positive("tol", tol)
     if not 1e-16 <= t <= 1e-3:
         raise ValueError(f"tol = {t:g} is out of range [1e-16, 1e-3]")
     return t
@@ -298,7 +289,7 @@ def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.
     array([ 0.,  5., 10.])
     """
     if t is None:
-        T = _check_positive("t_end", t_end)
+        T = positive("t_end", t_end)
         return np.linspace(0.0, T, _check_int("n_times", n_times, 2))
     times = np.asarray(t, dtype=float)
     if times.ndim != 1 or times.size < 2 or times[0] != 0.0 \
@@ -516,7 +507,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     nx, ny = _grid_size(n)
     # Grid, roots and result arrays: about 400 bytes per grid point; checked before any.
     budget.check("chaos_map", memory=400.0 * nx * ny)
-    T = _check_positive("t_end", t_end)
+    T = positive("t_end", t_end)
     if indicator not in ("fli", "megno", "both"):
         raise ValueError(f"unknown indicator {indicator!r}; choose 'fli', 'megno' or 'both'")
     if root not in ("largest", "smallest"):

@@ -87,7 +87,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance, values_from_attrs
-from andoyer.validation import integer
+from andoyer.validation import integer, positive
 
 __all__ = [
     "heteroclinic_line",
@@ -134,6 +134,7 @@ def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     >>> round(melnikov_rho(RigidBody.paper()), 6)
     4.564355
     """
+    J2 = positive("J2", J2)
     return body.c * J2 / heteroclinic_rate(body, J2)
 
 
@@ -300,6 +301,7 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     >>> f"{float(ds.amplitude):.4e}", round(float(ds.epsilon), 12)
     ('3.3913e-06', 0.1)
     """
+    J2 = positive("J2", J2)
     if theta2_0 is None:
         n = integer("n", n, 1)
         th = math.tau * np.arange(n) / n

@@ -78,6 +78,7 @@ from andoyer.integrate.results import (
     provenance,
     values_from_attrs,
 )
+from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
@@ -468,6 +469,7 @@ def separatrix_on_level(body: RigidBody, h: float, chart: str, n: int = 401, *,
     >>> float(ds.attrs["separatrix_H0"])
     0.25
     """
+    h = _finite("h", h)
     if h <= 0.0:
         return None
     try:

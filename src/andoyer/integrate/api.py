@@ -8,6 +8,7 @@ systems (4) or (16) directly, for comparison with the paper.
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -31,7 +32,7 @@ from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
 from andoyer.notation import coordinates, storage_name
 from andoyer.progress import Progress
-from andoyer.validation import integer
+from andoyer.validation import integer, positive
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
            "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
@@ -94,7 +95,7 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson",
 def check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
     """``(rtol, atol)`` as floats, or ``ValueError`` naming the one out of range."""
     for name, v in (("rtol", rtol), ("atol", atol)):
-        if not isinstance(v, (int, float)) or not math.isfinite(v):
+        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):
             raise ValueError(f"{name} must be a finite number, got {v!r}")
     if not 1e-16 <= rtol <= 1e-3:
         raise ValueError(f"rtol = {rtol:g} is out of range [1e-16, 1e-3]")
@@ -265,9 +266,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         body.require_planar(f"the Hess-chart section {sec.coord!r}")
     n_crossings = integer("n_crossings", n_crossings, 1)
     rtol, atol = check_tolerances(rtol, atol)
-    t_end = 1000.0 * n_crossings if t_max is None else float(t_max)
-    if not (math.isfinite(t_end) and t_end > 0):
-        raise ValueError(f"t_max must be a positive finite time, got {t_max!r}")
+    t_end = 1000.0 * n_crossings if t_max is None else positive("t_max", t_max)
     y = initial_states(body, y0, chart)
     # The default t_max is a generous cap, not the expected duration: only a t_max the
     # user gave is costed in steps.
