@@ -11,7 +11,8 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "SingularPassageWarning"]
+__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "SingularChartWarning",
+           "SingularPassageWarning"]
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -32,6 +33,15 @@ class IntegrationError(FloatingPointError):
     """An integrator failed (step size underflow, non-finite field, too many steps).
 
     A ``FloatingPointError``, which is what the engines raised before it existed.
+    """
+
+
+class SingularChartWarning(UserWarning):
+    """Chart coordinates were asked for states on the chart's singular set.
+
+    There (``G = 0``, ``L = +-G``, ``|M| = G``) an angle is undefined and the value
+    returned is a convention, not data; ``with_mask=True`` returns the flags that say
+    which points they are (:class:`andoyer.charts.andoyer_deprit.Singular`).
     """
 
 

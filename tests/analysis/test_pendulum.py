@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from andoyer import RigidBody, from_andoyer, to_andoyer
+from andoyer import RigidBody, Singular, from_andoyer, to_andoyer
 from andoyer.analysis.floquet import (
     floquet_multipliers,
     floquet_scan,
@@ -125,7 +125,8 @@ def test_potential_on_the_pendulum_and_the_paper_misprint():
             np.testing.assert_allclose(pendulum_potential(body, l, g, sign), Pi, atol=1e-15)
             # Only g + l (L = G) or g - l (L = -G) is defined there: the formula holds
             # for the chart inverse's own convention (l = 0, or pi for signed zeros).
-            x = to_andoyer(y)
+            x, flags = to_andoyer(y, with_mask=True)
+            assert np.all(flags & int(Singular.L_EQ_PM_G))
             assert np.all((x[:, 0] == 0.0) | (x[:, 0] == math.pi))
             np.testing.assert_allclose(pendulum_potential(body, x[:, 0], x[:, 1], sign), Pi,
                                        atol=1e-15)

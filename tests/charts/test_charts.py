@@ -20,6 +20,8 @@ chart keeps ``J1 = (G + L)/2`` to full relative accuracy as ``J1 -> 0``, so on t
 from __future__ import annotations
 
 import math
+import re
+import warnings
 
 import mpmath
 import numpy as np
@@ -40,6 +42,7 @@ from andoyer import (
     to_hess,
 )
 from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, singular_mask
+from andoyer.errors import SingularChartWarning
 
 EPS = np.finfo(float).eps
 FOUR_PI = 4.0 * math.pi
@@ -530,5 +533,25 @@ def test_integrals_in_chart_variables(general_body, y):
 
 def test_to_andoyer_signed_zero_on_singular_line():
     """l = 0 on L = +-G also when G1, G2 are negative zeros (atan2(-0., -0.) = -pi)."""
-    x = to_andoyer([-0.0, -0.0, 1.0, 0.6, 0.8, 0.0])
+    x, _ = to_andoyer([-0.0, -0.0, 1.0, 0.6, 0.8, 0.0], with_mask=True)
     assert x[0] == 0.0 and np.isclose(x[2], 1.0)
+
+
+@pytest.mark.parametrize("y, counts", [
+    ([0.0, 0.0, 1.0, 0.0, 0.6, 0.8], "G = 0: 0, L = +-G: 1, |M| = G: 0"),
+    ([0.0, 0.0, 0.0, 0.0, 0.6, 0.8], "G = 0: 1"),
+    ([0.6, 0.0, 0.8, 0.6, 0.0, 0.8], "|M| = G: 1"),
+    # relative to G: 1e-7 off the axis of a momentum of 1e6 is still on L = G
+    ([1e-7, 0.0, 1e6, 0.0, 0.6, 0.8], "L = +-G: 1")])
+def test_undefined_angles_are_reported_not_returned_as_data(y, counts):
+    """Without the mask, a state on the singular set warns that its angles are
+    conventions; with the mask, the flags say so and nothing warns."""
+    with pytest.warns(SingularChartWarning, match=re.escape(counts)):
+        to_andoyer(y)
+    with pytest.warns(SingularChartWarning, match="to_hess: 1 of 1 states"):
+        to_hess(RigidBody.paper(), y)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        _, flags = to_andoyer(y, with_mask=True)
+        to_andoyer([0.3, 0.1, 0.5, 0.1, 0.2, np.sqrt(1 - 0.05)])  # regular: silent
+    assert flags != 0

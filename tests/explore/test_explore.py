@@ -126,6 +126,15 @@ def test_initial_charts_agree_with_seed(settings: Settings) -> None:
                                atol=1e-12)
 
 
+@pytest.mark.parametrize(("y0", "undefined"), [
+    ([0.0, 0.0, 1.0, 0.0, 0.6, 0.8], {"l", "g", "theta1", "theta2"}),   # L = G
+    ([0.6, 0.0, 0.8, 0.6, 0.0, 0.8], {"g", "theta1", "theta2"})])       # |M| = G
+def test_initial_charts_show_undefined_angles_as_nan(settings: Settings, y0, undefined):
+    charts = initial_charts(settings, np.array(y0))
+    values = {**charts["Andoyer-Deprit"], **charts["Hess"]}
+    assert {k for k, v in values.items() if np.isnan(v)} == undefined
+
+
 # ----------------------------------------------------------------------------- orbits
 @pytest.mark.parametrize(("engine", "N", "first", "growth"), [
     ("heyoka", 500, 100, 4), ("numba", 300, 50, 2), ("scipy", 12, 5, 2)])

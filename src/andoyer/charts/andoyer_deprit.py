@@ -32,12 +32,14 @@ from __future__ import annotations
 
 import enum
 import math
+import warnings
 from typing import Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.euler_poisson import as_state
+from andoyer.errors import SingularChartWarning
 
 __all__ = [
     "COORDS",
@@ -51,6 +53,7 @@ __all__ = [
     "singular_flags",
     "singular_distances",
     "require_regular",
+    "warn_singular",
 ]
 
 #: Order of the Andoyer-Deprit coordinates.
@@ -242,7 +245,8 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
         Euler-Poisson states. ``gamma`` need not be exactly unit: ``M`` uses it as given.
     with_mask : bool, default False
         Also return the :class:`Singular` flags. On the singular set the returned
-        values are the conventions of the module docstring (never NaN).
+        values are the conventions of the module docstring (never NaN); without the
+        mask, states there raise a :class:`~andoyer.errors.SingularChartWarning`.
 
     Returns
     -------
@@ -250,6 +254,18 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
         ``(l, g, L, G, M)``.
     mask : ndarray of int, shape (...)
         Only with ``with_mask=True``.
+
+    Warns
+    -----
+    SingularChartWarning
+        Without ``with_mask``, when some state lies on the singular set (relative
+        distance below :data:`SINGULAR_RTOL`): its angles there are conventions.
+
+    Examples
+    --------
+    >>> x, flags = to_andoyer([0.0, 0.0, 1.0, 0.0, 0.6, 0.8], with_mask=True)
+    >>> x.round(12).tolist(), Singular(int(flags))
+    ([0.0, 0.0, 1.0, 1.0, 0.8], <Singular.L_EQ_PM_G: 1>)
     """
     arr = as_state(y)
     flags, G, rho, gnorm = singular_flags(arr)
@@ -277,7 +293,26 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
     x[..., :2] = np.where(x[..., :2] >= math.tau, 0.0, x[..., :2])
     if with_mask:
         return x, flags
+    warn_singular(flags, "to_andoyer")
     return x
+
+
+def warn_singular(flags: NDArray[np.int_], what: str, stacklevel: int = 3) -> None:
+    """Warn (:class:`~andoyer.errors.SingularChartWarning`) if any flag is set: the
+    angles of those points are the chart's conventions, not data."""
+    flags = np.asarray(flags)
+    if not np.any(flags):
+        return
+    counts = ", ".join(f"{name} {int(np.count_nonzero(flags & int(bit)))}"
+                       for name, bit in (("G = 0:", Singular.G_ZERO),
+                                         ("L = +-G:", Singular.L_EQ_PM_G),
+                                         ("|M| = G:", Singular.M_EQ_PM_G)))
+    warnings.warn(
+        f"{what}: {int(np.count_nonzero(flags))} of {flags.size} states lie on the chart's "
+        f"singular set ({counts}), where an angle is undefined: the angles returned there "
+        "are conventions (l = 0 on L = +-G, g = 0 on |M| = G, all 0 at G = 0), not data. "
+        "Pass with_mask=True for the flags of those points.",
+        SingularChartWarning, stacklevel=stacklevel)
 
 
 def require_regular(flags: NDArray[np.int_], what: str) -> None:

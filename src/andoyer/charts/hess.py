@@ -47,6 +47,7 @@ from andoyer.charts.andoyer_deprit import (
     SINGULAR_RTOL,
     rotation_chain_expr,
     to_andoyer,
+    warn_singular,
 )
 from andoyer.charts.euler_poisson import as_state
 
@@ -189,4 +190,6 @@ def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False,
     out[..., 1] = np.where(out[..., 1] >= math.tau, 0.0, out[..., 1])
     if with_mask:
         return out, flags
+    if andoyer is None:  # a caller that passes the flags has them already
+        warn_singular(flags, "to_hess", stacklevel=4)  # past checks_body's wrapper
     return out

@@ -389,7 +389,9 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
 def _residual_values(sec: Section, body: RigidBody, y: NDArray[np.float64]
                      ) -> NDArray[np.float64]:
     """``sin(angle - value)`` (or ``coord - value``) at Euler-Poisson states ``y``."""
-    x = {"hess": lambda: to_hess(body, y), "andoyer": lambda: to_andoyer(y),
+    # Roots on the singular set are classified apart (singular passages): no warning here.
+    x = {"hess": lambda: to_hess(body, y, with_mask=True)[0],
+         "andoyer": lambda: to_andoyer(y, with_mask=True)[0],
          "euler_poisson": lambda: y}[sec.chart]()
     v = x[..., coordinates(sec.chart).index(sec.coord)]
     return np.sin(v - sec.value) if sec.is_angle else v - sec.value
