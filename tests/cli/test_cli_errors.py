@@ -95,7 +95,7 @@ def test_flags_that_do_not_apply_are_refused(capsys, tmp_path, argv, match):
 def test_a_given_zero_is_not_replaced_by_a_default(capsys, tmp_path):
     code, err = run([*ORBIT, "--body", "kovalevskaya", "--C", "0",
                      "--out", str(tmp_path / "o.nc")], capsys)
-    assert code == 2 and "--C must be finite and > 0" in err
+    assert code == 2 and "argument --C: must be finite and > 0" in err
 
 
 def test_cost_limit_from_the_command_line(capsys, tmp_path):
@@ -118,3 +118,30 @@ def test_level_flags_have_the_api_names_and_keep_the_old_aliases():
     new = parser.parse_args(["section", "--h", "0.25", "--M", "0.1"])
     old = parser.parse_args(["section", "--energy", "0.25", "--area", "0.1"])
     assert (new.h, new.M) == (old.h, old.M) == (0.25, 0.1)
+
+
+@pytest.mark.parametrize("argv, flag, want", [
+    (["section", "--crossings", "0"], "--crossings", "an integer >= 1"),
+    (["section", "--crossings", "2.5"], "--crossings", "an integer >= 1"),
+    (["section", "--orbits", "abc"], "--orbits", "an integer >= 1"),
+    (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--n-out", "1"], "--n-out", "an integer >= 2"),
+    (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "nan"], "--t-end", "finite and > 0"),
+    (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--rtol", "-1"], "--rtol", "finite and > 0"),
+    (["chaos-map", "--t-end", "-1"], "--t-end", "finite and > 0"),
+    (["chaos-map", "--chunk", "0"], "--chunk", "an integer >= 1"),
+    (["section", "--h", "inf"], "--h/--energy", "finite"),
+    (["section", "--body", "hess", "--A", "-1"], "--A", "finite and > 0"),
+    (["explore", "--port", "70000"], "--port", "an integer in [0, 65535]"),
+    (["paper", "--jobs", "0"], "--jobs", "an integer >= 1"),
+    (["scan", "x.toml", "--retries", "-1"], "--retries", "an integer >= 0"),
+    (["manifolds", "--delta", "0"], "--delta", "finite and > 0"),
+])
+def test_number_flags_fail_at_parsing_naming_the_flag(capsys, tmp_path, monkeypatch, argv,
+                                                      flag, want):
+    """A bad count or real fails before any work, and the message names the flag the user
+    typed (not the Python argument it becomes)."""
+    monkeypatch.chdir(tmp_path)
+    code, err = run(argv, capsys)
+    assert code == EXIT_CODES["bad input"]
+    assert f"argument {flag}: must be {want}, got " in err
+    assert not any(tmp_path.iterdir())  # nothing written

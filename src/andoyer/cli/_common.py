@@ -1,17 +1,18 @@
-"""Arguments shared by the commands: the body and the integration engine."""
+"""Arguments shared by the commands: the body, the integration engine, number flags."""
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from andoyer.validation import floats
+from andoyer.validation import floats, integer
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "floats", "output_file", "output_folder", "distinct_outputs"]
+           "floats", "output_file", "output_folder", "distinct_outputs", "count", "real"]
 
 #: The body flags each --body takes (others are refused, not ignored).
 BODY_FLAGS = {
@@ -22,6 +23,52 @@ BODY_FLAGS = {
     "kovalevskaya": ("C", "mu"),
     "goryachev-chaplygin": ("C", "mu"),
 }
+
+
+# ---------------------------------------------------------------------- number flags
+def count(minimum: int | None = None, maximum: int | None = None) -> Callable[[str], int]:
+    """An argparse ``type`` for a whole number in range: a bad value fails at parsing,
+    before any work, and argparse names the flag (``argument --crossings: must be an
+    integer >= 1, got '0'``).
+
+    >>> count(1)("1e3"), count(0, 9)("7")
+    (1000, 7)
+    """
+    def parse(text: str) -> int:
+        value: Any = text
+        for convert in (int, float):
+            try:
+                value = convert(text)
+                break
+            except ValueError:
+                continue
+        try:
+            return integer("value", value, minimum, maximum)
+        except ValueError as e:
+            raise argparse.ArgumentTypeError(
+                str(e).removeprefix("value ").replace(f"got {value!r}", f"got {text!r}")
+            ) from None
+    parse.__name__ = "count"
+    return parse
+
+
+def real(*, positive: bool = False) -> Callable[[str], float]:
+    """An argparse ``type`` for a finite real number (``positive``: also > 0).
+
+    >>> real(positive=True)("1e-12")
+    1e-12
+    """
+    def parse(text: str) -> float:
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a real number, got {text!r}") from None
+        if not math.isfinite(v) or (positive and v <= 0.0):
+            raise argparse.ArgumentTypeError(
+                f"must be {'finite and > 0' if positive else 'finite'}, got {text!r}")
+        return v
+    parse.__name__ = "real"
+    return parse
 
 
 # ---------------------------------------------------------------------- outputs
@@ -98,11 +145,11 @@ def add_body_args(p: argparse.ArgumentParser) -> None:
                             "goryachev-chaplygin"),
                    help="paper: Hess body A=2.5, B=2.0, C=2.2, mu=0.01 (default); hess: "
                         "Hess body from --A --B --C --mu; custom: --A --B --C --mu --r")
-    g.add_argument("--A", type=float, help="moment of inertia A")
-    g.add_argument("--B", type=float, help="moment of inertia B")
-    g.add_argument("--C", type=float, help="moment of inertia C")
-    g.add_argument("--mu", type=float, help="weight x distance of the centre of mass")
-    g.add_argument("--r", type=float, nargs=3, metavar=("E1", "E2", "E3"),
+    g.add_argument("--A", type=real(positive=True), help="moment of inertia A")
+    g.add_argument("--B", type=real(positive=True), help="moment of inertia B")
+    g.add_argument("--C", type=real(positive=True), help="moment of inertia C")
+    g.add_argument("--mu", type=real(), help="weight x distance of the centre of mass")
+    g.add_argument("--r", type=real(), nargs=3, metavar=("E1", "E2", "E3"),
                    help="direction of the centre of mass (custom bodies)")
 
 
@@ -141,17 +188,19 @@ def body_from_args(args: argparse.Namespace) -> Any:
 def add_engine_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
                    help="integration engine (default: heyoka where installed, else numba)")
-    p.add_argument("--rtol", type=float, default=1e-12, help="relative tolerance")
-    p.add_argument("--atol", type=float, default=1e-12, help="absolute tolerance")
+    p.add_argument("--rtol", type=real(positive=True), default=1e-12,
+                   help="relative tolerance")
+    p.add_argument("--atol", type=real(positive=True), default=1e-12,
+                   help="absolute tolerance")
 
 
 def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
     """``--h``, ``--M``, ``--section``: energy level, area constant and section (the names
     of the Python API; ``--energy`` and ``--area`` are kept as aliases for one release)."""
-    p.add_argument("--h", "--energy", dest="h", type=float, default=None,
+    p.add_argument("--h", "--energy", dest="h", type=real(), default=None,
                    help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, "
                         "M)); --energy is an alias kept for one release")
-    p.add_argument("--M", "--area", dest="M", type=float, default=0.0,
+    p.add_argument("--M", "--area", dest="M", type=real(), default=0.0,
                    help="area constant (G, gamma) = M (default 0); --area is an alias kept "
                         "for one release")
     p.add_argument("--section", default="theta2=0",

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from andoyer.cli._common import real
+
 NAME = "atlas"
 ORDER = 65
 
@@ -60,5 +62,6 @@ def register(sub: Any) -> None:
     p.add_argument("--maps", action="store_true",
                    help="for a chaos_border scan: draw its MEGNO maps instead of the "
                         "border of chaos (chaotic fraction and layer width)")
-    p.add_argument("--width", type=float, default=7.0, help="figure width, inches")
+    p.add_argument("--width", type=real(positive=True), default=7.0,
+                   help="figure width, inches")
     p.set_defaults(func=run)

@@ -5,7 +5,14 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_level_args, body_from_args, output_file
+from andoyer.cli._common import (
+    add_body_args,
+    add_level_args,
+    body_from_args,
+    count,
+    output_file,
+    real,
+)
 
 NAME = "chaos-map"
 ORDER = 50
@@ -81,20 +88,21 @@ def register(sub: Any) -> None:
     add_body_args(p)
     add_level_args(p, directed=False)
     p.add_argument("--n", default="128", help="grid: N (N x N) or NX,NY (default 128)")
-    p.add_argument("--t-end", type=float, default=1000.0,
+    p.add_argument("--t-end", type=real(positive=True), default=1000.0,
                    help="integration time of every orbit (default 1000)")
     p.add_argument("--indicator", choices=("fli", "megno", "both"), default="fli",
                    help="indicator to store and draw (default fli)")
     p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
                    help="integrator of the variational equations (default heyoka where "
                         "installed, else numba; scipy is a slow independent check)")
-    p.add_argument("--tol", type=float, default=1e-12, help="tolerance (default 1e-12)")
+    p.add_argument("--tol", type=real(positive=True), default=1e-12,
+                   help="tolerance (default 1e-12)")
     p.add_argument("--root", choices=("largest", "smallest"), default="largest",
                    help="where the level has several sheets over a point, which action "
                         "(default largest)")
     p.add_argument("--tangent", choices=("leaf", "energy"), default="leaf",
                    help="space of the initial tangent vectors (default leaf)")
-    p.add_argument("--chunk", type=int, default=1024,
+    p.add_argument("--chunk", type=count(1), default=1024,
                    help="orbits per chunk: bounds memory (default 1024)")
     p.add_argument("--out", default="chaos-map.nc", help="output NetCDF (PNG beside it)")
     p.set_defaults(func=run)

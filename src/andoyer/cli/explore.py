@@ -5,7 +5,13 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, add_engine_args, add_level_args, body_from_args
+from andoyer.cli._common import (
+    add_body_args,
+    add_engine_args,
+    add_level_args,
+    body_from_args,
+    count,
+)
 
 NAME = "explore"
 ORDER = 45
@@ -35,10 +41,10 @@ def register(sub: Any) -> None:
                                    "until Ctrl-C: click on the section plane to seed orbits.")
     add_body_args(p)
     add_level_args(p)
-    p.add_argument("--crossings", type=int, default=500,
+    p.add_argument("--crossings", type=count(1), default=500,
                    help="crossings per orbit (default 500)")
     add_engine_args(p)
-    p.add_argument("--port", type=int, default=0, help="port (default 0: a free port)")
+    p.add_argument("--port", type=count(0, 65535), default=0, help="port (default 0: a free port)")
     p.add_argument("--no-browser", action="store_true",
                    help="do not open the page in a web browser")
     p.set_defaults(func=run)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import add_body_args, body_from_args, output_folder
+from andoyer.cli._common import add_body_args, body_from_args, count, output_folder, real
 
 NAME = "manifolds"
 ORDER = 60
@@ -112,19 +112,19 @@ def register(sub: Any) -> None:
     add_body_args(p)
     p.add_argument("--mu-list", default=None,
                    help=f"values of mu, comma-separated (default {DEFAULT_MU}, or --mu)")
-    p.add_argument("--G", type=float, default=1.0,
+    p.add_argument("--G", type=real(positive=True), default=1.0,
                    help="energy level h = c G^2/2 of the rotation with |G| = G (default 1)")
-    p.add_argument("--n-phase", type=int, default=16,
+    p.add_argument("--n-phase", type=count(1), default=16,
                    help="phases g at which the splitting is measured (even, default 16)")
-    p.add_argument("--delta", type=float, default=1e-5,
+    p.add_argument("--delta", type=real(positive=True), default=1e-5,
                    help="fundamental domain's distance from the periodic orbit (default 1e-5)")
-    p.add_argument("--psi0", type=float, default=0.0,
+    p.add_argument("--psi0", type=real(), default=0.0,
                    help="section psi = atan2(gamma1, gamma2) = psi0 of the orbits (default 0)")
-    p.add_argument("--tol", type=float, default=1e-15,
+    p.add_argument("--tol", type=real(positive=True), default=1e-15,
                    help="integration tolerance (default 1e-15; numba uses at least 1e-13)")
     p.add_argument("--long-double", action="store_true",
                    help="integrate in 80-bit extended precision")
-    p.add_argument("--epsilon", type=float, default=0.0,
+    p.add_argument("--epsilon", type=real(), default=0.0,
                    help="turn the Hess body's centre of mass by this angle (rad) in the "
                         "(e1, e2) plane: the Hess branch theta1 = 0 splits too (default 0)")
     p.add_argument("--no-hess-check", dest="hess_check", action="store_false",

@@ -9,8 +9,10 @@ from andoyer.cli._common import (
     add_body_args,
     add_engine_args,
     body_from_args,
+    count,
     floats,
     output_file,
+    real,
 )
 
 NAME = "orbit"
@@ -52,8 +54,9 @@ def register(sub: Any) -> None:
     st.add_argument("--y0", help="Euler-Poisson state 'G1,G2,G3,gamma1,gamma2,gamma3'")
     st.add_argument("--andoyer", help="Andoyer-Deprit state 'l,g,L,G,M'")
     st.add_argument("--hess", help="Hess-chart state 'theta1,theta2,J1,J2,J3'")
-    p.add_argument("--t-end", type=float, default=1000.0, help="final time (default 1000)")
-    p.add_argument("--n-out", type=int, default=1001, help="output times (default 1001)")
+    p.add_argument("--t-end", type=real(positive=True), default=1000.0,
+                   help="final time (default 1000)")
+    p.add_argument("--n-out", type=count(2), default=1001, help="output times (default 1001)")
     add_engine_args(p)
     p.add_argument("--out", default="orbit.nc", help="output NetCDF file")
     p.set_defaults(func=run)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from andoyer.cli._common import count
+
 NAME = "paper"
 ORDER = 10
 
@@ -31,7 +33,7 @@ def register(sub: Any) -> None:
                    help="integration engine (default: heyoka where installed, else numba)")
     p.add_argument("--quick", action="store_true",
                    help="smaller grids and shorter runs (a smoke test, not the figures)")
-    p.add_argument("--jobs", type=int, default=None, metavar="N",
+    p.add_argument("--jobs", type=count(1), default=None, metavar="N",
                    help="processes building items at once (default: 2 on two or more "
                         "cores, else 1)")
     p.add_argument("--only", nargs="+", metavar="ITEM",

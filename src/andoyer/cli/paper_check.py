@@ -8,6 +8,8 @@ import sys
 from dataclasses import asdict
 from typing import Any
 
+from andoyer.cli._common import count
+
 NAME = "paper-check"
 ORDER = 20
 
@@ -36,9 +38,9 @@ def run(args: argparse.Namespace) -> int:
 def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="check every formula of the paper against the "
                                   "derivation and list the misprints")
-    p.add_argument("--points", type=int, default=200,
+    p.add_argument("--points", type=count(1), default=200,
                    help="random points per formula (default: 200)")
-    p.add_argument("--seed", type=int, default=20261121, help="seed of the random points")
+    p.add_argument("--seed", type=count(0), default=20261121, help="seed of the random points")
     p.add_argument("--format", choices=("text", "json"), default="text",
                    help="output format (default: text)")
     p.set_defaults(func=run)

@@ -6,6 +6,8 @@ import argparse
 import sys
 from typing import Any
 
+from andoyer.cli._common import count, real
+
 NAME = "scan"
 ORDER = 60
 
@@ -58,16 +60,16 @@ def register(sub: Any) -> None:
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="tcp://HOST:PORT of a running Dask scheduler; 'local' (default): "
                         "a local cluster on all cores; 'serial': no Dask")
-    p.add_argument("--workers", type=int, default=None,
+    p.add_argument("--workers", type=count(1), default=None,
                    help="workers of the local cluster (default: all cores)")
     p.add_argument("--overwrite", action="store_true",
                    help="start again in an existing store")
-    p.add_argument("--retries", type=int, default=2, help="retries of a failing task")
+    p.add_argument("--retries", type=count(0), default=2, help="retries of a failing task")
     p.add_argument("--dry-run", action="store_true",
                    help="validate the configuration, print the estimated cost, stop")
-    p.add_argument("--max-core-hours", type=float, default=100.0,
+    p.add_argument("--max-core-hours", type=real(positive=True), default=100.0,
                    help="refuse scans estimated above this CPU time (default 100)")
-    p.add_argument("--max-store-gb", type=float, default=50.0,
+    p.add_argument("--max-store-gb", type=real(positive=True), default=50.0,
                    help="refuse scans estimated above this storage (default 50)")
     prog = p.add_mutually_exclusive_group()
     prog.add_argument("--progress", dest="progress", action="store_true", default=None,

@@ -10,6 +10,7 @@ from andoyer.cli._common import (
     add_engine_args,
     add_level_args,
     body_from_args,
+    count,
     output_file,
 )
 
@@ -62,8 +63,8 @@ def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="Poincare section on an energy level: NetCDF + PNG")
     add_body_args(p)
     add_level_args(p)
-    p.add_argument("--orbits", type=int, default=40, help="orbits (default 40)")
-    p.add_argument("--crossings", type=int, default=300,
+    p.add_argument("--orbits", type=count(1), default=40, help="orbits (default 40)")
+    p.add_argument("--crossings", type=count(1), default=300,
                    help="crossings per orbit (default 300)")
     p.add_argument("--sampling", choices=("grid", "sobol", "halton"), default="grid",
                    help="initial conditions on the plane (default grid)")
