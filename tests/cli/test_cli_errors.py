@@ -145,3 +145,12 @@ def test_number_flags_fail_at_parsing_naming_the_flag(capsys, tmp_path, monkeypa
     assert code == EXIT_CODES["bad input"]
     assert f"argument {flag}: must be {want}, got " in err
     assert not any(tmp_path.iterdir())  # nothing written
+
+
+def test_chaos_map_grid_is_checked_before_compiling(capsys, tmp_path):
+    with pytest.raises(SystemExit) as info:
+        main(["chaos-map", "--n", "8,1", "--out", str(tmp_path / "c.nc")])
+    out, err = capsys.readouterr()
+    assert info.value.code == EXIT_CODES["bad input"]
+    assert "--n must be an integer >= 2, got 1" in err
+    assert "compiled" not in out and not any(tmp_path.iterdir())

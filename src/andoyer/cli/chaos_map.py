@@ -13,6 +13,7 @@ from andoyer.cli._common import (
     output_file,
     real,
 )
+from andoyer.validation import integer
 
 NAME = "chaos-map"
 ORDER = 50
@@ -24,11 +25,11 @@ def _grid(text: str) -> int | tuple[int, int]:
         vals = [int(p) for p in parts]
     except ValueError:
         raise ValueError(f"--n: {text!r} is not N or NX,NY (integers)") from None
-    if len(vals) == 1:
-        return vals[0]
-    if len(vals) == 2:
-        return vals[0], vals[1]
-    raise ValueError(f"--n: {text!r} is not N or NX,NY")
+    if len(vals) not in (1, 2):
+        raise ValueError(f"--n: {text!r} is not N or NX,NY")
+    # checked here, before the variational integrator is compiled
+    vals = [integer("--n", v, 2) for v in vals]
+    return vals[0] if len(vals) == 1 else (vals[0], vals[1])
 
 
 def run(args: argparse.Namespace) -> int:
