@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from andoyer import RigidBody
+from andoyer import RigidBody, from_hess, to_andoyer
 from andoyer.analysis.chaos import chaos_map
 from andoyer.analysis.frequency import naff
 from andoyer.analysis.melnikov import melnikov_function, melnikov_rho
@@ -100,3 +100,25 @@ def test_numpy_scalars_are_tolerances():
     ds = propagate(B, Y0, [0.0, 1.0], rtol=np.float32(1e-10), atol=np.float32(1e-10),
                    engine="numba")
     assert ds.attrs["rtol"] == pytest.approx(1e-10)
+
+
+# Arrays: ragged rows, text, complex and boolean values are refused naming the argument
+# (NumPy's own messages, or a silently dropped imaginary part, before).
+ARRAYS = [
+    ("y0", lambda v: propagate(B, v, [0.0, 1.0], engine="numba")),
+    ("t", lambda v: propagate(B, Y0, v, engine="numba")),
+    ("y0", lambda v: propagate(B, v, [0.0, 1.0], chart="andoyer", engine="numba")),
+    ("x", lambda v: from_hess(B, v)),
+    ("y", lambda v: to_andoyer(v)),
+]
+
+
+@pytest.mark.parametrize("name, call", ARRAYS, ids=[f"{i}-{n}" for i, (n, _) in enumerate(ARRAYS)])
+@pytest.mark.parametrize("value, message", [
+    ([[0.0, 0.0, 1.0, 0.0, 0.6, 0.8], [0.0, 1.0]], "must be a rectangular array"),
+    (np.array([0.0, 0.0, 1.0, 0.0, 0.6, 0.8]) + 0j, "must be real, got complex values"),
+    (["a", "b"], "must hold real numbers, got"),
+    ([True, False], "must hold real numbers, got booleans")])
+def test_arrays_refuse_what_is_not_real_naming_the_argument(name, call, value, message):
+    with pytest.raises(ValueError, match=rf"^{name} {message}"):
+        call(value)

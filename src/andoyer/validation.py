@@ -6,7 +6,10 @@ import math
 import numbers
 from typing import Any
 
-__all__ = ["finite", "positive", "integer", "floats"]
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["finite", "positive", "integer", "real_array", "floats"]
 
 
 def finite(name: str, value: Any) -> float:
@@ -70,6 +73,35 @@ def integer(name: str, value: Any, minimum: int | None = None,
     if (minimum is not None and k < minimum) or (maximum is not None and k > maximum):
         raise ValueError(f"{name} must be {want}, got {value!r}")
     return k
+
+
+def real_array(name: str, value: Any, *, copy: bool = False) -> NDArray[np.float64]:
+    """``value`` as a float array (a new one with ``copy``), or ``ValueError`` naming
+    ``name`` when it is not a rectangular array of real numbers (ragged rows, text,
+    complex or boolean values).
+
+    >>> real_array("y0", [1, 2.5]).tolist()
+    [1.0, 2.5]
+    >>> real_array("y0", [[1, 2], [3]])
+    Traceback (most recent call last):
+    ...
+    ValueError: y0 must be a rectangular array of real numbers (rows of equal length)
+    """
+    try:
+        arr = np.asarray(value)
+    except ValueError:  # NumPy refuses ragged nested sequences
+        raise ValueError(f"{name} must be a rectangular array of real numbers "
+                         "(rows of equal length)") from None
+    if arr.dtype.kind == "c":  # float() would drop the imaginary part
+        raise ValueError(f"{name} must be real, got complex values")
+    if arr.dtype.kind == "b":
+        raise ValueError(f"{name} must hold real numbers, got booleans")
+    try:
+        return arr.astype(float, copy=copy)
+    except (TypeError, ValueError):
+        text = repr(value)
+        raise ValueError(f"{name} must hold real numbers, got "
+                         f"{text if len(text) <= 60 else text[:57] + '...'}") from None
 
 
 def floats(text: str, n: int, what: str) -> list[float]:

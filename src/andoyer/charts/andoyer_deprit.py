@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.euler_poisson import as_state
 from andoyer.errors import SingularChartWarning
+from andoyer.validation import real_array
 
 __all__ = [
     "COORDS",
@@ -115,7 +116,7 @@ def as_andoyer(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
     Values of ``|L|`` or ``|M|`` above ``G`` by less than ``SINGULAR_RTOL * G`` are
     clipped to ``+-G`` (round-off); larger excesses raise ``ValueError``.
     """
-    arr = np.array(x, dtype=float)
+    arr = real_array(name, x, copy=True)
     if arr.ndim == 0 or arr.shape[-1] != 5:
         raise ValueError(f"{name} must have shape (..., 5) = (l, g, L, G, M), "
                          f"got shape {arr.shape}")

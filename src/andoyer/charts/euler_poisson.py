@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.body import checks_body
+from andoyer.validation import real_array
 
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
@@ -60,7 +61,7 @@ def as_state(y: ArrayLike, name: str = "y") -> NDArray[np.float64]:
     ValueError
         If the last axis is not 6 long or the array holds NaN or infinity.
     """
-    arr = np.asarray(y, dtype=float)
+    arr = real_array(name, y)
     if arr.ndim == 0 or arr.shape[-1] != 6:
         raise ValueError(
             f"{name} must have shape (..., 6) = (G1, G2, G3, gamma1, gamma2, gamma3), "

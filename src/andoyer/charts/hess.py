@@ -50,6 +50,7 @@ from andoyer.charts.andoyer_deprit import (
     warn_singular,
 )
 from andoyer.charts.euler_poisson import as_state
+from andoyer.validation import real_array
 
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
@@ -94,7 +95,7 @@ def as_hess(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
 
     Requires ``J2 > 0``, ``0 <= J1 <= J2``, ``|J3| <= J2`` (round-off excesses clipped).
     """
-    arr = np.array(x, dtype=float)
+    arr = real_array(name, x, copy=True)
     if arr.ndim == 0 or arr.shape[-1] != 5:
         raise ValueError(f"{name} must have shape (..., 5) = (theta1, theta2, J1, J2, J3), "
                          f"got shape {arr.shape}")

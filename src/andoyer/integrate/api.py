@@ -32,7 +32,7 @@ from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
 from andoyer.notation import coordinates, storage_name
 from andoyer.progress import Progress
-from andoyer.validation import integer, positive
+from andoyer.validation import integer, positive, real_array
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
            "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
@@ -106,7 +106,7 @@ def check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
 
 def check_times(t: ArrayLike) -> NDArray[np.float64]:
     """Output times as a float array: 1-D, at least 2, finite, strictly increasing."""
-    arr = np.asarray(t, dtype=float)
+    arr = real_array("t", t)
     if arr.ndim != 1 or arr.size < 2:
         raise ValueError(f"t must be a 1-D array of at least 2 output times (the first is "
                          f"the initial time), got shape {arr.shape}")
