@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody, from_hess, to_andoyer
-from andoyer.analysis.chaos import chaos_map
+from andoyer.analysis.chaos import chaos_map, indicators
 from andoyer.analysis.frequency import naff
 from andoyer.analysis.melnikov import melnikov_function, melnikov_rho
 from andoyer.analysis.paper_check import paper_check
 from andoyer.analysis.portraits import portrait_andoyer
 from andoyer.analysis.separatrix import separatrix_on_level
-from andoyer.integrate import fill_section, poincare, propagate
+from andoyer.integrate import fill_section, poincare, propagate, propagate_hess_manifold
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
 from andoyer.integrate.engines.numba_engine import NumbaEngine
 from andoyer.integrate.tangent import propagate_tangent
@@ -110,6 +110,10 @@ ARRAYS = [
     ("y0", lambda v: propagate(B, v, [0.0, 1.0], chart="andoyer", engine="numba")),
     ("x", lambda v: from_hess(B, v)),
     ("y", lambda v: to_andoyer(v)),
+    ("r", lambda v: RigidBody(2.5, 2.0, 2.2, 0.01, v)),
+    (r"w0 \(initial tangent direction\)", lambda v: indicators(B, Y0, 5.0, w0=v)),
+    ("theta2_0", lambda v: melnikov_function(B, theta2_0=v, quadrature=False)),
+    ("x0", lambda v: propagate_hess_manifold(B, v, [0.0, 1.0])),
 ]
 
 

@@ -23,6 +23,7 @@ import numpy as np
 
 from andoyer.errors import ArgumentTypeError
 from andoyer.validation import finite as _finite
+from andoyer.validation import real_array
 
 __all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
 
@@ -102,10 +103,7 @@ class RigidBody:
             raise ValueError(
                 f"mu (weight x distance to the centre of mass) must be finite and >= 0, "
                 f"got {mu!r}")
-        try:
-            r = np.asarray(self.r, dtype=float)
-        except (TypeError, ValueError):
-            r = np.full(1, np.nan)
+        r = real_array("r", self.r)
         if r.shape != (3,) or not np.all(np.isfinite(r)):
             raise ValueError(f"r must be 3 finite numbers (e1, e2, e3), got {self.r!r}")
         norm = float(np.linalg.norm(r))

@@ -86,7 +86,7 @@ from andoyer.integrate.variational import (
 )
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
-from andoyer.validation import positive
+from andoyer.validation import positive, real_array
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
            "TANGENT_SPACES"]
@@ -192,9 +192,10 @@ def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
     N = _gradients(body, Y)  # (n, 3, 6): the Casimirs' gradients, then grad H
     if direction is not None:
         k = 2 if tangent == "leaf" else 3
+        D = real_array("w0 (initial tangent direction)", direction)
         try:
-            V = np.broadcast_to(np.asarray(direction, dtype=float), Y.shape)
-        except (TypeError, ValueError):
+            V = np.broadcast_to(D, Y.shape)
+        except ValueError:
             raise ValueError(f"w0 (initial tangent direction) must have shape (6,) or "
                              f"{Y.shape}, got {np.shape(direction)}") from None
         if not np.all(np.isfinite(V)):

@@ -87,7 +87,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance, values_from_attrs
-from andoyer.validation import integer, positive
+from andoyer.validation import integer, positive, real_array
 
 __all__ = [
     "heteroclinic_line",
@@ -182,7 +182,7 @@ def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.
     # pi rho / sinh(pi rho), without overflow for large rho.
     x = math.pi * rho
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
-    th = np.asarray(theta2_0, dtype=float)
+    th = real_array("theta2_0", theta2_0)
     return np.asarray(-s * factor * (np.sin(theta1 + th) - np.sin(th)))
 
 
@@ -223,7 +223,7 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
     lam = heteroclinic_rate(body, J2)
     omega = body.c * J2
     T = (TAIL + math.log(2.0 * lam + 1.0)) / lam
-    th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+    th = np.atleast_1d(real_array("theta2_0", theta2_0))
     out = np.empty(th.shape)
 
     def f(t: ArrayLike, phase: float) -> NDArray[np.float64]:
@@ -306,7 +306,7 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         n = integer("n", n, 1)
         th = math.tau * np.arange(n) / n
     else:
-        th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+        th = np.atleast_1d(real_array("theta2_0", theta2_0))
         if th.ndim != 1 or not np.all(np.isfinite(th)):
             raise ValueError("theta2_0 must be a 1-D array of finite phases")
     hess = body.nearest_hess()
@@ -424,7 +424,7 @@ def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
         h = min(math.tau / omega, math.tau / lam) / 32
         n = math.ceil(T / h)
         t = h * np.arange(-n, n + 1)
-        th = np.atleast_1d(np.asarray(theta2_0, dtype=float))
+        th = np.atleast_1d(real_array("theta2_0", theta2_0))
         out = np.array([h * float(np.sum(melnikov_integrand(
             turned, heteroclinic(body, J2, t, branch, sign=sheet, theta2_0=float(p)).y.values)))
             for p in th.ravel()])
@@ -434,6 +434,6 @@ def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
     theta1, s = heteroclinic_line(body, J2, branch, sheet)
     x = math.pi * melnikov_rho(body, J2)
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
-    th = np.asarray(theta2_0, dtype=float)
+    th = real_array("theta2_0", theta2_0)
     return np.asarray(-2.0 * s * factor * math.sin(0.5 * theta1 + eps)
                       * np.cos(th + 0.5 * theta1))

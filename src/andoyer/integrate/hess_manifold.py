@@ -44,6 +44,7 @@ from andoyer.integrate.api import check_times, check_tolerances
 from andoyer.integrate.engines.scipy_engine import solve_dop853
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.kernels.numba import ep_field
+from andoyer.validation import real_array
 
 __all__ = ["propagate_hess_manifold", "THETA1_TOL", "METHOD", "G_ZERO_RTOL"]
 
@@ -58,7 +59,7 @@ G_ZERO_RTOL = 1e-6
 
 def _manifold_point(body: RigidBody, x0: ArrayLike) -> tuple[float, NDArray[np.float64]]:
     """``(theta1_fixed, (theta2, J1, J2, J3))`` from ``x0`` of shape (4,) or (5,)."""
-    arr = np.asarray(x0, dtype=float)
+    arr = real_array("x0", x0)
     if arr.shape == (4,):
         theta1 = 0.0
         rest = arr
