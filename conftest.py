@@ -32,7 +32,10 @@ def _needs_heyoka(item: pytest.Item) -> bool:
     callspec = getattr(item, "callspec", None)
     if callspec is not None:
         for value in callspec.params.values():
-            if value == "heyoka" or (isinstance(value, tuple | list) and "heyoka" in value):
+            # isinstance first: a parameter may be an array, whose == is elementwise
+            if (isinstance(value, str) and value == "heyoka") or (
+                    isinstance(value, tuple | list)
+                    and any(isinstance(v, str) and v == "heyoka" for v in value)):
                 return True
     return isinstance(item, DoctestItem) and item.name.startswith(HEYOKA_DOCTEST_MODULES)
 
