@@ -12,18 +12,23 @@ from numpy.typing import NDArray
 __all__ = ["finite", "positive", "integer", "real_array", "floats"]
 
 
+def _real(name: str, value: Any) -> float:
+    """``float(value)`` (NaN and infinity included), or ``ValueError`` naming ``name``."""
+    if isinstance(value, bool):  # float(True) = 1.0 would hide a wrong argument
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+
+
 def finite(name: str, value: Any) -> float:
     """``float(value)``, or ``ValueError`` naming ``name`` if it is not a finite real.
 
     >>> finite("h", "0.25")
     0.25
     """
-    if isinstance(value, bool):  # float(True) = 1.0 would hide a wrong argument
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    v = _real(name, value)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be finite, got {v!r}")
     return v
@@ -35,8 +40,8 @@ def positive(name: str, value: Any) -> float:
     >>> positive("J2", 1)
     1.0
     """
-    v = finite(name, value)
-    if v <= 0.0:
+    v = _real(name, value)
+    if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name} must be finite and > 0, got {v!r}")
     return v
 

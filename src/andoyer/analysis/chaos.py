@@ -86,7 +86,7 @@ from andoyer.integrate.variational import (
 )
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
-from andoyer.validation import positive, real_array
+from andoyer.validation import integer, positive, real_array
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
            "TANGENT_SPACES"]
@@ -252,12 +252,6 @@ def _check_engine(engine: str | None) -> Any:
     return name
 
 
-def _check_int(name: str, v: Any, lo: int) -> int:
-    if isinstance(v, bool) or not isinstance(v, numbers.Integral) or v < lo:
-        raise ValueError(f"{name} must be an integer >= {lo}, got {v!r}")
-    return int(v)
-
-
 def _check_tol(tol: Any) -> float:
     t = positive("tol", tol)
     if not 1e-16 <= t <= 1e-3:
@@ -291,7 +285,7 @@ def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.
     """
     if t is None:
         T = positive("t_end", t_end)
-        return np.linspace(0.0, T, _check_int("n_times", n_times, 2))
+        return np.linspace(0.0, T, integer("n_times", n_times, 2))
     times = np.asarray(t, dtype=float)
     if times.ndim != 1 or times.size < 2 or times[0] != 0.0 \
             or np.any(np.diff(times) <= 0.0) or not np.all(np.isfinite(times)):
@@ -415,12 +409,12 @@ def _describe(ds: xr.Dataset) -> None:
 
 def _grid_size(n: Any) -> tuple[int, int]:
     if isinstance(n, numbers.Integral) and not isinstance(n, bool):
-        return _check_int("n", n, 2), _check_int("n", n, 2)
+        return integer("n", n, 2), integer("n", n, 2)
     try:
         nx, ny = n
     except (TypeError, ValueError):
         raise ValueError(f"n must be an integer or a pair (nx, ny), got {n!r}") from None
-    return _check_int("n[0] (nx)", nx, 2), _check_int("n[1] (ny)", ny, 2)
+    return integer("n[0] (nx)", nx, 2), integer("n[1] (ny)", ny, 2)
 
 
 @checks_body
@@ -513,8 +507,8 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         raise ValueError(f"unknown indicator {indicator!r}; choose 'fli', 'megno' or 'both'")
     if root not in ("largest", "smallest"):
         raise ValueError(f"unknown root choice {root!r}; choose 'largest' or 'smallest'")
-    chunk = _check_int("chunk", chunk, 1)
-    n_samples = _check_int("n_samples", n_samples, 1)
+    chunk = integer("chunk", chunk, 1)
+    n_samples = integer("n_samples", n_samples, 1)
     tol = _check_tol(tol)
     # The plane, its box and the accessible boundary; raises if h misses the section.
     fill = fill_section(body, h, M, section, n=1, plane_bounds=plane_bounds,

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import math
 import os
 from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from andoyer.validation import floats, integer
+from andoyer.validation import finite, floats, integer
+from andoyer.validation import positive as _positive
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
            "floats", "output_file", "output_folder", "distinct_outputs", "count", "real"]
@@ -34,7 +34,7 @@ def count(minimum: int | None = None, maximum: int | None = None) -> Callable[[s
     >>> count(1)("1e3"), count(0, 9)("7")
     (1000, 7)
     """
-    def parse(text: str) -> int:
+    def check(name: str, text: str) -> int:
         value: Any = text
         for convert in (int, float):
             try:
@@ -42,14 +42,8 @@ def count(minimum: int | None = None, maximum: int | None = None) -> Callable[[s
                 break
             except ValueError:
                 continue
-        try:
-            return integer("value", value, minimum, maximum)
-        except ValueError as e:
-            raise argparse.ArgumentTypeError(
-                str(e).removeprefix("value ").replace(f"got {value!r}", f"got {text!r}")
-            ) from None
-    parse.__name__ = "count"
-    return parse
+        return integer(name, value, minimum, maximum)
+    return _flag_type("count", check)
 
 
 def real(*, positive: bool = False) -> Callable[[str], float]:
@@ -58,16 +52,20 @@ def real(*, positive: bool = False) -> Callable[[str], float]:
     >>> real(positive=True)("1e-12")
     1e-12
     """
-    def parse(text: str) -> float:
+    return _flag_type("real", _positive if positive else finite)
+
+
+def _flag_type(kind: str, check: Callable[[str, str], Any]) -> Callable[[str], Any]:
+    """An argparse ``type`` from a :mod:`andoyer.validation` check: its message without
+    the argument's name (argparse puts the flag in front) and with the text as typed."""
+    def parse(text: str) -> Any:
         try:
-            v = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a real number, got {text!r}") from None
-        if not math.isfinite(v) or (positive and v <= 0.0):
+            return check("value", text)
+        except ValueError as e:
+            message = str(e).removeprefix("value ")
             raise argparse.ArgumentTypeError(
-                f"must be {'finite and > 0' if positive else 'finite'}, got {text!r}")
-        return v
-    parse.__name__ = "real"
+                message[:message.rfind(", got ")] + f", got {text!r}") from None
+    parse.__name__ = kind
     return parse
 
 
@@ -156,7 +154,6 @@ def add_body_args(p: argparse.ArgumentParser) -> None:
 def body_from_args(args: argparse.Namespace) -> Any:
     """The body of ``--body`` and its flags; a flag the body does not take is refused."""
     from andoyer.body import RigidBody
-    from andoyer.validation import positive
 
     extra = [n for n in ("A", "B", "C", "mu", "r") if getattr(args, n) is not None
              and n not in BODY_FLAGS[args.body]]
@@ -170,7 +167,7 @@ def body_from_args(args: argparse.Namespace) -> Any:
     if args.body in ("kovalevskaya", "goryachev-chaplygin"):
         make = (RigidBody.kovalevskaya if args.body == "kovalevskaya"
                 else RigidBody.goryachev_chaplygin)
-        C = 1.0 if args.C is None else positive("--C", args.C)
+        C = 1.0 if args.C is None else args.C  # --C is parsed positive
         return make(C, 1.0 if args.mu is None else args.mu)
     missing = [n for n in ("A", "B", "C") if getattr(args, n) is None
                and not (args.body == "lagrange" and n == "B")]

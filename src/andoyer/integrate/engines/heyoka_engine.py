@@ -590,7 +590,7 @@ class HeyokaEngine:
         n_crossings = integer("n_crossings", n_crossings, 0)
         if not (math.isfinite(t_max) and t_max > 0.0):
             raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
-        kind, direction, n_crossings = int(kind), int(direction), int(n_crossings)
+        kind, direction = int(kind), int(direction)
         y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
         pars = par_vector(params, float(value))
         tol = tolerance(rtol, atol)
