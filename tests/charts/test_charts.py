@@ -41,7 +41,7 @@ from andoyer import (
     to_andoyer,
     to_hess,
 )
-from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, singular_mask
+from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, singular_mask, undefined_as_nan
 from andoyer.errors import SingularChartWarning
 
 EPS = np.finfo(float).eps
@@ -555,3 +555,16 @@ def test_undefined_angles_are_reported_not_returned_as_data(y, counts):
         _, flags = to_andoyer(y, with_mask=True)
         to_andoyer([0.3, 0.1, 0.5, 0.1, 0.2, np.sqrt(1 - 0.05)])  # regular: silent
     assert flags != 0
+
+
+def test_undefined_as_nan_follows_the_singular_sets():
+    """NaN for l and g on L = +-G and at G = 0, for g alone on |M| = G; the rest kept."""
+    y = np.array([[0.0, 0.0, 1.0, 0.0, 0.6, 0.8],    # L = G
+                  [0.6, 0.0, 0.8, 0.6, 0.0, 0.8],    # |M| = G
+                  [0.0, 0.0, 0.0, 0.0, 0.6, 0.8],    # G = 0
+                  [0.3, 0.1, 0.5, 0.1, 0.2, np.sqrt(0.95)]])  # regular
+    x, flags = to_andoyer(y, with_mask=True)
+    out = undefined_as_nan(x, flags)
+    assert np.isnan(out[:, :2]).tolist() == [[True, True], [False, True], [True, True],
+                                             [False, False]]
+    np.testing.assert_array_equal(out[~np.isnan(out)], x[~np.isnan(out)])

@@ -55,6 +55,7 @@ __all__ = [
     "singular_distances",
     "require_regular",
     "warn_singular",
+    "undefined_as_nan",
 ]
 
 #: Order of the Andoyer-Deprit coordinates.
@@ -314,6 +315,25 @@ def warn_singular(flags: NDArray[np.int_], what: str, stacklevel: int = 3) -> No
         "are conventions (l = 0 on L = +-G, g = 0 on |M| = G, all 0 at G = 0), not data. "
         "Pass with_mask=True for the flags of those points.",
         SingularChartWarning, stacklevel=stacklevel)
+
+
+def undefined_as_nan(x: NDArray[np.float64], flags: NDArray[np.int_]
+                     ) -> NDArray[np.float64]:
+    """A copy of ``to_andoyer``'s ``x`` with NaN for the angles its ``flags`` leave
+    undefined: ``l`` and ``g`` at ``G = 0`` and on ``L = +-G`` (only ``l +- g`` exists
+    there), ``g`` on ``|M| = G``. Charts derived from ``x`` (Hess, (14)) inherit the NaN
+    exactly where their angles depend on an undefined one.
+
+    >>> x, flags = to_andoyer([0.6, 0.0, 0.8, 0.6, 0.0, 0.8], with_mask=True)
+    >>> undefined_as_nan(x, flags)[:2].tolist()
+    [1.5707963267948966, nan]
+    """
+    f = np.asarray(flags)[..., None]
+    both = (f & int(Singular.L_EQ_PM_G | Singular.G_ZERO)) != 0
+    g_only = (f & int(Singular.M_EQ_PM_G)) != 0
+    out = np.array(x, dtype=float)
+    out[..., :2] = np.where(both | (g_only & (np.arange(2) == 1)), np.nan, out[..., :2])
+    return out
 
 
 def require_regular(flags: NDArray[np.int_], what: str) -> None:

@@ -383,24 +383,17 @@ def seed(settings: Settings, x: float, y: float) -> list[Seed]:
 def initial_charts(settings: Settings, y0: NDArray[np.float64]) -> dict[str, dict[str, float]]:
     """The state ``y0`` in the three charts: Euler-Poisson, Andoyer-Deprit (5)-(6) and,
     for ``e3 = 0``, Hess (14). Angles in ``[0, 2 pi)`` (theta1 in ``[0, 4 pi)``); NaN
-    where the state is on the chart's singular set and the angle is undefined (``l`` and
-    ``g`` on ``L = +-G`` and at ``G = 0``, ``g`` on ``|M| = G``, both Hess angles there)."""
-    from andoyer.charts.andoyer_deprit import Singular, to_andoyer
+    where the state is on the chart's singular set and the angle is undefined
+    (:func:`~andoyer.charts.andoyer_deprit.undefined_as_nan`)."""
+    from andoyer.charts.andoyer_deprit import to_andoyer, undefined_as_nan
     from andoyer.charts.hess import to_hess
 
     x, flags = to_andoyer(y0, with_mask=True)
-    f = int(flags)
-    x = x.copy()
-    if f & int(Singular.L_EQ_PM_G | Singular.G_ZERO):
-        x[:2] = np.nan
-    elif f & int(Singular.M_EQ_PM_G):
-        x[1] = np.nan
+    x = undefined_as_nan(x, flags)
     out = {"Euler-Poisson": dict(zip(STATE, map(float, y0), strict=True)),
            "Andoyer-Deprit": dict(zip(("l", "g", "L", "G", "M"), map(float, x), strict=True))}
     if abs(settings.body.e3) <= 1e-12:
-        xh = to_hess(settings.body, y0, andoyer=(x, flags)).copy()
-        if f:
-            xh[:2] = np.nan
+        xh = to_hess(settings.body, y0, andoyer=(x, flags))  # NaN where (14) meets one
         out["Hess"] = dict(zip(("theta1", "theta2", "J1", "J2", "J3"), map(float, xh),
                                strict=True))
     return out
