@@ -66,8 +66,8 @@ def initial_states(n: int) -> np.ndarray:
     from andoyer.integrate import fill_section
 
     b = body()
-    fill = fill_section(b, energy_level(b), 0.0, ("theta2", 0.0), n=max(n, 8),
-                        method="sobol")
+    fill = fill_section(b, energy_level(b), 0.0, ("theta2", 0.0), n_orbits=max(n, 8),
+                        sampling="sobol")
     y0 = np.asarray(fill["y0"].values, dtype=float)
     if y0.shape[0] < n:
         raise RuntimeError(f"fill_section gave {y0.shape[0]} states, {n} wanted")

@@ -49,8 +49,8 @@ def test_integer_range_is_in_the_message(value, maximum, message):
 # (argument named in the message, call)
 CALLS = [
     ("n_crossings", lambda v: poincare(B, Y0, "G3=0", v, engine="numba")),
-    (r"n \(number of plane points\)", lambda v: fill_section(B, h=0.2466, M=0.0,
-                                                           section=("theta2", 0.0), n=v)),
+    (r"n_orbits \(number of plane points\)",
+     lambda v: fill_section(B, h=0.2466, M=0.0, section=("theta2", 0.0), n_orbits=v)),
     ("n_freq", lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, v)),
     ("window", lambda v: naff(np.exp(1j * np.arange(256.0)), 1.0, 1, window=v)),
     ("n", lambda v: melnikov_function(B, n=v, quadrature=False)),

@@ -1,6 +1,7 @@
 """One table of names: code name <-> paper symbol <-> meaning <-> equation <-> storage name,
 plot label and units. Dataset variables, Zarr names, plot labels and the README's notation
-table all take their names from here.
+table all take their names from here; and one vocabulary (:data:`TERMS`) of what users
+pass: the API parameter, the CLI flag and the scan key of each quantity.
 
 Storage names differ ignoring case (``l``/``L`` and ``g``/``G`` would collide on
 case-insensitive file systems such as Zarr directory stores), hence ``l_angle``,
@@ -20,10 +21,16 @@ Examples
 
 from __future__ import annotations
 
-from typing import NamedTuple
+import functools
+import warnings
+from collections.abc import Callable
+from typing import Any, NamedTuple, TypeVar
 
 __all__ = ["Symbol", "NOTATION", "Coordinate", "COORDINATES", "COORDINATE", "CHART_COORDS",
-           "ANGLES", "storage_name", "coordinates", "label"]
+           "ANGLES", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY",
+           "renamed"]
+
+_F = TypeVar("_F", bound=Callable[..., Any])
 
 
 class Symbol(NamedTuple):
@@ -146,3 +153,114 @@ def coordinates(chart: str) -> tuple[str, ...]:
 def label(name: str) -> str:
     """The axis label (mathtext) of a coordinate given by code or storage name."""
     return COORDINATE[name].label if name in COORDINATE else name
+
+
+# ---------------------------------------------------------------------- the vocabulary
+class Term(NamedTuple):
+    """One thing a user passes, under its one name in the API, on the command line, in a
+    scan file; and the spellings of the previous release, still accepted with a
+    deprecation message (:func:`renamed`, ``cli._common``, ``scan.config``)."""
+
+    api: str                  #: the Python parameter name
+    meaning: str              #: what it is (CLI help and docs start from it)
+    config: str | None = None  #: key in a scan's TOML (None: not a scan key)
+    cli: str | None = None    #: the flag, when it is not ``--`` + api with ``-`` for ``_``
+    old_api: tuple[str, ...] = ()     #: former keyword names
+    old_cli: tuple[str, ...] = ()     #: former flags
+    old_config: tuple[str, ...] = ()  #: former scan keys
+
+    @property
+    def flag(self) -> str:
+        """The command-line flag: derived from the API name, unless the row says why not.
+
+        >>> VOCABULARY["n_crossings"].flag, VOCABULARY["h"].flag
+        ('--n-crossings', '--energy')
+        """
+        return self.cli or "--" + self.api.replace("_", "-")
+
+
+#: The vocabulary of the API, the CLI and the scan files: one row per quantity. A CLI flag
+#: is ``--`` + the API name (``_`` -> ``-``) except ``--energy`` (``-h`` is help); a scan
+#: key is the API name. ``tests/test_vocabulary.py`` checks every command, every scan task
+#: and the analyses' signatures against this table.
+TERMS: tuple[Term, ...] = (
+    Term("h", "energy level H = h", "h", cli="--energy", old_cli=("--h",)),
+    Term("M", "area constant (G, gamma) = M", "M", old_cli=("--area",)),
+    Term("mu", "weight x distance of the centre of mass", "mu"),
+    Term("epsilon", "turn of the centre of mass off the Hess direction in the (e1, e2) "
+         "plane, rad (RigidBody.near_hess)", "epsilon"),
+    Term("A", "moment of inertia A", "A"),
+    Term("B", "moment of inertia B", "B"),
+    Term("C", "moment of inertia C", "C"),
+    Term("r", "direction of the centre of mass (e1, e2, e3)", "r"),
+    Term("section", "section 'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
+         "':-' for the decreasing direction", "section"),
+    Term("n_orbits", "orbits seeded on the section plane (about this many plane points)",
+         "n_orbits", old_api=("n",), old_cli=("--orbits",), old_config=("orbits",)),
+    Term("n_crossings", "crossings of the section per orbit", "n_crossings",
+         old_cli=("--crossings",), old_config=("crossings",)),
+    Term("sampling", "how the orbits are seeded on the plane: grid, sobol or halton",
+         "sampling", old_api=("method",)),
+    Term("seed", "seed of the scrambled Sobol/Halton points", "seed"),
+    Term("boundary_grid", "grid of the accessible-region search", "boundary_grid"),
+    Term("t_max", "integrate at most to this time", "t_max"),
+    Term("t_end", "integration time of every orbit", "t_end"),
+    Term("n", "grid of the section plane: N (N x N) or (NX, NY)", "n"),
+    Term("indicator", "chaos indicator: fli, megno", "indicator"),
+    Term("tangent", "space of the initial tangent vectors: leaf or energy", "tangent"),
+    Term("root", "which root of the missing action where the level has several sheets",
+         "root"),
+    Term("chunk", "orbits per chunk (bounds memory)"),
+    Term("n_times", "output times of the indicators"),
+    Term("n_samples", "samples of each orbit for NAFF"),
+    Term("window", "Hann window order of NAFF"),
+    Term("margin", "MEGNO threshold above the regular reference", "margin"),
+    Term("engine", "integration engine: heyoka, numba or scipy", "engine"),
+    Term("rtol", "relative tolerance of the mixed criterion atol + rtol |y|", "rtol"),
+    Term("atol", "absolute tolerance of the mixed criterion atol + rtol |y|", "atol"),
+    Term("tol", "tolerance of a method that takes one number"),
+    Term("G", "level h = c G^2/2 of the rotation about the middle axis", "G"),
+    Term("branch", "heteroclinic line: 'theta1=0' (the Hess separatrix) or "
+         "'theta1=4phi0'", "branch"),
+    Term("n_phase", "phases g of the splitting grid (even)", "n_phase"),
+    Term("delta", "distance of the fundamental domains from the periodic orbits", "delta"),
+    Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),
+    Term("long_double", "integrate in 80-bit extended precision"),
+)
+
+#: API name -> its term.
+VOCABULARY: dict[str, Term] = {t.api: t for t in TERMS}
+
+
+def renamed(**old_to_new: str) -> Callable[[_F], _F]:
+    """Decorator: keyword arguments renamed in this release keep working for one more,
+    with a ``DeprecationWarning`` naming the new spelling (the table :data:`TERMS` lists
+    them as ``old_api``).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> @renamed(n="n_orbits")
+    ... def f(*, n_orbits=1):
+    ...     return n_orbits
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     f(n=3), str(w[0].message)
+    (3, 'f(n=...) is deprecated and will be removed in the next release; use n_orbits=...')
+    """
+    def decorate(func: _F) -> _F:
+        @functools.wraps(func)
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            for old, new in old_to_new.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{func.__name__}() got {old}= and {new}=: {old} is "
+                                        f"the former name of {new}; give only {new}")
+                    warnings.warn(f"{func.__name__}({old}=...) is deprecated and will be "
+                                  f"removed in the next release; use {new}=...",
+                                  DeprecationWarning, stacklevel=2)
+                    kwargs[new] = kwargs.pop(old)
+            return func(*args, **kwargs)
+        wrapper.__renamed__ = dict(old_to_new)  # type: ignore[attr-defined]
+        return wrapper  # type: ignore[return-value]
+    return decorate

@@ -89,7 +89,7 @@ def test_resonance_labels() -> None:
 
 def test_frequency_map_over_a_plane() -> None:
     body = RigidBody.paper()
-    fm = frequency_map(body, 0.2466, 0.0, ("theta2", 0.0), n=6, t_end=600.0,
+    fm = frequency_map(body, 0.2466, 0.0, ("theta2", 0.0), n_orbits=6, t_end=600.0,
                        n_samples=2049)
     assert fm.sizes["orbit"] >= 4
     for v in ("omega_l", "omega_g", "rotation_number", "log10_drift", "theta1", "J1"):

@@ -129,7 +129,7 @@ def test_level_flags_have_the_api_names_and_keep_the_old_aliases():
     (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--rtol", "-1"], "--rtol", "finite and > 0"),
     (["chaos-map", "--t-end", "-1"], "--t-end", "finite and > 0"),
     (["chaos-map", "--chunk", "0"], "--chunk", "an integer >= 1"),
-    (["section", "--h", "inf"], "--h/--energy", "finite"),
+    (["section", "--energy", "inf"], "--energy", "finite"),
     (["section", "--body", "hess", "--A", "-1"], "--A", "finite and > 0"),
     (["explore", "--port", "70000"], "--port", "an integer in [0, 65535]"),
     (["paper", "--jobs", "0"], "--jobs", "an integer >= 1"),

@@ -59,7 +59,7 @@ CASES = [  # (section, M, method)
 @pytest.fixture(scope="module", params=CASES, ids=lambda c: f"{c[0][0]}={c[0][1]},M={c[1]}")
 def filled(request: pytest.FixtureRequest) -> tuple[tuple[str, float], float, object]:
     section, M, method = request.param
-    return section, M, fill_section(BODY, H0, M, section, n=40, method=method)
+    return section, M, fill_section(BODY, H0, M, section, n_orbits=40, sampling=method)
 
 
 # ----------------------------------------------------------------------- the states
@@ -142,7 +142,7 @@ def test_accessible_region_and_boundary(filled):
 
 
 def test_accessible_grid_agrees_with_the_root_solver():
-    ds = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n=5, boundary_grid=60)
+    ds = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n_orbits=5, boundary_grid=60)
     rng = np.random.default_rng(3)
     # Away from the boundary (where the grid's minimum is approximate) they agree.
     margin = np.abs(ds.H_min.values - H_TWO) > 1e-4
@@ -181,7 +181,7 @@ def test_two_roots_closer_than_the_scan_step():
 
 
 def test_root_choice_in_fill():
-    full = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n=200, boundary_grid=80)
+    full = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n_orbits=200, boundary_grid=80)
     two = full.n_roots.values == 2
     assert two.any(), "the level should have two sheets above some points"
     # Every root above a point is an orbit, numbered by increasing G.
@@ -191,7 +191,7 @@ def test_root_choice_in_fill():
         assert sel.G_action.values[0] < sel.G_action.values[1]
     assert np.all(full.residual <= 1e-12)
     for choice, k in (("smallest", 0), ("largest", -1)):
-        one = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n=200, boundary_grid=80, root=choice)
+        one = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n_orbits=200, boundary_grid=80, root=choice)
         assert np.unique(one.point.values).size == one.sizes["orbit"]
         for p in np.unique(full.point.values[two])[:5]:
             want = full.G_action.values[full.point.values == p][k]
@@ -226,21 +226,21 @@ def test_random_points_match_brute_force():
 
 # ----------------------------------------------------------------------- options
 def test_section_given_as_object_or_string():
-    a = fill_section(BODY, H0, 0.0, ("g", 0.0), n=10, boundary_grid=40)
-    b = fill_section(BODY, H0, 0.0, DuckSection("g", 0.0), n=10, boundary_grid=40)
-    c = fill_section(BODY, H0, 0.0, "g=0", n=10, boundary_grid=40)
+    a = fill_section(BODY, H0, 0.0, ("g", 0.0), n_orbits=10, boundary_grid=40)
+    b = fill_section(BODY, H0, 0.0, DuckSection("g", 0.0), n_orbits=10, boundary_grid=40)
+    c = fill_section(BODY, H0, 0.0, "g=0", n_orbits=10, boundary_grid=40)
     np.testing.assert_array_equal(a.y0, b.y0)
     np.testing.assert_array_equal(a.y0, c.y0)
-    d = fill_section(BODY, H0, 0.0, DuckSection("g", TWO_PI + 0.5), n=10, boundary_grid=40)
+    d = fill_section(BODY, H0, 0.0, DuckSection("g", TWO_PI + 0.5), n_orbits=10, boundary_grid=40)
     assert d.attrs["section_value"] == pytest.approx(0.5)
 
 
 def test_low_discrepancy_samples_are_seeded():
-    a = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n=25, method="sobol", seed=1,
+    a = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n_orbits=25, sampling="sobol", seed=1,
                      boundary_grid=40)
-    b = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n=25, method="sobol", seed=1,
+    b = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n_orbits=25, sampling="sobol", seed=1,
                      boundary_grid=40)
-    c = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n=25, method="sobol", seed=2,
+    c = fill_section(BODY, H0, 0.0, ("theta2", 1.0), n_orbits=25, sampling="sobol", seed=2,
                      boundary_grid=40)
     np.testing.assert_array_equal(a.y0, b.y0)
     assert np.unique(a.point.values).size == 25
@@ -248,7 +248,7 @@ def test_low_discrepancy_samples_are_seeded():
 
 
 def test_plane_bounds_restrict_the_sample():
-    ds = fill_section(BODY, H0, 0.0, ("g", 0.0), n=20, plane_bounds=((1.0, 2.0), (-0.3, 0.3)),
+    ds = fill_section(BODY, H0, 0.0, ("g", 0.0), n_orbits=20, plane_bounds=((1.0, 2.0), (-0.3, 0.3)),
                       boundary_grid=40)
     assert np.all((ds.l_angle >= 1.0) & (ds.l_angle <= 2.0))
     assert np.all(np.abs(ds.L_action) <= 0.3)
@@ -272,9 +272,9 @@ def test_level_below_the_section_names_h_and_the_range():
     (dict(section=("G3", 0.0)), "choose 'g'"),
     (dict(section=("g", float("nan"))), "finite"),
     (dict(section=42), "section must be"),
-    (dict(n=0), r"n \(number of plane points\) must be an integer >= 1"),
-    (dict(n=2.5), "integer"),
-    (dict(method="random"), "unknown method"),
+    (dict(n_orbits=0), r"n_orbits \(number of plane points\) must be an integer >= 1"),
+    (dict(n_orbits=2.5), "integer"),
+    (dict(sampling="random"), "unknown sampling"),
     (dict(root="middle"), "unknown root choice"),
     (dict(h=float("inf")), "h must be finite"),
     (dict(plane_bounds=((1.0, 0.0), (0.0, 1.0))), "min < max"),
@@ -291,7 +291,7 @@ def test_hess_section_needs_planar_centre_of_mass():
     with pytest.raises(ValueError, match="e3 = 0"):
         fill_section(body, 1.0, 0.0, ("theta2", 0.0))
     # The Andoyer-Deprit section works for any body.
-    ds = fill_section(body, 1.0, 0.2, ("g", 0.3), n=10, boundary_grid=40)
+    ds = fill_section(body, 1.0, 0.2, ("g", 0.3), n_orbits=10, boundary_grid=40)
     assert float(ds.residual.max()) <= 1e-12
     assert np.max(_angle_diff(to_andoyer(ds.y0.values)[:, 1], 0.3)) <= 1e-12
 

@@ -95,7 +95,7 @@ def test_numba_does_not_count_an_initial_state_on_the_section() -> None:
     from andoyer.integrate import fill_section
 
     h = float(energy(BODY, from_andoyer([0.3, 0.0, 0.3, 1.0, 0.0])))
-    y0 = fill_section(BODY, h, 0.0, ("theta2", 0.0), n=6)["y0"].values  # on theta2 = 0
+    y0 = fill_section(BODY, h, 0.0, ("theta2", 0.0), n_orbits=6)["y0"].values  # on theta2 = 0
     k = SECTION_KINDS.index("theta2")
     nb = NumbaEngine().crossings(y0, P, k, 0.0, 0, 3, 1e3, 1e-12, 1e-12)
     hk = he.HeyokaEngine().crossings(y0, P, k, 0.0, 0, 3, 1e3, 1e-12, 1e-12)

@@ -71,7 +71,7 @@ def test_draws_into_given_axes():
 
 def test_boundary_from_a_fill_dataset(tmp_path):
     body = RigidBody.paper()
-    fill = fill_section(body, 0.2, 0.0, ("g", 0.0), n=10, boundary_grid=40)
+    fill = fill_section(body, 0.2, 0.0, ("g", 0.0), n_orbits=10, boundary_grid=40)
     ax = plot_section(fake_section("g"), boundary=fill)
     assert len(ax.lines) == 1
     np.testing.assert_allclose(ax.get_xlim(), (0.0, 2 * np.pi))

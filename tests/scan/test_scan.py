@@ -32,7 +32,7 @@ from andoyer.scan.store import Schema, Variable, _check_names
 # 2 x 2 grid; 5 orbits (one SIMD batch of 4 plus a refilled lane) x 20 crossings.
 TINY = {"body": {"kind": "hess", "name": "paper"},
         "parameters": {"mu": [0.01, 0.3], "h": [0.3, 0.5]},
-        "task": {"kind": "section", "section": "theta2=0", "orbits": 5, "crossings": 20}}
+        "task": {"kind": "section", "section": "theta2=0", "n_orbits": 5, "n_crossings": 20}}
 
 
 def _toml(cfg: dict) -> str:
@@ -98,7 +98,7 @@ def test_each_point_is_the_public_api_result(reference, i, j):
     ds = xr.open_zarr(reference)
     mu, h = float(ds.mu[i]), float(ds.h_level[j])
     body = RigidBody.paper(mu)
-    fill = fill_section(body, h, 0.0, ("theta2", 0.0), n=5, method="sobol", seed=0,
+    fill = fill_section(body, h, 0.0, ("theta2", 0.0), n_orbits=5, sampling="sobol", seed=0,
                         boundary_grid=64)
     direct = poincare(body, fill["y0"].values[:5], "theta2=0", 20)
     point = ds.isel(mu=i, h_level=j).load()
@@ -235,9 +235,9 @@ def test_progress_line(capsys):
 def test_resume_refuses_another_configuration(reference, tmp_path):
     store = tmp_path / "s.zarr"
     shutil.copytree(reference, store)
-    other = _with(_with(TINY, "task", crossings=30), "parameters", mu=[0.01])
+    other = _with(_with(TINY, "task", n_crossings=30), "parameters", mu=[0.01])
     with pytest.raises(ValueError, match=r"another configuration \(parameters.mu: \[0.01, "
-                                         r"0.3\] in the store, \[0.01\] now; task.crossings: "
+                                         r"0.3\] in the store, \[0.01\] now; task.n_crossings: "
                                          r"20 in the store, 30 now\).*--overwrite"):
         scan(other, store, scheduler="serial")
     report = scan(other, store, scheduler="serial", overwrite=True, progress=False)
@@ -314,7 +314,7 @@ def test_worker_killed_mid_task_loses_nothing(reference, tmp_path):
 def test_points_that_miss_the_section_are_stored_empty(tmp_path):
     # At M = 0.5 the level h = 0.041 lies below the section's minimum of H (~0.0418).
     cfg = {"parameters": {"mu": 0.01, "M": 0.5, "h": [0.041, 0.05]},
-           "task": {"kind": "section", "orbits": 3, "crossings": 5}}
+           "task": {"kind": "section", "n_orbits": 3, "n_crossings": 5}}
     report = scan(cfg, tmp_path / "e.zarr", scheduler="serial", progress=False)
     assert len(report.empty) == 1 and "does not intersect the section" in report.empty[0][1]
     ds = xr.open_zarr(tmp_path / "e.zarr").load()
@@ -333,7 +333,7 @@ BAD = [
                                                  r"'integrator'\?\)"),
     (_with(TINY, "parameters", nu=0.1), r"\[parameters\]: unknown key 'nu' \(did you mean "
                                         r"'mu'\?\)"),
-    (_with(TINY, "task", orbit=3), r"unknown key 'orbit' \(did you mean 'orbits'\?\)"),
+    (_with(TINY, "task", orbit=3), r"unknown key 'orbit' \(did you mean 'n_orbits'\?\)"),
     (_with(TINY, "task", kind="sections"), r"unknown kind 'sections' \(did you mean "
                                            r"'section'\?\)"),
     (_with(TINY, "task", kind="splitting"), r"\[parameters\] h: the splitting task does "
@@ -354,7 +354,7 @@ BAD = [
     (_with(TINY, "integrator", engine="scipy") | {"parameters": {"mu": [0.01, 0.02]},
                                                   "task": {"kind": "splitting"}},
      "the splitting task grows the manifolds with heyoka or numba"),
-    (_with(TINY, "task", orbits=0), "orbits must be an integer >= 1"),
+    (_with(TINY, "task", n_orbits=0), "n_orbits must be an integer >= 1"),
     (_with(TINY, "task", section="J3=0"), "unknown section coordinate"),
     (_with(TINY, "task", section="G3=0"), "'theta2=VALUE'"),
     (_with(TINY, "parameters", C=[2.2, 2.6]), r"grid point A = 2.5, B = 2, C = 2.6, "
@@ -484,7 +484,7 @@ def test_splitting_scan_scales_with_mu(tmp_path):
 
 
 def test_unreasonable_cost_is_refused_with_its_estimate():
-    cfg = load_config(_with(TINY, "task", orbits=1000, crossings=100000))
+    cfg = load_config(_with(TINY, "task", n_orbits=1000, n_crossings=100000))
     cost = estimate_cost(cfg)
     # 4 points x 1e8 crossings x 5e-5 s and 25 stored values of 8 bytes each.
     assert cost.core_seconds == pytest.approx(4 * (0.1 + 5e3))

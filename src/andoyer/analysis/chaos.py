@@ -511,7 +511,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     n_samples = integer("n_samples", n_samples, 1)
     tol = _check_tol(tol)
     # The plane, its box and the accessible boundary; raises if h misses the section.
-    fill = fill_section(body, h, M, section, n=1, plane_bounds=plane_bounds,
+    fill = fill_section(body, h, M, section, n_orbits=1, plane_bounds=plane_bounds,
                         boundary_grid=min(200, max(64, 2 * max(nx, ny))))
     a = fill.attrs
     xname, yname, action = str(a["plane_x"]), str(a["plane_y"]), str(a["action"])

@@ -52,6 +52,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import describe_variables, provenance
+from andoyer.notation import renamed
 from andoyer.validation import integer
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
@@ -268,9 +269,10 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
         "y0": ("y_0", "initial Euler-Poisson state", "1", "(1)")})
 
 
+@renamed(n="n_orbits")
 @checks_body
 def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float], *,
-                  n: int = 100, t_end: float = 2000.0, n_samples: int = 8193,
+                  n_orbits: int = 100, t_end: float = 2000.0, n_samples: int = 8193,
                   engine: str | None = None, window: int = 2,
                   progress: bool | None = None) -> xr.Dataset:
     """Frequency-map analysis over a section plane: rotation numbers and their drift.
@@ -288,8 +290,8 @@ def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float
         The energy level and the area constant.
     section : (coord, value)
         ``("theta2", v)`` (plane ``(theta1, J1)``) or ``("g", v)`` (plane ``(l, L)``).
-    n : int
-        About this many orbits.
+    n_orbits : int
+        About this many orbits (formerly ``n``, deprecated).
     t_end, n_samples, engine, window, progress :
         As in :func:`orbit_frequencies`.
 
@@ -301,7 +303,7 @@ def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float
     """
     from andoyer.integrate.fill import fill_section
 
-    fill = fill_section(body, h, M, section, n=n, root="smallest")
+    fill = fill_section(body, h, M, section, n_orbits=n_orbits, root="smallest")
     if fill.sizes["orbit"] == 0:
         raise ValueError(f"the level h = {h:g}, M = {M:g} does not meet the plane {section}")
     res = orbit_frequencies(body, fill.y0.values, t_end, n_samples=n_samples,

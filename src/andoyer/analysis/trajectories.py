@@ -159,11 +159,11 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
     """
     _check_body(body)
     level = separatrix_energy(body, J2) if h is None else float(h)
-    fill = fill_section(body, level, 0.0, ("theta2", theta2), n=n_orbits)
+    fill = fill_section(body, level, 0.0, ("theta2", theta2), n_orbits=n_orbits)
     y0 = fill["y0"].values
     if n_zoom > 0:
         box = zoom_box(body, J2)
-        near = fill_section(body, level, 0.0, ("theta2", theta2), n=n_zoom,
+        near = fill_section(body, level, 0.0, ("theta2", theta2), n_orbits=n_zoom,
                             plane_bounds=box, root="smallest")
         y0 = np.concatenate([y0, near["y0"].values])
     sec = poincare(body, y0, f"theta2={theta2}", n_crossings, engine=engine,

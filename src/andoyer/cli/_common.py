@@ -4,20 +4,23 @@ from __future__ import annotations
 
 import argparse
 import os
-from collections.abc import Callable, Iterable
+import sys
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
+from andoyer.notation import VOCABULARY
 from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "floats", "output_file", "output_folder", "distinct_outputs", "count", "real"]
+           "add_term", "floats", "output_file", "output_folder", "distinct_outputs", "count",
+           "real"]
 
 #: The body flags each --body takes (others are refused, not ignored).
 BODY_FLAGS = {
-    "paper": ("mu",),
-    "hess": ("A", "B", "C", "mu"),
+    "paper": ("mu", "epsilon"),
+    "hess": ("A", "B", "C", "mu", "epsilon"),
     "custom": ("A", "B", "C", "mu", "r"),
     "lagrange": ("A", "C", "mu"),
     "kovalevskaya": ("C", "mu"),
@@ -28,7 +31,7 @@ BODY_FLAGS = {
 # ---------------------------------------------------------------------- number flags
 def count(minimum: int | None = None, maximum: int | None = None) -> Callable[[str], int]:
     """An argparse ``type`` for a whole number in range: a bad value fails at parsing,
-    before any work, and argparse names the flag (``argument --crossings: must be an
+    before any work, and argparse names the flag (``argument --n-crossings: must be an
     integer >= 1, got '0'``).
 
     >>> count(1)("1e3"), count(0, 9)("7")
@@ -67,6 +70,38 @@ def _flag_type(kind: str, check: Callable[[str, str], Any]) -> Callable[[str], A
                 message[:message.rfind(", got ")] + f", got {text!r}") from None
     parse.__name__ = kind
     return parse
+
+
+# ---------------------------------------------------------------------- the vocabulary
+class _Deprecated(argparse.Action):
+    """A former spelling of a flag: works as the new one, with a warning on stderr."""
+
+    def __init__(self, option_strings: Sequence[str], dest: str, new: str = "",
+                 **kwargs: Any) -> None:
+        self.new = new
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: Any, option_string: str | None = None) -> None:
+        sys.stderr.write(f"{parser.prog}: warning: {option_string} is deprecated and will be "
+                         f"removed in the next release; use {self.new}\n")
+        setattr(namespace, self.dest, values)
+
+
+def add_term(p: Any, api: str, **kwargs: Any) -> argparse.Action:
+    """Add the flag of the API parameter ``api`` with its name from the vocabulary
+    (:data:`andoyer.notation.TERMS`): ``dest`` is the API name, the help starts from the
+    table's meaning, and each former spelling still works (hidden from ``--help``) with a
+    deprecation warning naming the new flag."""
+    term = VOCABULARY[api]
+    kwargs.setdefault("help", term.meaning)
+    action = p.add_argument(term.flag, dest=api, **kwargs)
+    for old in term.old_cli:
+        p.add_argument(old, dest=api, action=_Deprecated, new=term.flag,
+                       type=kwargs.get("type"), nargs=kwargs.get("nargs"),
+                       choices=kwargs.get("choices"), default=argparse.SUPPRESS,
+                       help=argparse.SUPPRESS)
+    return action
 
 
 # ---------------------------------------------------------------------- outputs
@@ -137,26 +172,46 @@ def distinct_outputs(outputs: Iterable[Path], inputs: Iterable[Path] = ()) -> No
 
 # ---------------------------------------------------------------------- bodies
 def add_body_args(p: argparse.ArgumentParser) -> None:
+    """The body group of every command that takes a body (:func:`body_from_args`)."""
     g = p.add_argument_group("body")
     g.add_argument("--body", default="paper",
                    choices=("paper", "hess", "custom", "lagrange", "kovalevskaya",
                             "goryachev-chaplygin"),
                    help="paper: Hess body A=2.5, B=2.0, C=2.2, mu=0.01 (default); hess: "
-                        "Hess body from --A --B --C --mu; custom: --A --B --C --mu --r")
-    g.add_argument("--A", type=real(positive=True), help="moment of inertia A")
-    g.add_argument("--B", type=real(positive=True), help="moment of inertia B")
-    g.add_argument("--C", type=real(positive=True), help="moment of inertia C")
-    g.add_argument("--mu", type=real(), help="weight x distance of the centre of mass")
-    g.add_argument("--r", type=real(), nargs=3, metavar=("E1", "E2", "E3"),
-                   help="direction of the centre of mass (custom bodies)")
+                        "Hess body from --A --B --C --mu; custom: --A --B --C --mu --r; "
+                        "paper and hess bodies turn off the Hess direction with --epsilon")
+    for name in ("A", "B", "C"):
+        add_term(g, name, type=real(positive=True))
+    add_term(g, "mu", type=real())
+    add_term(g, "epsilon", type=real(),
+             help="turn the Hess body's centre of mass by this angle (rad) in the (e1, e2) "
+                  "plane off the Hess direction (RigidBody.near_hess; default 0: Hess)")
+    add_term(g, "r", type=real(), nargs=3, metavar=("E1", "E2", "E3"),
+             help="direction of the centre of mass (custom bodies)")
 
 
 def body_from_args(args: argparse.Namespace) -> Any:
-    """The body of ``--body`` and its flags; a flag the body does not take is refused."""
+    """The body of ``--body`` and its flags; a flag the body does not take is refused.
+
+    ``--epsilon`` turns a paper or Hess body's centre of mass off the Hess direction
+    (:meth:`~andoyer.body.RigidBody.near_hess`, same moments, ``mu`` and branch).
+    """
     from andoyer.body import RigidBody
 
-    extra = [n for n in ("A", "B", "C", "mu", "r") if getattr(args, n) is not None
-             and n not in BODY_FLAGS[args.body]]
+    body = _body(args)
+    eps = getattr(args, "epsilon", None)
+    if eps is None or eps == 0.0:
+        return body
+    return RigidBody.near_hess(body.A, body.B, body.C, body.mu, eps,
+                               branch=1 if body.e2 >= 0.0 else -1,
+                               name=f"{body.name} turned by {eps:g}")
+
+
+def _body(args: argparse.Namespace) -> Any:
+    from andoyer.body import RigidBody
+
+    extra = [n for n in ("A", "B", "C", "mu", "epsilon", "r")
+             if getattr(args, n, None) is not None and n not in BODY_FLAGS[args.body]]
     if extra:
         takes = ", ".join(f"--{n}" for n in BODY_FLAGS[args.body])
         raise ValueError(f"--body {args.body} does not take --{', --'.join(extra)} (it takes "
@@ -182,25 +237,27 @@ def body_from_args(args: argparse.Namespace) -> Any:
     return RigidBody(args.A, args.B, args.C, mu, tuple(args.r), "custom")
 
 
-def add_engine_args(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
-                   help="integration engine (default: heyoka where installed, else numba)")
-    p.add_argument("--rtol", type=real(positive=True), default=1e-12,
-                   help="relative tolerance")
-    p.add_argument("--atol", type=real(positive=True), default=1e-12,
-                   help="absolute tolerance")
+def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> None:
+    """``--engine`` and, where the integration has the mixed criterion, ``--rtol``,
+    ``--atol``."""
+    add_term(p, "engine", choices=("heyoka", "numba", "scipy"), default=None,
+             help="integration engine (default: heyoka where installed, else numba)")
+    if tolerances:
+        add_term(p, "rtol", type=real(positive=True), default=1e-12,
+                 help="relative tolerance (default 1e-12)")
+        add_term(p, "atol", type=real(positive=True), default=1e-12,
+                 help="absolute tolerance (default 1e-12)")
 
 
 def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
-    """``--h``, ``--M``, ``--section``: energy level, area constant and section (the names
-    of the Python API; ``--energy`` and ``--area`` are kept as aliases for one release)."""
-    p.add_argument("--h", "--energy", dest="h", type=real(), default=None,
-                   help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, "
-                        "M)); --energy is an alias kept for one release")
-    p.add_argument("--M", "--area", dest="M", type=real(), default=0.0,
-                   help="area constant (G, gamma) = M (default 0); --area is an alias kept "
-                        "for one release")
-    p.add_argument("--section", default="theta2=0",
-                   help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L)"
-                        + ("; append ':-' for the decreasing direction" if directed else "")
-                        + " (default theta2=0)")
+    """``--energy``, ``--M``, ``--section``: energy level ``h`` (``-h`` is help), area
+    constant and section; ``--h`` and ``--area`` still work for one release, with a
+    deprecation warning."""
+    add_term(p, "h", type=real(), default=None, metavar="H",
+             help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
+    add_term(p, "M", type=real(), default=0.0,
+             help="area constant (G, gamma) = M (default 0)")
+    add_term(p, "section", default="theta2=0",
+             help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L)"
+                  + ("; append ':-' for the decreasing direction" if directed else "")
+                  + " (default theta2=0)")

@@ -9,6 +9,7 @@ from andoyer.cli._common import (
     add_body_args,
     add_engine_args,
     add_level_args,
+    add_term,
     body_from_args,
     count,
 )
@@ -29,7 +30,7 @@ def run(args: argparse.Namespace) -> int:
         print("press Ctrl-C to stop", flush=True)
 
     serve(body, port=args.port, show=not args.no_browser, on_start=started, h=args.h,
-          M=args.M, section=section, n_crossings=args.crossings, engine=args.engine,
+          M=args.M, section=section, n_crossings=args.n_crossings, engine=args.engine,
           rtol=args.rtol, atol=args.atol)
     print("andoyer explore: stopped")
     return 0
@@ -41,8 +42,8 @@ def register(sub: Any) -> None:
                                    "until Ctrl-C: click on the section plane to seed orbits.")
     add_body_args(p)
     add_level_args(p)
-    p.add_argument("--crossings", type=count(1), default=500,
-                   help="crossings per orbit (default 500)")
+    add_term(p, "n_crossings", type=count(1), default=500,
+             help="crossings per orbit (default 500)")
     add_engine_args(p)
     p.add_argument("--port", type=count(0, 65535), default=0, help="port (default 0: a free port)")
     p.add_argument("--no-browser", action="store_true",

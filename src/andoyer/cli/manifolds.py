@@ -43,16 +43,14 @@ def run(args: argparse.Namespace) -> int:
         mus = [args.mu] if args.mu is not None else _mu_list(DEFAULT_MU)
     else:
         mus = _mu_list(args.mu_list)
-    if not body.is_hess:
+    try:
+        body.nearest_hess()
+    except ValueError:
         raise ValueError("andoyer manifolds follows the heteroclinic lines theta1 = 0 and "
                          "theta1 = 4 phi0 of a Hess body: use --body paper or --body hess "
-                         "--A .. --B .. --C .. (and --epsilon to turn its centre of mass)")
-    if args.epsilon != 0.0:
-        from andoyer.body import RigidBody
-
-        body = RigidBody.near_hess(body.A, body.B, body.C, body.mu, args.epsilon,
-                                   branch=1 if body.e2 >= 0.0 else -1,
-                                   name=f"{body.name or 'body'} turned by {args.epsilon:g}")
+                         "--A .. --B .. --C .. (and --epsilon to turn its centre of mass)"
+                         ) from None
+    epsilon = body.hess_epsilon
     out.mkdir(parents=True, exist_ok=True)
     common: dict[str, Any] = {"G": args.G, "psi0": args.psi0, "delta": args.delta,
                               "n_phase": args.n_phase, "tol": args.tol,
@@ -94,12 +92,12 @@ def run(args: argparse.Namespace) -> int:
         print(f"{m:9.5g} {sp.amplitude.values[k]:17.6e} {sp.amplitude_melnikov.values[k]:13.6e}"
               f" {sp.relative_error.values[k]:8.2e} {ang:11.4e} {lobe:11.4e} "
               f"{g0 - np.pi / 2:10.1e}")
-    if hess is not None and args.epsilon == 0.0:
+    if hess is not None and body.is_hess:
         print(f"theta1 = 0 (Hess solutions) at mu = {mus[-1]:g}: max |dG| = "
               f"{float(hess.amplitude[0]):.1e} (the manifolds coincide)")
     elif hess is not None:
         print(f"theta1 = 0 (the former Hess separatrix) at mu = {mus[-1]:g}, epsilon = "
-              f"{args.epsilon:g}: max |dG| = {float(hess.amplitude[0]):.6e}, mu*Melnikov "
+              f"{epsilon:g}: max |dG| = {float(hess.amplitude[0]):.6e}, mu*Melnikov "
               f"{float(hess.amplitude_melnikov[0]):.6e}, rel.err "
               f"{float(hess.relative_error[0]):.2e}")
     print("wrote " + ", ".join(str(f) for f in files))
@@ -124,9 +122,6 @@ def register(sub: Any) -> None:
                    help="integration tolerance (default 1e-15; numba uses at least 1e-13)")
     p.add_argument("--long-double", action="store_true",
                    help="integrate in 80-bit extended precision")
-    p.add_argument("--epsilon", type=real(), default=0.0,
-                   help="turn the Hess body's centre of mass by this angle (rad) in the "
-                        "(e1, e2) plane: the Hess branch theta1 = 0 splits too (default 0)")
     p.add_argument("--no-hess-check", dest="hess_check", action="store_false",
                    help="skip the Hess branch theta1 = 0 (shown not to split)")
     p.add_argument("--out", default="manifolds", help="output folder (default ./manifolds)")

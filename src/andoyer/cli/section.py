@@ -9,6 +9,7 @@ from andoyer.cli._common import (
     add_body_args,
     add_engine_args,
     add_level_args,
+    add_term,
     body_from_args,
     count,
     output_file,
@@ -40,11 +41,11 @@ def run(args: argparse.Namespace) -> int:
 
         args.h = default_h(body, args.M)
     fill = fill_section(body, args.h, args.M, (sec.coord, sec.value),
-                        n=args.orbits, method=args.sampling)
+                        n_orbits=args.n_orbits, sampling=args.sampling)
     y0 = fill["y0"].values
     print(f"{y0.shape[0]} orbits on H = {args.h:g}, M = {args.M:g}; "
-          f"{args.crossings} crossings each")
-    ds = poincare(body, y0, sec, args.crossings, engine=args.engine, rtol=args.rtol,
+          f"{args.n_crossings} crossings each")
+    ds = poincare(body, y0, sec, args.n_crossings, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, progress=True)
     ds.attrs.update(h=args.h, M=args.M)
     write_netcdf(ds, out)
@@ -63,11 +64,12 @@ def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="Poincare section on an energy level: NetCDF + PNG")
     add_body_args(p)
     add_level_args(p)
-    p.add_argument("--orbits", type=count(1), default=40, help="orbits (default 40)")
-    p.add_argument("--crossings", type=count(1), default=300,
-                   help="crossings per orbit (default 300)")
-    p.add_argument("--sampling", choices=("grid", "sobol", "halton"), default="grid",
-                   help="initial conditions on the plane (default grid)")
+    add_term(p, "n_orbits", type=count(1), default=40,
+             help="orbits seeded on the plane (default 40)")
+    add_term(p, "n_crossings", type=count(1), default=300,
+             help="crossings per orbit (default 300)")
+    add_term(p, "sampling", choices=("grid", "sobol", "halton"), default="grid",
+             help="initial conditions on the plane (default grid)")
     add_engine_args(p)
     p.add_argument("--out", default="section.nc", help="output NetCDF (PNG beside it)")
     p.set_defaults(func=run)

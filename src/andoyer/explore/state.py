@@ -286,7 +286,7 @@ def plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView:
                         / min(settings.body.a, settings.body.b, settings.body.c)) \
             if settings.h > -settings.body.mu else 1.0
         bounds = ((0.0, settings.x_period), (0.0, act))
-    fill = fill_section(settings.body, settings.h, settings.M, (sec.coord, sec.value), n=1,
+    fill = fill_section(settings.body, settings.h, settings.M, (sec.coord, sec.value), n_orbits=1,
                         plane_bounds=bounds, boundary_grid=boundary_grid)
     a = fill.attrs
     seps = unperturbed_separatrices(settings.body, settings.h, p, settings.x_period)

@@ -44,6 +44,7 @@ from andoyer.integrate import budget
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
+from andoyer.notation import renamed
 from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 
@@ -479,9 +480,10 @@ def _bottom(body: RigidBody, M: float) -> float:
         return float(0.5 * min(body.a, body.b, body.c) * np.float64(M) ** 2 - body.mu)
 
 
+@renamed(n="n_orbits", method="sampling")
 @checks_body
-def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 40,
-                 method: Method = "grid", seed: int = 0,
+def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits: int = 40,
+                 sampling: Method = "grid", seed: int = 0,
                  plane_bounds: Any = None, root: RootChoice = "all",
                  boundary_grid: int = 200, tol: float = 1e-12) -> xr.Dataset:
     """Initial states filling a Poincare section on the energy level ``H = h``.
@@ -500,13 +502,14 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
         ``(theta1, J1)``, ``theta1`` in ``[0, 2 pi)`` at ``M = 0`` (H is 2 pi-periodic
         there) and ``[0, 4 pi)`` otherwise, ``J1`` in ``[0, G_max]``; ``J2`` is solved.
         ``G_max = sqrt(2 (h + mu) / min(a, b, c))``. The value is taken mod 2 pi.
-    n : int, default 40
-        About this many plane points (more orbits with ``root="all"`` where the level
-        has several sheets above one point).
-    method : {"grid", "sobol", "halton"}
+    n_orbits : int, default 40
+        About this many orbits: plane points (more orbits with ``root="all"`` where the
+        level has several sheets above one point). Formerly ``n`` (deprecated).
+    sampling : {"grid", "sobol", "halton"}
         ``"grid"``: a square grid over the bounding box of the accessible region, sized
-        so that about n of its points are accessible. ``"sobol"``/``"halton"``: the first
-        n accessible points of a scrambled low-discrepancy sequence in that box.
+        so that about n_orbits of its points are accessible. ``"sobol"``/``"halton"``:
+        the first n_orbits accessible points of a scrambled low-discrepancy sequence in
+        that box. Formerly ``method`` (deprecated).
     seed : int, default 0
         Scrambling seed of the low-discrepancy sequences.
     plane_bounds : ((x_min, x_max), (y_min, y_max)), optional
@@ -530,15 +533,15 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
         is the crossing direction). Dims ``plane_x, plane_y``: ``accessible`` and
         ``H_min`` (minimum of H over the admissible action). Dim ``boundary_vertex``:
         ``boundary_x``, ``boundary_y``, the accessible region's boundary, polylines
-        separated by NaN. Attrs: body, h, M, section, method, plane names and bounds,
+        separated by NaN. Attrs: body, h, M, section, sampling, plane names and bounds,
         equations, units.
 
     Raises
     ------
     ValueError
-        Unknown section coordinate, ``n < 1``, unknown method or root choice, ``|M|``
-        too large for h, or an energy level that does not meet the section (the message
-        gives the energy range on the section).
+        Unknown section coordinate, ``n_orbits < 1``, unknown sampling or root choice,
+        ``|M|`` too large for h, or an energy level that does not meet the section (the
+        message gives the energy range on the section).
 
     Notes
     -----
@@ -555,15 +558,16 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
     Examples
     --------
     >>> body = RigidBody.paper()
-    >>> ds = fill_section(body, 0.2466, 0.0, ("g", 0.0), n=10)
+    >>> ds = fill_section(body, 0.2466, 0.0, ("g", 0.0), n_orbits=10)
     >>> bool(ds.residual.max() <= 1e-12), bool(abs(ds.g_angle).max() == 0.0)
     (True, True)
     """
     plane, value = _parse_section(section)
     h, M = _finite("h", h), _finite("M", M)
-    n = integer("n (number of plane points)", n, 1)
-    if method not in ("grid", "sobol", "halton"):
-        raise ValueError(f"unknown method {method!r}; choose 'grid', 'sobol' or 'halton'")
+    n = integer("n_orbits (number of plane points)", n_orbits, 1)
+    if sampling not in ("grid", "sobol", "halton"):
+        raise ValueError(f"unknown sampling {sampling!r}; choose 'grid', 'sobol' or "
+                         "'halton'")
     if root not in ("all", "smallest", "largest"):
         raise ValueError(f"unknown root choice {root!r}; choose 'all', 'smallest' or "
                          "'largest'")
@@ -598,10 +602,10 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
             "or the accessible region is smaller than the boundary grid: raise "
             "boundary_grid or narrow plane_bounds")
     box = _bbox(acc, xs, ys)
-    if method == "grid":
+    if sampling == "grid":
         P, Q = _grid_points(eq, box, int(n))
     else:
-        P, Q = _qmc_points(eq, box, int(n), method, int(seed))
+        P, Q = _qmc_points(eq, box, int(n), sampling, int(seed))
     roots = eq.roots(P, Q) if P.size else []
     rows: list[tuple[int, float, int, int]] = []
     for i, r in enumerate(roots):
@@ -643,7 +647,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n: int = 
     s = plane.symbols
     attrs = provenance(
         body, h=h, M=M, section_coord=plane.coord, section_value=value,
-        section_chart=plane.chart, method=method, n_requested=int(n), seed=int(seed),
+        section_chart=plane.chart, sampling=sampling, n_requested=int(n), seed=int(seed),
         root=root, plane_x=plane.storage[0], plane_y=plane.storage[2],
         action=plane.storage[3], action_max=act_max,
         plane_x_min=x0, plane_x_max=x1, plane_y_min=y0, plane_y_max=y1,

@@ -409,7 +409,7 @@ def _border(ctx: Context) -> Result:
                               t_end=200.0 if not ctx.quick else 60.0, engine=ctx.engine,
                               progress=False)
     fmap = frequency_map(body.with_mu(0.04), h, 0.0, ("theta2", 0.0),
-                         n=40 if not ctx.quick else 12,
+                         n_orbits=40 if not ctx.quick else 12,
                          t_end=1000.0 if not ctx.quick else 200.0, engine=ctx.engine,
                          progress=False)
     files = ctx.figure(plot_border_of_chaos(split, border, fmap), "border-of-chaos")

@@ -209,7 +209,7 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     --------
     >>> import tempfile, pathlib
     >>> cfg = {"parameters": {"mu": [0.01, 0.1], "h": 0.3},
-    ...        "task": {"kind": "section", "orbits": 2, "crossings": 3}}
+    ...        "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3}}
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     report = scan(cfg, pathlib.Path(tmp) / "s.zarr", scheduler="serial")
     ...     ds = report.open()

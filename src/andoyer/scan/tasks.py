@@ -8,8 +8,8 @@ Poincare section; the plane of a chaos map). The scan adds the swept dims around
 Registered kinds (:data:`TASKS`):
 
 ``section``
-    :func:`andoyer.integrate.fill_section` seeds ``orbits`` initial states on the
-    section plane at ``(h, M)``, and the first ``crossings`` crossings of each orbit
+    :func:`andoyer.integrate.fill_section` seeds ``n_orbits`` initial states on the
+    section plane at ``(h, M)``, and the first ``n_crossings`` crossings of each orbit
     are found by the engine (the computation of :func:`andoyer.integrate.poincare`).
 ``chaos_map``
     :func:`andoyer.analysis.chaos.chaos_map` (FLI or MEGNO over a grid of the section
@@ -249,7 +249,7 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
                    integ: Integrator) -> xr.Dataset | Empty:
     """Poincare section at ``(h, M)``: dims ``(orbit, crossing)``, NaN-padded.
 
-    The same numbers as ``poincare(body, fill_section(...)["y0"], section, crossings)``
+    The same numbers as ``poincare(body, fill_section(...)["y0"], section, n_crossings)``
     (tested); the engine is called directly to run it single-threaded.
     """
     from andoyer.charts.euler_poisson import momentum_bound
@@ -260,10 +260,10 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
     from andoyer.notation import storage_name
 
     sec = Section.parse(options["section"])
-    n, k = int(options["orbits"]), int(options["crossings"])
+    n, k = int(options["n_orbits"]), int(options["n_crossings"])
     try:
-        fill = fill_section(body, h, M, (sec.coord, sec.value), n=n,
-                            method=options["sampling"], seed=options["seed"],
+        fill = fill_section(body, h, M, (sec.coord, sec.value), n_orbits=n,
+                            sampling=options["sampling"], seed=options["seed"],
                             boundary_grid=options["boundary_grid"])
     except ValueError as exc:  # the level misses the section, or no admissible point
         return Empty(str(exc))
@@ -301,7 +301,7 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
 def _section_cost(options: Mapping[str, Any]) -> tuple[float, float]:
     # Measured with heyoka on the paper's body (1 core): about 30 us per crossing and
     # 0.1 s to fill the plane at boundary_grid = 64; 25 stored values per crossing.
-    n, k = options["orbits"], options["crossings"]
+    n, k = options["n_orbits"], options["n_crossings"]
     fill = 0.1 * (options["boundary_grid"] / 64.0) ** 2
     return fill + 5e-5 * n * k, 25.0 * n * k
 
@@ -449,15 +449,15 @@ _SECTION_OPTIONS = {
     "section": Option("theta2=0", _section_text(True),
                       "'theta2=VALUE' (plane (theta1, J1)) or 'g=VALUE' (plane (l, L)); "
                       "':+' (default) or ':-' for the crossing direction"),
-    "orbits": Option(20, _int_at_least(1), "orbits per point (seeded by fill_section)"),
-    "crossings": Option(300, _int_at_least(1), "crossings per orbit"),
+    "n_orbits": Option(20, _int_at_least(1), "orbits per point (seeded by fill_section)"),
+    "n_crossings": Option(300, _int_at_least(1), "crossings per orbit"),
     "sampling": Option("sobol", _choice("sobol", "halton", "grid"),
                        "how the orbits are seeded on the plane"),
     "seed": Option(0, _int_at_least(0), "seed of the scrambled Sobol/Halton points"),
     "boundary_grid": Option(64, _int_at_least(8),
                             "grid of the accessible-region search in fill_section"),
     "t_max": Option(None, _positive_or_none,
-                    "integrate at most to this time (default 1000 x crossings)"),
+                    "integrate at most to this time (default 1000 x n_crossings)"),
 }
 
 #: Task kinds by name.

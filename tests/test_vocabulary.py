@@ -1,0 +1,188 @@
+"""One vocabulary (andoyer.notation.TERMS): every CLI flag is derived from the API name of
+what it sets, every scan key is the API name, and the former spellings keep working for
+one release with a deprecation message."""
+
+import argparse
+import inspect
+import re
+
+import pytest
+
+from andoyer import RigidBody
+from andoyer.cli import build_parser, main
+from andoyer.notation import TERMS, VOCABULARY
+
+#: Flags that set nothing of the API, with why.
+CLI_ONLY = {
+    "--out": "output file or folder", "--store": "a scan's Zarr store",
+    "--body": "which preset body", "--y0": "initial Euler-Poisson state (API y0)",
+    "--andoyer": "initial state in the Andoyer-Deprit chart (API y0, chart)",
+    "--hess": "initial state in the Hess chart (API y0, chart)",
+    "--n-out": "output times (API t)", "--mu-list": "the list of mu (API mu of "
+    "separatrix_splitting; --mu is the body's)", "--no-hess-check": "skip a second run",
+    "--port": "server port", "--no-browser": "server option", "--pdf": "also a PDF",
+    "--rows": "atlas layout", "--cols": "atlas layout", "--select": "atlas slice",
+    "--maps": "atlas layout", "--width": "figure size", "--scheduler": "Dask",
+    "--workers": "Dask", "--overwrite": "store", "--retries": "Dask", "--dry-run": "scan",
+    "--max-core-hours": "cost guard", "--max-store-gb": "cost guard",
+    "--progress": "progress line", "--no-progress": "progress line",
+    "--points": "paper-check sampling", "--format": "output format", "--jobs": "report",
+    "--quick": "report", "--only": "report", "--engines": "report", "--version": "",
+    "--no-limits": "cost guards", "--debug": "traceback", "--help": "",
+}
+
+#: The API functions each command calls: its flags must be their parameters.
+COMMAND_API = {
+    "section": ("andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare"),
+    "orbit": ("andoyer.integrate.api:propagate",),
+    "explore": ("andoyer.explore.state:make_settings",),
+    "chaos-map": ("andoyer.analysis.chaos:chaos_map",),
+    "manifolds": ("andoyer.analysis.splitting:separatrix_splitting",),
+    "frequencies": ("andoyer.analysis.frequency:orbit_frequencies",),
+    "indicators": ("andoyer.analysis.chaos:indicators",),
+}
+BODY = {"A", "B", "C", "mu", "epsilon", "r"}
+#: Flags of a command that the command turns into an API argument of another name.
+COMPOSED = {("orbit", "t_end"): "t = linspace(0, t_end, n_out)"}
+
+
+def _function(path):
+    import importlib
+
+    module, name = path.split(":")
+    return getattr(importlib.import_module(module), name)
+
+
+def _commands():
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return parser, sub.choices
+
+
+def _visible(p):
+    for a in p._actions:
+        if a.help == argparse.SUPPRESS or not a.option_strings:
+            continue
+        yield a
+
+
+def test_every_flag_is_the_api_name_or_cli_only():
+    _, commands = _commands()
+    for name, p in commands.items():
+        for a in _visible(p):
+            flag = max(a.option_strings, key=len)
+            assert len(a.option_strings) == 1 or "-h" in a.option_strings, (name, a)
+            if flag in CLI_ONLY:
+                continue
+            assert a.dest in VOCABULARY, f"andoyer {name} {flag}: not in notation.TERMS"
+            assert flag == VOCABULARY[a.dest].flag, (name, flag, VOCABULARY[a.dest].flag)
+
+
+@pytest.mark.parametrize("command", sorted(COMMAND_API))
+def test_command_flags_are_parameters_of_the_api_it_calls(command):
+    _, commands = _commands()
+    if command not in commands:
+        pytest.skip(f"no command {command}")
+    params = set()
+    for path in COMMAND_API[command]:
+        params |= set(inspect.signature(_function(path)).parameters)
+    for a in _visible(commands[command]):
+        flag = max(a.option_strings, key=len)
+        if flag in CLI_ONLY or a.dest in BODY or (command, a.dest) in COMPOSED:
+            continue
+        assert a.dest in params, f"andoyer {command} {flag} sets {a.dest!r}, not a " \
+                                 f"parameter of {COMMAND_API[command]}"
+
+
+def test_api_signatures_use_no_former_name():
+    for command, paths in COMMAND_API.items():
+        for path in paths:
+            params = set(inspect.signature(_function(path)).parameters)
+            for t in TERMS:
+                # (a former name that is another term's name, as n, is that term)
+                assert not params & (set(t.old_api) - set(VOCABULARY)), (path, t)
+
+
+def test_scan_keys_are_api_names():
+    from andoyer.scan.config import PARAMETERS
+    from andoyer.scan.tasks import TASKS
+
+    keys = {t.config: t for t in TERMS if t.config}
+    for p in PARAMETERS:
+        assert p in keys and keys[p].api == p
+    for kind in TASKS.values():
+        for key in kind.options:
+            assert key in keys and keys[key].api == key, (kind.name, key)
+    # the section task's keys are fill_section's and poincare's parameters
+    from andoyer.integrate.api import poincare
+    from andoyer.integrate.fill import fill_section
+
+    api = set(inspect.signature(fill_section).parameters) | set(
+        inspect.signature(poincare).parameters)
+    assert set(TASKS["section"].options) <= api
+
+
+def test_energy_flag_is_not_next_to_help():
+    """--h (energy) sat beside -h (help): the flag is --energy, --h still works a release."""
+    parser, commands = _commands()
+    for name in ("section", "chaos-map", "explore"):
+        flags = {s for a in _visible(commands[name]) for s in a.option_strings}
+        assert "--energy" in flags and "--h" not in flags
+
+
+@pytest.mark.parametrize("argv, dest, value, old, new", [
+    (["section", "--h", "0.25"], "h", 0.25, "--h", "--energy"),
+    (["section", "--area", "0.1"], "M", 0.1, "--area", "--M"),
+    (["section", "--orbits", "7"], "n_orbits", 7, "--orbits", "--n-orbits"),
+    (["section", "--crossings", "9"], "n_crossings", 9, "--crossings", "--n-crossings"),
+    (["explore", "--crossings", "9"], "n_crossings", 9, "--crossings", "--n-crossings"),
+    (["chaos-map", "--h", "0.3"], "h", 0.3, "--h", "--energy"),
+])
+def test_former_flags_work_with_a_deprecation_message(capsys, argv, dest, value, old, new):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    assert getattr(args, dest) == value
+    err = capsys.readouterr().err
+    assert f"warning: {old} is deprecated" in err and f"use {new}" in err
+    new_args = parser.parse_args([argv[0], new, argv[2]])
+    assert getattr(new_args, dest) == value
+    assert capsys.readouterr().err == ""
+    # hidden from --help
+    text = parser._subparsers._group_actions[0].choices[argv[0]].format_help()
+    assert not re.search(rf"{old}(?![\w-])", text)
+
+
+def test_former_flag_errors_name_the_flag_typed(capsys):
+    with pytest.raises(SystemExit):
+        main(["section", "--crossings", "0"])
+    assert "argument --crossings: must be an integer >= 1" in capsys.readouterr().err
+
+
+def test_former_api_keywords_warn_and_give_the_same_result():
+    from andoyer.integrate.fill import fill_section
+
+    body = RigidBody.paper()
+    new = fill_section(body, 0.2466, 0.0, ("g", 0.0), n_orbits=6, sampling="sobol",
+                       boundary_grid=40)
+    with pytest.warns(DeprecationWarning, match=r"fill_section\(n=...\) is deprecated.*"
+                                                r"n_orbits="):
+        old = fill_section(body, 0.2466, 0.0, ("g", 0.0), n=6, method="sobol",
+                           boundary_grid=40)
+    assert (old.y0.values == new.y0.values).all()
+    with pytest.raises(TypeError, match="n is the former name of n_orbits"):
+        fill_section(body, 0.2466, 0.0, ("g", 0.0), n=6, n_orbits=6)
+
+
+def test_former_scan_keys_warn_and_mean_the_same():
+    from andoyer.scan.config import parse_config
+
+    base = {"parameters": {"mu": [0.01, 0.02], "h": 0.25},
+            "integrator": {"engine": "numba"}}
+    new = parse_config({**base, "task": {"kind": "section", "n_orbits": 3,
+                                         "n_crossings": 5}})
+    with pytest.warns(FutureWarning, match="'orbits' is deprecated.*write 'n_orbits'"):
+        old = parse_config({**base, "task": {"kind": "section", "orbits": 3,
+                                             "crossings": 5}})
+    assert old == new
+    with pytest.raises(ValueError, match="'orbits' is the former name of 'n_orbits'"):
+        parse_config({**base, "task": {"kind": "section", "orbits": 3, "n_orbits": 3}})
