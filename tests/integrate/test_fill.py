@@ -191,7 +191,8 @@ def test_root_choice_in_fill():
         assert sel.G_action.values[0] < sel.G_action.values[1]
     assert np.all(full.residual <= 1e-12)
     for choice, k in (("smallest", 0), ("largest", -1)):
-        one = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n_orbits=200, boundary_grid=80, root=choice)
+        one = fill_section(BODY, H_TWO, 0.0, ("g", 0.0), n_orbits=200, boundary_grid=80,
+                           root=choice)
         assert np.unique(one.point.values).size == one.sizes["orbit"]
         for p in np.unique(full.point.values[two])[:5]:
             want = full.G_action.values[full.point.values == p][k]
@@ -248,8 +249,8 @@ def test_low_discrepancy_samples_are_seeded():
 
 
 def test_plane_bounds_restrict_the_sample():
-    ds = fill_section(BODY, H0, 0.0, ("g", 0.0), n_orbits=20, plane_bounds=((1.0, 2.0), (-0.3, 0.3)),
-                      boundary_grid=40)
+    ds = fill_section(BODY, H0, 0.0, ("g", 0.0), n_orbits=20,
+                      plane_bounds=((1.0, 2.0), (-0.3, 0.3)), boundary_grid=40)
     assert np.all((ds.l_angle >= 1.0) & (ds.l_angle <= 2.0))
     assert np.all(np.abs(ds.L_action) <= 0.3)
     assert ds.attrs["plane_x_min"] == 1.0 and ds.plane_x.values[-1] == 2.0

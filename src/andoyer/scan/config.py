@@ -48,7 +48,8 @@ Keys
 
     * ``section``: ``section`` (``"theta2=0"``: plane ``(theta1, J1)``, or ``"g=0"``:
       plane ``(l, L)``; ``":-"`` for the decreasing direction), ``n_orbits`` (20),
-      ``n_crossings`` (300; formerly ``orbits``, ``crossings``), ``sampling`` (``"sobol"``, ``"halton"``, ``"grid"``),
+      ``n_crossings`` (300; formerly ``orbits``, ``crossings``), ``sampling``
+      (``"sobol"``, ``"halton"``, ``"grid"``),
       ``seed`` (0), ``boundary_grid`` (64), ``t_max`` (default ``1000 * n_crossings``);
     * ``chaos_map``: ``section`` (``"theta2=0"``), ``n = [nx, ny]`` (``[64, 64]``),
       ``t_end`` (1000), ``indicator`` (``"fli"`` or ``"megno"``);
