@@ -155,7 +155,7 @@ def _renamed_keys(where: str, table: Mapping[str, Any], allowed: Any) -> Mapping
     out = dict(table)
     for term in TERMS:
         for old in term.old_config:
-            if old not in out or term.config not in allowed:
+            if old not in out or term.config is None or term.config not in allowed:
                 continue
             if term.config in out:
                 raise ValueError(f"{where}: {old!r} is the former name of {term.config!r}; "
