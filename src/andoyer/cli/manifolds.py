@@ -43,13 +43,10 @@ def run(args: argparse.Namespace) -> int:
         mus = [args.mu] if args.mu is not None else _mu_list(DEFAULT_MU)
     else:
         mus = _mu_list(args.mu_list)
-    try:
-        body.nearest_hess()
-    except ValueError:
+    if args.body not in ("paper", "hess"):
         raise ValueError("andoyer manifolds follows the heteroclinic lines theta1 = 0 and "
                          "theta1 = 4 phi0 of a Hess body: use --body paper or --body hess "
-                         "--A .. --B .. --C .. (and --epsilon to turn its centre of mass)"
-                         ) from None
+                         "--A .. --B .. --C .. (and --epsilon to turn its centre of mass)")
     epsilon = body.hess_epsilon
     out.mkdir(parents=True, exist_ok=True)
     common: dict[str, Any] = {"G": args.G, "psi0": args.psi0, "delta": args.delta,
