@@ -26,7 +26,8 @@ from andoyer.analysis.pendulum import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
-from andoyer.integrate.engines import default_engine_name
+from andoyer.integrate.engines import default_engine_name, resolve_engine
+from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance, values_from_attrs
 from andoyer.validation import positive as _positive
 
@@ -110,12 +111,10 @@ def _numba_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float,
 
 def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: float,
                   engine: str, rtol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    from andoyer.integrate.engines import get_engine
-
-    eng = get_engine(engine)
-    params = (*body.params, body.phi0)
+    eng = resolve_engine(engine, Capability.PROPAGATE)
     starts = np.concatenate([y0 + step * np.eye(6), y0 - step * np.eye(6), y0[None]])
-    out = eng.propagate(starts, np.array([0.0, T]), params, rtol, rtol)[:, -1, :]
+    out = eng.propagate(starts, np.array([0.0, T]), body.engine_params,
+                        Tolerance.single(rtol))[:, -1, :]
     Phi = (out[:6] - out[6:12]).T / (2.0 * step)  # column j = d y(T) / d y0_j
     return Phi, out[12]
 

@@ -25,7 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
-from andoyer.integrate.engines import default_engine_name
+from andoyer.integrate.engines import default_engine_name, resolve_engine
+from andoyer.integrate.engines.base import SectionEvent, Tolerance
 from andoyer.kernels.constants import T_START
 
 __all__ = [
@@ -312,35 +313,27 @@ def _numba_crossing(body: RigidBody, y0: NDArray[np.float64], kind: str, directi
                     ) -> tuple[NDArray[np.float64], float, NDArray[np.float64] | None]:
     """The first crossing on the Numba DOP853 (backward by time reversal)."""
     from andoyer.errors import IntegrationError
-    from andoyer.integrate.engines import get_engine
-    from andoyer.integrate.tangent import tangent_crossings
-    from andoyer.kernels.generated import EXTRA_SECTION_KINDS, SECTION_KINDS
 
-    index = (SECTION_KINDS + EXTRA_SECTION_KINDS).index("psi" if kind == "psi" else "L")
-    value = psi0 if kind == "psi" else 0.0
-    # Backward: the orbit of R y0 forward; f_psi(R y) = f_psi(y) and f_L(R y) = -f_L(y),
-    # so a psi crossing changes its direction and an L crossing keeps it.
-    z0 = _REVERSAL * y0 if backward else y0
-    d = -direction if (backward and kind == "psi") else direction
+    eng = resolve_engine("numba")
+    event = SectionEvent("psi" if kind == "psi" else "L", psi0 if kind == "psi" else 0.0,
+                         direction)
+    tolerance = Tolerance.single(tol)
     params = body.engine_params
     if stm:
-        c = tangent_crossings(z0, np.eye(6), params, index, value, d, 1, t_max, tol=tol)
+        c = eng.tangent(y0, np.eye(6), params, tolerance, event=event, n_crossings=1,
+                        t_max=t_max, backward=backward, renormalise=False)
         if not c.ok[0]:
             raise IntegrationError("the numba DOP853 met a non-finite state")
         found, tc, z = int(c.count[0]), float(c.t[0, 0]), c.y[0, 0]
         phi: NDArray[np.float64] | None = np.ascontiguousarray(c.w[0, 0].T)
     else:
-        cr = get_engine("numba").crossings(z0[None], params, index, value, d, 1, t_max,
-                                            tol, tol)
+        cr = eng.crossings(y0[None], params, event, 1, t_max, tolerance, backward=backward)
         found, tc, z, phi = int(cr.count[0]), float(cr.t[0, 0]), cr.y[0, 0], None
     if found == 0:
         raise RuntimeError(
             f"no crossing of the {kind!r} section within |t| = {t_max:g}: the orbit left "
             "the neighbourhood it was started in")
-    if not backward:
-        return z, tc, phi
-    R = np.diag(_REVERSAL)
-    return _REVERSAL * z, -tc, (R @ phi @ R if phi is not None else None)
+    return z, tc, phi
 
 
 def _polish(body: RigidBody, kind: str, psi0: float, y: NDArray[np.float64], t: float,

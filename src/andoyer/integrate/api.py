@@ -8,7 +8,6 @@ systems (4) or (16) directly, for comparison with the paper.
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -26,8 +25,14 @@ from andoyer.charts.euler_poisson import (
 from andoyer.charts.hess import from_hess, to_hess
 from andoyer.errors import SingularPassageWarning
 from andoyer.integrate import budget
-from andoyer.integrate.engines import default_engine_name, get_engine
-from andoyer.integrate.engines.base import Crossings, Engine, Params
+from andoyer.integrate.engines import EngineLike, resolve_engine
+from andoyer.integrate.engines.base import (
+    Capability,
+    Crossings,
+    Engine,
+    Params,
+    Tolerance,
+)
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
 from andoyer.notation import coordinates, storage_name
@@ -93,15 +98,10 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson",
 
 
 def check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
-    """``(rtol, atol)`` as floats, or ``ValueError`` naming the one out of range."""
-    for name, v in (("rtol", rtol), ("atol", atol)):
-        if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):
-            raise ValueError(f"{name} must be a finite number, got {v!r}")
-    if not 1e-16 <= rtol <= 1e-3:
-        raise ValueError(f"rtol = {rtol:g} is out of range [1e-16, 1e-3]")
-    if not 0.0 < atol <= 1e-3:
-        raise ValueError(f"atol = {atol:g} is out of range (0, 1e-3]")
-    return float(rtol), float(atol)
+    """``(rtol, atol)`` as floats, or ``ValueError`` naming the one out of range
+    (the one check, :class:`~andoyer.integrate.engines.base.Tolerance`)."""
+    tol = Tolerance(rtol, atol)
+    return tol.rtol, tol.atol
 
 
 def check_times(t: ArrayLike) -> NDArray[np.float64]:
@@ -144,7 +144,7 @@ def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
 
 # ---------------------------------------------------------------------- orbits
 @checks_body
-def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | None = None,
+def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLike = None,
               rtol: float = 1e-12, atol: float = 1e-12, chart: str = "euler_poisson",
               progress: bool | None = None) -> xr.Dataset:
     """Integrate the Euler-Poisson equations (1) from one or many initial states.
@@ -156,8 +156,9 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
         Initial states in ``chart`` coordinates.
     t : array_like, shape (k,)
         Output times, strictly increasing; ``t[0]`` is the initial time.
-    engine : {"heyoka", "numba", "scipy"}, optional
-        Default: heyoka where installed, else numba.
+    engine : str or Engine, optional
+        An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
+        heyoka where installed, else numba.
     rtol, atol : float
         Tolerances (heyoka has a single tolerance: it uses ``min(rtol, atol)``).
     chart : {"euler_poisson", "andoyer", "hess"}
@@ -186,10 +187,11 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
     y = initial_states(body, y0, chart)
     budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
                  memory=_DATASET_BYTES * y.shape[0] * times.size)
-    name = default_engine_name() if engine is None else engine
-    eng = get_engine(name)
+    eng = resolve_engine(engine, Capability.PROPAGATE)
+    name = eng.name
     params = body.engine_params
-    parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, rtol, atol),
+    tolerance = Tolerance(rtol, atol)
+    parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, tolerance),
                         y.shape[0], f"propagate ({name})", progress)
     Y = np.concatenate(parts, axis=0)
     ds = states_dataset(
@@ -202,7 +204,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: str | Non
 
 @checks_body
 def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings: int, *,
-             engine: str | None = None, rtol: float = 1e-12, atol: float = 1e-12,
+             engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,
              t_max: float | None = None, chart: str = "euler_poisson",
              progress: bool | None = None) -> xr.Dataset:
     """Poincare section: the first ``n_crossings`` crossings of ``section`` by each orbit.
@@ -273,8 +275,8 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     budget.check("poincare",
                  steps=0.0 if t_max is None else budget.estimate_steps(body, y, t_end, rtol),
                  memory=_DATASET_BYTES * y.shape[0] * int(n_crossings))
-    name = default_engine_name() if engine is None else engine
-    eng = get_engine(name)
+    eng = resolve_engine(engine, Capability.CROSSINGS)
+    name = eng.name
     params = body.engine_params
     scale = momentum_bound(body, y)
     parts = _run_chunks(
@@ -337,9 +339,9 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
     by ``t_end``, :data:`_MAX_ROUNDS` and a scratch-memory budget.
     """
     m = y.shape[0]
+    event, tolerance = sec.event(), Tolerance(rtol, atol)
     if not sec.is_angle:  # smooth coordinates: every root is a crossing
-        return eng.crossings(y, params, sec.kind, sec.value, sec.direction, n, t_end,
-                             rtol, atol), [[] for _ in range(m)]
+        return eng.crossings(y, params, event, n, t_end, tolerance), [[] for _ in range(m)]
     T = np.full((m, n), np.nan)
     Y = np.full((m, n, 6), np.nan)
     count = np.zeros(m, dtype=np.int64)
@@ -351,8 +353,7 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         # Bound the engine's scratch arrays ((orbits, ask, 7) floats) before the call.
         ask = max(1, min(ask, _MAX_SCRATCH // (56 * max(1, active.size))))
         t0 = float(start_t[active].min())
-        cr = eng.crossings(start_y[active], params, sec.kind, sec.value, sec.direction,
-                           ask, t_end - t0, rtol, atol)
+        cr = eng.crossings(start_y[active], params, event, ask, t_end - t0, tolerance)
         # Classify every root of this round at once (NaN padding replaced by a dummy
         # state, masked out): a Python loop runs over orbits only, never over crossings.
         tt = cr.t + start_t[active][:, None]

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.andoyer_deprit import singular_distances
+from andoyer.integrate.engines.base import SectionEvent
 from andoyer.kernels.generated import SECTION_KINDS
 
 __all__ = ["Section", "SectionPlane", "SECTION_PLANES", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
@@ -128,6 +129,14 @@ class Section:
     def kind(self) -> int:
         """Index of the coordinate in :data:`SECTION_KINDS` (what engines take)."""
         return SECTION_KINDS.index(self.coord)
+
+    def event(self) -> SectionEvent:
+        """What engines take: :class:`~andoyer.integrate.engines.base.SectionEvent`.
+
+        >>> Section.parse("G3=0:-").event()
+        SectionEvent(coord='G3', value=0.0, direction=-1)
+        """
+        return SectionEvent(self.coord, self.value, self.direction)
 
     @property
     def chart(self) -> str:

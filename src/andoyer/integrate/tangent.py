@@ -1,8 +1,7 @@
-"""Orbits with tangent vectors on the numba engine: plain arrays in and out.
+"""Orbits with tangent vectors: plain arrays in and out, on any engine with the capability.
 
-The friendly side of :mod:`andoyer.kernels.tangent` (the variational equations of (1)
-on the Numba DOP853, orbits in parallel): it validates and shapes the arrays, applies
-the engines' tolerance convention and turns a failed orbit into ``ok = False``.
+The friendly side of :meth:`Engine.tangent <andoyer.integrate.engines.base.EngineBase.tangent>`
+(the variational equations of (1), ``k`` vectors renormalised continuously):
 
 * :func:`propagate_tangent` -- states and ``k`` tangent vectors at output times, with
   the log norms and the MEGNO quadratures of the first vector (chaos indicators);
@@ -11,26 +10,31 @@ the engines' tolerance convention and turns a failed orbit into ``ok = False``.
 * :func:`tangent_crossings` -- the crossings of a section with the tangent vectors
   there (the Jacobian of the flow to a section).
 
-Tolerances follow the engines: ``tol`` is the accuracy asked for, and the DOP853
-controller gets ``TOLERANCE_FACTOR * tol`` for both ``rtol`` and ``atol`` (see
-:data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`).
-
-No heyoka anywhere: this is what the chaos indicators, periodic orbits and Floquet
-multipliers run on where heyoka has no wheel.
+The engine is ``"numba"`` by default here (no heyoka needed: what the chaos
+indicators, periodic orbits and Floquet multipliers run on where heyoka has no
+wheel); ``tol`` is the accuracy asked for (:class:`~andoyer.integrate.engines.base.Tolerance`),
+and the DOP853 controller gets ``TOLERANCE_FACTOR * tol``
+(:data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`).
 """
 
 from __future__ import annotations
 
-import math
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.euler_poisson import STATE
 from andoyer.errors import IntegrationError
-from andoyer.integrate.engines.base import TOLERANCE_FACTOR, Params
-from andoyer.validation import integer
+from andoyer.integrate.engines import EngineLike, resolve_engine
+from andoyer.integrate.engines.base import (
+    TOLERANCE_FACTOR,
+    Capability,
+    EngineBase,
+    Params,
+    SectionEvent,
+    Tolerance,
+)
 
 __all__ = [
     "TangentResult",
@@ -77,65 +81,17 @@ class TangentCrossings(NamedTuple):
     ok: NDArray[np.bool_]  # (n,)
 
 
-def _kernels() -> Any:
-    from andoyer.kernels import tangent  # Numba loads here, not at import
-
-    return tangent
-
-
-def _check_params(params: Params) -> NDArray[np.float64]:
-    p = np.ascontiguousarray(params, dtype=np.float64).reshape(-1)
-    if p.shape != (8,):
-        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
-                         f"got {p.size} values")
-    return p
-
-
-def _check_tol(tol: float) -> float:
-    t = float(tol)
-    if not (math.isfinite(t) and 1e-16 <= t <= 1e-3):
-        raise ValueError(f"tol must be in [1e-16, 1e-3], got {tol!r}")
-    return t
-
-
-def _initial(y0: ArrayLike, w0: ArrayLike) -> tuple[NDArray[np.float64], int]:
-    """The packed initial states (layout of kernels.tangent) and ``k``."""
-    Y = np.asarray(y0, dtype=np.float64)
-    W = np.asarray(w0, dtype=np.float64)
-    if Y.ndim == 1:
-        Y = Y[None]
-    if Y.ndim != 2 or Y.shape[1] != _N:
-        raise ValueError(f"y0 must have shape (6,) or (n, 6), got {np.shape(y0)}")
-    if W.ndim == 1:
-        W = W[None]
-    if W.ndim == 2:  # the same vectors for every orbit
-        W = W[None]
-    if W.ndim != 3 or W.shape[2] != _N or W.shape[0] not in (1, Y.shape[0]):
-        raise ValueError(f"w0 must have shape (6,), (k, 6) or (n, k, 6) with n = "
-                         f"{Y.shape[0]} orbits, got {np.shape(w0)}")
-    W = np.broadcast_to(W, (Y.shape[0], W.shape[1], _N))
-    k = W.shape[1]
-    tk = _kernels()
-    if not 1 <= k <= tk.MAX_VECTORS:
-        raise ValueError(f"between 1 and {tk.MAX_VECTORS} tangent vectors per orbit, "
-                         f"got {k}")
-    if not (np.all(np.isfinite(Y)) and np.all(np.isfinite(W))):
-        raise ValueError("y0 and w0 must be finite")
-    norms = np.linalg.norm(W, axis=2)
-    if np.any(norms == 0.0):
-        raise ValueError("w0 contains a zero vector")
-    L = tk.layout(k)
-    z = np.zeros((Y.shape[0], tk.dimension(k)))
-    z[:, L["y"]] = Y
-    z[:, L["u"]] = (W / norms[..., None]).reshape(Y.shape[0], -1)
-    z[:, L["rho"]] = np.log(norms)
-    return z, k
+def _engine(engine: EngineLike, capability: Capability, tolerance_factor: float,
+            max_steps: int) -> EngineBase:
+    return resolve_engine(engine, capability, tolerance_factor=tolerance_factor,
+                          max_steps=max_steps)
 
 
 def propagate_tangent(y0: ArrayLike, w0: ArrayLike, t: ArrayLike, params: Params, *,
                       tol: float = 1e-12, tolerance_factor: float = TOLERANCE_FACTOR,
-                      max_steps: int = MAX_STEPS) -> TangentResult:
-    """Integrate orbits of (1) with ``k`` tangent vectors each (numba, in parallel).
+                      max_steps: int = MAX_STEPS,
+                      engine: EngineLike = "numba") -> TangentResult:
+    """Integrate orbits of (1) with ``k`` tangent vectors each (numba: in parallel).
 
     Parameters
     ----------
@@ -154,6 +110,9 @@ def propagate_tangent(y0: ArrayLike, w0: ArrayLike, t: ArrayLike, params: Params
         See :data:`andoyer.integrate.engines.base.TOLERANCE_FACTOR`.
     max_steps : int
         Accepted steps allowed per orbit.
+    engine : str or Engine, default "numba"
+        Any engine with the ``tangent`` capability (``tolerance_factor`` and
+        ``max_steps`` go to the engines that take them).
 
     Returns
     -------
@@ -172,23 +131,14 @@ def propagate_tangent(y0: ArrayLike, w0: ArrayLike, t: ArrayLike, params: Params
     times = np.ascontiguousarray(t, dtype=np.float64).reshape(-1)
     if times.size < 1 or not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0.0):
         raise ValueError("t must be increasing finite output times")
-    z0, k = _initial(y0, w0)
-    p = _check_params(params)
-    f = float(tolerance_factor) * _check_tol(tol)
-    max_steps = integer("max_steps", max_steps, 1)
-    tk = _kernels()
-    out, info = tk.propagate(z0, times, p, f, f, max_steps)
-    ok = (info[:, 0] == 0) & np.all(np.isfinite(out), axis=(1, 2))
-    out[~ok] = np.nan
-    L = tk.layout(k)
-    n, m = out.shape[:2]
-    return TangentResult(out[..., L["y"]], out[..., L["u"]].reshape(n, m, k, _N),
-                         out[..., L["rho"]], out[..., L["megno_num"]],
-                         out[..., L["megno_int"]], ok)
+    eng = _engine(engine, Capability.TANGENT, tolerance_factor, max_steps)
+    flow = eng.tangent(y0, w0, params, Tolerance.single(tol), t=times)
+    megno = flow.megno if flow.megno is not None else np.full(flow.y.shape[:2] + (2,), np.nan)
+    return TangentResult(flow.y, flow.u, flow.rho, megno[..., 0], megno[..., 1], flow.ok)
 
 
 def fundamental_matrix(y0: ArrayLike, t: ArrayLike, params: Params, *,
-                       tol: float = 1e-12) -> NDArray[np.float64]:
+                       tol: float = 1e-12, engine: EngineLike = "numba") -> NDArray[np.float64]:
     """``Phi(t)[i, j] = d y_i(t) / d y_j(t[0])`` of the flow (1), shape (n, m, 6, 6).
 
     Integrates the six columns of the identity as tangent vectors. Over one period of
@@ -209,7 +159,7 @@ def fundamental_matrix(y0: ArrayLike, t: ArrayLike, params: Params, *,
     >>> Phi.shape, bool(np.allclose(Phi[0, 0], np.eye(6)))
     ((1, 2, 6, 6), True)
     """
-    res = propagate_tangent(y0, np.eye(_N), t, params, tol=tol)
+    res = propagate_tangent(y0, np.eye(_N), t, params, tol=tol, engine=engine)
     if not res.ok.all():
         bad = np.flatnonzero(~res.ok).tolist()
         raise IntegrationError(f"the variational integration failed for orbits {bad}")
@@ -219,12 +169,13 @@ def fundamental_matrix(y0: ArrayLike, t: ArrayLike, params: Params, *,
 def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
                       value: float, direction: int, n_crossings: int, t_max: float, *,
                       tol: float = 1e-12, tolerance_factor: float = TOLERANCE_FACTOR,
-                      max_steps: int = MAX_STEPS) -> TangentCrossings:
+                      max_steps: int = MAX_STEPS,
+                      engine: EngineLike = "numba") -> TangentCrossings:
     """The first crossings after t = 0 of a section, with the tangent vectors there.
 
-    The section is ``SECTION_KINDS[kind] = value`` (:mod:`andoyer.kernels.generated`)
-    crossed in ``direction`` (+1, -1, 0), located as by the numba engine (the same
-    DOP853 and root finding, on the augmented system). ``w`` at a crossing is the
+    The section is ``ALL_KINDS[kind] = value`` (:mod:`andoyer.integrate.engines.base`)
+    crossed in ``direction`` (+1, -1, 0), located as by the engine's ``crossings``
+    (numba: the same DOP853 and root finding, on the augmented system). ``w`` at a crossing is the
     tangent flow at the crossing *time*; the derivative of the flow *to the section*
     adds ``-f (grad s . w) / (grad s . f)``.
 
@@ -238,17 +189,8 @@ def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
     >>> int(c.count[0]), c.w.shape
     (2, (1, 2, 6, 6))
     """
-    z0, k = _initial(y0, w0)
-    p = _check_params(params)
-    f = float(tolerance_factor) * _check_tol(tol)
-    n_crossings = integer("n_crossings", n_crossings, 0)
-    max_steps = integer("max_steps", max_steps, 1)
-    tk = _kernels()
-    tc, zc, count, info = tk.locate_crossings(z0, p, int(kind), float(value),
-                                              int(direction), n_crossings,
-                                              float(t_max), f, f, max_steps)
-    ok = info[:, 0] == 0
-    L = tk.layout(k)
-    n, c = tc.shape
-    w = np.exp(zc[..., L["rho"]])[..., None] * zc[..., L["u"]].reshape(n, c, k, _N)
-    return TangentCrossings(tc, zc[..., L["y"]], w, count, ok)
+    eng = _engine(engine, Capability.TANGENT_CROSSINGS, tolerance_factor, max_steps)
+    flow = eng.tangent(y0, w0, params, Tolerance.single(tol),
+                       event=SectionEvent.from_kind(kind, value, direction),
+                       n_crossings=n_crossings, t_max=t_max)
+    return TangentCrossings(flow.t, flow.y, flow.w, flow.count, flow.ok)

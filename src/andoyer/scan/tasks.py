@@ -39,8 +39,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -207,29 +206,9 @@ def _engine(name: str) -> Engine:
     Cached per process, and heyoka's compiled integrators are pooled per process, so a
     worker compiles (or loads from heyoka's on-disk cache) once and reuses them.
     """
-    if name == "heyoka":
-        from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
+    from andoyer.integrate.engines import resolve_engine
 
-        return HeyokaEngine(n_threads=1)
-    from andoyer.integrate.engines import get_engine
-
-    return get_engine(name)
-
-
-@contextmanager
-def _single_threaded(name: str) -> Iterator[None]:
-    """Numba's parallel loops on one thread (numba's setting is per calling thread)."""
-    if name != "numba":
-        yield
-        return
-    import numba
-
-    old = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(old)
+    return resolve_engine(name, n_threads=1)
 
 
 # ---------------------------------------------------------------------- section
@@ -271,11 +250,10 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
     y0 = initial_states(body, _pick_orbits(fill["y0"].values, n, options["sampling"]))
     m = y0.shape[0]
     t_max = 1000.0 * k if options["t_max"] is None else float(options["t_max"])
-    with _single_threaded(integ.engine):
-        # The friendly layer's crossing rule: singular passages are not crossings.
-        cross, _ = section_crossings(_engine(integ.engine), y0, momentum_bound(body, y0),
-                                     body.engine_params, sec, k, t_max, integ.rtol,
-                                     integ.atol, body)
+    # The friendly layer's crossing rule: singular passages are not crossings.
+    cross, _ = section_crossings(_engine(integ.engine), y0, momentum_bound(body, y0),
+                                 body.engine_params, sec, k, t_max, integ.rtol,
+                                 integ.atol, body)
     T, Y, count, Y0 = (np.full((n, k), np.nan), np.full((n, k, 6), np.nan),
                        np.zeros(n, dtype=np.int64), np.full((n, 6), np.nan))
     T[:m], Y[:m], count[:m], Y0[:m] = cross.t, cross.y, cross.count, y0

@@ -29,6 +29,7 @@ from andoyer import (  # noqa: E402
     to_hess,
 )
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
+from andoyer.integrate.engines.base import ALL_KINDS, SectionEvent, Tolerance  # noqa: E402
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine  # noqa: E402
 from andoyer.kernels.generated import SECTION_KINDS, ep_field, section  # noqa: E402
 
@@ -46,6 +47,9 @@ Y0 = from_andoyer(X0)
 def params(body: RigidBody) -> tuple[float, ...]:
     phi0 = math.atan2(body.e2, body.e1)  # only enters theta sections (needs e3 = 0)
     return (*body.params, phi0)
+
+
+TOL12 = Tolerance(1e-12, 1e-12)
 
 
 def kind(name: str) -> int:
@@ -85,7 +89,8 @@ def engine() -> HeyokaEngine:
 def test_agrees_with_scipy_dop853(name: str, batch_size: int) -> None:
     body = BODIES[name]
     t = np.linspace(0.0, 20.0, 41)
-    got = HeyokaEngine(batch_size=batch_size).propagate(Y0, t, params(body), 1e-13, 1e-13)
+    got = HeyokaEngine(batch_size=batch_size).propagate(Y0, t, params(body),
+                                                        Tolerance.single(1e-13))
     assert got.shape == (len(Y0), t.size, 6)
     for i, y0 in enumerate(Y0):
         ref = scipy_orbit(body, y0, t)
@@ -97,7 +102,7 @@ def test_agrees_with_scipy_dop853(name: str, batch_size: int) -> None:
 def test_integrals_conserved_over_1e3(engine: HeyokaEngine, name: str) -> None:
     body = BODIES[name]
     t = np.linspace(0.0, 1e3, 201)
-    y = engine.propagate(Y0, t, params(body), 1e-12, 1e-12)
+    y = engine.propagate(Y0, t, params(body), TOL12)
     for integral in (lambda y: energy(body, y), area_integral, geometric_integral):
         q = integral(y)
         drift = np.abs(q - q[:, :1]) / np.maximum(np.abs(q[:, :1]), 1.0)
@@ -108,8 +113,8 @@ def test_scalar_and_batch_agree(engine: HeyokaEngine) -> None:
     body = BODIES["general"]
     t = np.linspace(0.0, 50.0, 11)
     y0 = np.concatenate([Y0, Y0[:2]])  # 5 orbits: one full batch of 4 and a padded one
-    scalar = HeyokaEngine(batch_size=1).propagate(y0, t, params(body), 1e-12, 1e-12)
-    batch = HeyokaEngine(batch_size=4).propagate(y0, t, params(body), 1e-12, 1e-12)
+    scalar = HeyokaEngine(batch_size=1).propagate(y0, t, params(body), TOL12)
+    batch = HeyokaEngine(batch_size=4).propagate(y0, t, params(body), TOL12)
     np.testing.assert_allclose(batch, scalar, rtol=0, atol=1e-10)
 
 
@@ -117,18 +122,18 @@ def test_scalar_and_batch_agree(engine: HeyokaEngine) -> None:
 def test_first_output_is_the_initial_state(batch_size: int) -> None:
     t = np.array([0.5, 1.0, 2.0])
     eng = HeyokaEngine(batch_size=batch_size)
-    y = eng.propagate(Y0, t, params(BODIES["paper"]), 1e-12, 1e-12)
+    y = eng.propagate(Y0, t, params(BODIES["paper"]), TOL12)
     np.testing.assert_array_equal(y[:, 0], Y0)
     np.testing.assert_array_equal(eng.propagate(Y0, t[:1], params(BODIES["paper"]),
-                                                1e-12, 1e-12)[:, 0], Y0)
+                                                TOL12)[:, 0], Y0)
 
 
 def test_compiled_integrators_are_reused(engine: HeyokaEngine) -> None:
     t = np.linspace(0.0, 1.0, 3)
-    engine.propagate(Y0[:1], t, params(BODIES["paper"]), 1e-12, 1e-12)
+    engine.propagate(Y0[:1], t, params(BODIES["paper"]), TOL12)
     key = he._Key(1, he._NO_SECTION, 0, 1e-12)
     slots = list(he._POOL[key])
-    engine.propagate(Y0[:1], t, params(BODIES["general"]), 1e-12, 1e-12)
+    engine.propagate(Y0[:1], t, params(BODIES["general"]), TOL12)
     assert he._POOL[key] == slots  # same compiled integrator, new body parameters
 
 
@@ -154,7 +159,7 @@ def test_crossings_on_section_with_direction(name: str, direction: int,
     body = BODIES[name]
     k = kind("G3")
     eng = HeyokaEngine(batch_size=batch_size)
-    c = eng.crossings(Y0, params(body), k, 0.05, direction, 30, 1e4, 1e-12, 1e-12)
+    c = eng.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.05, direction), 30, 1e4, TOL12)
     assert c.t.shape == (len(Y0), 30) and c.y.shape == (len(Y0), 30, 6)
     np.testing.assert_array_equal(c.count, 30)
     assert np.all(np.diff(c.t, axis=1) > 0) and np.all(c.t[:, 0] > 0)
@@ -187,8 +192,9 @@ def test_crossings_match_scipy_events(section_name: str, value: float) -> None:
         t_ref = ref.t_events[0]
         w_ref = np.array([section(k, *ref.sol(t), phi0, value, cv, sv)[1] for t in t_ref])
         t_ref = t_ref[(w_ref > 0) & (t_ref > 0)]
-        c = HeyokaEngine(batch_size=1).crossings(y0[None], params(body), k, value, 1,
-                                                 t_ref.size + 5, t_max, 1e-12, 1e-12)
+        c = HeyokaEngine(batch_size=1).crossings(
+            y0[None], params(body), SectionEvent.from_kind(k, value, 1), t_ref.size + 5,
+            t_max, TOL12)
         assert c.count[0] == t_ref.size
         np.testing.assert_allclose(c.t[0, :t_ref.size], t_ref, rtol=0, atol=1e-8)
 
@@ -199,7 +205,8 @@ def test_crossings_match_scipy_events(section_name: str, value: float) -> None:
 def test_angle_sections_no_spurious_wrap_crossing(section_name: str, value: float) -> None:
     body = BODIES["paper"]  # the Hess chart needs e3 = 0
     k = kind(section_name)
-    c = HeyokaEngine().crossings(Y0, params(body), k, value, 0, 40, 3e3, 1e-12, 1e-12)
+    c = HeyokaEngine().crossings(Y0, params(body), SectionEvent.from_kind(k, value, 0), 40,
+                                 3e3, TOL12)
     assert np.all(c.count > 0)
     y = c.y[~np.isnan(c.t)]
     if section_name == "g":
@@ -223,7 +230,7 @@ def test_batch_lanes_refilled_agree_with_scalar() -> None:
     x = np.column_stack([np.linspace(0.1, 6.0, 9), np.linspace(0.3, 5.0, 9),
                          np.linspace(-0.7, 0.7, 9), np.ones(9), np.linspace(-0.5, 0.4, 9)])
     y0 = from_andoyer(x)
-    args = (params(body), kind("gamma3"), 0.1, 1, 25, 500.0, 1e-12, 1e-12)
+    args = (params(body), SectionEvent("gamma3", 0.1, 1), 25, 500.0, TOL12)
     scalar = HeyokaEngine(batch_size=1, n_threads=2).crossings(y0, *args)
     batch = HeyokaEngine(batch_size=4, n_threads=2).crossings(y0, *args)
     np.testing.assert_array_equal(batch.count, scalar.count)
@@ -234,13 +241,13 @@ def test_batch_lanes_refilled_agree_with_scalar() -> None:
 def test_stops_after_n_crossings_and_pads_with_nan(engine: HeyokaEngine) -> None:
     body = BODIES["paper"]
     k = kind("G3")
-    many = engine.crossings(Y0, params(body), k, 0.0, 1, 12, 1e4, 1e-12, 1e-12)
+    many = engine.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.0, 1), 12, 1e4, TOL12)
     np.testing.assert_array_equal(many.count, 12)
     # between two crossings of each orbit, not on one (a crossing at t_cut itself is a
     # round-off toss-up)
     t_cut = float(np.median(0.5 * (many.t[:, 4] + many.t[:, 5])))
     assert np.min(np.abs(many.t - t_cut)) > 1e-6
-    few = engine.crossings(Y0, params(body), k, 0.0, 1, 12, t_cut, 1e-12, 1e-12)
+    few = engine.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.0, 1), 12, t_cut, TOL12)
     expected = (many.t <= t_cut).sum(axis=1)
     np.testing.assert_array_equal(few.count, expected)
     for i, n in enumerate(few.count):
@@ -251,22 +258,22 @@ def test_stops_after_n_crossings_and_pads_with_nan(engine: HeyokaEngine) -> None
 def test_initial_state_on_the_section_is_not_a_crossing(engine: HeyokaEngine) -> None:
     body = BODIES["paper"]
     y0 = from_andoyer([0.3, 1.1, 0.0, 1.0, -0.4])  # L = G3 = 0
-    c = engine.crossings(y0[None], params(body), kind("G3"), 0.0, 0, 3, 1e3, 1e-12, 1e-12)
+    c = engine.crossings(y0[None], params(body), SectionEvent("G3", 0.0, 0), 3, 1e3, TOL12)
     assert c.t[0, 0] > 1e-3
 
 
 def test_zero_crossings_and_bad_arguments(engine: HeyokaEngine) -> None:
     p = params(BODIES["paper"])
-    c = engine.crossings(Y0, p, kind("G3"), 0.0, 1, 0, 10.0, 1e-12, 1e-12)
+    c = engine.crossings(Y0, p, SectionEvent("G3", 0.0, 1), 0, 10.0, TOL12)
     assert c.t.shape == (3, 0) and c.y.shape == (3, 0, 6) and np.all(c.count == 0)
     with pytest.raises(ValueError, match="kind"):
-        engine.crossings(Y0, p, len(SECTION_KINDS), 0.0, 1, 5, 10.0, 1e-12, 1e-12)
+        engine.crossings(Y0, p, SectionEvent.from_kind(len(ALL_KINDS), 0.0, 1), 5, 10.0, TOL12)
     with pytest.raises(ValueError, match="direction"):
-        engine.crossings(Y0, p, 0, 0.0, 2, 5, 10.0, 1e-12, 1e-12)
+        engine.crossings(Y0, p, SectionEvent.from_kind(0, 0.0, 2), 5, 10.0, TOL12)
     with pytest.raises(ValueError, match="t_max"):
-        engine.crossings(Y0, p, 0, 0.0, 1, 5, -1.0, 1e-12, 1e-12)
+        engine.crossings(Y0, p, SectionEvent.from_kind(0, 0.0, 1), 5, -1.0, TOL12)
     with pytest.raises(ValueError, match="params"):
-        engine.propagate(Y0, np.array([0.0, 1.0]), p[:7], 1e-12, 1e-12)
+        engine.propagate(Y0, np.array([0.0, 1.0]), p[:7], TOL12)
 
 
 @pytest.mark.parametrize("scalar", [False, True])

@@ -2,35 +2,60 @@
 
 ``heyoka`` (Taylor method compiled with LLVM) is the default where it is installed;
 ``numba`` (adaptive DOP853 compiled with Numba) is portable; ``scipy``
-(``solve_ivp(DOP853)``) is kept as an independent check.
+(``solve_ivp(DOP853)``) is kept as an independent check. What each can do is its
+:attr:`~andoyer.integrate.engines.base.EngineBase.capabilities`
+(:func:`capability_table`); callers ask :func:`resolve_engine` for an engine and check
+capabilities, never names.
+
+>>> print(capability_table().splitlines()[0])
+| engine | propagate | crossings | backward | tangent | tangent_crossings | extended_precision |
 """
 
 from __future__ import annotations
 
 import importlib
+import inspect
 from functools import cache
+from typing import Any
 
-from andoyer.integrate.engines.base import Engine
+from andoyer.integrate.engines.base import Capability, EngineBase
 from andoyer.integrate.engines.lazy import heyoka_available
 
-__all__ = ["ENGINES", "get_engine", "available_engines", "default_engine_name"]
+__all__ = ["ENGINES", "get_engine", "resolve_engine", "available_engines",
+           "default_engine_name", "engine_class", "engines_with", "capability_table",
+           "EngineLike"]
 
-#: Engine name -> (module, class).
+#: Engine name -> (module, class). The one list of engines: CLI choices, scan configs and
+#: the contract tests are derived from it.
 ENGINES = {
     "heyoka": ("andoyer.integrate.engines.heyoka_engine", "HeyokaEngine"),
     "numba": ("andoyer.integrate.engines.numba_engine", "NumbaEngine"),
     "scipy": ("andoyer.integrate.engines.scipy_engine", "ScipyEngine"),
 }
 
+#: What public functions accept as ``engine=``: a name, an engine, or None (default).
+EngineLike = str | EngineBase | None
+
+#: Packages an engine needs beyond andoyer's own dependencies.
+_NEEDS = {"heyoka": heyoka_available}
+
+
+def engine_class(name: str) -> type[EngineBase]:
+    """The class registered as ``name`` (importing it does not import heyoka)."""
+    if name not in ENGINES:
+        raise ValueError(f"unknown engine {name!r}; choose one of {', '.join(ENGINES)}")
+    module, cls = ENGINES[name]
+    klass: type[EngineBase] = getattr(importlib.import_module(module), cls)
+    return klass
+
 
 @cache
-def _load(name: str) -> Engine:
-    if name == "heyoka" and not heyoka_available():
+def _load(name: str) -> EngineBase:
+    needs = _NEEDS.get(name)
+    if needs is not None and not needs():
         # The engine module imports heyoka lazily; refuse it here, not at the first step.
-        raise ImportError("heyoka is not installed (it has wheels for Linux only)")
-    module, cls = ENGINES[name]
-    engine: Engine = getattr(importlib.import_module(module), cls)()
-    return engine
+        raise ImportError(f"{name} is not installed (it has wheels for Linux only)")
+    return engine_class(name)()
 
 
 def available_engines() -> list[str]:
@@ -54,7 +79,7 @@ def default_engine_name() -> str:
     return "heyoka"
 
 
-def get_engine(name: str | None = None) -> Engine:
+def get_engine(name: str | None = None) -> EngineBase:
     """The engine called ``name`` (default: :func:`default_engine_name`).
 
     Raises
@@ -63,10 +88,72 @@ def get_engine(name: str | None = None) -> Engine:
         For an unknown name, or an engine whose package is not installed.
     """
     name = default_engine_name() if name is None else name
-    if name not in ENGINES:
+    if not isinstance(name, str) or name not in ENGINES:
         raise ValueError(f"unknown engine {name!r}; choose one of {', '.join(ENGINES)}")
     try:
         return _load(name)
     except ImportError as exc:
         raise ValueError(f"engine {name!r} is not available here ({exc}); "
                          f"available: {', '.join(available_engines())}") from exc
+
+
+def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
+                   **options: Any) -> EngineBase:
+    """The one resolver of ``engine=`` arguments: a name, an engine instance, or None.
+
+    Parameters
+    ----------
+    engine : str, EngineBase or None
+        None: :func:`default_engine_name`.
+    *capabilities : Capability
+        What the caller needs; ``ValueError`` naming the engines that have it otherwise.
+    **options
+        Keyword arguments of the engine's class (``batch_size=``, ``n_threads=`` ...);
+        options that are None are ignored, and an option the engine does not take is
+        ignored too (engine-specific tuning, e.g. heyoka's SIMD batch size for numba).
+        With options, a name gives a new engine so configured.
+
+    Examples
+    --------
+    >>> resolve_engine("numba", Capability.TANGENT).name
+    'numba'
+    """
+    if isinstance(engine, EngineBase):
+        eng = engine
+    elif engine is None or isinstance(engine, str):
+        eng = get_engine(engine)
+        given = {k: v for k, v in options.items() if v is not None}
+        if given:
+            accepted = inspect.signature(type(eng)).parameters
+            kwargs = {k: v for k, v in given.items() if k in accepted}
+            if kwargs:
+                eng = type(eng)(**kwargs)
+    else:
+        raise ValueError(f"engine must be an engine name ({', '.join(ENGINES)}) or an "
+                         f"engine instance, got {engine!r}")
+    for cap in capabilities:
+        if cap not in eng.capabilities:
+            able = ", ".join(engines_with(cap)) or "none"
+            raise ValueError(f"engine {eng.name!r} cannot {cap.value.replace('_', ' ')} "
+                             f"(capability {cap.value!r}); choose one of: {able}")
+    return eng
+
+
+def engines_with(capability: Capability) -> list[str]:
+    """Registered engines (installed or not) that declare ``capability``."""
+    return [name for name in ENGINES if capability in engine_class(name).capabilities]
+
+
+def capability_table() -> str:
+    """The Markdown table "what each engine can do", from the engines' capabilities.
+
+    ``docs/guide.md`` holds this table (a test checks that it is up to date).
+    """
+    caps = list(Capability)
+    lines = ["| engine | " + " | ".join(c.value for c in caps) + " |",
+             "| --- |" + " :-: |" * len(caps)]
+    for name in ENGINES:
+        have = engine_class(name).capabilities
+        lines.append(f"| {name} | " + " | ".join("yes" if c in have else "-" for c in caps)
+                     + " |")
+    return "\n".join(lines)

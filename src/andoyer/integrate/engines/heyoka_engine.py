@@ -93,18 +93,22 @@ import numpy as np
 from numpy.typing import NDArray
 
 from andoyer.errors import IntegrationError
-from andoyer.integrate.engines.base import Crossings, Params
+from andoyer.integrate.engines.base import (
+    Capability,
+    Crossings,
+    EngineBase,
+    SectionEvent,
+    Tolerance,
+)
 from andoyer.integrate.engines.heyoka_symbolic import (
     field_at,
     field_cfunc,
     heyoka_system,
-    par_vector,
     section_cfunc,
     section_exprs,
 )
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.kernels.constants import T_START
-from andoyer.kernels.generated import SECTION_KINDS
 from andoyer.validation import integer
 
 # The expressions (heyoka_system, section functions, PARAMETERS) are built in
@@ -121,11 +125,9 @@ _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
 
 
 def tolerance(rtol: float, atol: float) -> float:
-    """heyoka's single tolerance for the other engines' ``(rtol, atol)``: ``min(rtol, atol)``."""
-    for name, v in (("rtol", rtol), ("atol", atol)):
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-    return float(min(rtol, atol))
+    """heyoka's single tolerance for the other engines' ``(rtol, atol)``: ``min(rtol, atol)``
+    (:attr:`Tolerance.tol <andoyer.integrate.engines.base.Tolerance.tol>`)."""
+    return Tolerance(rtol, atol).tol
 
 
 
@@ -523,7 +525,7 @@ def _run(tasks: Sequence[Callable[[], _T]], n_threads: int) -> list[_T]:
         return list(pool.map(lambda task: task(), tasks))
 
 
-class HeyokaEngine:
+class HeyokaEngine(EngineBase):
     """Taylor integration of the Euler-Poisson equations with heyoka.py.
 
     Parameters
@@ -543,6 +545,8 @@ class HeyokaEngine:
     """
 
     name = "heyoka"
+    capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
+                              Capability.BACKWARD})
 
     def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
         self.batch_size = None if batch_size is None else integer("batch_size", batch_size, 1)
@@ -558,16 +562,10 @@ class HeyokaEngine:
         simd = int(hy.recommended_simd_size())
         return simd if n >= simd else 1
 
-    def propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64], params: Params,
-                  rtol: float, atol: float) -> NDArray[np.float64]:
-        """States at times ``t`` (k,) of the orbits from ``y0`` (n, 6): shape (n, k, 6)."""
-        y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
-        t = np.ascontiguousarray(t, dtype=float).reshape(-1)
-        pars = par_vector(params, 0.0)
-        tol = tolerance(rtol, atol)
+    def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
+                   pars: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        tol = tolerance.tol
         n = y0.shape[0]
-        if n == 0 or t.size == 0:
-            return np.empty((n, t.size, 6))
         m = self._batch(n)
         key = _Key(m, _NO_SECTION, 0, tol)
         if m == 1:
@@ -578,28 +576,14 @@ class HeyokaEngine:
                        for s in range(0, n, m)], self.n_threads)
         return np.concatenate(blocks)
 
-    def crossings(self, y0: NDArray[np.float64], params: Params, kind: int, value: float,
-                  direction: int, n_crossings: int, t_max: float, rtol: float,
-                  atol: float) -> Crossings:
-        """The first ``n_crossings`` crossings of ``SECTION_KINDS[kind] = value`` after t = 0."""
-        if not (0 <= int(kind) < len(SECTION_KINDS)) or int(kind) != kind:
-            raise ValueError(f"kind must be an index into SECTION_KINDS "
-                             f"(0..{len(SECTION_KINDS) - 1}), got {kind!r}")
-        if direction not in (-1, 0, 1):
-            raise ValueError(f"direction must be -1, 0 or +1, got {direction!r}")
-        n_crossings = integer("n_crossings", n_crossings, 0)
-        if not (math.isfinite(t_max) and t_max > 0.0):
-            raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
-        kind, direction = int(kind), int(direction)
-        y0 = np.ascontiguousarray(y0, dtype=float).reshape(-1, 6)
-        pars = par_vector(params, float(value))
-        tol = tolerance(rtol, atol)
+    def _crossings(self, y0: NDArray[np.float64], pars: NDArray[np.float64],
+                   event: SectionEvent, n_crossings: int, t_max: float,
+                   tolerance: Tolerance) -> Crossings:
+        kind, direction, tol = event.kind, event.direction, tolerance.tol
         n = y0.shape[0]
         t_out = np.full((n, n_crossings), np.nan)
         y_out = np.full((n, n_crossings, 6), np.nan)
         count = np.zeros(n, dtype=np.int64)
-        if n == 0 or n_crossings == 0:
-            return Crossings(t_out, y_out, count)
         m = self._batch(n)
         section_cfunc(kind)  # compile once, outside the threads
         field_cfunc()

@@ -3,17 +3,16 @@
 The one SymPy -> heyoka builder: the vector field (1) and every section function are
 taken from :mod:`andoyer.symbolic` and converted with :func:`heyoka.from_sympy`
 (nothing typed by hand); the body and the section enter as runtime parameters
-``par[i]`` in the order of :data:`PARAMETERS`. The heyoka engine, the variational
-equations (:mod:`andoyer.integrate.variational`) and the section maps of
-:mod:`andoyer.analysis` all build their integrators from :func:`heyoka_system`.
+``par[i]`` in the order of :data:`PARAMETERS` (the layout of
+:func:`andoyer.integrate.engines.base.runtime_parameters`, its one owner). Every heyoka
+integrator of the heyoka engine (orbits, sections, tangent flows) is built from
+:func:`heyoka_system`.
 heyoka is imported at first use (:mod:`andoyer.integrate.engines.lazy`).
 """
 
 from __future__ import annotations
 
-import math
 import threading
-from collections.abc import Sequence
 from functools import cache
 from typing import Any
 
@@ -21,12 +20,13 @@ import numpy as np
 import sympy as sp
 from numpy.typing import NDArray
 
+from andoyer.integrate.engines.base import ALL_KINDS, PAR
+from andoyer.integrate.engines.base import PARAMETERS as PARAMETER_NAMES
 from andoyer.integrate.engines.lazy import heyoka as hy
-from andoyer.kernels.generated import SECTION_KINDS
 from andoyer.symbolic.hamiltonian import S, euler_poisson_field
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
-__all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "par_vector", "heyoka_state_vars",
+__all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "INV_SCALE", "par", "heyoka_state_vars",
            "symbol_map", "taylor_form", "heyoka_system", "section_exprs", "section_cfunc",
            "field_cfunc", "field_at"]
 
@@ -34,23 +34,20 @@ __all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "par_vector", "heyoka_state_var
 #: heyoka would expand ``cos(par)``, ``sin(par)`` by their Taylor recursions at every step
 #: (measured on the theta2 = 0 event: 392 -> 315 ns per lane-step, 8 lanes).
 COS_PHI0, SIN_PHI0 = sp.symbols("cos_phi0 sin_phi0", real=True)
-#: Runtime parameters ``par[0..12]`` of every compiled integrator, in this order.
-PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):], COS_PHI0, SIN_PHI0)
+#: ``1/T``: the scale of the MEGNO quadratures of the tangent flows.
+INV_SCALE = sp.Symbol("inv_scale", positive=True)
+#: The runtime parameters as SymPy symbols, in the order of
+#: :data:`andoyer.integrate.engines.base.PARAMETERS` (checked at import).
+PARAMETERS: tuple[sp.Symbol, ...] = (*S.body, *SECTION_ARGS[len(S.y):], COS_PHI0, SIN_PHI0,
+                                     INV_SCALE)
+if tuple(map(str, PARAMETERS)) != PARAMETER_NAMES:
+    raise RuntimeError(f"heyoka parameters {PARAMETERS} differ from the engines' layout "
+                       f"{PARAMETER_NAMES}")
 
 
-def par_vector(params: Sequence[float], value: float = 0.0) -> NDArray[np.float64]:
-    """The runtime parameters :data:`PARAMETERS` of a body (``params``, the engines'
-    ``(a, b, c, mu, e1, e2, e3, phi0)``) and a section value.
-
-    >>> par_vector((0.4, 0.5, 0.5, 0.01, 1.0, 0.0, 0.0, 0.0), 0.0)[-5:].tolist()
-    [0.0, 1.0, 0.0, 1.0, 0.0]
-    """
-    if len(params) != 8:
-        raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
-                         f"got {len(params)} values")
-    phi0 = float(params[7])
-    return np.array([*map(float, params), value, math.cos(value), math.sin(value),
-                     math.cos(phi0), math.sin(phi0)])
+def par(name: str) -> Any:
+    """heyoka's runtime parameter called ``name`` (:data:`~andoyer.integrate.engines.base.PAR`)."""
+    return hy.par[PAR[name]]
 
 
 
@@ -137,7 +134,7 @@ def section_exprs(kind: int) -> tuple[Any, Any, Any]:
     smap = symbol_map()
     trig = {sp.cos(S.phi0): COS_PHI0, sp.sin(S.phi0): SIN_PHI0}
     f, w = (hy.from_sympy(sp.sympify(e).subs(trig), smap)
-            for e in section_function(SECTION_KINDS[kind]))
+            for e in section_function(ALL_KINDS[kind]))
     fdot = hy.sum([hy.diff(f, x) * rhs for x, rhs in heyoka_system()])
     return f, w, fdot
 
