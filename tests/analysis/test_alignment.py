@@ -21,6 +21,8 @@ import pytest
 from andoyer import RigidBody, from_andoyer
 from andoyer.analysis.alignment import alignment_indices, gali, initial_tangents, sali
 from andoyer.analysis.chaos import initial_tangent
+from andoyer.integrate.engines import engines_with
+from andoyer.integrate.engines.base import Capability
 
 PAPER = RigidBody.paper()
 TORUS = [0.3, 0.0, 0.3, 1.0, 0.0]  # Andoyer-Deprit: a torus of the paper's body
@@ -117,10 +119,12 @@ def test_gali_decays_exponentially_and_sali_vanishes_on_a_chaotic_orbit() -> Non
     assert lam[600] > 0.03
 
 
-def test_dataset_and_input_checks() -> None:
-    ds = alignment_indices(PAPER, TORUS, 10.0, chart="andoyer", k=3, n_times=5)
+@pytest.mark.parametrize("engine", engines_with(Capability.TANGENT))
+def test_dataset_and_input_checks(engine: str) -> None:
+    ds = alignment_indices(PAPER, TORUS, 10.0, chart="andoyer", k=3, n_times=5,
+                           engine=engine)
     assert ds.gali.dims == ("orbit", "time") and ds.log_norm.dims == ("orbit", "time", "vector")
-    assert ds.attrs["engine"] == "numba" and ds.attrs["k"] == 3
+    assert ds.attrs["engine"] == engine and ds.attrs["k"] == 3
     assert ds.gali.attrs["symbol"] == "GALI_3"
     assert float(abs(ds.H_drift).max()) < 1e-12
     with pytest.raises(ValueError, match="k must be an integer from 2 to 4"):

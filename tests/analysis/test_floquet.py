@@ -26,6 +26,7 @@ from andoyer.analysis.floquet import (
 )
 from andoyer.analysis.pendulum import IN_PLANE, TRANSVERSE, pendulum_state
 from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.engines.base import Capability, EngineBase
 
 PAPER = RigidBody.paper()
 PLAIN = RigidBody(2.5, 2.0, 2.2, 0.01, (1.0, 0.0, 0.0))     # e3 = 0, not Hess
@@ -86,5 +87,15 @@ def test_scan_records_the_engine_and_engines_are_checked() -> None:
     assert "Numba" in ds.attrs["method"]
     assert float(ds.abs_multiplier[-1]) == pytest.approx(ds.attrs["hess_rotation_multiplier"],
                                                          rel=1e-10)
+    # An engine without tangent flows is refused, naming those that have them (scipy has
+    # had them since the engines' tangent capability: it is checked against the others
+    # by the engine contract tests).
     with pytest.raises(ValueError, match="engine must be 'heyoka' or 'numba'"):
-        monodromy(PAPER, pendulum_state(PAPER, 1.0, 0.5), 1.0, engine="scipy")
+        monodromy(PAPER, pendulum_state(PAPER, 1.0, 0.5), 1.0, engine=_OrbitsOnly())
+
+
+class _OrbitsOnly(EngineBase):
+    """An engine with orbits and crossings only (no tangent flows)."""
+
+    name = "orbits-only"
+    capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS})

@@ -29,6 +29,7 @@ from andoyer.analysis.periodic import (
     section_state,
 )
 from andoyer.charts.euler_poisson import area_integral, energy
+from andoyer.integrate import engines
 from andoyer.integrate.api import propagate
 
 STATE = ["G1", "G2", "G3", "gamma1", "gamma2", "gamma3"]
@@ -91,9 +92,8 @@ def test_section_jacobian_matches_finite_differences(engine, monkeypatch):
     """DP from the variational equations + event sensitivity vs central differences (on
     the default engine, and on numba as where heyoka is missing)."""
     if engine == "numba":
-        from andoyer.analysis import section_map
 
-        monkeypatch.setattr(section_map, "default_engine_name", lambda: "numba")
+        monkeypatch.setattr(engines, "default_engine_name", lambda: "numba")
     h = rotation_energy(GENERAL)
     sec = RotationSection(0.4, -1)
     x0 = np.array([0.01, 0.15])

@@ -22,7 +22,6 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis import section_map
 from andoyer.analysis.periodic import (
     RotationSection,
     flow_to_section,
@@ -32,6 +31,7 @@ from andoyer.analysis.periodic import (
 )
 from andoyer.analysis.section_map import section_state
 from andoyer.dynamics import vector_field
+from andoyer.integrate import engines
 from andoyer.integrate.tangent import propagate_tangent
 
 #: No symmetry, centre of mass off the principal planes, z still the middle axis.
@@ -41,7 +41,7 @@ GENERAL = RigidBody(2.5, 2.0, 2.2, 0.05, (0.3, 0.5, 0.8), "general")
 @pytest.fixture
 def numba_default(monkeypatch: pytest.MonkeyPatch) -> None:
     """The section map as where heyoka is missing."""
-    monkeypatch.setattr(section_map, "default_engine_name", lambda: "numba")
+    monkeypatch.setattr(engines, "default_engine_name", lambda: "numba")
 
 
 @pytest.mark.parametrize("mu", [0.0, 0.1])
@@ -111,7 +111,7 @@ def test_periodic_orbit_and_splitting_agree_with_heyoka(
     body = RigidBody.hess(2.5, 1.0, 1.6, name="rho~1")
     out = {}
     for engine in ("heyoka", "numba"):
-        monkeypatch.setattr(section_map, "default_engine_name", lambda e=engine: e)
+        monkeypatch.setattr(engines, "default_engine_name", lambda e=engine: e)
         orb = rotation_orbit(GENERAL, rotation_energy(GENERAL), -0.3, RotationSection(0.4, 1))
         out[engine] = (orb, separatrix_splitting(body, [0.01], n_phase=8)["splitting"])
     (oa, sa), (ob, sb) = out["heyoka"], out["numba"]

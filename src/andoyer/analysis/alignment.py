@@ -28,9 +28,10 @@ start in the leaf's 4-dimensional tangent space, which the linearised flow keeps
   ``N < k <= 2N``: ``GALI_3 ~ t^-2``, ``GALI_4 ~ t^-4``. SALI, like GALI_2, stays of
   order one. (``t^-2`` is the law of GALI_2 only for ``N = 1``.)
 
-The vectors are integrated with the state on the Numba DOP853
-(:func:`andoyer.integrate.tangent.propagate_tangent`: variational equations generated
-by SymPy, each vector renormalised continuously), so no heyoka is needed.
+The vectors are integrated with the state by any engine with the ``tangent``
+capability (:meth:`EngineBase.tangent <andoyer.integrate.engines.base.EngineBase.tangent>`:
+the variational equations, each vector renormalised continuously): heyoka's Taylor
+method where installed, else the Numba DOP853 (no heyoka needed).
 
 References
 ----------
@@ -57,8 +58,9 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
+from andoyer.integrate.engines import EngineLike, resolve_engine
+from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance
-from andoyer.integrate.tangent import propagate_tangent
 
 __all__ = ["sali", "gali", "initial_tangents", "alignment_indices", "MAX_K"]
 
@@ -168,8 +170,8 @@ def initial_tangents(body: RigidBody, y: ArrayLike, k: int,
 def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
                       k: int = 2, n_times: int = 101, t: ArrayLike | None = None,
                       chart: str = "euler_poisson", tangent: Tangent = "leaf",
-                      tol: float = 1e-12) -> xr.Dataset:
-    """SALI and GALI_k of orbits as functions of time (numba, no heyoka needed).
+                      tol: float = 1e-12, engine: EngineLike = None) -> xr.Dataset:
+    """SALI and GALI_k of orbits as functions of time, on any engine with tangent flows.
 
     Parameters
     ----------
@@ -189,7 +191,10 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
     tangent : {"leaf", "energy"}
         Space of the initial vectors (see :func:`initial_tangents`).
     tol : float, default 1e-12
-        Accuracy asked for (DOP853 gets ``0.025 tol``).
+        Accuracy asked for (DOP853 gets ``0.025 tol``; heyoka's Taylor tolerance).
+    engine : str or Engine, optional
+        Any engine with the ``tangent`` capability; default heyoka where installed,
+        else numba (no heyoka needed).
 
     Returns
     -------
@@ -212,6 +217,8 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
     True
     """
     k = _check_k(k, tangent)
+    eng = resolve_engine(engine, Capability.TANGENT)
+    tolerance = Tolerance.single(tol)
     y = initial_states(body, y0, chart)
     times = output_times(t_end, n_times, t)
     T = float(times[-1])
@@ -219,7 +226,7 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
                  steps=(1.0 + k) * budget.estimate_steps(body, y, T, tol),
                  memory=8.0 * (6 + 7 * k + 2) * y.shape[0] * times.size)
     W0 = initial_tangents(body, y, k, tangent)
-    res = propagate_tangent(y, W0, times, body.engine_params, tol=tol)
+    res = eng.tangent(y, W0, body.engine_params, tolerance, t=times, scale=T)
     if not res.ok.all():
         bad = np.flatnonzero(~res.ok).tolist()
         raise IntegrationError(f"the variational integration failed (non-finite state) "
@@ -238,17 +245,17 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
     }
     for i, s in enumerate(STATE):
         data[s] = (("orbit", "time"), res.y[..., i])
-    import numba
-
+    meta = eng.provenance()
+    built = meta.pop("tangent_method")
     ds = xr.Dataset(
         data, coords={"orbit": np.arange(y.shape[0]), "time": times,
                       "vector": np.arange(1, k + 1), "component": list(STATE)},
         attrs=provenance(
-            body, engine="numba", tolerance=tol, numba_version=numba.__version__, t_end=T,
-            k=k, tangent=tangent, initial_chart=chart,
+            body, **meta, tolerance=tol, t_end=T, k=k, tangent=tangent,
+            initial_chart=chart,
             equations="Euler-Poisson equations (1) of Kyrychenko with k deviation vectors "
-                      "of their variational equations (the Jacobian of (1) derived by "
-                      "SymPy, Numba DOP853), each renormalised continuously"))
+                      f"of their variational equations ({built}), each renormalised "
+                      "continuously"))
     ds.sali.attrs.update(long_name="smaller alignment index of w1, w2", symbol="SALI",
                          units="1", definition="min(|u1 + u2|, |u1 - u2|), u = w/|w| "
                                                "(Skokos 2001)")

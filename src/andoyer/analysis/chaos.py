@@ -69,8 +69,8 @@ from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
-from andoyer.integrate.engines import default_engine_name
-from andoyer.integrate.engines.lazy import heyoka as hy
+from andoyer.integrate.engines import ENGINES, EngineLike, engines_with, resolve_engine
+from andoyer.integrate.engines.base import Capability, EngineBase, TangentFlow, Tolerance
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import (
     VARIABLE_ATTRS,
@@ -78,12 +78,7 @@ from andoyer.integrate.results import (
     provenance,
     values_from_attrs,
 )
-from andoyer.integrate.variational import (
-    ENGINES,
-    MEGNO_DELTA,
-    VARIATIONAL_STATE,
-    propagate_variational,
-)
+from andoyer.integrate.variational import MEGNO_DELTA
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
 from andoyer.validation import integer, positive, real_array
@@ -106,7 +101,6 @@ _GENERIC = np.array([[1.0, math.sqrt(2), math.sqrt(3), math.sqrt(5), math.sqrt(7
                      [math.sqrt(13), -math.sqrt(3), math.sqrt(2), -1.0, math.sqrt(5),
                       -math.sqrt(7)]])
 _MIN_PROJECTION = 0.05
-_IX = {name: i for i, name in enumerate(VARIATIONAL_STATE)}
 
 _ATTRS: dict[str, dict[str, str]] = {
     "fli": {"long_name": "fast Lyapunov indicator sup_s ln|w(s)| (sup over output times)",
@@ -243,28 +237,19 @@ def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float
 # ----------------------------------------------------------------------------- helpers
 
 
-def _check_engine(engine: str | None) -> Any:
-    """The engine's name; ``None``: heyoka where installed, else numba."""
-    name = default_engine_name() if engine is None else engine
-    if name not in ENGINES:
-        raise ValueError(f"engine {name!r} cannot integrate the variational equations; "
-                         f"choose one of {', '.join(ENGINES)}")
-    return name
+def _engine(engine: EngineLike, **options: Any) -> EngineBase:
+    """The engine (name or instance; ``None``: heyoka where installed, else numba)."""
+    if isinstance(engine, str) and engine not in ENGINES:
+        raise ValueError(f"engine {engine!r} cannot integrate the variational equations; "
+                         f"choose one of {', '.join(engines_with(Capability.TANGENT))}")
+    return resolve_engine(engine, Capability.TANGENT, **options)
 
 
-def _check_tol(tol: Any) -> float:
-    t = positive("tol", tol)
-    if not 1e-16 <= t <= 1e-3:
-        raise ValueError(f"tol = {t:g} is out of range [1e-16, 1e-3]")
-    return t
-
-
-def _derived(x: NDArray[np.float64], t: NDArray[np.float64], scale: float
-             ) -> dict[str, NDArray[np.float64]]:
-    """Indicators from the integrated variables ``x`` (..., k, 15) at times ``t`` (k,)."""
-    rho = x[..., _IX["log_norm"]] * scale
-    num = x[..., _IX["megno_num"]] * scale**2
-    integral = x[..., _IX["megno_int"]] * scale**2
+def _derived(flow: TangentFlow, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+    """Indicators from a tangent flow (one vector) at times ``t`` (k,)."""
+    assert flow.megno is not None
+    rho = flow.rho[..., 0]
+    num, integral = flow.megno[..., 0], flow.megno[..., 1]
     with np.errstate(divide="ignore", invalid="ignore"):
         y = np.where(t > 0.0, 2.0 * (num - MEGNO_DELTA * rho) / t, 0.0)
         mle = np.where(t > 0.0, rho / t, np.nan)
@@ -322,10 +307,11 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
         A direction to project onto that space instead of the fixed generic vector.
     tol : float, default 1e-12
         Tolerance of the Taylor integrator (DOP853 gets ``0.025 tol``).
-    engine : {"heyoka", "numba", "scipy"}, optional
-        Default: heyoka where installed, else numba (the Numba DOP853, orbits in
-        parallel). ``"scipy"``: ``solve_ivp(DOP853)`` on the same equations, one orbit
-        at a time (a slow independent check; needs heyoka for the right-hand side).
+    engine : str or Engine, optional
+        Any engine with the ``tangent`` capability (:func:`andoyer.integrate.engines.
+        capability_table`). Default: heyoka where installed, else numba (the Numba
+        DOP853, orbits in parallel). ``"scipy"``: ``solve_ivp(DOP853)`` on the same
+        equations, one orbit at a time (a slow independent check).
 
     Returns
     -------
@@ -347,30 +333,30 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
     >>> bool(1.5 < float(ds.megno.isel(orbit=0, time=-1)) < 2.0)
     True
     """
-    name = _check_engine(engine)
-    tol = _check_tol(tol)
+    eng = _engine(engine)
+    tol = Tolerance.single(tol).tol
     y = initial_states(body, y0, chart)
     times = output_times(t_end, n_times, t)
     T = float(times[-1])
     budget.check("indicators", steps=3.0 * budget.estimate_steps(body, y, T, tol),
                  memory=8.0 * 20 * y.shape[0] * times.size)
     w = initial_tangent(body, y, tangent, w0)
-    res = propagate_variational(y, w, times, body.engine_params, tol=tol, scale=T, engine=name)
-    if not res.ok.all():
-        bad = np.flatnonzero(~res.ok).tolist()
+    flow = eng.tangent(y, w[:, None, :], body.engine_params, Tolerance.single(tol), t=times,
+                       scale=T)
+    if not flow.ok.all():
+        bad = np.flatnonzero(~flow.ok).tolist()
         raise IntegrationError(f"the variational integration failed (non-finite state) "
                                  f"for orbits {bad}")
-    data: dict[str, Any] = {k: (("orbit", "time"), v)
-                            for k, v in _derived(res.x, times, T).items()}
+    data: dict[str, Any] = {k: (("orbit", "time"), v) for k, v in _derived(flow, times).items()}
     for k, s in enumerate(STATE):
-        data[s] = (("orbit", "time"), res.x[..., k])
-    H = energy(body, res.x[..., :len(STATE)])
+        data[s] = (("orbit", "time"), flow.y[..., k])
+    H = energy(body, flow.y)
     scale = np.maximum(np.abs(H[:, :1]), body.mu)
     data["H_drift"] = (("orbit", "time"), (H - H[:, :1]) / np.where(scale > 0, scale, 1.0))
     data["w0"] = (("orbit", "component"), w)
     ds = xr.Dataset(data, coords={"orbit": np.arange(y.shape[0]), "time": times,
                                   "component": list(STATE)},
-                    attrs=_provenance(body, name, tol, tangent, T, initial_chart=chart))
+                    attrs=_provenance(body, eng, tol, tangent, T, initial_chart=chart))
     _describe(ds)
     ds.H_drift.attrs.update(long_name="(H - H(0)) / max(|H(0)|, mu)", units="1")
     ds.w0.attrs.update(long_name="initial unit tangent vector")
@@ -378,19 +364,12 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
     return ds
 
 
-def _provenance(body: RigidBody, engine: str, tol: float, tangent: str, T: float,
+def _provenance(body: RigidBody, engine: EngineBase, tol: float, tangent: str, T: float,
                 **extra: Any) -> dict[str, Any]:
-    if engine == "numba":
-        import numba
-
-        versions = {"numba_version": numba.__version__}
-        built = "the Jacobian of (1) derived by SymPy, Numba DOP853"
-    else:
-        versions = {"heyoka_version": hy.__version__}
-        built = "heyoka var_ode_sys"
+    meta = engine.provenance()
+    built = meta.pop("tangent_method")
     return provenance(
-        body, engine=engine, tolerance=tol, **versions, t_end=T,
-        tangent=tangent, megno_delta=MEGNO_DELTA,
+        body, **meta, tolerance=tol, t_end=T, tangent=tangent, megno_delta=MEGNO_DELTA,
         equations="Euler-Poisson equations (1) of Kyrychenko with their first-order "
                   f"variational equations ({built}), unit tangent vector "
                   "w/|w| and ln|w| integrated (continuous renormalisation)",
@@ -448,9 +427,10 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         Integration time of every orbit.
     indicator : {"fli", "megno", "both"}
         Which indicator(s) the dataset holds (one integration gives both).
-    engine : {"heyoka", "numba", "scipy"}, optional
-        Default: heyoka (batch mode and threads) where installed, else numba (orbits in
-        parallel); scipy is one orbit at a time, for checks.
+    engine : str or Engine, optional
+        Any engine with the ``tangent`` capability. Default: heyoka (batch mode and
+        threads) where installed, else numba (orbits in parallel); scipy is one orbit
+        at a time, for checks.
     chunk : int, default 1024
         Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
         doubles; the progress line advances per chunk.
@@ -496,7 +476,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     >>> ds.fli.dims, int(ds.accessible.sum()) > 0
     (('J1', 'theta1'), True)
     """
-    name = _check_engine(engine)
+    eng = _engine(engine, batch_size=batch_size, n_threads=n_threads)
     h = float(h)
     M = float(M)
     nx, ny = _grid_size(n)
@@ -509,7 +489,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         raise ValueError(f"unknown root choice {root!r}; choose 'largest' or 'smallest'")
     chunk = integer("chunk", chunk, 1)
     n_samples = integer("n_samples", n_samples, 1)
-    tol = _check_tol(tol)
+    tol = Tolerance.single(tol).tol
     # The plane, its box and the accessible boundary; raises if h misses the section.
     fill = fill_section(body, h, M, section, n_orbits=1, plane_bounds=plane_bounds,
                         boundary_grid=min(200, max(64, 2 * max(nx, ny))))
@@ -544,10 +524,10 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     # plain steps per step.
     budget.check("chaos_map", steps=3.0 * budget.estimate_steps(body, states, T, tol))
     params = body.engine_params
-    if batch_size is None and name == "heyoka":
-        # One batch size for the whole map, so that the chunking cannot change round-off.
-        simd = int(hy.recommended_simd_size())
-        batch_size = simd if idx.size >= simd else 1
+    # One set-up for the whole map (heyoka: one batch size), so that the chunking
+    # cannot change round-off.
+    eng = eng.for_ensemble(idx.size)
+    name = eng.name
 
     out = {k: np.full(ny * nx, np.nan) for k in ("fli", "megno", "mle", "H_error")}
     n_failed = 0
@@ -556,15 +536,14 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         sel = idx[s:s + chunk]
         y = states[s:s + chunk]
         w = initial_tangent(body, y, tangent)
-        res = propagate_variational(y, w, times, params, tol=tol, scale=T, engine=name,
-                                    batch_size=batch_size, n_threads=n_threads)
-        d = _derived(res.x, times, T)
+        flow = eng.tangent(y, w[:, None, :], params, Tolerance.single(tol), t=times, scale=T)
+        d = _derived(flow, times)
         out["fli"][sel] = d["fli"][:, -1]
         out["megno"][sel] = d["megno"][:, -1]
         out["mle"][sel] = d["mle"][:, -1]
-        out["H_error"][sel] = (np.abs(energy(body, res.x[:, -1, :len(STATE)]) - h)
+        out["H_error"][sel] = (np.abs(energy(body, flow.y[:, -1]) - h)
                                / (max(abs(h), body.mu) or 1.0))
-        n_failed += int(np.sum(~res.ok))
+        n_failed += int(np.sum(~flow.ok))
         bar.update(sel.size)
     bar.close()
 
@@ -581,7 +560,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
         coords={xname: (xname, xs, {**_coord_attrs(xname), "grid": "cell centres"}),
                 yname: (yname, ys, {**_coord_attrs(yname), "grid": "cell centres"})},
         attrs=_provenance(
-            body, name, tol, tangent, T, h=h, M=M, section_coord=str(a["section_coord"]),
+            body, eng, tol, tangent, T, h=h, M=M, section_coord=str(a["section_coord"]),
             section_value=value, section_chart=chart, plane_x=xname, plane_y=yname,
             action=action, root=root, indicator=indicator, nx=nx, ny=ny,
             n_samples=n_samples, n_accessible=int(idx.size), n_failed=n_failed,

@@ -7,8 +7,6 @@ Floquet multipliers; see the 'Stability' notes of :mod:`andoyer.analysis.pendulu
 from __future__ import annotations
 
 import math
-import threading
-from functools import cache
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -26,13 +24,14 @@ from andoyer.analysis.pendulum import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
-from andoyer.integrate.engines import default_engine_name, resolve_engine
+from andoyer.errors import IntegrationError
+from andoyer.integrate.engines import EngineLike, resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance, values_from_attrs
 from andoyer.validation import positive as _positive
 
 __all__ = [
-    "NUMBA_TOL", "Floquet", "Monodromy", "floquet_multipliers", "floquet_scan",
+    "Floquet", "Monodromy", "floquet_multipliers", "floquet_scan",
     "hess_rotation_multiplier", "monodromy", "physical_pendulum_monodromy",
 ]
 
@@ -60,57 +59,24 @@ class Monodromy(NamedTuple):
     method: str
 
 
-_VAR_LOCK = threading.Lock()
-
-#: Smallest tolerance the numba variational route is given: DOP853 in double precision
-#: cannot resolve less (its controller gets 0.025 tol). Measured against heyoka at
-#: tol = 1e-15 on the paper body's pendulum orbits (h/mu = 0.5, 5, 20): the monodromy
-#: matrices agree to 8e-13 (entries up to 54), 6e-14, 8e-15.
-NUMBA_TOL = 1e-13
-
-
-@cache
-def _variational_integrator_cached(tol: float) -> Any:
-    from andoyer.integrate.engines.heyoka_symbolic import heyoka_system
-    from andoyer.integrate.engines.lazy import heyoka as hy
-
-    # The one SymPy -> heyoka builder; heyoka derives the variational equations.
-    vsys = hy.var_ode_sys(list(heyoka_system()), hy.var_args.vars, order=1)
-    # compact_mode: the 42 equations compile in about a second instead of ten.
-    return hy.taylor_adaptive(vsys, [0.0] * 6, tol=tol, compact_mode=True)
-
-
-def _variational_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float,
-                           tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    from andoyer.integrate.engines.lazy import heyoka as hy
-
-    with _VAR_LOCK:
-        ta = _variational_integrator_cached(tol)
-        ta.time = 0.0
-        ta.state[:6] = y0
-        ta.state[ta.get_vslice(order=1)] = np.eye(6).ravel()  # row-major d y_i / d y0_j
-        ta.pars[:] = body.params
-        outcome = ta.propagate_until(T)[0]
-        if outcome != hy.taylor_outcome.time_limit:
-            raise FloatingPointError(f"heyoka stopped with outcome {outcome!r}")
-        return (np.array(ta.state[ta.get_vslice(order=1)]).reshape(6, 6),
-                np.array(ta.state[:6]))
-
-
-def _numba_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float,
-                     tol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    from andoyer.errors import IntegrationError
-    from andoyer.integrate.tangent import propagate_tangent
-
-    res = propagate_tangent(y0, np.eye(6), np.array([0.0, T]), body.engine_params,
-                            tol=max(tol, NUMBA_TOL))
-    if not res.ok[0]:
-        raise IntegrationError("the variational integration failed (non-finite state)")
-    return np.ascontiguousarray(res.w[0, -1].T), res.y[0, -1]
+def _variational_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, tol: float,
+                           engine: EngineLike) -> tuple[NDArray[np.float64],
+                                                        NDArray[np.float64], str]:
+    """``Phi(T)`` from the engine's tangent flow of the six unit vectors (not
+    renormalised: one period), at the finest tolerance it honours."""
+    eng = resolve_engine(engine, Capability.TANGENT)
+    flow = eng.tangent(y0, np.eye(6), body.engine_params,
+                       eng.attainable(Tolerance.single(tol)), t=np.array([0.0, T]),
+                       renormalise=False)
+    if not flow.ok[0]:
+        raise IntegrationError(f"the variational integration on {eng.name} failed "
+                               "(non-finite state)")
+    return np.ascontiguousarray(flow.w[0, -1].T), flow.y[0, -1], eng.name
 
 
 def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: float,
-                  engine: str, rtol: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+                  engine: EngineLike, rtol: float
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     eng = resolve_engine(engine, Capability.PROPAGATE)
     starts = np.concatenate([y0 + step * np.eye(6), y0 - step * np.eye(6), y0[None]])
     out = eng.propagate(starts, np.array([0.0, T]), body.engine_params,
@@ -122,7 +88,7 @@ def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: floa
 @checks_body
 def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variational",
               tol: float = 1e-15, step: float = 1e-6,
-              engine: str | None = None) -> Monodromy:
+              engine: EngineLike = None) -> Monodromy:
     """Monodromy matrix of the Euler-Poisson flow (1) over ``[0, T]`` from ``y0``.
 
     Parameters
@@ -133,16 +99,18 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
     T : float
         Its period (> 0).
     method : {"variational", "finite_difference"}
-        ``"variational"``: the first-order variational equations: heyoka's
-        (``heyoka.var_ode_sys``, Taylor tolerance ``tol``) or, for ``engine="numba"``,
-        the Numba DOP853 on the Jacobian generated by SymPy (tolerance
-        ``max(tol, NUMBA_TOL)``). ``"finite_difference"``:
+        ``"variational"``: the first-order variational equations of the engine's
+        tangent flow (heyoka: ``heyoka.var_ode_sys``, Taylor tolerance ``tol``; numba:
+        the DOP853 on the Jacobian generated by SymPy, at the finest tolerance it
+        honours, :meth:`~andoyer.integrate.engines.base.EngineBase.attainable`).
+        ``"finite_difference"``:
         central differences ``(y_T(y0 + step e_j) - y_T(y0 - step e_j)) / (2 step)``
         with the compiled DOP853 of ``engine`` at ``rtol = atol = tol`` (use a loose
         ``tol`` such as 1e-13: the error is about ``step^2 |D^3 y_T| + tol / step``).
-    engine : {"heyoka", "numba"}, optional
-        For ``"variational"``: default heyoka where installed, else numba. For
-        ``"finite_difference"``: the engine of the flow map (default numba).
+    engine : str or Engine, optional
+        For ``"variational"``: an engine with the ``tangent`` capability, default
+        heyoka where installed, else numba. For ``"finite_difference"``: the engine of
+        the flow map (default numba).
 
     Returns
     -------
@@ -157,14 +125,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
         raise ValueError("T must be finite (a separatrix has no period)")
     tol = _positive("tol", tol)
     if method == "variational":
-        name = default_engine_name() if engine is None else engine
-        if name == "heyoka":
-            Phi, yT = _variational_monodromy(body, y, T, tol)
-        elif name == "numba":
-            Phi, yT = _numba_monodromy(body, y, T, tol)
-        else:
-            raise ValueError(f"engine must be 'heyoka' or 'numba' for the variational "
-                             f"monodromy, got {engine!r}")
+        Phi, yT, _ = _variational_monodromy(body, y, T, tol, engine)
     elif method == "finite_difference":
         Phi, yT = _fd_monodromy(body, y, T, _positive("step", step), engine or "numba",
                                 max(tol, 1e-14))
@@ -176,7 +137,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
 @checks_body
 def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "variational",
                                 tol: float = 1e-15, step: float = 1e-6,
-                                engine: str | None = None) -> Monodromy:
+                                engine: EngineLike = None) -> Monodromy:
     """Monodromy of the physical-pendulum orbit of energy ``h`` over one period.
 
     The orbit starts at the bottom, ``vartheta = 3 pi / 2`` (``gamma = -r``), with
@@ -216,7 +177,7 @@ def _leaf_basis(y: NDArray[np.float64]) -> NDArray[np.float64]:
 @checks_body
 def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational",
                         tol: float = 1e-15, parabolic_tol: float = 1e-6,
-                        engine: str | None = None) -> Floquet:
+                        engine: EngineLike = None) -> Floquet:
     """Floquet multipliers of the physical-pendulum orbit of energy ``h`` in the full system.
 
     The six multipliers are ``1, 1, 1`` (in-plane: flow, energy, ``|gamma|^2``), ``1``
@@ -269,7 +230,7 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
 @checks_body
 def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
                  tol: float = 1e-15, parabolic_tol: float = 1e-6,
-                 engine: str | None = None) -> xr.Dataset:
+                 engine: EngineLike = None) -> xr.Dataset:
     """Floquet multipliers of the physical-pendulum orbits over a range of energies.
 
     Parameters
@@ -341,9 +302,8 @@ def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
         coords={"H": energies, "pair": ["lambda", "1/lambda"], "row": list(STATE),
                 "col": list(STATE)})
     if method == "variational":
-        name = default_engine_name() if engine is None else engine
-        how = ("heyoka variational equations (var_ode_sys)" if name == "heyoka" else
-               "variational equations (Jacobian derived by SymPy) on the Numba DOP853")
+        eng = resolve_engine(engine, Capability.TANGENT)
+        how = f"{eng.name} variational equations ({eng.tangent_method})"
     else:
         how = "central finite differences of the flow map"
     attrs = provenance(

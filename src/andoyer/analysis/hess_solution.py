@@ -477,7 +477,7 @@ def _solution_m0(body: RigidBody, theta2_0: float, J2_0: float, psi0: float,
 def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: float,
                 tau: NDArray[np.float64], rtol: float, atol: float
                 ) -> dict[str, NDArray[np.float64]]:
-    from andoyer.integrate.engines.scipy_engine import solve_dop853
+    from andoyer.integrate.engines.ivp import solve_dop853
 
     c, mu = body.c, body.mu
     h = float(reduced_hamiltonian(body, theta2_0, J2_0, M))

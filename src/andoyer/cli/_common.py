@@ -9,6 +9,7 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
+from andoyer.integrate.engines import ENGINES
 from andoyer.notation import VOCABULARY
 from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
@@ -240,7 +241,7 @@ def _body(args: argparse.Namespace) -> Any:
 def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> None:
     """``--engine`` and, where the integration has the mixed criterion, ``--rtol``,
     ``--atol``."""
-    add_term(p, "engine", choices=("heyoka", "numba", "scipy"), default=None,
+    add_term(p, "engine", choices=tuple(ENGINES), default=None,
              help="integration engine (default: heyoka where installed, else numba)")
     if tolerances:
         add_term(p, "rtol", type=real(positive=True), default=1e-12,

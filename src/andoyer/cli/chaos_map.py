@@ -13,6 +13,7 @@ from andoyer.cli._common import (
     output_file,
     real,
 )
+from andoyer.integrate.engines import ENGINES
 from andoyer.validation import integer
 
 NAME = "chaos-map"
@@ -40,7 +41,6 @@ def run(args: argparse.Namespace) -> int:
 
     matplotlib.use("Agg")
     from andoyer.analysis.chaos import chaos_map
-    from andoyer.integrate.engines import default_engine_name
     from andoyer.integrate.variational import warm_up
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_chaos_map
@@ -53,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
         from andoyer.integrate.fill import default_h
 
         args.h = default_h(body, args.M)
-    if args.engine == "heyoka" or (args.engine is None and default_engine_name() == "heyoka"):
-        source, seconds = warm_up(tol=args.tol)
+    source, seconds = warm_up(tol=args.tol, engine=args.engine)
+    if source != "ready":  # an engine that compiles per setting (heyoka)
         print(f"variational integrator: {source} in {seconds:.2f} s")
     t0 = time.perf_counter()
     ds = chaos_map(body, args.h, args.M, args.section, n=grid,
@@ -93,9 +93,10 @@ def register(sub: Any) -> None:
                    help="integration time of every orbit (default 1000)")
     p.add_argument("--indicator", choices=("fli", "megno", "both"), default="fli",
                    help="indicator to store and draw (default fli)")
-    p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
-                   help="integrator of the variational equations (default heyoka where "
-                        "installed, else numba; scipy is a slow independent check)")
+    p.add_argument("--engine", choices=tuple(ENGINES), default=None,
+                   help="integrator of the variational equations, an engine with the "
+                        "'tangent' capability (default heyoka where installed, else numba; "
+                        "scipy is a slow independent check)")
     p.add_argument("--tol", type=real(positive=True), default=1e-12,
                    help="tolerance (default 1e-12)")
     p.add_argument("--root", choices=("largest", "smallest"), default="largest",

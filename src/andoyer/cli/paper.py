@@ -6,6 +6,7 @@ import argparse
 from typing import Any
 
 from andoyer.cli._common import count
+from andoyer.integrate.engines import ENGINES
 
 NAME = "paper"
 ORDER = 10
@@ -29,7 +30,7 @@ def register(sub: Any) -> None:
                                   "check into a folder with an index.html (the main job)")
     p.add_argument("--out", default=DEFAULT_OUT,
                    help=f"output folder (default: {DEFAULT_OUT})")
-    p.add_argument("--engine", choices=("heyoka", "numba", "scipy"), default=None,
+    p.add_argument("--engine", choices=tuple(ENGINES), default=None,
                    help="integration engine (default: heyoka where installed, else numba)")
     p.add_argument("--quick", action="store_true",
                    help="smaller grids and shorter runs (a smoke test, not the figures)")

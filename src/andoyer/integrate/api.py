@@ -426,7 +426,7 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
         ``theta3``) by quadrature, from 0 at ``t[0]``.
     """
     from andoyer.dynamics import CHARTS, canonical_field
-    from andoyer.integrate.engines.scipy_engine import solve_dop853
+    from andoyer.integrate.engines.ivp import solve_dop853
 
     if chart not in ("andoyer", "hess"):
         raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")

@@ -41,7 +41,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.charts.hess import as_hess, from_hess
 from andoyer.integrate.api import check_times, check_tolerances
-from andoyer.integrate.engines.scipy_engine import solve_dop853
+from andoyer.integrate.engines.ivp import solve_dop853
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.kernels.numba import ep_field
 from andoyer.validation import real_array

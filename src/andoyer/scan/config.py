@@ -76,7 +76,6 @@ References
 from __future__ import annotations
 
 import difflib
-import importlib.util
 import itertools
 import json
 import math
@@ -92,6 +91,8 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from andoyer.body import RigidBody
+from andoyer.integrate.engines import ENGINES, installed
+from andoyer.integrate.engines.base import Tolerance
 from andoyer.notation import TERMS
 from andoyer.scan.tasks import REQUIRED, TASKS, Integrator
 from andoyer.validation import integer
@@ -133,7 +134,6 @@ CONFIG_FORMAT = 1
 
 _SECTIONS = ("body", "parameters", "task", "integrator", "store")
 _BODY_KEYS = {"hess": ("kind", "name", "branch"), "general": ("kind", "name", "r")}
-_ENGINES = ("heyoka", "numba", "scipy")
 
 Value = float | tuple[float, ...]
 
@@ -455,17 +455,18 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
         from andoyer.integrate.engines import default_engine_name
 
         engine = default_engine_name()
-    if engine not in _ENGINES:
+    if engine not in ENGINES:
         raise ValueError(f"{where}: [integrator] engine must be one of "
-                         f"{', '.join(_ENGINES)}, got {engine!r}")
-    if importlib.util.find_spec("numba" if engine == "numba" else str(engine)) is None:
+                         f"{', '.join(ENGINES)}, got {engine!r}")
+    if not installed(str(engine)):
         raise ValueError(f"{where}: [integrator] engine {engine!r} is not installed here; "
                          "choose another engine")
     rtol = _number(f"{where}: [integrator] rtol", itab.get("rtol", 1e-12))
     atol = _number(f"{where}: [integrator] atol", itab.get("atol", 1e-12))
-    if not (1e-16 <= rtol <= 1e-3 and 0 < atol <= 1e-3):
-        raise ValueError(f"{where}: [integrator] need 1e-16 <= rtol <= 1e-3 and "
-                         f"0 < atol <= 1e-3, got rtol = {rtol:g}, atol = {atol:g}")
+    try:
+        Tolerance(rtol, atol)
+    except ValueError as exc:
+        raise ValueError(f"{where}: [integrator] {exc}") from None
 
     # [store]
     stab = _table(data, "store", where)

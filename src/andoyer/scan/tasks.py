@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import cache
@@ -212,6 +213,9 @@ def _engine(name: str) -> Engine:
 
 
 # ---------------------------------------------------------------------- section
+#: Variables of :func:`~andoyer.integrate.poincare` a scan does not store (per-orbit
+#: diagnostics of singular passages, with a dimension of their own).
+_POINCARE_ONLY = ("momentum_scale", "singular_passages", "singular_passage_t")
 
 
 def _pick_orbits(y0: np.ndarray, n: int, sampling: str) -> np.ndarray:
@@ -228,15 +232,14 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
                    integ: Integrator) -> xr.Dataset | Empty:
     """Poincare section at ``(h, M)``: dims ``(orbit, crossing)``, NaN-padded.
 
-    The same numbers as ``poincare(body, fill_section(...)["y0"], section, n_crossings)``
-    (tested); the engine is called directly to run it single-threaded.
+    :func:`~andoyer.integrate.poincare` of the rows of
+    :func:`~andoyer.integrate.fill_section`, on this worker's single-threaded engine;
+    its singular passages (no crossings) are not stored.
     """
-    from andoyer.charts.euler_poisson import momentum_bound
-    from andoyer.integrate.api import initial_states, section_crossings
+    from andoyer.errors import SingularPassageWarning
+    from andoyer.integrate.api import poincare
     from andoyer.integrate.fill import fill_section
-    from andoyer.integrate.results import states_dataset
     from andoyer.integrate.section import Section
-    from andoyer.notation import storage_name
 
     sec = Section.parse(options["section"])
     n, k = int(options["n_orbits"]), int(options["n_crossings"])
@@ -246,24 +249,16 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
                             boundary_grid=options["boundary_grid"])
     except ValueError as exc:  # the level misses the section, or no admissible point
         return Empty(str(exc))
-    # As poincare() does: |gamma| = 1 to the last bit (the geometric integral's level).
-    y0 = initial_states(body, _pick_orbits(fill["y0"].values, n, options["sampling"]))
+    y0 = _pick_orbits(fill["y0"].values, n, options["sampling"])
     m = y0.shape[0]
     t_max = 1000.0 * k if options["t_max"] is None else float(options["t_max"])
-    # The friendly layer's crossing rule: singular passages are not crossings.
-    cross, _ = section_crossings(_engine(integ.engine), y0, momentum_bound(body, y0),
-                                 body.engine_params, sec, k, t_max, integ.rtol,
-                                 integ.atol, body)
-    T, Y, count, Y0 = (np.full((n, k), np.nan), np.full((n, k, 6), np.nan),
-                       np.zeros(n, dtype=np.int64), np.full((n, 6), np.nan))
-    T[:m], Y[:m], count[:m], Y0[:m] = cross.t, cross.y, cross.count, y0
-    ds = states_dataset(body, Y, ("orbit", "crossing"),
-                        {"orbit": np.arange(n), "crossing": np.arange(k)}, {},
-                        extra={"t": (("orbit", "crossing"), T),
-                               "crossings_found": (("orbit",), count),
-                               "y0": (("orbit", "component"), Y0)})
-    var = ds[storage_name(sec.coord)]
-    ds["section_residual"] = np.sin(var - sec.value) if sec.is_angle else var - sec.value
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SingularPassageWarning)
+        sec_ds = poincare(body, y0, sec, k, engine=_engine(integ.engine), rtol=integ.rtol,
+                          atol=integ.atol, t_max=t_max, progress=False)
+    keep = [v for v in sec_ds.data_vars if v not in _POINCARE_ONLY]
+    ds = sec_ds[keep].reindex(orbit=np.arange(n), fill_value={"crossings_found": 0})
+    ds.attrs = {}
     ds["n_orbits"] = ((), np.int64(m))
     ds.t.attrs.update(long_name="time of the crossing", units="body time units")
     ds.y0.attrs.update(long_name="initial Euler-Poisson state of the orbit, seeded on "
@@ -376,12 +371,14 @@ def _splitting_cost(options: Mapping[str, Any]) -> tuple[float, float]:
 
 def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
                       integ: Integrator) -> None:
-    from andoyer.analysis.section_map import FLOW_ENGINES
+    from andoyer.integrate.engines import engine_class, engines_with
+    from andoyer.integrate.engines.base import Capability
 
-    if integ.engine not in FLOW_ENGINES:
-        raise ValueError(f"the splitting task grows the manifolds with heyoka or numba; set "
-                         f"[integrator] engine = \"heyoka\" or \"numba\" (got "
-                         f"{integ.engine!r})")
+    able = engines_with(Capability.TANGENT_CROSSINGS)
+    if Capability.TANGENT_CROSSINGS not in engine_class(integ.engine).capabilities:
+        raise ValueError(f"the splitting task grows the manifolds with {' or '.join(able)} "
+                         f"(tangent flows to a section); set [integrator] engine = "
+                         f"\"{able[0]}\" (got {integ.engine!r})")
     for b in bodies:
         try:
             b.nearest_hess()

@@ -14,6 +14,7 @@ capabilities, never names.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import inspect
 from functools import cache
 from typing import Any
@@ -23,7 +24,7 @@ from andoyer.integrate.engines.lazy import heyoka_available
 
 __all__ = ["ENGINES", "get_engine", "resolve_engine", "available_engines",
            "default_engine_name", "engine_class", "engines_with", "capability_table",
-           "EngineLike"]
+           "EngineLike", "PACKAGES", "installed"]
 
 #: Engine name -> (module, class). The one list of engines: CLI choices, scan configs and
 #: the contract tests are derived from it.
@@ -36,8 +37,18 @@ ENGINES = {
 #: What public functions accept as ``engine=``: a name, an engine, or None (default).
 EngineLike = str | EngineBase | None
 
-#: Packages an engine needs beyond andoyer's own dependencies.
-_NEEDS = {"heyoka": heyoka_available}
+#: The package each engine runs on (checked without importing it).
+PACKAGES = {"heyoka": "heyoka", "numba": "numba", "scipy": "scipy"}
+
+
+def installed(name: str) -> bool:
+    """Whether the package engine ``name`` runs on is installed (nothing is imported)."""
+    if name not in ENGINES:
+        raise ValueError(f"unknown engine {name!r}; choose one of {', '.join(ENGINES)}")
+    package = PACKAGES.get(name)
+    if package == "heyoka":
+        return heyoka_available()
+    return package is None or importlib.util.find_spec(package) is not None
 
 
 def engine_class(name: str) -> type[EngineBase]:
@@ -51,10 +62,9 @@ def engine_class(name: str) -> type[EngineBase]:
 
 @cache
 def _load(name: str) -> EngineBase:
-    needs = _NEEDS.get(name)
-    if needs is not None and not needs():
+    if not installed(name):
         # The engine module imports heyoka lazily; refuse it here, not at the first step.
-        raise ImportError(f"{name} is not installed (it has wheels for Linux only)")
+        raise ImportError(f"{PACKAGES[name]} is not installed")
     return engine_class(name)()
 
 
@@ -133,9 +143,9 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
                          f"engine instance, got {engine!r}")
     for cap in capabilities:
         if cap not in eng.capabilities:
-            able = ", ".join(engines_with(cap)) or "none"
-            raise ValueError(f"engine {eng.name!r} cannot {cap.value.replace('_', ' ')} "
-                             f"(capability {cap.value!r}); choose one of: {able}")
+            able = " or ".join(repr(name) for name in engines_with(cap)) or "(none)"
+            raise ValueError(f"engine must be {able} to {cap.description} (capability "
+                             f"{cap.value!r}), got {eng.name!r}")
     return eng
 
 

@@ -24,19 +24,21 @@ and knows nothing of datasets, charts or bodies.
     ``TANGENT_CROSSINGS`` needs :meth:`~EngineBase._tangent_crossings`,
     ``EXTENDED_PRECISION`` means ``extended_precision=True`` is honoured by
     :meth:`~EngineBase._tangent_crossings`. ``BACKWARD`` is given to every engine by
-    the base class (time reversal, below); an engine with a native backward flow sets
-    ``native_backward = True`` and receives negative times itself.
+    the base class (time reversal, below); an engine with a native backward flow names
+    the methods that take negative times in ``native_backward`` (e.g.
+    ``frozenset({"tangent_crossings"})``) and receives them itself.
 ``_propagate(y0, t, par, tolerance)``
     ``y0`` (n, 6) finite, ``t`` (m,) strictly monotonic with ``t[0]`` the initial time
-    (increasing unless ``native_backward``: then decreasing too), ``par`` the runtime parameters
+    (increasing; decreasing too if ``"propagate"`` is ``native_backward``), ``par``
+    the runtime parameters
     (:func:`runtime_parameters`), ``tolerance`` a :class:`Tolerance`. Returns the
     states (n, m, 6); ``[:, 0]`` must equal ``y0``.
 ``_crossings(y0, par, event, n_crossings, t_max, tolerance)``
     The first ``n_crossings`` roots after ``t = T_START`` (:mod:`andoyer.kernels.constants`)
     of the section function ``f`` of ``event`` (a :class:`SectionEvent`) in its
     direction with margin ``w > 0``, integrating at most to ``t_max > 0``; each root
-    located so that ``|f| <= 1e-12`` (relative to the scale of f). With
-    ``native_backward`` it also receives ``t_max < 0`` (a backward flow: roots at
+    located so that ``|f| <= 1e-12`` (relative to the scale of f). If ``"crossings"``
+    is ``native_backward`` it also receives ``t_max < 0`` (a backward flow: roots at
     ``t < -T_START``, ``event.direction`` in physical time). Returns
     :class:`Crossings` (NaN-padded beyond ``count``).
 ``_tangent(y0, w0, t, par, tolerance, renormalise, scale)`` (for ``TANGENT``)
@@ -147,6 +149,21 @@ class Capability(enum.Enum):
 
     def __str__(self) -> str:
         return self.value
+
+    @property
+    def description(self) -> str:
+        """What the capability lets an engine do, as a verb phrase."""
+        return _DESCRIPTIONS[self]
+
+
+_DESCRIPTIONS = {
+    Capability.PROPAGATE: "propagate orbits",
+    Capability.CROSSINGS: "find section crossings",
+    Capability.BACKWARD: "integrate backward in time",
+    Capability.TANGENT: "integrate tangent vectors",
+    Capability.TANGENT_CROSSINGS: "find section crossings with tangent vectors",
+    Capability.EXTENDED_PRECISION: "integrate in extended precision",
+}
 
 
 # ----------------------------------------------------------------------------- values
@@ -402,8 +419,15 @@ class EngineBase:
 
     name: ClassVar[str] = ""
     capabilities: ClassVar[frozenset[Capability]] = frozenset()
-    #: True if ``_propagate`` / ``_crossings`` / ``_tangent*`` accept negative times.
-    native_backward: ClassVar[bool] = False
+    #: How the engine builds its tangent flows (for datasets' provenance).
+    tangent_method: ClassVar[str] = ""
+    #: The finest accuracy the engine honours (:meth:`attainable`); a DOP853 in double
+    #: precision cannot resolve a local error below its ``TOLERANCE_FACTOR * tol``.
+    min_tolerance: ClassVar[float] = 0.0
+    #: The methods (``"propagate"``, ``"crossings"``, ``"tangent"``,
+    #: ``"tangent_crossings"``) whose ``_`` implementation runs backward itself; the
+    #: others are run backward by time reversal.
+    native_backward: ClassVar[frozenset[str]] = frozenset()
 
     # -- what subclasses implement ------------------------------------------------
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
@@ -426,6 +450,40 @@ class EngineBase:
                            extended_precision: bool) -> TangentFlow:
         raise NotImplementedError
 
+    def warm_up(self, capability: Capability, tolerance: Tolerance, *, n: int = 1,
+                k: int = 1) -> tuple[str, float]:
+        """Prepare the code of ``capability`` for ``n`` orbits with ``k`` tangent vectors
+        before a timed or progress-bar run: ``(source, seconds)``. Engines that compile
+        per setting override it; the default has nothing to do (``"ready"``)."""
+        self.require(capability)
+        return "ready", 0.0
+
+    def attainable(self, tolerance: Tolerance) -> Tolerance:
+        """``tolerance`` raised to :attr:`min_tolerance`: what methods that ask for the
+        finest accuracy (``tol = 1e-15`` for periodic orbits, Floquet) give an engine.
+
+        >>> from andoyer.integrate.engines import engine_class
+        >>> engine_class("numba")().attainable(Tolerance.single(1e-15))
+        Tolerance(rtol=1e-13, atol=1e-13)
+        """
+        floor = self.min_tolerance
+        if tolerance.rtol >= floor and tolerance.atol >= floor:
+            return tolerance
+        return Tolerance(max(tolerance.rtol, floor), max(tolerance.atol, floor))
+
+    def clear_memory_cache(self) -> None:
+        """Forget code compiled in this process (engines with caches override it)."""
+
+    def provenance(self) -> dict[str, str]:
+        """What a dataset records of the engine: its name, the versions of the packages
+        it runs on, and how it builds tangent flows (:attr:`tangent_method`)."""
+        return {"engine": self.name, **self.versions(),
+                "tangent_method": self.tangent_method}
+
+    def versions(self) -> dict[str, str]:
+        """``{"<package>_version": version}`` of what the engine runs on."""
+        return {}
+
     def for_ensemble(self, n: int) -> EngineBase:
         """This engine set up for batches of ``n`` orbits at a time (the same for every
         batch, so that how orbits are split into chunks cannot change round-off)."""
@@ -437,8 +495,8 @@ class EngineBase:
         if capability not in self.capabilities:
             able = ", ".join(sorted(_engines_with(capability))) or "none"
             raise NotImplementedError(
-                f"engine {self.name!r} cannot {what or capability.value} (capability "
-                f"{capability.value!r}); engines that can: {able}")
+                f"engine {self.name!r} cannot {what or capability.description} "
+                f"(capability {capability.value!r}); engines that can: {able}")
 
     def propagate(self, y0: ArrayLike, t: ArrayLike, params: ArrayLike,
                   tolerance: Tolerance) -> NDArray[np.float64]:
@@ -454,7 +512,7 @@ class EngineBase:
             return np.empty((y.shape[0], times.size, 6))
         par = runtime_parameters(params)
         step = np.diff(times)
-        if np.all(step >= 0.0) or self.native_backward:
+        if np.all(step >= 0.0) or "propagate" in self.native_backward:
             return self._propagate(y, times, par, tol)
         if not np.all(step <= 0.0):
             raise ValueError("t must be monotonic (increasing, or decreasing backward)")
@@ -481,7 +539,7 @@ class EngineBase:
         if not backward:
             return self._crossings(y, par, ev, n_crossings, t_max, tol)
         self.require(Capability.BACKWARD, "find crossings backward")
-        if self.native_backward:
+        if "crossings" in self.native_backward:
             return self._crossings(y, par, ev, n_crossings, -t_max, tol)
         back = ev.reversed()
         cr = self._crossings(REVERSAL * y, runtime_parameters(params, back), back,
@@ -555,7 +613,7 @@ class EngineBase:
             return self._tangent_crossings(y, W, runtime_parameters(params, ev), ev,
                                            n_crossings, t_max, tol, bool(extended_precision))
         self.require(Capability.BACKWARD, "find crossings backward")
-        if self.native_backward:
+        if "tangent_crossings" in self.native_backward:
             return self._tangent_crossings(y, W, runtime_parameters(params, ev), ev,
                                            n_crossings, -t_max, tol,
                                            bool(extended_precision))
@@ -579,7 +637,7 @@ class EngineBase:
         if T == 0.0 and scale is None:
             T = 1.0
         par = runtime_parameters(params, None, T)
-        if forward or self.native_backward:
+        if forward or "tangent" in self.native_backward:
             return self._tangent(y, W, times, par, tol, renormalise, T)
         self.require(Capability.BACKWARD, "integrate tangent vectors backward")
         flow = self._tangent(REVERSAL * y, REVERSAL * W, 2.0 * times[0] - times, par, tol,

@@ -93,11 +93,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from andoyer.errors import IntegrationError
+from andoyer.integrate.engines import heyoka_tangent
 from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
     EngineBase,
     SectionEvent,
+    TangentFlow,
     Tolerance,
 )
 from andoyer.integrate.engines.heyoka_symbolic import (
@@ -545,13 +547,20 @@ class HeyokaEngine(EngineBase):
     """
 
     name = "heyoka"
-    capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
-                              Capability.BACKWARD})
+    tangent_method = "heyoka var_ode_sys"
+    capabilities = frozenset(Capability)  # everything, extended precision included
+    native_backward = frozenset({"tangent_crossings"})
 
     def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
         self.batch_size = None if batch_size is None else integer("batch_size", batch_size, 1)
         self.n_threads = (integer("n_threads", n_threads, 1) if n_threads is not None
                           else (os.cpu_count() or 1))
+
+    def versions(self) -> dict[str, str]:
+        return {"heyoka_version": str(hy.__version__)}
+
+    def clear_memory_cache(self) -> None:
+        heyoka_tangent.clear_memory_cache()
 
     def __repr__(self) -> str:
         return f"HeyokaEngine(batch_size={self.batch_size}, n_threads={self.n_threads})"
@@ -561,6 +570,39 @@ class HeyokaEngine(EngineBase):
             return self.batch_size
         simd = int(hy.recommended_simd_size())
         return simd if n >= simd else 1
+
+    def for_ensemble(self, n: int) -> HeyokaEngine:
+        """This engine with the batch size of ``n`` orbits fixed, so that chunks of fewer
+        orbits (the last one) run in the same SIMD code (the same round-off)."""
+        if self.batch_size is not None:
+            return self
+        return HeyokaEngine(batch_size=self._batch(n), n_threads=self.n_threads)
+
+    def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
+                 t: NDArray[np.float64], pars: NDArray[np.float64], tolerance: Tolerance,
+                 renormalise: bool, scale: float) -> TangentFlow:
+        """Renormalised: the SIMD/threaded system of :mod:`.heyoka_tangent`; else the
+        fundamental matrix (``var_ode_sys``, compact mode), orbit by orbit."""
+        if not renormalise:
+            return heyoka_tangent.matrix_flow(y0, w0, t, pars, tolerance.tol)
+        return heyoka_tangent.renormalised_flow(y0, w0, t, pars, tolerance.tol, scale,
+                                                self._batch(y0.shape[0]), self.n_threads)
+
+    def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
+                           pars: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           t_max: float, tolerance: Tolerance,
+                           extended_precision: bool) -> TangentFlow:
+        """The fundamental matrix stopped by a terminal event, in double or extended
+        precision, forward or (``t_max < 0``) backward."""
+        return heyoka_tangent.matrix_crossings(y0, w0, pars, event, n_crossings, t_max,
+                                               tolerance.tol, extended_precision)
+
+    def warm_up(self, capability: Capability, tolerance: Tolerance, *, n: int = 1,
+                k: int = 1) -> tuple[str, float]:
+        """Compile (or load) the integrator of a tangent flow of ``n`` orbits now."""
+        if capability is not Capability.TANGENT:
+            return super().warm_up(capability, tolerance, n=n, k=k)
+        return heyoka_tangent.warm_up(batch_size=self._batch(n), tol=tolerance.tol, k=k)
 
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
                    pars: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:

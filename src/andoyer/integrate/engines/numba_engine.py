@@ -128,6 +128,10 @@ class NumbaEngine(EngineBase):
     """
 
     name = "numba"
+    tangent_method = "the Jacobian of (1) derived by SymPy, Numba DOP853"
+    #: Measured against heyoka at tol = 1e-15 on the paper body's pendulum orbits (h/mu =
+    #: 0.5, 5, 20): monodromy matrices agree to 8e-13 (entries up to 54), 6e-14, 8e-15.
+    min_tolerance = 1e-13
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
                               Capability.BACKWARD, Capability.TANGENT,
                               Capability.TANGENT_CROSSINGS})
@@ -139,6 +143,11 @@ class NumbaEngine(EngineBase):
         self.chunksize = integer("chunksize", chunksize, 0)
         self.tolerance_factor = check_tolerance_factor(tolerance_factor)
         self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1)
+
+    def versions(self) -> dict[str, str]:
+        import numba
+
+        return {"numba_version": str(numba.__version__)}
 
     def __repr__(self) -> str:
         return (f"NumbaEngine(max_steps={self.max_steps}, chunksize={self.chunksize}, "
