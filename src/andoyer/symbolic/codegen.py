@@ -22,7 +22,7 @@ from andoyer.atomic import atomic_path
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 
-__all__ = ["KERNELS", "generate_source", "write_generated", "GENERATED_PATH"]
+__all__ = ["KERNELS", "generate_source", "write_generated", "GENERATED_PATH", "NumbaPrinter"]
 
 GENERATED_PATH = Path(__file__).resolve().parent.parent / "kernels" / "generated.py"
 
@@ -49,7 +49,7 @@ KERNELS: dict[str, tuple[tuple[sp.Symbol, ...], Callable[[], Sequence[sp.Expr]],
 }
 
 
-class _Printer(NumPyPrinter):
+class NumbaPrinter(NumPyPrinter):
     """NumPy printer whose output also compiles in Numba ``nopython`` mode."""
 
     def __init__(self) -> None:
@@ -62,7 +62,7 @@ class _Printer(NumPyPrinter):
 
 def _function_source(name: str, args: Sequence[sp.Symbol], exprs: Sequence[sp.Expr],
                      doc: str) -> str:
-    printer = _Printer()
+    printer = NumbaPrinter()
     replacements, reduced = sp.cse(list(exprs), symbols=sp.numbered_symbols("x"),
                                    optimizations="basic")
     lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
@@ -79,7 +79,7 @@ def _function_source(name: str, args: Sequence[sp.Symbol], exprs: Sequence[sp.Ex
 
 def _section_source() -> str:
     """One dispatch function ``section(kind, *SECTION_ARGS) -> (f, w)`` over all kinds."""
-    printer = _Printer()
+    printer = NumbaPrinter()
     public = [*sec.SMOOTH, *sec.ANGLES]
     kinds = [*public, *sec.EXTRA_ANGLES]
     args = ", ".join(str(a) for a in sec.SECTION_ARGS)

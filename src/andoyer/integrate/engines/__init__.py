@@ -1,7 +1,9 @@
 """Integration engines behind one seam (:mod:`andoyer.integrate.engines.base`).
 
 ``heyoka`` (Taylor method compiled with LLVM) is the default where it is installed;
-``numba`` (adaptive DOP853 compiled with Numba) is portable; ``scipy``
+``numba`` (adaptive DOP853 compiled with Numba) is portable; ``taylor`` (heyoka's
+Taylor method compiled with Numba, section events inside the kernel) is portable;
+``scipy``
 (``solve_ivp(DOP853)``) is kept as an independent check. What each can do is its
 :attr:`~andoyer.integrate.engines.base.EngineBase.capabilities`
 (:func:`capability_table`); callers ask :func:`resolve_engine` for an engine and check
@@ -32,6 +34,7 @@ ENGINES = {
     "heyoka": ("andoyer.integrate.engines.heyoka_engine", "HeyokaEngine"),
     "numba": ("andoyer.integrate.engines.numba_engine", "NumbaEngine"),
     "scipy": ("andoyer.integrate.engines.scipy_engine", "ScipyEngine"),
+    "taylor": ("andoyer.integrate.engines.taylor_engine", "TaylorEngine"),
 }
 
 #: What public functions accept as ``engine=``: a name, an engine, or None (default).

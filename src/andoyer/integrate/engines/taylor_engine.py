@@ -1,0 +1,138 @@
+"""The taylor engine: an adaptive Taylor method compiled with Numba, events in the kernel.
+
+A thin adapter from the :class:`~andoyer.integrate.engines.base.Engine` protocol to
+:mod:`andoyer.kernels.taylor`: it checks shapes, makes the arrays contiguous floats,
+runs the ensemble kernel (blocks of orbits in Numba's number of threads,
+:mod:`andoyer.kernels.threads`) and turns a failed orbit into an exception.
+
+The method is heyoka's (Jorba & Zou's order and step size from the jets, the jets by
+recurrences generated from the SymPy field), without heyoka: it runs wherever Numba
+does. Section crossings are isolated on each step's Taylor polynomial inside the
+compiled loop, so a crossing costs no Python call (heyoka's engine pays one callback
+per crossing).
+
+Tolerances: as heyoka, one tolerance :attr:`Tolerance.tol` = ``min(rtol, atol)``
+(absolute error control while ``||y||_inf <= 1``, relative above); the order is
+:func:`andoyer.kernels.taylor.order_for` (15 at 1e-12). Backward flows come from the
+base class (time reversal).
+
+The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
+a machine compiles what it calls (a few seconds), later processes load it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from andoyer.errors import IntegrationError
+from andoyer.integrate.engines.base import (
+    Capability,
+    Crossings,
+    EngineBase,
+    SectionEvent,
+    TangentFlow,
+    Tolerance,
+    unit_vectors,
+)
+from andoyer.kernels import taylor
+from andoyer.validation import integer
+
+__all__ = ["TaylorEngine"]
+
+_N = 6
+#: The kernels' parameters ``(a, b, c, mu, e1, e2, e3, phi0)``: the first 8 of ``par``.
+_N_PARAMS = 8
+
+
+def _kernel_params(par: NDArray[np.float64]) -> NDArray[np.float64]:
+    return np.ascontiguousarray(par[:_N_PARAMS])
+
+
+def _raise_on_failure(info: NDArray[np.int64], what: str) -> None:
+    status = info[:, taylor.INFO.index("status")]
+    bad = np.flatnonzero(status != taylor.SUCCESS)
+    if bad.size:
+        i = int(bad[0])
+        raise IntegrationError(
+            f"Taylor integration failed {what} for {bad.size} orbit(s), first orbit {i}: "
+            f"{taylor.STATUS_MESSAGES[int(status[i])]} after "
+            f"{int(info[i, taylor.INFO.index('accepted')])} steps")
+
+
+class TaylorEngine(EngineBase):
+    """Adaptive Taylor method (Jorba-Zou order and step) in Numba, orbits in parallel.
+
+    Parameters
+    ----------
+    max_steps : int, default 10**9
+        Steps allowed per orbit before it is reported as failed.
+    chunksize : int, default 1
+        Orbits handed to a thread at a time (:func:`andoyer.kernels.threads.over_orbits`).
+    n_threads : int, optional
+        Threads running blocks of orbits; default Numba's :func:`numba.get_num_threads`.
+
+    Notes
+    -----
+    Tangent vectors at crossings (``tangent(event=..., renormalise=False)``) are the
+    linear flow's own vectors, integrated with the state (``u, rho`` split at the end).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from andoyer import RigidBody, from_andoyer
+    >>> from andoyer.integrate.engines.base import Tolerance
+    >>> body = RigidBody.paper()
+    >>> y0 = from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4]])
+    >>> y = TaylorEngine().propagate(y0, np.array([0.0, 10.0]), body.engine_params,
+    ...                              Tolerance(1e-12, 1e-12))
+    >>> y.shape
+    (1, 2, 6)
+    """
+
+    name = "taylor"
+    capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
+                              Capability.BACKWARD, Capability.TANGENT_CROSSINGS})
+
+    def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
+                 n_threads: int | None = None) -> None:
+        self.max_steps = integer("max_steps", max_steps, 1)
+        self.chunksize = integer("chunksize", chunksize, 0)
+        self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1)
+
+    def __repr__(self) -> str:
+        return (f"TaylorEngine(max_steps={self.max_steps}, chunksize={self.chunksize}, "
+                f"n_threads={self.n_threads})")
+
+    def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
+                   par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        """States at times ``t`` (non-decreasing): each step's Taylor polynomial there."""
+        out, info = taylor.propagate(y0, t, _kernel_params(par), tolerance.tol,
+                                     self.max_steps, block=self.chunksize,
+                                     threads=self.n_threads)
+        _raise_on_failure(info, "in propagate")
+        return out
+
+    def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
+                   event: SectionEvent, n_crossings: int, t_max: float,
+                   tolerance: Tolerance) -> Crossings:
+        tc, yc, count, info = taylor.locate_crossings(
+            y0, _kernel_params(par), event.kind, event.value, event.direction,
+            n_crossings, t_max, tolerance.tol, self.max_steps, block=self.chunksize,
+            threads=self.n_threads)
+        _raise_on_failure(info, "while locating crossings")
+        return Crossings(tc, yc, count)
+
+    def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
+                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           t_max: float, tolerance: Tolerance,
+                           extended_precision: bool) -> TangentFlow:
+        n, k = w0.shape[:2]
+        z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
+        tc, zc, count, info = taylor.locate_crossings(
+            z0, _kernel_params(par), event.kind, event.value, event.direction,
+            n_crossings, t_max, tolerance.tol, self.max_steps, block=self.chunksize,
+            threads=self.n_threads)
+        ok = info[:, 0] == taylor.SUCCESS
+        u, rho = unit_vectors(zc[..., _N:].reshape(n, n_crossings, k, _N))
+        return TangentFlow(tc, zc[..., :_N], u, rho, None, count, ok)

@@ -1,0 +1,738 @@
+r"""Adaptive Taylor method in Numba on the Euler-Poisson field (1), with tangent vectors.
+
+Each step expands the solution in a Taylor series of order ``p`` about the current
+state: the normalised coefficients (the *jet*) come from the Cauchy-product recurrences
+generated from the SymPy field (:mod:`andoyer.kernels.taylor_generated`, written by
+:mod:`andoyer.symbolic.taylor_codegen`; nothing typed by hand), the step size from the
+last two coefficients, and the new state from the polynomial (Horner). The step's
+polynomial is also the dense output (output times) and the event locator (section
+crossings), all inside the compiled loop: no Python runs per step or per crossing.
+
+Order and step size (Jorba & Zou [1]_, as in heyoka [2]_). For a tolerance
+:math:`\varepsilon` the order is :math:`p = \lceil -\ln\varepsilon / 2 \rceil + 1`
+(:func:`order_for`; 15 at 1e-12) and the step is
+
+.. math::
+   h = \frac{\rho}{e^2}\, e^{-0.7/(p-1)}, \qquad
+   \rho = \min\left( \left(\frac{m}{\|x^{[p-1]}\|_\infty}\right)^{1/(p-1)},
+                     \left(\frac{m}{\|x^{[p]}\|_\infty}\right)^{1/p} \right),
+   \qquad m = \max(1, \|x^{[0]}\|_\infty)
+
+(absolute error control while :math:`\|x\|_\infty \le 1`, relative above). With
+tangent vectors, :math:`\rho` is the least over the state and each vector, each block
+with its own ``m``, so a growing tangent vector never loosens the state's accuracy.
+There is no rejected step.
+
+Tangent vectors. The variational equations :math:`\dot w = J(x) w` are linear in
+``w`` and bilinear in the jets: a state of ``6 + 6 k`` floats carries ``k`` tangent
+vectors (``z = (y, w_1, ..., w_k)``), their jets follow the state's (generated
+``ep_taylor_tangent_jet``). The vectors are not renormalised (they are the linear
+flow's own vectors; an overflow stops the orbit with a failure status).
+
+Section crossings. With ``f`` a section function of
+:func:`andoyer.kernels.generated.section` and its jet along the step (generated
+``section_jet``), the roots of the polynomial :math:`P(\tau) = \sum_k f^{[k]} \tau^k`
+on the step are isolated in the Bernstein basis of :math:`[0, h]` (the number of sign
+changes of the Bernstein coefficients bounds the number of roots, with the same
+parity; an interval with more than one change is split by de Casteljau's algorithm, so
+two roots inside one step -- the orbit dipping through the section and back -- are
+found down to a separation of 1e-13 of the step), then each root is solved by a
+safeguarded Newton iteration on ``P`` and polished by one Newton step in time on the
+section function itself: :math:`dt = -f(y)/\dot f`, :math:`y \mathrel{+}= dt\, F(y)`
+(:math:`\dot f = P'` and ``F`` the field (1); the tangent vectors get ``dt J w``). The
+end values of ``P`` are replaced by ``f`` at the step's end states, so a root on a step
+boundary is counted in exactly one step. A step whose polynomial cannot reach zero
+(:math:`|f^{[0]}| > \sum_{k \ge 1} |f^{[k]}| h^k`) skips the isolation. As in every
+engine, a crossing is kept when its direction is wanted, the margin ``w`` of the
+section is positive there (an angle section's antipode is not a crossing) and its time
+exceeds :data:`andoyer.kernels.constants.T_START`.
+
+Entry points (cached, ``nogil``; blocks of orbits in threads through
+:func:`andoyer.kernels.threads.over_orbits`): :func:`propagate` and
+:func:`locate_crossings`, for states of ``6 + 6 k`` floats. ``info`` columns are
+:data:`INFO` (status, steps, 0, jets computed), status codes as in
+:mod:`andoyer.kernels.stepper`.
+
+References
+----------
+.. [1] A. Jorba, M. Zou, "A software package for the numerical integration of ODEs
+   by means of high-order Taylor methods", Experimental Mathematics 14, 99 (2005).
+.. [2] F. Biscani, D. Izzo, "Revisiting high-order Taylor methods for astrodynamics
+   and celestial mechanics", MNRAS 504, 2614 (2021).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NamedTuple
+
+import numba
+import numpy as np
+
+from andoyer.kernels import taylor_generated
+from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.constants import T_START
+from andoyer.kernels.dop853 import source_stamp
+from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
+from andoyer.kernels.threads import over_orbits
+
+__all__ = [
+    "MAX_ORDER",
+    "MIN_ORDER",
+    "TAYLOR_STAMP",
+    "INFO",
+    "SUCCESS",
+    "STEP_TOO_SMALL",
+    "MAX_STEPS",
+    "STATUS_MESSAGES",
+    "order_for",
+    "n_vectors",
+    "propagate",
+    "locate_crossings",
+    "propagate_block",
+    "locate_crossings_block",
+    "tangent_propagate_block",
+    "tangent_crossings_block",
+    "make_orbits",
+    "Orbits",
+    "STATE",
+    "TANGENT",
+    "jet",
+    "section_tape",
+    "section_jet",
+]
+
+#: Highest and lowest Taylor orders (a tolerance of 1e-32 asks for 38).
+MAX_ORDER = 40
+MIN_ORDER = 4
+_N = 6  # the Euler-Poisson state
+_MAX_DEPTH = 60  # bisections of a step in the root isolation
+_MIN_WIDTH = 1e-13  # narrowest isolating interval (fraction of the step)
+_ROOT_MAXITER = 200
+_MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka's engine)
+_VAR, _LIN, _MUL = 0, 1, 2  # ops of a section tape (SQRT = 3), see taylor_codegen
+
+#: Hash of every source the compiled entry points depend on (their cache key).
+TAYLOR_STAMP = source_stamp(taylor_generated.__file__ or "", __file__)
+
+
+def order_for(tol: float) -> int:
+    """Taylor order for the tolerance ``tol``: ``ceil(-ln(tol) / 2) + 1`` (heyoka's rule),
+    kept in ``[MIN_ORDER, MAX_ORDER]``.
+
+    >>> order_for(1e-12), order_for(1e-15)
+    (15, 19)
+    """
+    return int(min(MAX_ORDER, max(MIN_ORDER, math.ceil(-math.log(tol) / 2.0) + 1)))
+
+
+def n_vectors(width: int) -> int:
+    """Tangent vectors ``k`` of a state of ``width = 6 + 6 k`` floats.
+
+    >>> n_vectors(12)
+    1
+    """
+    k, r = divmod(width - _N, _N)
+    if r or k < 0:
+        raise ValueError(f"a state has 6 + 6 k floats, got {width}")
+    return k
+
+
+# Helpers: compiled into the entry points that call them (not cached on their own,
+# see andoyer.kernels.dop853's notes on the cache key).
+_jit = numba.njit(nogil=True, fastmath=False)
+_constants = _jit(taylor_generated.ep_taylor_constants)
+_jet = _jit(taylor_generated.ep_taylor_jet)
+_tangent_jet = _jit(taylor_generated.ep_taylor_tangent_jet)
+
+
+@_jit
+def _tape_jet(tape, C, x, order, u):
+    """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
+    state's jet ``x`` (the last node is the function): the tape interpreter (rows
+    ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.taylor_generated.SECTION_TAPES`,
+    constants ``C``)."""
+    last = tape.shape[0] - 1
+    for k in range(order + 1):
+        for n in range(last + 1):
+            op = tape[n, 0]
+            a = tape[n, 1]
+            b = tape[n, 2]
+            if op == _VAR:
+                v = x[k, a]
+            elif op == _LIN:
+                v = C[tape[n, 3]] * u[a, k]
+                if b >= 0:
+                    v += C[tape[n, 4]] * u[b, k]
+                if k == 0 and tape[n, 5] >= 0:
+                    v += C[tape[n, 5]]
+            elif op == _MUL:
+                v = 0.0
+                for j in range(k + 1):
+                    v += u[a, j] * u[b, k - j]
+            elif k == 0:  # _SQRT
+                v = math.sqrt(u[a, 0])
+            else:
+                v = 0.0
+                for j in range(1, k):
+                    v += u[n, j] * u[n, k - j]
+                v = (u[a, k] - v) / (2.0 * u[n, 0])
+            u[n, k] = v
+
+
+@_jit
+def _fill_constants(p, q):
+    """``q`` = the folded body coefficients of the jets, from the kernel parameters."""
+    c = _constants(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
+    for i in range(len(c)):
+        q[i] = c[i]
+
+
+@_jit
+def _state_jets(X, order, q):
+    """Jet of the state ``X[0]`` (row 0 is the current value) to ``order``."""
+    _jet(X[0], order, q)
+
+
+@_jit
+def _tangent_jets(X, order, q):
+    """Jets of the state ``X[0]`` and of the tangent vectors ``X[1:]`` (rows 0 of each
+    are the current values), to ``order``."""
+    _jet(X[0], order, q)
+    for i in range(1, X.shape[0]):
+        _tangent_jet(X[0], X[i], order, q)
+
+
+@_jit
+def _radius(x, order):
+    """rho of the module notes for one block of jets ``x`` (order + 1, 6)."""
+    m = 0.0
+    n1 = 0.0
+    n2 = 0.0
+    total = 0.0  # NaN or inf if any coefficient is (max() would drop a NaN)
+    for i in range(x.shape[1]):
+        m = max(m, abs(x[0, i]))
+        n1 = max(n1, abs(x[order - 1, i]))
+        n2 = max(n2, abs(x[order, i]))
+        total += abs(x[0, i]) + abs(x[order - 1, i]) + abs(x[order, i])
+    if not total < np.inf:  # a non-finite state or jet
+        return np.nan
+    m = max(1.0, m)
+    rho = np.inf
+    if n1 > 0.0:
+        rho = (m / n1) ** (1.0 / (order - 1))
+    if n2 > 0.0:
+        rho = min(rho, (m / n2) ** (1.0 / order))
+    return rho
+
+
+@_jit
+def _step_size(X, order):
+    """Jorba-Zou step of the module notes (least over the state and tangent vectors)."""
+    rho = _radius(X[0], order)
+    for i in range(1, X.shape[0]):
+        rho = min(rho, _radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
+        if rho != rho:
+            return rho
+    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+
+
+@_jit
+def _horner(X, order, tau, out):
+    """``out[6 b + i]`` = block ``b`` (state, then vectors) at ``t0 + tau``."""
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            v = X[b, order, i]
+            for k in range(order - 1, -1, -1):
+                v = v * tau + X[b, k, i]
+            out[_N * b + i] = v
+
+
+@_jit
+def _advance(X, order, h):
+    """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            v = X[b, order, i]
+            for k in range(order - 1, -1, -1):
+                v = v * h + X[b, k, i]
+            X[b, 0, i] = v
+
+
+@_jit
+def _load(X, z):
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            X[b, 0, i] = z[_N * b + i]
+
+
+@_jit
+def _bernstein(a, order, W, B):
+    """Bernstein coefficients on [0, 1] of ``sum_k a[k] s^k``: ``B[i] = sum_{k<=i}
+    W[i, k] a[k]`` with ``W[i, k] = C(i, k) / C(p, k)``."""
+    for i in range(order + 1):
+        acc = 0.0
+        for k in range(i + 1):
+            acc += W[i, k] * a[k]
+        B[i] = acc
+
+
+@_jit
+def _sign_changes(B, n):
+    count = 0
+    last = 0.0
+    for i in range(n):
+        if B[i] != 0.0:
+            if last != 0.0 and (B[i] > 0.0) != (last > 0.0):
+                count += 1
+            last = B[i]
+    return count
+
+
+@_jit
+def _poly(a, order, s):
+    v = a[order]
+    for k in range(order - 1, -1, -1):
+        v = v * s + a[k]
+    return v
+
+
+@_jit
+def _poly_d(a, order, s):
+    v = a[order]
+    d = 0.0
+    for k in range(order - 1, -1, -1):
+        d = d * s + v
+        v = v * s + a[k]
+    return v, d
+
+
+@_jit
+def _solve(a, order, lo, hi, flo):
+    """The root of ``P = sum a[k] s^k`` in ``[lo, hi]`` where ``P`` changes sign once
+    (``flo`` its sign at ``lo``): Newton steps kept inside the bracket, else bisection."""
+    s = 0.5 * (lo + hi)
+    up = flo < 0.0
+    for _ in range(_ROOT_MAXITER):
+        v, d = _poly_d(a, order, s)
+        if v == 0.0:
+            return s
+        if (v < 0.0) == up:
+            lo = s
+        else:
+            hi = s
+        if hi - lo <= 4.0 * np.finfo(np.float64).eps * max(1.0, abs(s)):
+            break
+        nxt = s - v / d if d != 0.0 else 0.5 * (lo + hi)
+        if not (lo < nxt < hi):
+            nxt = 0.5 * (lo + hi)
+        if nxt == s:
+            break
+        s = nxt
+    return s
+
+
+@_jit
+def _casteljau(B, n, left, right):
+    """Split Bernstein coefficients ``B[:n]`` of [0, 1] at 1/2 into those of the halves."""
+    for i in range(n):
+        right[i] = B[i]
+    for r in range(1, n):
+        left[r - 1] = right[0]
+        for i in range(n - r):
+            right[i] = 0.5 * (right[i] + right[i + 1])
+    left[n - 1] = right[0]
+
+
+@_jit
+def _tape_value(tape, C, Y, u):
+    """A section tape's function at the state ``Y[0]`` (a jet of order 0)."""
+    _tape_jet(tape, C, Y, 0, u)
+    return u[tape.shape[0] - 1, 0]
+
+
+class Orbits(NamedTuple):
+    """The compiled orbit loops of one kind of state (built by :func:`make_orbits`)."""
+
+    take_step: Any
+    propagate_orbit: Any
+    record: Any
+    crossings_orbit: Any
+
+
+def make_orbits(jets: Any) -> Orbits:
+    """The orbit loops for states whose jets ``jets(X, order, q)`` computes (the state
+    alone, or with tangent vectors): closures over ``jets``, so a call compiles only the
+    jets it needs (see :mod:`andoyer.kernels.stepper` on closures and the cache).
+    """
+
+    @_jit
+    def take_step(t, t_end, X, order, q, info):
+        """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
+        jets(X, order, q)
+        info[3] += 1
+        h = _step_size(X, order)
+        min_step = 10.0 * (np.nextafter(t, np.inf) - t)
+        if not h >= min_step:  # also NaN (a non-finite state)
+            return STEP_TOO_SMALL, t, 0.0
+        t1 = t + h
+        if t1 >= t_end:
+            t1 = t_end
+        return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
+
+
+    @_jit
+    def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
+        """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
+        k = t_out.shape[0]
+        for i in range(z0.shape[0]):
+            out[0, i] = z0[i]
+        if k == 1:
+            return
+        t = t_out[0]
+        t_end = t_out[k - 1]
+        j = 1
+        while j < k and t_out[j] <= t:  # repeated initial times
+            for i in range(z0.shape[0]):
+                out[j, i] = z0[i]
+            j += 1
+        _load(X, z0)
+        while j < k:
+            if info[1] >= max_steps:
+                info[0] = MAX_STEPS
+                return
+            status, t1, h = take_step(t, t_end, X, order, q, info)
+            if status != SUCCESS:
+                info[0] = status
+                return
+            while j < k and t_out[j] <= t1:
+                _horner(X, order, t_out[j] - t if t_out[j] < t1 else h, out[j])
+                j += 1
+            _advance(X, order, h)
+            info[1] += 1
+            t = t1
+
+
+    @_jit
+    def record(X, order, q, t, h, s_root, ftape, fC, wtape, wC, a, tc, zc, count, ytmp, P, Y,
+                u):
+        """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
+        and past T_START; returns the count. ``P``: jets of order 1 (the field there)."""
+        _horner(X, order, s_root * h, ytmp)
+        for i in range(_N):
+            Y[0, i] = ytmp[i]
+        f = _tape_value(ftape, fC, Y, u)
+        _, fdot = _poly_d(a, order, s_root)
+        fdot = fdot / h
+        dt = -f / fdot if fdot != 0.0 else 0.0
+        if not abs(dt) <= _MAX_POLISH:
+            dt = 0.0
+        if dt != 0.0:
+            _load(P, ytmp)
+            jets(P, 1, q)  # P[:, 1] = the field (1) and J w at ytmp
+            for b in range(P.shape[0]):
+                for i in range(_N):
+                    ytmp[_N * b + i] += dt * P[b, 1, i]
+                    if b == 0:
+                        Y[0, i] = ytmp[i]
+        tr = t + s_root * h + dt
+        if _tape_value(wtape, wC, Y, u) > 0.0 and tr > T_START:
+            tc[count] = tr
+            for i in range(ytmp.shape[0]):
+                zc[count, i] = ytmp[i]
+            count += 1
+        return count
+
+
+    @_jit
+    def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
+                        zc, info):
+        """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
+        of tapes ``ftape, fC`` (function) and ``wtape, wC`` (margin); returns their number
+        (see the module notes)."""
+        n_crossings = tc.shape[0]
+        if n_crossings == 0 or t_max <= 0.0:
+            return 0
+        width = z0.shape[0]
+        n = order + 1
+        a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
+        u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
+        last = ftape.shape[0] - 1
+        ytmp = np.empty(width)
+        P = np.empty((X.shape[0], 2, _N))
+        Y = np.empty((1, _N))
+        stack = np.empty((_MAX_DEPTH + 2, n))
+        lo_s = np.empty(_MAX_DEPTH + 2)
+        hi_s = np.empty(_MAX_DEPTH + 2)
+        left = np.empty(n)
+        W = np.zeros((n, n))  # Pascal's triangle (exact), then C(i, k) / C(p, k)
+        for i in range(n):
+            W[i, 0] = 1.0
+            for k in range(1, i + 1):
+                W[i, k] = W[i - 1, k - 1] + (W[i - 1, k] if k < i else 0.0)
+        for i in range(n - 1):
+            for k in range(i + 1):
+                W[i, k] /= W[order, k]
+        for k in range(n):
+            W[order, k] = 1.0
+        _load(X, z0)
+        for i in range(_N):
+            Y[0, i] = z0[i]
+        fa = _tape_value(ftape, fC, Y, u)
+        t = 0.0
+        count = 0
+        while count < n_crossings and t < t_max:
+            if info[1] >= max_steps:
+                info[0] = MAX_STEPS
+                return count
+            status, t1, h = take_step(t, t_max, X, order, q, info)
+            if status != SUCCESS:
+                info[0] = status
+                return count
+            # f at the step's end state, the next step's start value (carried over).
+            for i in range(_N):
+                v = X[0, order, i]
+                for k in range(order - 1, -1, -1):
+                    v = v * h + X[0, k, i]
+                Y[0, i] = v
+            fb = _tape_value(ftape, fC, Y, u)
+            _tape_jet(ftape, fC, X[0], order, u)
+            hk = 1.0
+            bound = 0.0
+            for k in range(n):
+                a[k] = u[last, k] * hk
+                if k > 0:
+                    bound += abs(a[k])
+                hk *= h
+            maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
+                abs(a[0]) > 1.000001 * bound and (a[0] > 0.0) == (fa > 0.0))
+            if maybe:
+                _bernstein(a, order, W, stack[0])
+                stack[0, 0] = fa
+                stack[0, order] = fb
+                if fa == 0.0:  # a root at the start belongs to the previous step
+                    for i in range(1, n):
+                        if stack[0, i] != 0.0:
+                            stack[0, 0] = 1e-300 * (1.0 if stack[0, i] > 0.0 else -1.0)
+                            break
+                if fb == 0.0:  # a root at the end belongs to this step
+                    for i in range(order - 1, -1, -1):
+                        if stack[0, i] != 0.0:
+                            stack[0, order] = -1e-300 * (1.0 if stack[0, i] > 0.0 else -1.0)
+                            break
+                lo_s[0] = 0.0
+                hi_s[0] = 1.0
+                top = 1
+                while top > 0 and count < n_crossings:
+                    top -= 1
+                    B = stack[top]
+                    lo = lo_s[top]
+                    hi = hi_s[top]
+                    v = _sign_changes(B, n)
+                    if v == 0:
+                        continue
+                    if v >= 2 and hi - lo > _MIN_WIDTH and top + 2 <= _MAX_DEPTH:
+                        # Split: right half pushed first, so the left one (earlier) comes out
+                        # first and crossings are found in time order.
+                        _casteljau(B, n, left, stack[top + 1])
+                        for i in range(n):
+                            B[i] = stack[top + 1, i]  # right half, in place
+                        for i in range(n):
+                            stack[top + 1, i] = left[i]
+                        mid = 0.5 * (lo + hi)
+                        lo_s[top] = mid
+                        hi_s[top] = hi
+                        lo_s[top + 1] = lo
+                        hi_s[top + 1] = mid
+                        top += 2
+                        continue
+                    flo = B[0]
+                    fhi = B[order]
+                    if flo == 0.0 or fhi == 0.0 or (flo > 0.0) == (fhi > 0.0):
+                        continue  # an even number of roots too close to tell apart
+                    up = flo < 0.0
+                    if (up and direction < 0) or (not up and direction > 0):
+                        continue
+                    sr = _solve(a, order, lo, hi, flo)
+                    count = record(X, order, q, t, h, sr, ftape, fC, wtape, wC, a, tc, zc,
+                                    count, ytmp, P, Y, u)
+            _advance(X, order, h)
+            info[1] += 1
+            fa = fb
+            t = t1
+        return count
+
+    return Orbits(take_step, propagate_orbit, record, crossings_orbit)
+
+
+#: Orbits of the state alone, and of the state with tangent vectors.
+STATE = make_orbits(_state_jets)
+TANGENT = make_orbits(_tangent_jets)
+_state_propagate = STATE.propagate_orbit
+_state_crossings = STATE.crossings_orbit
+_tangent_propagate = TANGENT.propagate_orbit
+_tangent_crossings = TANGENT.crossings_orbit
+
+
+def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
+    """The cached entry points (the closure over ``stamp`` keys the cache, as in
+    :mod:`andoyer.kernels.dop853`). They call the orbit loops as module globals: a
+    compiled function in a closure cell would change the cache key in every process."""
+
+    @cached_njit(nogil=True, fastmath=False)
+    def propagate_block(z0, t, p, order, max_steps, out, info):
+        """:func:`propagate` of a block of orbits (states alone) on the calling thread."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        _fill_constants(p, q)
+        X = np.empty((1, order + 1, _N))
+        for i in range(z0.shape[0]):
+            _state_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
+
+    @cached_njit(nogil=True, fastmath=False)
+    def tangent_propagate_block(z0, t, p, order, max_steps, out, info):
+        """:func:`propagate` of a block of orbits with tangent vectors."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        _fill_constants(p, q)
+        X = np.empty((z0.shape[1] // _N, order + 1, _N))
+        for i in range(z0.shape[0]):
+            _tangent_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
+
+    @cached_njit(nogil=True, fastmath=False)
+    def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
+                               max_steps, tc, zc, count, info):
+        """:func:`locate_crossings` of a block of orbits (states alone)."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        _fill_constants(p, q)
+        X = np.empty((1, order + 1, _N))
+        for i in range(z0.shape[0]):
+            count[i] = _state_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
+                                        t_max, max_steps, X, tc[i], zc[i], info[i])
+
+    @cached_njit(nogil=True, fastmath=False)
+    def tangent_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
+                                max_steps, tc, zc, count, info):
+        """:func:`locate_crossings` of a block of orbits with tangent vectors."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        _fill_constants(p, q)
+        X = np.empty((z0.shape[1] // _N, order + 1, _N))
+        for i in range(z0.shape[0]):
+            count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
+                                          t_max, max_steps, X, tc[i], zc[i], info[i])
+
+    return (propagate_block, tangent_propagate_block, locate_crossings_block,
+            tangent_crossings_block)
+
+
+(propagate_block, tangent_propagate_block, locate_crossings_block,
+ tangent_crossings_block) = _build(TAYLOR_STAMP)
+
+
+@cached_njit(nogil=True, fastmath=False)
+def jet(z0, p, order):
+    """The jets (state, then tangent vectors) at ``z0`` (6 + 6 k,): shape
+    (1 + k, order + 1, 6)."""
+    q = np.empty(taylor_generated.N_CONSTANTS)
+    _fill_constants(p, q)
+    X = np.empty((z0.shape[0] // _N, order + 1, _N))
+    _load(X, z0)
+    _tangent_jets(X, order, q)
+    return X
+
+
+@cached_njit(nogil=True, fastmath=False)
+def section_jet(tape, C, x, order):
+    """The jet of a section function or margin (:func:`section_tape`) along a state's
+    jet ``x`` (order + 1, 6): shape (order + 1,)."""
+    u = np.empty((tape.shape[0], order + 1))
+    _tape_jet(tape, C, x, order, u)
+    return u[tape.shape[0] - 1].copy()
+
+
+def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
+    (its margin ``w`` if ``margin``): the generated
+    :data:`~andoyer.kernels.taylor_generated.SECTION_TAPES` and ``section_constants``
+    (``MARGIN_TAPES``, ``margin_constants``)."""
+    g = taylor_generated
+    tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
+                        else (g.SECTION_TAPES, g.section_constants))
+    tape = np.array(tapes[kind], dtype=np.int64)
+    C = np.array(constants(kind, phi0, value, math.cos(value), math.sin(value)),
+                 dtype=np.float64)
+    return tape, C
+
+
+def _order(tol: float) -> int:
+    return order_for(float(tol))
+
+
+def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_steps: int, *,
+              block: int = 1, threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """States (with tangent vectors) of many orbits at the output times ``t``.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, 6 + 6 k)
+        Initial states ``(y, w_1 .. w_k)`` at ``t[0]`` (C-contiguous floats).
+    t : ndarray, shape (m,)
+        Output times, non-decreasing.
+    p : ndarray, shape (8,)
+        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+    tol : float
+        Tolerance of the local error (:func:`order_for` and the module notes).
+    max_steps : int
+        Maximum steps per orbit.
+    block, threads :
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    z : ndarray, shape (n, m, 6 + 6 k)
+        NaN after a failure (see ``info``).
+    info : ndarray of int64, shape (n, 4)
+        Columns :data:`INFO` (``rejected`` is always 0; ``nfev`` counts jets).
+    """
+    n = z0.shape[0]
+    out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    kernel = propagate_block if z0.shape[1] == _N else tangent_propagate_block
+    over_orbits(kernel, n, (z0,), (out, info),
+                (t, p, _order(tol), int(max_steps)), block=block, threads=threads)
+    return out, info
+
+
+def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, direction: int,
+                     n_crossings: int, t_max: float, tol: float, max_steps: int, *,
+                     block: int = 1, threads: int | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The first crossings after t = 0 of a section, for many orbits (with the tangent
+    vectors there when ``z0`` has ``6 + 6 k`` columns).
+
+    Parameters as :func:`andoyer.kernels.dop853.locate_crossings`, with one ``tol``.
+
+    Returns
+    -------
+    t : ndarray, shape (n, n_crossings)
+        Crossing times, NaN-padded.
+    z : ndarray, shape (n, n_crossings, 6 + 6 k)
+        States on the section, NaN-padded.
+    count : ndarray of int64, shape (n,)
+    info : ndarray of int64, shape (n, 4)
+    """
+    n = z0.shape[0]
+    tc = np.full((n, int(n_crossings)), np.nan)
+    zc = np.full((n, int(n_crossings), z0.shape[1]), np.nan)
+    count = np.zeros(n, dtype=np.int64)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    ftape, fC = section_tape(int(kind), float(p[7]), float(value))
+    wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
+    kernel = locate_crossings_block if z0.shape[1] == _N else tangent_crossings_block
+    over_orbits(kernel, n, (z0,), (tc, zc, count, info),
+                (p, _order(tol), ftape, fC, wtape, wC, int(direction), float(t_max),
+                 int(max_steps)), block=block, threads=threads)
+    return tc, zc, count, info

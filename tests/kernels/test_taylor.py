@@ -1,0 +1,293 @@
+"""The Taylor kernel (:mod:`andoyer.kernels.taylor`) against independent routes.
+
+* jets: the order-1 coefficient is the generated field; higher orders equal the Lie
+  series of the SymPy field (repeated Lie derivatives, exact rationals); tangent jets
+  equal central differences of state jets (the field is quadratic: exact up to
+  round-off); section jets equal the Taylor coefficients (mpmath, 40 digits) of the
+  SymPy section function along the state's polynomial;
+* the order of one step: the error of a single step of order p scales as h^(p+1);
+* tolerance proportionality: the error after t = 20 scales as the tolerance;
+* orbits and crossings against the Numba DOP853 at a tight tolerance; two crossings
+  inside one Taylor step are both found; the tangent flow against the DOP853
+  fundamental matrix; the tangent vectors at crossings;
+* a second process loads the compiled entry points from Numba's cache.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+from numpy.typing import NDArray
+
+from _numba_cache import fresh_process_cache_stats
+from andoyer import RigidBody, from_andoyer
+from andoyer.kernels import dop853, generated
+from andoyer.kernels import tangent as DT
+from andoyer.kernels import taylor as T
+from andoyer.symbolic import hamiltonian as sym
+from andoyer.symbolic import sections as sec
+
+MAX_STEPS = 10**7
+KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS)}
+
+
+def params(body: RigidBody) -> NDArray[np.float64]:
+    return np.asarray(body.engine_params, dtype=float)
+
+
+@pytest.fixture(scope="module")
+def general() -> RigidBody:
+    return RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
+
+
+def state(x: list[float]) -> NDArray[np.float64]:
+    return np.ascontiguousarray(from_andoyer([x]).reshape(6))
+
+
+Y0 = [0.3, 1.1, 0.2, 1.0, -0.4]
+
+
+def test_order_one_coefficient_is_the_field(general: RigidBody) -> None:
+    p = params(general)
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        y = rng.normal(size=6)
+        X = T.jet(y, p, 6)
+        f = np.array(generated.ep_field(*y, *p[:7]))
+        np.testing.assert_allclose(X[0, 1], f, rtol=1e-15, atol=1e-15)
+        np.testing.assert_array_equal(X[0, 0], y)
+
+
+def test_jets_are_the_lie_series_of_the_sympy_field(general: RigidBody) -> None:
+    """x^[k] = (L_f^k x) / k! with L_f g = grad g . f, in exact rationals."""
+    order = 6
+    body = dict(zip(sym.S.body, (sp.Rational(str(v)) for v in params(general)[:7]),
+                    strict=True))
+    f = [e.subs(body) for e in sym.euler_poisson_field()]
+    y = np.array([0.3, -0.7, 1.1, 0.6, 0.0, -0.8])
+    point = dict(zip(sym.S.y, (sp.Rational(str(v)) for v in y), strict=True))
+    X = T.jet(y, params(general), order)[0]
+    for i, xi in enumerate(sym.S.y):
+        g = xi
+        for k in range(1, order + 1):
+            g = sp.expand(sum(sp.diff(g, v) * fv for v, fv in zip(sym.S.y, f, strict=True)))
+            exact = float(g.subs(point) / math.factorial(k))
+            assert X[k, i] == pytest.approx(exact, rel=1e-13, abs=1e-14), (k, i)
+
+
+def test_tangent_jets_are_derivatives_of_state_jets(general: RigidBody) -> None:
+    p = params(general)
+    rng = np.random.default_rng(2)
+    y, w = rng.normal(size=6), rng.normal(size=6)
+    X = T.jet(np.concatenate([y, w]), p, 12)
+    eps = 1e-5
+    fd = (T.jet(y + eps * w, p, 12)[0] - T.jet(y - eps * w, p, 12)[0]) / (2 * eps)
+    scale = np.abs(X[1]).max(axis=1, keepdims=True) + 1.0
+    assert np.max(np.abs(X[1] - fd) / scale) < 1e-8
+    np.testing.assert_allclose(X[0], T.jet(y, p, 12)[0], rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("name", ["G3", "G", "J1", "l", "g", "theta1", "theta2", "psi"])
+def test_section_jets_are_the_taylor_coefficients_of_f(name: str, general: RigidBody) -> None:
+    """The tape's jet of f = the Taylor coefficients of f(x(t)) along the state's
+    polynomial (mpmath.taylor, 40 digits, on the SymPy expression)."""
+    order = 10
+    p = params(general)
+    value = 0.4 if name not in ("G", "J1") else 1.2
+    y = np.array([0.3, -0.7, 1.1, 0.6, 0.2, -0.8])
+    x = T.jet(y, p, order)[0]
+    tape, C = T.section_tape(KIND[name], p[7], value)
+    s = T.section_jet(tape, C, np.ascontiguousarray(x), order)
+    f_expr = sec.section_function(name)[0]
+    args = [*sec.SECTION_ARGS]
+    fn = sp.lambdify(args, f_expr, "mpmath")
+    with mpmath.workdps(40):
+        poly = [[mpmath.mpf(float(x[k, i])) for k in range(order + 1)] for i in range(6)]
+
+        def along(t: mpmath.mpf) -> mpmath.mpf:
+            yt = [mpmath.polyval(c[::-1], t) for c in poly]
+            return fn(*yt, mpmath.mpf(float(p[7])), mpmath.mpf(value),
+                      mpmath.cos(value), mpmath.sin(value))
+
+        ref = mpmath.taylor(along, 0, order)
+    ref = np.array([float(r) for r in ref])
+    np.testing.assert_allclose(s, ref, rtol=1e-11, atol=1e-12 * np.abs(ref).max())
+    margin, wC = T.section_tape(KIND[name], p[7], value, margin=True)
+    w = T.section_jet(margin, wC, np.ascontiguousarray(x), 0)[0]
+    assert w == pytest.approx(generated.section(KIND[name], *y, p[7], value, math.cos(value),
+                                                math.sin(value))[1], rel=1e-14, abs=1e-15)
+
+
+def test_single_step_error_scales_as_h_to_the_order_plus_one(general: RigidBody) -> None:
+    """One step of the order-p polynomial: error ~ C h^(p+1) (slope of log error)."""
+    p = params(general)
+    y = state(Y0)
+    order = 4
+    X = T.jet(y, p, order)[0]
+    hs = np.array([0.02, 0.04, 0.08, 0.16])
+    ref, _ = dop853.propagate(y[None], np.concatenate([[0.0], hs]), p, 1e-14, 1e-14,
+                              MAX_STEPS)
+    err = []
+    for m, h in enumerate(hs):
+        approx = sum(X[k] * h**k for k in range(order + 1))
+        err.append(np.max(np.abs(approx - ref[0, m + 1])))
+    slope = np.polyfit(np.log(hs), np.log(err), 1)[0]
+    assert slope == pytest.approx(order + 1, abs=0.3)
+
+
+def test_error_is_proportional_to_the_tolerance(general: RigidBody) -> None:
+    p = params(general)
+    y = state(Y0)[None]
+    t = np.array([0.0, 20.0])
+    ref, _ = dop853.propagate(y, t, p, 1e-14, 1e-14, MAX_STEPS)
+    tols = np.array([1e-6, 1e-7, 1e-8, 1e-9, 1e-10])
+    err = []
+    for tol in tols:
+        out, info = T.propagate(y, t, p, tol, MAX_STEPS)
+        assert info[0, 0] == T.SUCCESS
+        err.append(np.max(np.abs(out[0, -1] - ref[0, -1])))
+    slope = np.polyfit(np.log(tols), np.log(err), 1)[0]
+    assert 0.7 < slope < 1.3
+    assert max(e / tol for e, tol in zip(err, tols, strict=True)) < 100.0
+
+
+@pytest.mark.parametrize("mu", [0.01, 0.5])
+def test_orbits_agree_with_dop853(mu: float) -> None:
+    body = RigidBody(2.5, 2.0, 2.2, mu=mu, r=(0.3, 0.5, 0.2))
+    p = params(body)
+    y0 = np.ascontiguousarray(from_andoyer([Y0, [1.0, 2.0, -0.5, 1.0, 0.3]]))
+    t = np.linspace(0.0, 200.0, 41)
+    out, info = T.propagate(y0, t, p, 1e-12, MAX_STEPS)
+    ref, _ = dop853.propagate(y0, t, p, 1e-14, 1e-14, MAX_STEPS)
+    assert (info[:, 0] == T.SUCCESS).all()
+    assert np.max(np.abs(out - ref)) < 1e-10
+
+
+def test_output_times_hit_exactly_and_repeat() -> None:
+    p = params(RigidBody.paper())
+    y0 = state(Y0)[None]
+    t = np.array([0.0, 0.0, 0.5, 0.5, 3.0])
+    out, _ = T.propagate(y0, t, p, 1e-12, MAX_STEPS)
+    np.testing.assert_array_equal(out[0, 1], y0[0])
+    np.testing.assert_array_equal(out[0, 2], out[0, 3])
+
+
+@pytest.mark.parametrize("name,value", [("G3", 0.0), ("theta2", 0.3), ("g", 1.0), ("G", 1.0),
+                                        ("psi", 0.5)])
+@pytest.mark.parametrize("direction", [1, -1, 0])
+def test_crossings_agree_with_dop853(name: str, value: float, direction: int) -> None:
+    """On the paper's body (regular orbits: no chaos amplifying the round-off)."""
+    p = params(RigidBody.paper())
+    y0 = np.ascontiguousarray(from_andoyer([Y0, [1.0, 2.0, -0.5, 1.0, 0.3]]))
+    tc, yc, count, info = T.locate_crossings(y0, p, KIND[name], value, direction, 12, 1e4,
+                                             1e-12, MAX_STEPS)
+    rt, ry, rcount, _ = dop853.locate_crossings(y0, p, KIND[name], value, direction, 12, 1e4,
+                                                1e-14, 1e-14, MAX_STEPS)
+    assert (info[:, 0] == T.SUCCESS).all()
+    np.testing.assert_array_equal(count, rcount)
+    if not count.any():  # the angles theta2 and g only increase here
+        assert name in ("theta2", "g") and direction == -1
+        return
+    assert np.nanmax(np.abs(tc - rt)) < 1e-9
+    assert np.nanmax(np.abs(yc - ry)) < 1e-9
+    for i in range(2):
+        for j in range(count[i]):
+            f, w = generated.section(KIND[name], *yc[i, j], p[7], value, math.cos(value),
+                                     math.sin(value))
+            assert abs(f) < 1e-13 and w > 0
+
+
+def test_two_crossings_inside_one_step() -> None:
+    """A section just below the top of G3: the orbit dips through it and back within a
+    small part of one Taylor step; both crossings are found, in time order."""
+    body = RigidBody.paper()
+    p = params(body)
+    y0 = state(Y0)[None]
+    t = np.linspace(0.0, 40.0, 40001)
+    ref, _ = dop853.propagate(y0, t, p, 1e-13, 1e-13, MAX_STEPS)
+    top = int(np.argmax(ref[0, :, 2]))
+    value = ref[0, top, 2] - 1e-9  # the two roots are ~1e-4 apart in time
+    tc, yc, count, info = T.locate_crossings(y0, p, KIND["G3"], value, 0, 50, t[-1], 1e-12,
+                                             MAX_STEPS)
+    steps = info[0, 1] / t[-1]
+    near = np.flatnonzero(np.abs(tc[0, :count[0]] - t[top]) < 0.01)
+    assert near.size == 2 and 1 / steps > 100 * np.ptp(tc[0, near])
+    assert yc[0, near[0], 2] == pytest.approx(value, abs=1e-12)
+    rt, _, rcount, _ = dop853.locate_crossings(y0, p, KIND["G3"], value, 0, 50, t[-1], 1e-14,
+                                               1e-14, MAX_STEPS)
+    np.testing.assert_allclose(tc[0, :count[0]], rt[0, :rcount[0]], atol=1e-7)
+    assert np.all(np.diff(tc[0, :count[0]]) > 0)
+
+
+def test_tangent_flow_is_the_fundamental_matrix(general: RigidBody) -> None:
+    """Six tangent vectors from the identity = DOP853's fundamental matrix."""
+    p = params(general)
+    y0 = state(Y0)
+    z0 = np.concatenate([y0, np.eye(6).ravel()])[None]
+    t = np.array([0.0, 5.0, 20.0])
+    z, info = T.propagate(z0, t, p, 1e-13, MAX_STEPS)
+    assert info[0, 0] == T.SUCCESS
+    u0 = np.zeros(DT.dimension(6))
+    L = DT.layout(6)
+    u0[L["y"]] = y0
+    u0[L["u"]] = np.eye(6).ravel()
+    ref, _ = DT.propagate(u0[None], t, p, 1e-13, 1e-13, MAX_STEPS)
+    W = np.exp(ref[0, :, L["rho"]])[..., None] * ref[0, :, L["u"]].reshape(3, 6, 6)
+    np.testing.assert_allclose(z[0, :, :6], ref[0, :, :6], atol=1e-10)
+    scale = np.abs(W).max(axis=(1, 2), keepdims=True)
+    assert np.max(np.abs(z[0, :, 6:].reshape(3, 6, 6) - W) / scale) < 1e-9
+
+
+def test_tangent_vectors_at_crossings(general: RigidBody) -> None:
+    """The tangent state at a crossing is the propagated one at the crossing time."""
+    p = params(general)
+    y0 = state(Y0)
+    z0 = np.concatenate([y0, np.eye(6)[:2].ravel()])[None]
+    tc, zc, count, info = T.locate_crossings(z0, p, KIND["theta2"], 0.0, 0, 3, 500.0, 1e-13,
+                                             MAX_STEPS)
+    assert count[0] == 3
+    z, _ = T.propagate(z0, np.concatenate([[0.0], tc[0]]), p, 1e-13, MAX_STEPS)
+    scale = np.abs(z[0, 1:]).max(axis=1, keepdims=True)
+    assert np.max(np.abs(z[0, 1:] - zc[0]) / scale) < 1e-9
+
+
+def test_non_finite_state_fails() -> None:
+    p = params(RigidBody.paper())
+    y0 = state(Y0)[None].copy()
+    y0[0, 0] = np.nan
+    out, info = T.propagate(y0, np.array([0.0, 1.0]), p, 1e-12, MAX_STEPS)
+    assert info[0, 0] == T.STEP_TOO_SMALL and np.isnan(out[0, 1]).all()
+    _, _, count, info = T.locate_crossings(y0, p, 2, 0.0, 1, 3, 10.0, 1e-12, MAX_STEPS)
+    assert info[0, 0] == T.STEP_TOO_SMALL and count[0] == 0
+
+
+def test_max_steps() -> None:
+    p = params(RigidBody.paper())
+    out, info = T.propagate(state(Y0)[None], np.array([0.0, 100.0]), p, 1e-12, 3)
+    assert info[0, 0] == T.MAX_STEPS and info[0, 1] == 3
+
+
+def test_order_for() -> None:
+    assert T.order_for(1e-12) == 15
+    assert T.order_for(1e-300) == T.MAX_ORDER
+    assert T.order_for(0.5) == T.MIN_ORDER
+    with pytest.raises(ValueError, match="6 \\+ 6 k"):
+        T.n_vectors(13)
+
+
+def test_second_process_loads_from_the_cache() -> None:
+    p = params(RigidBody.paper()).tolist()
+    y0 = state(Y0)[None]
+    T.propagate(y0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
+    T.locate_crossings(y0, np.array(p), 2, 0.0, 1, 1, 50.0, 1e-12, MAX_STEPS)
+    y = y0.tolist()
+    out = fresh_process_cache_stats("andoyer.kernels.taylor", {
+        "propagate_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
+                           f"1e-12, {MAX_STEPS})",
+        "locate_crossings_block": f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, "
+                                  f"1, 1, 50.0, 1e-12, {MAX_STEPS})"})
+    assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
