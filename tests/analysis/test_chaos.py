@@ -287,8 +287,8 @@ def test_chaos_map_validates_its_inputs() -> None:
         chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=10.0, indicator="lyapunov")
     with pytest.raises(ValueError, match="n must be"):
         chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=(4,), t_end=10.0)
-    with pytest.raises(ValueError, match="engine 'taylor'"):
-        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=10.0, engine="taylor")
+    with pytest.raises(ValueError, match="engine 'euler'"):
+        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=10.0, engine="euler")
     with pytest.raises(ValueError, match="t_end"):
         chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=-1.0)
     with pytest.raises(ValueError, match="does not intersect"):
