@@ -55,7 +55,9 @@ def test_frequencies_match_euler_poinsot(h: float) -> None:
     ds = orbit_frequencies(FREE, _free_state(h), 50 * f.period, n_samples=16385)
     assert float(ds.omega_l[0]) == pytest.approx(2 * math.pi / f.period, rel=1e-10)
     assert float(ds.omega_g[0]) == pytest.approx(f.g_rate, rel=1e-12)
-    assert float(ds.rotation_number[0]) == pytest.approx(f.rotation_number, rel=1e-10)
+    assert float(ds.frequency_ratio[0]) == pytest.approx(f.frequency_ratio, rel=1e-10)
+    assert float(ds.rotation_number_g_section[0]) == pytest.approx(
+        f.rotation_number_g_section, rel=1e-10)
     assert float(ds.drift_l[0]) < 1e-8 and float(ds.drift_g[0]) < 1e-10
 
 
@@ -92,7 +94,8 @@ def test_frequency_map_over_a_plane() -> None:
     fm = frequency_map(body, 0.2466, 0.0, ("theta2", 0.0), n_orbits=6, t_end=600.0,
                        n_samples=2049)
     assert fm.sizes["orbit"] >= 4
-    for v in ("omega_l", "omega_g", "rotation_number", "log10_drift", "theta1", "J1"):
+    for v in ("omega_l", "omega_g", "frequency_ratio", "rotation_number_g_section",
+              "log10_drift", "theta1", "J1"):
         assert v in fm and np.all(np.isfinite(fm[v].values)), v
     assert fm.attrs["plane_x"] == "theta1" and fm.omega_l.attrs["units"]
 

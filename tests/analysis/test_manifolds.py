@@ -30,7 +30,7 @@ MUS = [0.005, 0.01]
 
 @pytest.fixture(scope="module")
 def result():
-    return separatrix_splitting(TEST_BODY, MUS, n_phase=16)
+    return separatrix_splitting(TEST_BODY, MUS, n_phase=16, branch="theta1=4phi0")
 
 
 @pytest.fixture(scope="module")
@@ -175,7 +175,8 @@ def test_invalid_inputs(tmp_path):
 @pytest.mark.slow
 def test_paper_body_splitting_converges_to_melnikov():
     """rho = 4.56: the splitting is 7.4e-5 mu cos g; first order holds with error ~24 mu."""
-    out = separatrix_splitting(RigidBody.paper(), [0.00125, 0.0025, 0.005], n_phase=16)
+    out = separatrix_splitting(RigidBody.paper(), [0.00125, 0.0025, 0.005], n_phase=16,
+                               branch="theta1=4phi0")
     err = out["splitting"].relative_error.values
     assert err[0] < 0.04
     assert 1.8 < err[1] / err[0] < 2.2 and 1.8 < err[2] / err[1] < 2.2

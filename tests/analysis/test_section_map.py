@@ -113,7 +113,8 @@ def test_periodic_orbit_and_splitting_agree_with_heyoka(
     for engine in ("heyoka", "numba"):
         monkeypatch.setattr(engines, "default_engine_name", lambda e=engine: e)
         orb = rotation_orbit(GENERAL, rotation_energy(GENERAL), -0.3, RotationSection(0.4, 1))
-        out[engine] = (orb, separatrix_splitting(body, [0.01], n_phase=8)["splitting"])
+        out[engine] = (orb, separatrix_splitting(body, [0.01], n_phase=8,
+                                                 branch="theta1=4phi0")["splitting"])
     (oa, sa), (ob, sb) = out["heyoka"], out["numba"]
     np.testing.assert_allclose(ob.x, oa.x, rtol=0, atol=1e-11)
     assert ob.period == pytest.approx(oa.period, rel=1e-11)

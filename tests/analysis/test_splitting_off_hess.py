@@ -34,9 +34,9 @@ def test_turned_body_melnikov_closed_form_matches_quadrature() -> None:
             peak = float(np.max(np.abs(ds.M_quadrature)))   # 12 phases: within cos(pi/12)
             assert expect * math.cos(math.pi / 12) - 1e-15 <= peak <= expect * (1 + 1e-12)
     # epsilon = 0 is the Hess body's Melnikov function exactly
-    a = melnikov_function(RHO1, n=8, quadrature=False)
+    a = melnikov_function(RHO1, n=8, quadrature=False, branch="theta1=4phi0")
     b = melnikov_function(RigidBody.near_hess(2.5, 1.0, 1.6, epsilon=0.0), n=8,
-                          quadrature=False)
+                          quadrature=False, branch="theta1=4phi0")
     assert np.array_equal(a.M.values, b.M.values)
 
 

@@ -474,9 +474,11 @@ def test_splitting_scan_scales_with_mu(tmp_path):
     from andoyer.analysis.splitting import separatrix_splitting
 
     cfg = {"parameters": {"mu": [0.005, 0.01]},
-           "task": {"kind": "splitting", "n_phase": 8, "delta": 1e-4}}
+           "task": {"kind": "splitting", "n_phase": 8, "delta": 1e-4,
+                    "branch": "theta1=4phi0"}}
     ds = scan(cfg, tmp_path / "s.zarr", scheduler="serial", progress=False).open().load()
-    direct = separatrix_splitting(RigidBody.paper(), [0.01], n_phase=8, delta=1e-4)
+    direct = separatrix_splitting(RigidBody.paper(), [0.01], n_phase=8, delta=1e-4,
+                                  branch="theta1=4phi0")
     assert np.array_equal(ds.Delta_G[1].values, direct["splitting"].Delta_G[0].values)
     ratio = float(ds.amplitude[1] / ds.amplitude[0])
     assert 1.6 < ratio < 2.2  # Delta_G = mu M / (c G) (1 + O(mu))

@@ -24,7 +24,9 @@ The body-frame motion has period ``T = 4 K(k) / lambda``. Every squared componen
 
 with ``Pi`` the complete elliptic integral of the third kind, from Carlson's symmetric
 forms: ``Pi(n|m) = R_F(0, 1-m, 1) + n R_J(0, 1-m, 1, 1-n) / 3`` (``scipy.special``). The
-rotation number is the advance of ``g`` over one period of ``(l, L)``, in turns.
+frequency ratio ``omega_g / omega_l`` is the advance of ``g`` over one period of
+``(l, L)``, in turns; its inverse is the rotation number of the Poincare map of the
+section ``g = const`` (turns of ``(l, L)`` per return).
 At ``2h = q G^2`` (the separatrix, ``k = 1``) the period is infinite: refused.
 
 Examples
@@ -32,13 +34,16 @@ Examples
 >>> from andoyer import RigidBody
 >>> body = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
 >>> f = euler_poinsot_frequencies(body, 0.21, 1.0)
->>> round(f.period, 6), round(f.g_rate, 6), round(f.rotation_number, 6)
+>>> round(f.period, 6), round(f.g_rate, 6), round(f.frequency_ratio, 6)
 (100.751098, 0.410847, 6.587954)
+>>> round(f.rotation_number_g_section, 6)
+0.151792
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -70,9 +75,26 @@ class EulerPoinsotFrequencies(NamedTuple):
 
     period: float           #: period T of the body-frame motion, of (l, L)
     g_rate: float           #: mean rate of g
-    rotation_number: float  #: advance of g over one period T, in turns
+    frequency_ratio: float  #: omega_g / omega_l: advance of g over one period T, in turns
     modulus: float          #: k^2 of the Jacobi functions
     regime: str             #: "about the axis of the smallest/largest inverse moment"
+
+    @property
+    def rotation_number_g_section(self) -> float:
+        """``omega_l / omega_g``: the rotation number of the Poincare map of the section
+        ``g = const`` (turns of ``(l, L)`` per return), the inverse of
+        :attr:`frequency_ratio`."""
+        return 1.0 / self.frequency_ratio
+
+    @property
+    def rotation_number(self) -> float:
+        """Deprecated name of :attr:`frequency_ratio` (``omega_g / omega_l``, not the
+        section map's rotation number, which is :attr:`rotation_number_g_section`)."""
+        warnings.warn("EulerPoinsotFrequencies.rotation_number is deprecated and will be "
+                      "removed in the next release: it is omega_g / omega_l, now "
+                      "frequency_ratio; the section map's rotation number omega_l / omega_g "
+                      "is rotation_number_g_section", DeprecationWarning, stacklevel=2)
+        return self.frequency_ratio
 
 
 @checks_body

@@ -198,9 +198,12 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
     Returns
     -------
     xarray.Dataset
-        Dim ``orbit``: ``omega_l`` (> 0), ``omega_g``, ``rotation_number``
-        ``omega_g / omega_l`` (turns of g per period of (l, L)), ``period`` ``2 pi /
-        omega_l``, ``drift_l``, ``drift_g`` (:func:`frequency_drift`), ``resonance``
+        Dim ``orbit``: ``omega_l`` (> 0), ``omega_g``, ``frequency_ratio``
+        ``omega_g / omega_l`` (turns of g per period of (l, L); about 8 on the paper's
+        body), ``rotation_number_g_section`` ``omega_l / omega_g`` (the rotation number of
+        the Poincare map of the section ``g = const``: turns of (l, L) per return; its
+        inverse), ``period`` ``2 pi / omega_l``, ``drift_l``, ``drift_g``
+        (:func:`frequency_drift`), ``resonance`` of ``frequency_ratio``
         (:func:`resonance_label` at 10 times the larger drift, at least 1e-9; none where
         the drift exceeds :data:`RESONANCE_DRIFT`) and ``y0``.
 
@@ -239,13 +242,16 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
         out["drift_l"][i] = frequency_drift(zl, dt, window=window)
         out["drift_g"][i] = frequency_drift(zg, dt, window=window)
     nu = out["omega_g"] / out["omega_l"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        section_nu = out["omega_l"] / out["omega_g"]
     drift = np.fmax(out["drift_l"], out["drift_g"])
     tol = np.maximum(10.0 * drift, 1e-9)
     labels = [resonance_label(float(v), float(e)) if d <= RESONANCE_DRIFT else ""
               for v, e, d in zip(nu, tol, drift, strict=True)]
     res = xr.Dataset(
         {"omega_l": ("orbit", out["omega_l"]), "omega_g": ("orbit", out["omega_g"]),
-         "rotation_number": ("orbit", nu), "period": ("orbit", 2.0 * math.pi / out["omega_l"]),
+         "frequency_ratio": ("orbit", nu), "rotation_number_g_section": ("orbit", section_nu),
+         "period": ("orbit", 2.0 * math.pi / out["omega_l"]),
          "drift_l": ("orbit", out["drift_l"]), "drift_g": ("orbit", out["drift_g"]),
          "resonance": ("orbit", np.array(labels, dtype=str)),
          "y0": (("orbit", "component"), ds.y0.values if "y0" in ds else
@@ -258,14 +264,19 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
         "omega_l": ("\\omega_l", "frequency of the (l, L) motion = of (theta1, J1)",
                     "rad/body time unit", "(9)"),
         "omega_g": ("\\omega_g", "mean rate of g", "rad/body time unit", "(7)"),
-        "rotation_number": ("\\nu", "omega_g / omega_l: turns of g per period of (l, L)",
+        "frequency_ratio": ("\\omega_g/\\omega_l", "omega_g / omega_l: turns of g per "
+                            "period of (l, L) (the inverse of rotation_number_g_section)",
                             "1", ""),
+        "rotation_number_g_section": ("\\omega_l/\\omega_g", "rotation number of the "
+                                      "Poincare map of the section g = const: turns of "
+                                      "(l, L) per return, omega_l / omega_g", "1", ""),
         "period": ("T", "period of the (l, L) motion", "body time units", ""),
         "drift_l": ("", "relative change of omega_l between the two halves of the orbit",
                     "1", ""),
         "drift_g": ("", "relative change of omega_g between the two halves of the orbit",
                     "1", ""),
-        "resonance": ("p:q", "nu near p/q (empty: none of order <= 8)", "1", ""),
+        "resonance": ("p:q", "frequency_ratio near p/q (empty: none of order <= 8)", "1",
+                      ""),
         "y0": ("y_0", "initial Euler-Poisson state", "1", "(1)")})
 
 

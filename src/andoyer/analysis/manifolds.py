@@ -87,7 +87,7 @@ from andoyer.analysis.periodic import (
     section_state,
 )
 from andoyer.analysis.section_map import FLOW_ENGINES
-from andoyer.analysis.separatrix import BRANCHES
+from andoyer.analysis.separatrix import BRANCHES, DEFAULT_BRANCH
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
@@ -205,7 +205,7 @@ def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
 
 @checks_body
 def manifold_branch(body: RigidBody, h: float, stability: Stability,
-                    branch: str = "theta1=4phi0", *, sheet: int = 1, psi0: float = 0.0,
+                    branch: str = DEFAULT_BRANCH, *, sheet: int = 1, psi0: float = 0.0,
                     delta: float = 1e-5, orbit: RotationOrbit | None = None,
                     mu_steps: int = 4, tol: float = DEFAULT_TOL,
                     long_double: bool = False, engine: str | None = None) -> ManifoldBranch:

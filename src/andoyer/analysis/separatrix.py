@@ -82,13 +82,21 @@ from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
-__all__ = ["BRANCHES", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
+__all__ = ["BRANCHES", "DEFAULT_BRANCH", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
            "separatrix_andoyer", "separatrix_hess",
            "FIG2_CAPTION", "SEPARATRIX_LEVEL", "check_grid_size", "separatrix_curves",
            "separatrix_on_level"]
 
 #: The two heteroclinic lines of the Hess chart at ``mu = 0`` (theta1 mod 2 pi).
 BRANCHES = ("theta1=0", "theta1=4phi0")
+
+#: The separatrix branch of every function that takes one (heteroclinic orbits, Melnikov
+#: functions, manifolds, splitting, the scan's splitting task) when the caller names none:
+#: the Hess separatrix ``theta1 = 0``, the line of the Hess relation (3). It does not
+#: split on a Hess body (the manifolds coincide); turned off the Hess direction by
+#: ``epsilon`` it does (:meth:`~andoyer.body.RigidBody.near_hess`). ``"theta1=4phi0"``
+#: is the branch that splits on a Hess body: name it.
+DEFAULT_BRANCH = "theta1=0"
 
 
 def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
@@ -132,7 +140,7 @@ def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
 
 
 @checks_body
-def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = "theta1=0",
+def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = DEFAULT_BRANCH,
                  t0: float = 0.0, sign: int = +1, *, theta2_0: float = 0.0) -> xr.Dataset:
     """The unperturbed (``mu = 0``, ``M = 0``) heteroclinic orbit along a separatrix line.
 

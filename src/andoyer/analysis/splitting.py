@@ -27,6 +27,7 @@ from andoyer.analysis.periodic import (
     continue_rotation_orbit,
 )
 from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
+from andoyer.analysis.separatrix import DEFAULT_BRANCH
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance, values_from_attrs
@@ -220,9 +221,20 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
 
 
 # ----------------------------------------------------------------------------- driver
+def _mu_values(body: RigidBody, mu: Sequence[float] | ArrayLike | None
+               ) -> NDArray[np.float64]:
+    """The values of mu asked for, or the body's own."""
+    mus = np.atleast_1d(np.asarray(body.mu if mu is None else mu, dtype=float))
+    if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
+        where = f"the body's mu = {body.mu!r}" if mu is None else f"mu = {mu!r}"
+        raise ValueError(f"mu must be a non-empty list of finite values > 0 (the splitting "
+                         f"vanishes at mu = 0), got {where}")
+    return mus
+
+
 @checks_body
-def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
-                         G: float = 1.0, branch: str = "theta1=4phi0", sheet: int = 1,
+def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None = None, *,
+                         G: float = 1.0, branch: str = DEFAULT_BRANCH, sheet: int = 1,
                          psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
                          tol: float = DEFAULT_TOL, long_double: bool = False,
                          grow: dict[str, Any] | None = None, progress: bool | None = None,
@@ -233,19 +245,22 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     ----------
     body : RigidBody
         A Hess body, or a body with the same moments whose centre of mass is turned in
-        the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.near_hess`): its own ``mu``
-        is ignored. The lines and the Melnikov phase are those of
+        the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.near_hess`). The lines and
+        the Melnikov phase are those of
         :meth:`~andoyer.body.RigidBody.nearest_hess`; the prediction is
         :func:`~andoyer.analysis.melnikov.melnikov_off_hess` at ``epsilon =``
         :attr:`~andoyer.body.RigidBody.hess_epsilon` (the Hess branch ``theta1 = 0``
         splits by ``2 mu (pi rho/sinh pi rho) |sin epsilon| / (c G)``).
-    mu : sequence of float
-        Increasing values ``mu > 0``.
+    mu : sequence of float, optional
+        Increasing values ``mu > 0`` (default: the body's own, ``[body.mu]``).
     G : float
         The energy level is ``h = c G^2 / 2`` (the rotation about z with ``|G| = G`` at
         ``mu = 0``); the Melnikov prediction uses ``J2 = G``.
     branch, sheet :
-        The heteroclinic line (``"theta1=0"``, the Hess solutions, does not split).
+        The heteroclinic line: ``"theta1=0"`` (default,
+        :data:`~andoyer.analysis.separatrix.DEFAULT_BRANCH`: the Hess separatrix, which
+        does not split on a Hess body and does once the centre of mass is turned) or
+        ``"theta1=4phi0"`` (splits on a Hess body too).
     psi0, delta :
         Fundamental domains on ``psi = psi0`` at distance ``delta`` from the orbits.
     n_phase : int
@@ -266,8 +281,11 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
         * ``"splitting"`` (mu, phase): measured ``Delta_G``, ``Delta_E``; the first-order
           predictions ``Delta_G_melnikov = -mu M(g - theta1/2)/(c G)``,
           ``Delta_E_melnikov = mu M``; per ``mu``: ``amplitude`` (max over the phase of
-          ``|Delta G|``), ``amplitude_melnikov``, ``relative_error``
-          (``max |Delta G - prediction| / amplitude_melnikov``).
+          ``|Delta G|``), ``amplitude_melnikov`` (its first-order prediction
+          ``mu max|M| / (c G)``), ``relative_error``
+          (``max |Delta G - prediction| / amplitude_melnikov``). Values ``rho``,
+          ``theta1_line``, ``epsilon`` and ``melnikov_function_max`` (``max|M|``, of the
+          Melnikov function itself, not a splitting).
         * ``"intersections"`` (mu, intersection): heteroclinic points ``g``, ``G``,
           ``state_distance``, ``Delta_G``, ``angle``, ``lobe_area`` and their
           first-order predictions ``angle_melnikov``, ``lobe_area_melnikov`` (NaN-padded).
@@ -290,9 +308,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     from andoyer.analysis.periodic import orbits_dataset
     from andoyer.progress import Progress
 
-    mus = np.atleast_1d(np.asarray(mu, dtype=float))
-    if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
-        raise ValueError("mu must be a non-empty list of finite values > 0")
+    mus = _mu_values(body, mu)
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
     hess = body.nearest_hess()
@@ -348,7 +364,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
                        delta=delta, tolerance=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
                        epsilon=mel.attrs["epsilon"],
-                       melnikov_amplitude=mel.attrs["amplitude"],
+                       melnikov_function_max=mel.attrs["amplitude"],
                        plane="Sigma_0 = {L = G3 = 0}: Darboux coordinates (g, G)",
                        relation="Delta_E = mu M(theta2_0) + O(mu^2); Delta_G = -Delta_E/(c G)"
                                 " (1 + O(mu)); theta2_0 = g - theta1_line/2")
@@ -368,8 +384,11 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
             ("Delta_G_melnikov", "-\\mu M/(c G)", "first-order prediction of Delta G", "1"),
             ("Delta_E_melnikov", "\\mu M", "first-order prediction of Delta E",
              "energy units"),
-            ("amplitude", "max|\\Delta G|", "measured splitting amplitude", "1"),
-            ("amplitude_melnikov", "max|\\mu M/(c G)|", "predicted splitting amplitude", "1"),
+            ("amplitude", "max|\\Delta G|", "measured splitting amplitude: max over the phase "
+                                             "of |Delta G|", "1"),
+            ("amplitude_melnikov", "\\mu max|M|/(c G)",
+             "first-order (Melnikov) prediction of the splitting amplitude: mu "
+             "melnikov_function_max / (c G)", "1"),
             ("relative_error", "", "max over the phase |Delta G - prediction| / predicted "
                                    "amplitude", "1")):
         splitting[name].attrs.update(symbol=sym, long_name=long, units=units)
@@ -378,8 +397,10 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
     splitting.phase.attrs.update(splits[0].phase.attrs)
     values_from_attrs(splitting, {
         "rho": ("\\rho", "rho = c J2/lambda of the unperturbed separatrix", "1", ""),
-        "melnikov_amplitude": ("\\max|M|", "amplitude of the Melnikov function (per mu: "
-                               "Delta E = mu M)", "energy units x time", "(16)"),
+        "melnikov_function_max": ("\\max|M|", "max over the phase of |M|, the Melnikov "
+                                  "function itself (Delta E = mu M; not a splitting: "
+                                  "see amplitude_melnikov)", "energy units x time",
+                                  "(16)"),
         "theta1_line": ("\\theta_1", "theta1 of the unperturbed heteroclinic line", "rad",
                         "(14)"),
         "epsilon": ("\\epsilon", "turn of the centre of mass off the Hess direction", "rad",
@@ -411,7 +432,8 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike, *,
 
 @checks_body
 def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
-                         mu: Sequence[float] | ArrayLike, *, branch: str = "theta1=0",
+                         mu: Sequence[float] | ArrayLike | None = None, *,
+                         branch: str = DEFAULT_BRANCH,
                          G: float = 1.0, n_phase: int = 16, delta: float = 1e-5,
                          tol: float = DEFAULT_TOL, progress: bool | None = None,
                          engine: str | None = None) -> xr.Dataset:
@@ -431,8 +453,8 @@ def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
         the turned bodies are :meth:`~andoyer.body.RigidBody.near_hess` of its moments.
     epsilon : sequence of float
         Turns of the centre of mass (rad), each in ``(-pi/2, pi/2)``.
-    mu : sequence of float
-        Increasing values ``mu > 0``.
+    mu : sequence of float, optional
+        Increasing values ``mu > 0`` (default: the body's own, ``[body.mu]``).
     branch, G, n_phase, delta, tol, engine :
         As in :func:`separatrix_splitting`.
     progress : bool, optional
@@ -460,7 +482,7 @@ def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
     if eps.ndim != 1 or eps.size == 0 or not np.all(np.abs(eps) < 0.5 * math.pi):
         raise ValueError(f"epsilon must be a non-empty list of turns in (-pi/2, pi/2), got "
                          f"{epsilon!r}")
-    mus = np.atleast_1d(np.asarray(mu, dtype=float))
+    mus = _mu_values(body, mu)
     sign = 1 if hess.e2 >= 0.0 else -1
     amp = np.full((eps.size, mus.size), np.nan)
     pred, rel, g_star = amp.copy(), amp.copy(), amp.copy()

@@ -307,7 +307,8 @@ def _manifolds(ctx: Context) -> Result:
 
     mus = [0.0025, 0.005, 0.01] if not ctx.quick else [0.005, 0.01]
     body = ctx.body
-    res = separatrix_splitting(body, mus, n_phase=8 if ctx.quick else 16, progress=False)
+    res = separatrix_splitting(body, mus, n_phase=8 if ctx.quick else 16, progress=False,
+                               branch="theta1=4phi0")
     hess = separatrix_splitting(body, [mus[-1]], branch="theta1=0", n_phase=8,
                                 progress=False)["splitting"]
     files = ctx.figure(plot_manifolds_summary(res, hess), "manifolds")

@@ -53,8 +53,8 @@ Keys
       ``seed`` (0), ``boundary_grid`` (64), ``t_max`` (default ``1000 * n_crossings``);
     * ``chaos_map``: ``section`` (``"theta2=0"``), ``n = [nx, ny]`` (``[64, 64]``),
       ``t_end`` (1000), ``indicator`` (``"fli"`` or ``"megno"``);
-    * ``splitting``: ``G`` (1.0), ``branch`` (``"theta1=4phi0"``), ``n_phase`` (16,
-      even), ``delta`` (1e-5).
+    * ``splitting``: ``G`` (1.0), ``branch`` (``"theta1=0"``, the Hess separatrix, or
+      ``"theta1=4phi0"``), ``n_phase`` (16, even), ``delta`` (1e-5).
 ``[integrator]``
     ``engine``: ``"heyoka"`` (default where installed), ``"numba"``, ``"scipy"``;
     ``rtol``, ``atol`` (1e-12 each; heyoka uses ``min(rtol, atol)``).

@@ -48,6 +48,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 import xarray as xr
 
+from andoyer.analysis.separatrix import DEFAULT_BRANCH
 from andoyer.validation import integer
 
 if TYPE_CHECKING:
@@ -357,7 +358,7 @@ def _splitting_point(body: RigidBody, h: float | None, M: float | None,
                           for k in inter.data_vars})
     ds = xr.merge([split, inter], compat="override", combine_attrs="override")
     ds.attrs = dict(out["splitting"].attrs)
-    for key in ("energy", "theta1_line", "rho", "melnikov_amplitude", "epsilon"):
+    for key in ("energy", "theta1_line", "rho", "melnikov_function_max", "epsilon"):
         if key in ds.attrs:
             ds[key] = ((), float(ds.attrs[key]))
     return ds
@@ -456,9 +457,9 @@ TASKS: dict[str, TaskKind] = {
         "splitting", "separatrix splitting of the rotations about the middle axis",
         {"G": Option(1.0, _positive, "the level h = c G^2 / 2 of the rotation about the "
                                      "middle axis (at M = 0)"),
-         "branch": Option("theta1=4phi0", _choice("theta1=4phi0", "theta1=0"),
-                          "the heteroclinic line (theta1 = 0, the Hess solutions, does "
-                          "not split)"),
+         "branch": Option(DEFAULT_BRANCH, _choice("theta1=0", "theta1=4phi0"),
+                          "the heteroclinic line: theta1=0 (the Hess separatrix: splits "
+                          "off the Hess direction, epsilon != 0) or theta1=4phi0"),
          "n_phase": Option(16, _even_at_least_4, "phases of the splitting grid (even)"),
          "delta": Option(1e-5, _small_positive,
                          "distance of the fundamental domains from the periodic orbits")},
