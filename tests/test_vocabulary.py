@@ -38,7 +38,8 @@ COMMAND_API = {
     "explore": ("andoyer.explore.state:make_settings",),
     "chaos-map": ("andoyer.analysis.chaos:chaos_map",),
     "manifolds": ("andoyer.analysis.splitting:separatrix_splitting",),
-    "frequencies": ("andoyer.analysis.frequency:orbit_frequencies",),
+    "frequencies": ("andoyer.analysis.frequency:orbit_frequencies",
+                    "andoyer.analysis.frequency:frequency_map"),
     "indicators": ("andoyer.analysis.chaos:indicators",),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}

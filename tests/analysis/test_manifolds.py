@@ -37,8 +37,8 @@ def result():
 def curves():
     body = TEST_BODY.with_mu(0.02)
     h = rotation_energy(body)
-    wu = grow_manifold(manifold_branch(body, h, "unstable"))
-    ws = grow_manifold(manifold_branch(body, h, "stable"))
+    wu = grow_manifold(manifold_branch(body, h, "unstable", "theta1=4phi0"))
+    ws = grow_manifold(manifold_branch(body, h, "stable", "theta1=4phi0"))
     return wu, ws
 
 
@@ -197,8 +197,8 @@ def test_paper_body_splitting_is_converged_in_delta_tolerance_and_precision():
     phases = [0.0, 0.7, 2.0]
     values = []
     for kw in ({}, {"delta": 3e-6}, {"tol": 1e-13}, {"tol": 1e-18, "long_double": True}):
-        wu = grow_manifold(manifold_branch(body, h, "unstable", **kw))
-        ws = grow_manifold(manifold_branch(body, h, "stable", **kw))
+        wu = grow_manifold(manifold_branch(body, h, "unstable", "theta1=4phi0", **kw))
+        ws = grow_manifold(manifold_branch(body, h, "stable", "theta1=4phi0", **kw))
         values.append([splitting_at(wu, ws, g)["Delta_G"] for g in phases])
     values = np.array(values)
     assert np.max(np.abs(values - values[0])) < 1e-14

@@ -87,6 +87,30 @@ def _classify(exc: BaseException) -> tuple[str, str]:
                               "--debug for the traceback and report it")
 
 
+#: Flags users reach for that a command spells otherwise.
+_SYNONYMS = {"--out": "--store", "--output": "--out", "--h": "--energy"}
+
+
+def _unrecognized(parser: argparse.ArgumentParser, command: str, extra: list[str]) -> None:
+    """Report arguments the command does not take with the command's own usage (argparse
+    would print the top-level one), suggesting the nearest flag of the command."""
+    import difflib
+
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    p = sub.choices[command]
+    flags = [s for a in p._actions if a.help != argparse.SUPPRESS for s in a.option_strings]
+    hints = []
+    for word in extra:
+        flag = word.split("=")[0]
+        close = ([_SYNONYMS[flag]] if _SYNONYMS.get(flag) in flags else
+                 difflib.get_close_matches(flag, flags, n=1, cutoff=0.6))
+        if word.startswith("-") and close:
+            hints.append(f"{flag}: did you mean {close[0]}?")
+    p.error(f"unrecognized arguments: {' '.join(extra)}"
+            + (f" ({'; '.join(hints)})" if hints else "")
+            + f"; see andoyer {command} --help")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``andoyer`` console script.
 
@@ -95,7 +119,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     traceback (``--debug`` shows it).
     """
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:  # the command's usage, not the top-level one, with a suggestion
+        _unrecognized(parser, args.command, extra)
     try:
         if args.no_limits:
             import math

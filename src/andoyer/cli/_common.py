@@ -15,7 +15,7 @@ from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "add_term", "floats", "output_file", "output_folder", "distinct_outputs", "count",
+           "add_term", "add_state_args", "state_from_args", "floats", "output_file", "output_folder", "distinct_outputs", "count",
            "real"]
 
 #: The body flags each --body takes (others are refused, not ignored).
@@ -236,6 +236,41 @@ def _body(args: argparse.Namespace) -> Any:
     if args.r is None:
         raise ValueError("--body custom needs --r E1 E2 E3 (direction of the centre of mass)")
     return RigidBody(args.A, args.B, args.C, mu, tuple(args.r), "custom")
+
+
+#: Initial-state flag -> (chart, components).
+STATE_FLAGS = {"--y0": ("euler_poisson", "G1,G2,G3,gamma1,gamma2,gamma3"),
+               "--andoyer": ("andoyer", "l,g,L,G,M"),
+               "--hess": ("hess", "theta1,theta2,J1,J2,J3")}
+
+
+def add_state_args(p: argparse.ArgumentParser, *, required: bool = True) -> None:
+    """The initial state of one orbit, in one of the three charts."""
+    title = "initial state (one of)" if required else \
+        "initial state (one of; none: the whole section plane)"
+    st = p.add_argument_group(title)
+    st.add_argument("--y0", help="Euler-Poisson state 'G1,G2,G3,gamma1,gamma2,gamma3'")
+    st.add_argument("--andoyer", help="Andoyer-Deprit state 'l,g,L,G,M'")
+    st.add_argument("--hess", help="Hess-chart state 'theta1,theta2,J1,J2,J3'")
+
+
+def state_from_args(args: argparse.Namespace, body: Any, *, required: bool = True
+                    ) -> tuple[Any, str] | None:
+    """``(state, chart)`` of ``--y0`` / ``--andoyer`` / ``--hess`` (checked on the body:
+    errors name the flag), or None when none is given and none is required."""
+    from andoyer.integrate.api import initial_states
+
+    given = [(flag, getattr(args, flag[2:])) for flag in STATE_FLAGS
+             if getattr(args, flag[2:]) is not None]
+    if len(given) > 1 or (required and not given):
+        raise ValueError("give exactly one initial state: --y0, --andoyer or --hess")
+    if not given:
+        return None
+    flag, text = given[0]
+    chart = STATE_FLAGS[flag][0]
+    state = floats(text, 6 if chart == "euler_poisson" else 5, flag)
+    initial_states(body, state, chart, name=flag)  # errors name the flag, not y0
+    return state, chart
 
 
 def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> None:

@@ -8,11 +8,12 @@ from typing import Any
 from andoyer.cli._common import (
     add_body_args,
     add_engine_args,
+    add_state_args,
     body_from_args,
     count,
-    floats,
     output_file,
     real,
+    state_from_args,
 )
 
 NAME = "orbit"
@@ -22,19 +23,12 @@ ORDER = 30
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from andoyer.integrate.api import initial_states, propagate
+    from andoyer.integrate.api import propagate
     from andoyer.io import write_netcdf
 
     out_path = output_file(args.out, ".nc")
     body = body_from_args(args)
-    given = [(n, v) for n, v in (("euler_poisson", args.y0), ("andoyer", args.andoyer),
-                                 ("hess", args.hess)) if v is not None]
-    if len(given) != 1:
-        raise ValueError("give exactly one initial state: --y0, --andoyer or --hess")
-    chart, text = given[0]
-    flag = {"euler_poisson": "--y0", "andoyer": "--andoyer", "hess": "--hess"}[chart]
-    state = floats(text, 6 if chart == "euler_poisson" else 5, flag)
-    initial_states(body, state, chart, name=flag)  # errors name the flag, not y0
+    state, chart = state_from_args(args, body)  # type: ignore[misc]
     if args.t_end <= 0 or args.n_out < 2:
         raise ValueError("--t-end must be > 0 and --n-out >= 2")
     t = np.linspace(0.0, args.t_end, args.n_out)
@@ -50,10 +44,7 @@ def run(args: argparse.Namespace) -> int:
 def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="integrate one orbit; write NetCDF")
     add_body_args(p)
-    st = p.add_argument_group("initial state (one of)")
-    st.add_argument("--y0", help="Euler-Poisson state 'G1,G2,G3,gamma1,gamma2,gamma3'")
-    st.add_argument("--andoyer", help="Andoyer-Deprit state 'l,g,L,G,M'")
-    st.add_argument("--hess", help="Hess-chart state 'theta1,theta2,J1,J2,J3'")
+    add_state_args(p)
     p.add_argument("--t-end", type=real(positive=True), default=1000.0,
                    help="final time (default 1000)")
     p.add_argument("--n-out", type=count(2), default=1001, help="output times (default 1001)")

@@ -18,7 +18,7 @@ from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import COLOURS, WIDTH, angle_ticks, paper_style
 
-__all__ = ["plot_chaos_map", "COLOUR_BAR_LABELS"]
+__all__ = ["plot_chaos_map", "plot_indicators", "COLOUR_BAR_LABELS"]
 
 #: Indicator -> colour-bar label.
 COLOUR_BAR_LABELS: dict[str, str] = {
@@ -158,3 +158,34 @@ def _title(a: dict[Any, Any], name: str) -> str:
         parts.append(f"$t = {float(a['t_end']):g}$")
     return {"fli": "FLI", "megno": "MEGNO", "mle": "Lyapunov"}.get(name, name) + " map: " \
         + ", ".join(parts)
+
+
+def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH) -> Figure:
+    """FLI and MEGNO of each orbit against time, from
+    :func:`andoyer.analysis.chaos.indicators` (two panels; MEGNO's regular value 2 dashed).
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 10.0, 11)
+    >>> ds = xr.Dataset({"fli": (("orbit", "time"), [np.log1p(t)]),
+    ...                  "megno": (("orbit", "time"), [np.full(11, 2.0)])},
+    ...                 coords={"time": t}, attrs={"tangent": "leaf"})
+    >>> [ax.get_ylabel()[:4] for ax in plot_indicators(ds).axes]
+    ['FLI ', 'MEGN']
+    """
+    from andoyer.plot.style import new_figure
+
+    with paper_style():
+        fig = new_figure(1, 2, width=width, aspect=0.7)
+        for ax, name in zip(fig.axes, ("fli", "megno"), strict=True):
+            for k in range(ds.sizes.get("orbit", 1)):
+                v = ds[name].isel(orbit=k) if "orbit" in ds[name].dims else ds[name]
+                ax.plot(ds.time.values, v.values, lw=1.0, label=f"orbit {k}")
+            ax.set_xlabel("time $t$")
+            ax.set_ylabel(COLOUR_BAR_LABELS[name])
+        fig.axes[1].axhline(2.0, color="0.5", lw=0.8, ls="--", label="regular: 2")
+        if ds.sizes.get("orbit", 1) > 1:
+            fig.axes[0].legend(fontsize=6, frameon=False)
+        fig.suptitle(f"chaos indicators (tangent space {ds.attrs.get('tangent', '?')})",
+                     fontsize=8)
+    return fig

@@ -79,11 +79,19 @@ def plot_manifold_curves(unstable: xr.Dataset, stable: xr.Dataset,
     return ax
 
 
-def plot_splitting_phase(splitting: xr.Dataset, *, ax: Axes | None = None) -> Axes:
+def _hess_label(hess: xr.Dataset) -> str:
+    eps = float(hess.epsilon) if "epsilon" in hess else 0.0
+    return r"$\theta_1 = 0$ (Hess)" if eps == 0.0 else f"$\\theta_1 = 0$, $\\epsilon = {eps:g}$"
+
+
+def plot_splitting_phase(splitting: xr.Dataset, *, ax: Axes | None = None,
+                         hess: xr.Dataset | None = None) -> Axes:
     """``Delta G / mu`` against the phase ``g``: measured (markers) and ``-M/(c G)`` (line).
 
     Divided by ``mu`` the first-order prediction is one curve for every ``mu``; the
-    measured points approach it as ``mu -> 0``.
+    measured points approach it as ``mu -> 0``. ``hess``: the same on the Hess branch
+    ``theta1 = 0`` (its profile, squares, and its prediction, dashed), drawn where it
+    splits (a body turned off the Hess direction).
     """
     if ax is None:
         with paper_style():
@@ -91,20 +99,30 @@ def plot_splitting_phase(splitting: xr.Dataset, *, ax: Axes | None = None) -> Ax
     g = np.asarray(splitting.phase.values, dtype=float)
     mus = np.asarray(splitting.mu.values, dtype=float)
     colours = [f"C{i}" for i in range(mus.size)]
+    room = 0.45
     fine = splitting.Delta_G_melnikov.isel(mu=-1).values / mus[-1]
     ax.plot(g, fine, "-", color="black", lw=1.0, label=r"$-M/(cG)$ (Melnikov)")
     for i, m in enumerate(mus):
         ax.plot(g, splitting.Delta_G.isel(mu=i).values / m, "o", ms=3, color=colours[i],
                 label=f"$\\mu = {m:g}$")
+    if hess is not None and float(np.nanmax(np.abs(hess.Delta_G_melnikov.values))) > 0.0:
+        m = float(hess.mu.values[-1])
+        hg = np.asarray(hess.phase.values, dtype=float)
+        ax.plot(hg, hess.Delta_G_melnikov.isel(mu=-1).values / m, "--", color="0.3",
+                lw=1.0, label=_hess_label(hess) + ": Melnikov")
+        ax.plot(hg, hess.Delta_G.isel(mu=-1).values / m, "s", ms=3,
+                color=COLOURS["hess"], label=_hess_label(hess) + f", $\\mu = {m:g}$")
+        room = 0.9
     ax.axhline(0.0, color=COLOURS["singular"], lw=0.5)
     ax.set_xlim(0.0, 2 * np.pi)
     angle_ticks(ax, 0.0, 2 * np.pi)
     lo, hi = ax.get_ylim()
-    ax.set_ylim(lo, hi + 0.45 * (hi - lo))          # room for the legend
+    ax.set_ylim(lo, hi + room * (hi - lo))          # room for the legend
     ax.set_xlabel("phase $g$ on $L = 0$")
     ax.set_ylabel(r"$\Delta G / \mu$")
     ax.set_title("splitting along $g = $ const")
-    ax.legend(loc="upper center", ncols=2, frameon=True, framealpha=0.85, edgecolor="none")
+    ax.legend(loc="upper center", ncols=2, frameon=True, framealpha=0.85, edgecolor="none",
+              fontsize="x-small")
     return ax
 
 
@@ -135,11 +153,12 @@ def plot_splitting_vs_mu(splitting: xr.Dataset, *, axes: tuple[Axes, Axes] | Non
                label=r"measured $\max|\Delta G|$")
     if hess is not None:
         ax1.loglog(hess.mu.values, np.maximum(hess.amplitude.values, 1e-17), "s",
-                   color=COLOURS["hess"], ms=4, label=r"$\theta_1 = 0$ (Hess): $\max|\Delta G|$")
+                   color=COLOURS["hess"], ms=4,
+                   label=_hess_label(hess) + r": $\max|\Delta G|$")
     ax1.set_xlabel(r"$\mu$")
     ax1.set_ylabel(r"$\max_g |\Delta G|$")
     ax1.set_title("splitting amplitude")
-    ax1.legend(loc="best")
+    ax1.legend(loc="best", fontsize="x-small")
     rel = np.asarray(splitting.relative_error.values, dtype=float)
     ax2.loglog(mus, rel, "o-", color=_U, ms=4, label="measured vs first order")
     ok = np.isfinite(rel) & (rel > 0)
@@ -173,8 +192,8 @@ def plot_manifolds_summary(result: dict[str, xr.Dataset], hess: xr.Dataset | Non
         a, b, c, d = fig.axes
         plot_manifold_curves(result["curve_unstable"], result["curve_stable"],
                              result["intersections"], ax=a)
-        plot_splitting_phase(result["splitting"], ax=b)
+        plot_splitting_phase(result["splitting"], ax=b, hess=hess)
         plot_splitting_vs_mu(result["splitting"], axes=(c, d), hess=hess)
         if title:
-            fig.suptitle(title)
+            fig.suptitle(title, wrap=True)
     return fig

@@ -1,0 +1,68 @@
+"""``andoyer indicators``: FLI, MEGNO and the Lyapunov exponent of one orbit, NetCDF + PNG."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from andoyer.cli._common import (
+    add_body_args,
+    add_engine_args,
+    add_state_args,
+    add_term,
+    body_from_args,
+    count,
+    output_file,
+    real,
+    state_from_args,
+)
+
+NAME = "indicators"
+ORDER = 48
+
+
+def run(args: argparse.Namespace) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from andoyer.analysis.chaos import indicators
+    from andoyer.io import write_netcdf
+    from andoyer.plot.chaos import plot_indicators
+    from andoyer.plot.section import save_figure
+
+    out = output_file(args.out, ".nc")
+    body = body_from_args(args)
+    state, chart = state_from_args(args, body)  # type: ignore[misc]
+    ds = indicators(body, state, args.t_end, n_times=args.n_times, chart=chart,
+                    tangent=args.tangent, tol=args.tol, engine=args.engine)
+    write_netcdf(ds, out)
+    (png,) = save_figure(plot_indicators(ds), out.with_suffix(".png"))
+    end = ds.isel(orbit=0, time=-1)
+    print(f"{body.name or 'body'}: to t = {args.t_end:g} (engine {ds.attrs['engine']}): "
+          f"FLI {float(end.fli):.4g}, MEGNO <Y> {float(end.megno):.4g} (2: regular), "
+          f"mLE {float(end.mle):.3e}; max |relative energy drift| "
+          f"{float(abs(ds.H_drift).max()):.1e}")
+    print(f"wrote {out} and {png}")
+    return 0
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(NAME, help="chaos indicators (FLI, MEGNO, mLE) of one orbit: NetCDF "
+                                  "+ PNG",
+                       description="Fast Lyapunov indicator, MEGNO and the maximal Lyapunov "
+                                   "exponent of one orbit against time, from the "
+                                   "variational equations (andoyer.analysis.chaos."
+                                   "indicators).")
+    add_body_args(p)
+    add_state_args(p)
+    add_term(p, "t_end", type=real(positive=True), default=1000.0,
+             help="integration time (default 1000)")
+    add_term(p, "n_times", type=count(2), default=101,
+             help="output times linspace(0, t_end, n_times) (default 101)")
+    add_term(p, "tangent", choices=("leaf", "energy"), default="leaf",
+             help="space of the initial tangent vector (default leaf)")
+    add_term(p, "tol", type=real(positive=True), default=1e-12,
+             help="tolerance of the variational integration (default 1e-12)")
+    add_engine_args(p, tolerances=False)
+    p.add_argument("--out", default="indicators.nc", help="output NetCDF (PNG beside it)")
+    p.set_defaults(func=run)
