@@ -15,8 +15,8 @@ from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "add_term", "add_state_args", "state_from_args", "floats", "output_file", "output_folder", "distinct_outputs", "count",
-           "real"]
+           "add_term", "add_state_args", "state_from_args", "floats", "output_file",
+           "output_folder", "distinct_outputs", "count", "real"]
 
 #: The body flags each --body takes (others are refused, not ignored).
 BODY_FLAGS = {
