@@ -173,3 +173,50 @@ def test_explore_in_chromium(tmp_path: Path) -> None:
     finally:
         server.stop()
     assert not page_errors, f"JavaScript errors on the page: {page_errors}"
+
+
+_TABLE_STATUS = """() => {
+  const table = Bokeh.documents[0].get_model_by_name('andoyer-orbit-table');
+  const view = [...Bokeh.index.all_views()].find(v => v.model === table);
+  if (!view) return null;
+  const root = view.shadow_el || view.el;
+  const rows = [...root.querySelectorAll('.slick-row')];
+  return rows.map(r => [...r.querySelectorAll('.slick-cell')].map(c => c.textContent.trim()));
+}"""
+
+
+def test_orbit_table_follows_the_work_without_a_click(tmp_path: Path) -> None:
+    """Clicks queue orbits ("queued"); the rendered table shows each one "done" when its
+    work ends, with no other interaction (issue 29): read from the table's DOM cells."""
+    sync_api = _need_browser()
+    from andoyer.explore.server import serve
+
+    server = serve(RigidBody.paper(), threaded=True, n_crossings=CROSSINGS)
+    try:
+        with sync_api.sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            try:
+                page = browser.new_page(viewport={"width": 1400, "height": 960})
+                page.goto(server.url)
+                _wait(page, "s.view_ready && s.pending === 0")
+                for x, y in CLICKS:
+                    _click(page, x, y)
+                _wait(page, f"s.n_orbits === {len(CLICKS)} && s.pending === 0")
+                # No further click, key or mouse move: the rendered cells must follow.
+                page.wait_for_function(
+                    f"() => {{ const r = ({_TABLE_STATUS})(); return r !== null && "
+                    f"r.length === {len(CLICKS)} && r.every(c => c[c.length - 1] === "
+                    f"'done' && c[c.length - 2] === '{CROSSINGS}'); }}", timeout=30_000)
+                cells = page.evaluate(_TABLE_STATUS)
+                assert [c[0] for c in cells] == ["1", "2", "3"]
+                # The sidebar's input fields show their whole value (not clipped).
+                clipped = page.evaluate("""() => [...document.querySelectorAll('input')]
+                    .filter(e => e.offsetParent !== null && e.type !== 'checkbox'
+                                 && e.type !== 'file' && e.scrollWidth > e.clientWidth + 1)
+                    .map(e => (e.closest('[class*=andoyer]') || e).className + ': '
+                              + e.value)""")
+                assert clipped == [], f"clipped fields: {clipped}"
+            finally:
+                browser.close()
+    finally:
+        server.stop()

@@ -249,7 +249,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     >>> from andoyer.analysis.periodic import rotation_energy
     >>> body = RigidBody.hess(2.5, 1.0, 1.6, mu=0.01)
     >>> wu = manifold_branch(body, rotation_energy(body), "unstable", "theta1=4phi0",
-...                      delta=1e-4)
+    ...                      delta=1e-4)
     >>> wu.orbit.section.sign, round(wu.factor, 4)        # leaves L = -G; exp(2 pi sigma/c)
     (-1, 18.5443)
     >>> curve = grow_manifold(wu)

@@ -46,6 +46,7 @@ import panel as pn
 from bokeh.events import DoubleTap, Event, Tap
 from bokeh.layouts import column
 from bokeh.models.annotations.labels import Title
+from bokeh.models.callbacks import CustomJS
 from bokeh.models.ranges import Range1d
 from bokeh.models.sources import ColumnDataSource
 from bokeh.models.tickers import FixedTicker
@@ -95,6 +96,14 @@ from andoyer.integrate.section import Section
 __all__ = ["Explorer"]
 
 log = logging.getLogger("andoyer.explore")  # the logger of andoyer.explore.base
+
+#: JavaScript: redraw the orbit table's cells (``table``: the DataTable model).
+_REDRAW_TABLE = """
+for (const view of Bokeh.index.all_views()) {
+  if (view.model === table && typeof view.updateGrid === "function") view.updateGrid()
+}
+"""
+
 
 class Explorer(ExplorerBase):
     """One explorer page: controls, the section plane, the orbits and the side panel.
@@ -186,6 +195,11 @@ class Explorer(ExplorerBase):
                      TableColumn(field="crossings", title="crossings", width=70),
                      TableColumn(field="status", title="status", width=180)])
         self.orbits.selected.on_change("indices", self._on_select)
+        # Bokeh's DataTable redraws its cells when its view's indices change, not when the
+        # values of rows already shown do: redraw on every change of the source here.
+        redraw = CustomJS(args={"table": self.table}, code=_REDRAW_TABLE)
+        for what in ("data", "patching", "streaming"):
+            self.orbits.js_on_change(what, redraw)
         self.plane_pane = pn.pane.Bokeh(column(self.status, fig, self.table, self.state_div))
         self.main = pn.Column(self.plane_pane)
 
@@ -430,7 +444,21 @@ class Explorer(ExplorerBase):
                          "busy")
 
     def _refresh_orbit_table(self) -> None:
-        self.orbits.data = orbit_columns(self.session)
+        """Push the session's orbits to the table: a patch of the cells that changed
+        (status, crossings), or new columns when orbits came or went. The page redraws
+        the table at each change (``_REDRAW_TABLE``): Bokeh's DataTable alone kept showing
+        "queued" for an orbit that was done, until the next click added a row."""
+        new = orbit_columns(self.session)
+        old = self.orbits.data
+        if list(old.get("id", [])) == new["id"]:
+            patches = {k: [(i, v) for i, (was, v) in enumerate(zip(old[k], new[k],
+                                                                  strict=True)) if was != v]
+                       for k in new}
+            patches = {k: p for k, p in patches.items() if p}
+            if patches:
+                self.orbits.patch(patches)
+        else:
+            self.orbits.data = new
         ids = list(self.session.orbits)
         want = [ids.index(self._selected)] if self._selected in ids else []
         if list(self.orbits.selected.indices) != want:
