@@ -97,6 +97,9 @@ __all__ = ["Explorer"]
 
 log = logging.getLogger("andoyer.explore")  # the logger of andoyer.explore.base
 
+#: Width of the controls' column (px).
+CONTROLS_WIDTH = 300
+
 #: JavaScript: redraw the orbit table's cells (``table``: the DataTable model).
 _REDRAW_TABLE = """
 for (const view of Bokeh.index.all_views()) {
@@ -210,9 +213,9 @@ class Explorer(ExplorerBase):
         w = pn.widgets
         self.w_body = widget(w.Select, "body", options=BODIES,
                                value=mode, css_classes=["andoyer-body"])
-        self.w_A = widget(w.FloatInput, "A", value=b.A, step=0.1, start=1e-9, width=85)
-        self.w_B = widget(w.FloatInput, "B", value=b.B, step=0.1, start=1e-9, width=85)
-        self.w_C = widget(w.FloatInput, "C", value=b.C, step=0.1, start=1e-9, width=85)
+        self.w_A = widget(w.FloatInput, "A", value=b.A, step=0.1, start=1e-9, width=80)
+        self.w_B = widget(w.FloatInput, "B", value=b.B, step=0.1, start=1e-9, width=80)
+        self.w_C = widget(w.FloatInput, "C", value=b.C, step=0.1, start=1e-9, width=80)
         self.w_mu = widget(w.FloatInput, "μ (weight × distance)", value=b.mu, step=0.005,
                                  start=0.0, css_classes=["andoyer-mu"])
         self.w_r = widget(w.TextInput, "r = (e1, e2, e3) (general body)",
@@ -250,13 +253,19 @@ class Explorer(ExplorerBase):
         self.w_clear.on_click(lambda _e: self._guard(self._clear_orbits))
         self.w_remove.on_click(lambda _e: self._guard(self._remove_selected))
         self._sync_body_widgets()
+        # Fields fit the column (its width less their margins): at Panel's default width
+        # they ran under the plane and their right edges were hidden.
+        for wid in (self.w_body, self.w_mu, self.w_r, self.w_h, self.w_M, self.w_section,
+                    self.w_value, self.w_direction, self.w_crossings, self.w_engine,
+                    self.w_root):
+            wid.width = CONTROLS_WIDTH - 20
         self.controls = pn.Column(
             pn.pane.Markdown("### andoyer explore\nClick inside the boundary to seed an orbit "
                              "on the energy level."),
             self.w_body, pn.Row(self.w_A, self.w_B, self.w_C), self.w_mu, self.w_r,
             self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
             self.w_crossings, self.w_engine, self.w_root, self.w_underlay,
-            pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=300)
+            pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=CONTROLS_WIDTH)
 
     def _build_side(self) -> None:
         self.info = pn.pane.HTML("<i>no orbit selected</i>", width=340,
