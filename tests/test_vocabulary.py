@@ -123,6 +123,13 @@ def test_scan_keys_are_api_names():
     assert set(TASKS["section"].options) <= api
 
 
+def test_scan_dims_are_described_in_the_words_of_the_table():
+    from andoyer.scan.config import PARAMETER_ATTRS
+
+    for name, (_symbol, long_name, _eq, _units) in PARAMETER_ATTRS.items():
+        assert long_name == VOCABULARY[name].meaning, name
+
+
 def test_energy_flag_is_not_next_to_help():
     """--h (energy) sat beside -h (help): the flag is --energy, --h still works a release."""
     parser, commands = _commands()

@@ -188,10 +188,10 @@ TERMS: tuple[Term, ...] = (
     Term("M", "area constant (G, gamma) = M", "M", old_cli=("--area",)),
     Term("mu", "weight x distance of the centre of mass", "mu"),
     Term("epsilon", "turn of the centre of mass off the Hess direction in the (e1, e2) "
-         "plane, rad (RigidBody.near_hess)", "epsilon"),
-    Term("A", "moment of inertia A", "A"),
-    Term("B", "moment of inertia B", "B"),
-    Term("C", "moment of inertia C", "C"),
+         "plane", "epsilon"),
+    Term("A", "principal moment of inertia A", "A"),
+    Term("B", "principal moment of inertia B", "B"),
+    Term("C", "principal moment of inertia C", "C"),
     Term("r", "direction of the centre of mass (e1, e2, e3)", "r"),
     Term("section", "section 'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
          "':-' for the decreasing direction", "section"),
