@@ -237,6 +237,16 @@ def renamed(**old_to_new: str) -> Callable[[_F], _F]:
     with a ``DeprecationWarning`` naming the new spelling (the table :data:`TERMS` lists
     them as ``old_api``).
 
+    Parameters
+    ----------
+    **old_to_new : str
+        Former keyword name -> its name now. Giving both raises ``TypeError``.
+
+    Returns
+    -------
+    callable
+        The decorator; the wrapped function keeps its signature (``functools.wraps``).
+
     Examples
     --------
     >>> import warnings

@@ -36,7 +36,9 @@ def run(args: argparse.Namespace) -> int:
     ds = indicators(body, state, args.t_end, n_times=args.n_times, chart=chart,
                     tangent=args.tangent, tol=args.tol, engine=args.engine)
     write_netcdf(ds, out)
-    (png,) = save_figure(plot_indicators(ds), out.with_suffix(".png"))
+    title = (f"{body.name or 'body'}: FLI and MEGNO from {chart} state {state}, engine "
+             f"{ds.attrs['engine']}, tol {args.tol:g}, tangent space {args.tangent}")
+    (png,) = save_figure(plot_indicators(ds, title=title), out.with_suffix(".png"))
     end = ds.isel(orbit=0, time=-1)
     print(f"{body.name or 'body'}: to t = {args.t_end:g} (engine {ds.attrs['engine']}): "
           f"FLI {float(end.fli):.4g}, MEGNO <Y> {float(end.megno):.4g} (2: regular), "

@@ -160,9 +160,23 @@ def _title(a: dict[Any, Any], name: str) -> str:
         + ", ".join(parts)
 
 
-def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH) -> Figure:
+def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH, title: str | None = None
+                    ) -> Figure:
     """FLI and MEGNO of each orbit against time, from
     :func:`andoyer.analysis.chaos.indicators` (two panels; MEGNO's regular value 2 dashed).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        With ``fli`` and ``megno`` over ``(orbit, time)``.
+    width : float
+        Figure width, inches.
+    title : str, optional
+        Figure title (default: the tangent space of the dataset).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
 
     Examples
     --------
@@ -186,6 +200,6 @@ def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH) -> Figure:
         fig.axes[1].axhline(2.0, color="0.5", lw=0.8, ls="--", label="regular: 2")
         if ds.sizes.get("orbit", 1) > 1:
             fig.axes[0].legend(fontsize=6, frameon=False)
-        fig.suptitle(f"chaos indicators (tangent space {ds.attrs.get('tangent', '?')})",
-                     fontsize=8)
+        fig.suptitle(title or f"chaos indicators (tangent space "
+                              f"{ds.attrs.get('tangent', '?')})", fontsize=8, wrap=True)
     return fig
