@@ -194,3 +194,14 @@ def test_former_scan_keys_warn_and_mean_the_same():
     assert old == new
     with pytest.raises(ValueError, match="'orbits' is the former name of 'n_orbits'"):
         parse_config({**base, "task": {"kind": "section", "orbits": 3, "n_orbits": 3}})
+
+
+def test_guide_shows_the_vocabulary():
+    from pathlib import Path
+
+    guide = Path(__file__).resolve().parents[1] / "docs" / "guide.md"
+    rows = [r for r in guide.read_text().splitlines() if r.startswith("| `")]
+    for t in TERMS:
+        assert any(r.startswith(f"| `{t.api}` | `{t.flag}` |")
+                   and all(f"`{o}`" in r for o in t.old_api + t.old_cli + t.old_config)
+                   for r in rows), t
