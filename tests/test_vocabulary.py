@@ -114,6 +114,7 @@ def test_scan_keys_are_api_names():
     for kind in TASKS.values():
         for key in kind.options:
             assert key in keys and keys[key].api == key, (kind.name, key)
+    assert {"engine", "rtol", "atol", "tol"} <= set(keys)   # [integrator]
     # the section task's keys are fill_section's and poincare's parameters
     from andoyer.integrate.api import poincare
     from andoyer.integrate.fill import fill_section
@@ -196,12 +197,24 @@ def test_former_scan_keys_warn_and_mean_the_same():
         parse_config({**base, "task": {"kind": "section", "orbits": 3, "n_orbits": 3}})
 
 
+def test_scan_tol_is_both_tolerances():
+    from andoyer.scan.config import parse_config
+
+    base = {"parameters": {"mu": [0.01, 0.02], "h": 0.25},
+            "task": {"kind": "section", "n_orbits": 3, "n_crossings": 5}}
+    cfg = parse_config({**base, "integrator": {"engine": "numba", "tol": 1e-10}})
+    assert (cfg.integrator.rtol, cfg.integrator.atol) == (1e-10, 1e-10)
+    with pytest.raises(ValueError, match="not tol and rtol"):
+        parse_config({**base, "integrator": {"engine": "numba", "tol": 1e-10, "rtol": 1e-9}})
+
+
 def test_guide_shows_the_vocabulary():
     from pathlib import Path
 
     guide = Path(__file__).resolve().parents[1] / "docs" / "guide.md"
     rows = [r for r in guide.read_text().splitlines() if r.startswith("| `")]
     for t in TERMS:
+        assert "|" not in t.meaning, t  # a table cell
         assert any(r.startswith(f"| `{t.api}` | `{t.flag}` |")
                    and all(f"`{o}`" in r for o in t.old_api + t.old_cli + t.old_config)
                    for r in rows), t

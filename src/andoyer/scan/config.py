@@ -57,7 +57,8 @@ Keys
       ``"theta1=4phi0"``), ``n_phase`` (16, even), ``delta`` (1e-5).
 ``[integrator]``
     ``engine``: ``"heyoka"`` (default where installed), ``"numba"``, ``"scipy"``;
-    ``rtol``, ``atol`` (1e-12 each; heyoka uses ``min(rtol, atol)``).
+    ``rtol``, ``atol`` (1e-12 each; heyoka and the chaos tasks use ``min(rtol, atol)``),
+    or ``tol`` for both (the ``tol`` of the API's chaos indicators).
 ``[store]``
     ``chunks``: points per task along each swept parameter, e.g. ``{mu = 2}``
     (default 1: one task per point); also the store's Zarr chunks.
@@ -449,7 +450,7 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
 
     # [integrator]
     itab = _table(data, "integrator", where)
-    _unknown(f"{where}: [integrator]", itab, ("engine", "rtol", "atol"))
+    _unknown(f"{where}: [integrator]", itab, ("engine", "rtol", "atol", "tol"))
     engine = itab.get("engine")
     if engine is None:
         from andoyer.integrate.engines import default_engine_name
@@ -461,6 +462,12 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
     if not installed(str(engine)):
         raise ValueError(f"{where}: [integrator] engine {engine!r} is not installed here; "
                          "choose another engine")
+    if "tol" in itab:  # one number, as the API's tol of the chaos indicators
+        both = [k for k in ("rtol", "atol") if k in itab]
+        if both:
+            raise ValueError(f"{where}: [integrator] give tol (both tolerances) or rtol and "
+                             f"atol, not tol and {' and '.join(both)}")
+        itab = {**itab, "rtol": itab["tol"], "atol": itab["tol"]}
     rtol = _number(f"{where}: [integrator] rtol", itab.get("rtol", 1e-12))
     atol = _number(f"{where}: [integrator] atol", itab.get("atol", 1e-12))
     try:
