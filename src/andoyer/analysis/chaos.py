@@ -69,7 +69,7 @@ from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
-from andoyer.integrate.engines import ENGINES, EngineLike, engines_with, resolve_engine
+from andoyer.integrate.engines import EngineLike, engines_with, resolve_engine
 from andoyer.integrate.engines.base import Capability, EngineBase, TangentFlow, Tolerance
 from andoyer.integrate.fill import fill_section, section_roots
 from andoyer.integrate.results import (
@@ -239,9 +239,10 @@ def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float
 
 def _engine(engine: EngineLike, **options: Any) -> EngineBase:
     """The engine (name or instance; ``None``: heyoka where installed, else numba)."""
-    if isinstance(engine, str) and engine not in ENGINES:
+    able = engines_with(Capability.TANGENT)
+    if isinstance(engine, str) and engine not in able:
         raise ValueError(f"engine {engine!r} cannot integrate the variational equations; "
-                         f"choose one of {', '.join(engines_with(Capability.TANGENT))}")
+                         f"choose one of {', '.join(able)}")
     return resolve_engine(engine, Capability.TANGENT, **options)
 
 

@@ -123,7 +123,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
     T = _positive("T (the period)", T)
     if not math.isfinite(T):
         raise ValueError("T must be finite (a separatrix has no period)")
-    tol = _positive("tol", tol)
+    tol = Tolerance.single(tol).tol
     if method == "variational":
         Phi, yT, _ = _variational_monodromy(body, y, T, tol, engine)
     elif method == "finite_difference":

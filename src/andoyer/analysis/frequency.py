@@ -53,7 +53,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.notation import renamed
-from andoyer.validation import integer
+from andoyer.validation import integer, positive
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
            "resonance_label", "RESONANCE_ORDER", "RESONANCE_DRIFT"]
@@ -101,8 +101,7 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
         raise ValueError(f"z needs at least 16 samples, got {n}")
     if not np.all(np.isfinite(zz)):
         raise ValueError("z must be finite")
-    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0):
-        raise ValueError(f"dt must be finite and > 0, got {dt!r}")
+    dt = positive("dt", dt)
     n_freq = integer("n_freq", n_freq, 1, n // 4)
     window = integer("window", window, 1)
     # nafflib analyses x - i px with tunes Q in turns per sample: omega = -2 pi Q / dt
@@ -221,9 +220,7 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
     from andoyer.integrate.api import propagate
 
     body.require_middle_axis("orbit_frequencies")
-    T = float(t_end)
-    if not (math.isfinite(T) and T > 0.0):
-        raise ValueError(f"t_end must be finite and > 0, got {t_end!r}")
+    T = positive("t_end", t_end)
     n_samples = integer("n_samples", n_samples, 64)
     t = np.linspace(0.0, T, n_samples)
     dt = float(t[1] - t[0])

@@ -109,8 +109,7 @@ _REL = 8.0 * _EPS
 
 
 def _check_hess(body: RigidBody) -> None:
-    if not isinstance(body, RigidBody):
-        raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
+    """The Hess conditions (its callers' ``@checks_body`` checked the type)."""
     body.require_hess("the Hess solution")
     if body.mu <= 0.0:
         raise ValueError("the Hess solution needs mu > 0 (at mu = 0 theta2 rotates "

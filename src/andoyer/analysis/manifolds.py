@@ -87,13 +87,13 @@ from andoyer.analysis.periodic import (
     section_state,
 )
 from andoyer.analysis.section_map import FLOW_ENGINES
-from andoyer.analysis.separatrix import BRANCHES, DEFAULT_BRANCH
+from andoyer.analysis.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_momentum
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
-from andoyer.validation import integer
+from andoyer.validation import integer, positive
 
 __all__ = [
     "Stability",
@@ -199,8 +199,9 @@ class ManifoldBranch:
 
 def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
                          ) -> tuple[float, int]:
-    """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``."""
-    return heteroclinic_line(body, math.sqrt(2.0 * h / body.c), branch, sheet)
+    """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``
+    (``J2`` from :func:`~andoyer.analysis.separatrix.separatrix_momentum`)."""
+    return heteroclinic_line(body, separatrix_momentum(body, h), branch, sheet)
 
 
 @checks_body
@@ -430,9 +431,7 @@ def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float
     import warnings
 
     n_initial = integer("n_initial", n_initial, 4)
-    for name, v in (("max_gap", max_gap), ("max_angle", max_angle)):
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    max_gap, max_angle = positive("max_gap", max_gap), positive("max_angle", max_angle)
     s = np.linspace(-s_margin, 1.0 + s_margin, int(n_initial) + 1)
     crossings = [branch.trace(si) for si in s]
     y = np.stack([c.y for c in crossings])

@@ -110,8 +110,7 @@ SEPARATRIX_RTOL = 4.0 * _EPS
 
 
 def require_pendulum_body(body: RigidBody, what: str) -> None:
-    if not isinstance(body, RigidBody):
-        raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
+    """A body whose physical pendulum exists (callers check the type: ``@checks_body``)."""
     body.require_planar(what)
     if body.mu <= 0.0:
         raise ValueError(f"{what} needs mu > 0 (mu = 0 is the free body: the pendulum "

@@ -23,12 +23,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.analysis.separatrix import separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines import EngineLike, engine_class, engines_with, resolve_engine
 from andoyer.integrate.engines.base import Capability, SectionEvent, Tolerance
+from andoyer.validation import positive
 
 __all__ = [
     "Crossing", "DEFAULT_TOL", "FLOW_ENGINES", "RotationSection", "SectionReturn",
@@ -61,14 +63,16 @@ def middle_axis_rate(body: RigidBody) -> float:
 
 @checks_body
 def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
-    """``h = c G^2 / 2``: the energy of the permanent rotation about z with ``|G| = G``.
+    """``h = c G^2 / 2``: the energy of the permanent rotation about z (the middle axis
+    in this module) with ``|G| = G``:
+    :func:`~andoyer.analysis.separatrix.separatrix_energy`, the one owner of that level.
 
     On this level the unperturbed separatrices of the Hess chart have ``J2 = G``.
+
+    >>> rotation_energy(RigidBody.paper()) == RigidBody.paper().c / 2
+    True
     """
-    G = float(G)
-    if not (math.isfinite(G) and G > 0.0):
-        raise ValueError(f"G must be finite and > 0, got {G!r}")
-    return 0.5 * body.c * G * G
+    return separatrix_energy(body, positive("G", G))
 
 
 def gamma_phase(y: ArrayLike) -> NDArray[np.float64]:
@@ -162,7 +166,8 @@ class _Descriptions(Mapping[str, str]):
     def __getitem__(self, name: str) -> str:
         if name not in self._names():
             raise KeyError(name)
-        return f"{name} ({engine_class(name).tangent_method})"
+        method = engine_class(name).tangent_method
+        return f"{name} ({method})" if method else name
 
     def __iter__(self) -> Iterator[str]:
         return iter(self._names())

@@ -83,6 +83,7 @@ from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "DEFAULT_BRANCH", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
+           "separatrix_momentum",
            "separatrix_andoyer", "separatrix_hess",
            "FIG2_CAPTION", "SEPARATRIX_LEVEL", "check_grid_size", "separatrix_curves",
            "separatrix_on_level"]
@@ -286,6 +287,10 @@ def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     """Energy ``H0 = I_mid G0^2 / 2`` of the separatrix: that of the rotation about the
     middle axis (``c G0^2/2`` when z is the middle axis, as for a Hess body).
 
+    The one owner of the energy level of the separatrices (and of the rotations about
+    the middle axis): ``G0 = |G|`` is also the Hess chart's ``J2`` there (Eq. (13) with
+    ``L = +-G``); :func:`separatrix_momentum` is the inverse.
+
     Examples
     --------
     >>> from andoyer import RigidBody
@@ -294,6 +299,23 @@ def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     """
     G0 = _positive("G0", G0)
     return 0.5 * _middle(body)[1] * G0**2
+
+
+@checks_body
+def separatrix_momentum(body: RigidBody, h: float) -> float:
+    """``|G| = J2 = sqrt(2 h / I_mid)``: the momentum of the separatrices (and of the
+    rotations about the middle axis) on the level ``H = h``; the inverse of
+    :func:`separatrix_energy`.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody.paper()
+    >>> separatrix_momentum(body, separatrix_energy(body, 0.7))
+    0.7
+    """
+    h = _positive("h (the energy of the separatrix level)", h)
+    return math.sqrt(2.0 * h / _middle(body)[1])
 
 
 def _s(body: RigidBody, l: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -27,10 +27,11 @@ from andoyer.analysis.periodic import (
     continue_rotation_orbit,
 )
 from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
-from andoyer.analysis.separatrix import DEFAULT_BRANCH
+from andoyer.analysis.separatrix import DEFAULT_BRANCH, separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance, values_from_attrs
+from andoyer.validation import positive
 
 __all__ = ["measure_splitting", "separatrix_splitting", "splitting_at", "splitting_vs_epsilon"]
 
@@ -313,10 +314,9 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         raise ValueError("mu must be increasing")
     hess = body.nearest_hess()
     engine = flow_engine(engine)
-    G = float(G)
-    if not (math.isfinite(G) and G > 0.0):
-        raise ValueError(f"G must be finite and > 0, got {G!r}")
-    h = 0.5 * body.c * G * G
+    # The one conversion of the level along the call path: G -> h here, h -> J2 = G in
+    # heteroclinic_line_of (separatrix_momentum).
+    h = separatrix_energy(body, positive("G", G))
     theta1_line, j1_dir = heteroclinic_line_of(hess, h, branch, sheet)
     leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
     bar = Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)

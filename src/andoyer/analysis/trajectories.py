@@ -22,6 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
+from andoyer.analysis.separatrix import separatrix_energy as separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.api import poincare, propagate
 from andoyer.integrate.fill import fill_section
@@ -44,19 +45,8 @@ def zoom_box(body: RigidBody, J2: float = 1.0
     return (t - 0.3, t + 0.3), (0.0, 0.06 * J2)
 
 
-@checks_body
-def separatrix_energy(body: RigidBody, J2: float = 1.0) -> float:
-    """H0 on the unperturbed separatrices at G = J2: c J2^2 / 2 (Eq. (13) with L = +-G).
-
-    On the lines theta1 = 0, 4 phi0 the bracket of (13) vanishes and on J1 = 0, J2 the
-    factor J1 (J1 - J2) does, so the whole separatrix lies on H0 = c J2^2 / 2.
-    """
-    return 0.5 * body.c * J2**2
-
-
 def _check_body(body: RigidBody) -> None:
-    if not isinstance(body, RigidBody):
-        raise ValueError(f"body must be a RigidBody, got {type(body).__name__}")
+    """The Hess chart of Fig. 3 (the callers' ``@checks_body`` checked the type)."""
     body.require_planar("Fig. 3 (the Hess chart)")
 
 

@@ -394,13 +394,14 @@ def _border(ctx: Context) -> Result:
 
     from andoyer.analysis.chaos_border import chaos_border_map
     from andoyer.analysis.frequency import frequency_map
+    from andoyer.analysis.separatrix import separatrix_energy
     from andoyer.analysis.splitting import splitting_vs_epsilon
     from andoyer.plot.border import plot_border_of_chaos
 
     # A Hess body whose separatrices split by O(mu) (rho = 1.08): on the paper's body
     # (rho = 4.56) the splitting and the chaotic layers are exponentially small.
     body = RigidBody.hess(2.5, 1.0, 1.6, name="rho~1")
-    h = 0.5 * body.c                       # the level of the rotations with |G| = 1
+    h = separatrix_energy(body)            # the level of the rotations with |G| = 1
     eps = [0.0, 0.1, 0.2, 0.4] if not ctx.quick else [0.0, 0.2]
     split = splitting_vs_epsilon(body, eps, [0.01], n_phase=8, progress=False,
                                  engine=ctx.engine)

@@ -417,3 +417,15 @@ def test_a_missing_capability_is_refused_by_name(name: str) -> None:
             continue
         with pytest.raises(NotImplementedError, match=cap.value):
             engine.require(cap)
+
+
+def test_the_guide_shows_the_generated_capability_table() -> None:
+    """docs/guide.md's "what each engine can do" is :func:`capability_table` verbatim."""
+    from pathlib import Path
+
+    from andoyer.integrate.engines import capability_table
+
+    guide = (Path(__file__).resolve().parents[3] / "docs" / "guide.md").read_text()
+    start = guide.index("<!-- capability table:")
+    body = guide[guide.index("\n", start) + 1:guide.index("<!-- end of capability table")]
+    assert body.strip() == capability_table(), "regenerate it with capability_table()"

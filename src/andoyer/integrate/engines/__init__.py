@@ -41,7 +41,7 @@ ENGINES = {
 EngineLike = str | EngineBase | None
 
 #: The package each engine runs on (checked without importing it).
-PACKAGES = {"heyoka": "heyoka", "numba": "numba", "scipy": "scipy"}
+PACKAGES = {"heyoka": "heyoka", "numba": "numba", "scipy": "scipy", "taylor": "numba"}
 
 
 def installed(name: str) -> bool:

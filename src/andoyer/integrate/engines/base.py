@@ -311,8 +311,7 @@ def runtime_parameters(params: ArrayLike, event: SectionEvent | None = None,
         raise ValueError("params must be (a, b, c, mu, e1, e2, e3, phi0), "
                          f"got {p.size} values")
     value = 0.0 if event is None else event.value
-    if not (math.isfinite(scale) and scale > 0.0):
-        raise ValueError(f"scale must be finite and > 0, got {scale!r}")
+    scale = positive("scale", scale)
     phi0 = float(p[7])
     return np.array([*p.tolist(), value, math.cos(value), math.sin(value),
                      math.cos(phi0), math.sin(phi0), 1.0 / scale])
@@ -673,10 +672,7 @@ def _event(event: Any) -> SectionEvent:
 
 
 def _t_max(t_max: Any) -> float:
-    v = float(t_max)
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"t_max must be finite and > 0, got {t_max!r}")
-    return v
+    return positive("t_max", t_max)
 
 
 def unit_vectors(W: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
