@@ -218,3 +218,39 @@ def test_guide_shows_the_vocabulary():
         assert any(r.startswith(f"| `{t.api}` | `{t.flag}` |")
                    and all(f"`{o}`" in r for o in t.old_api + t.old_cli + t.old_config)
                    for r in rows), t
+
+
+#: Defaults that differ on purpose between a command or a scan task and the API function it
+#: calls, with why; any other difference fails (a default measures what the API measures).
+DEFAULTS_ON_PURPOSE = {
+    ("chaos-map", "n"): "the shell's map is a picture, 128 x 128; the API's 64 suits scripts",
+    ("explore", "body"): "the same body: the CLI names the paper's preset",
+    ("scan:section", "n_orbits"): "a grid of points: fewer orbits per point (cost)",
+    ("scan:section", "sampling"): "sobol: a prefix of the sequence is spread over the plane",
+    ("scan:section", "boundary_grid"): "a grid of points: a coarser boundary search (cost)",
+    ("scan:chaos_map", "n"): "the same 64 x 64, written as a pair",
+    ("scan:chaos_border", "section"): "the same section, written as text",
+    ("scan:chaos_border", "n"): "32 x 32 per point of an (epsilon, mu) grid",
+}
+
+
+def test_defaults_agree_with_the_api_or_say_why():
+    from andoyer.scan.tasks import TASKS
+
+    _, commands = _commands()
+    found = set()
+    pairs = [(cmd, COMMAND_API[cmd], {a.dest: a.default for a in _visible(p)})
+             for cmd, p in commands.items() if cmd in COMMAND_API]
+    scan_api = {"section": ("andoyer.integrate.fill:fill_section",),
+                "chaos_map": ("andoyer.analysis.chaos:chaos_map",),
+                "splitting": ("andoyer.analysis.splitting:separatrix_splitting",),
+                "chaos_border": ("andoyer.analysis.chaos_border:chaos_border",)}
+    pairs += [(f"scan:{k}", paths, {n: o.default for n, o in TASKS[k].options.items()})
+              for k, paths in scan_api.items()]
+    for where, paths, defaults in pairs:
+        for path in paths:
+            for name, p in inspect.signature(_function(path)).parameters.items():
+                if name in defaults and p.default is not inspect.Parameter.empty \
+                        and p.default != defaults[name]:
+                    found.add((where, name))
+    assert found == set(DEFAULTS_ON_PURPOSE), found ^ set(DEFAULTS_ON_PURPOSE)
