@@ -32,10 +32,13 @@ $(VENV)/.docs: pyproject.toml | $(VENV)/.installed
 	$(BIN)/python -m pip install -q -e ".[test,docs]"
 	touch $@
 
+# Offline by default (ANDOYER_DOCS_ONLINE=1 adds the links to Python, NumPy, ...). The
+# pages are read once (the doctest builder reuses the html builder's doctrees) and the
+# executed notebooks are cached in docs/_build/.jupyter_cache between builds.
 docs: $(VENV)/.docs
-	rm -rf docs/_build docs/api/generated
-	$(BIN)/python -m sphinx -W --keep-going -b html docs docs/_build/html
-	$(BIN)/python -m sphinx -W --keep-going -b doctest docs docs/_build/doctest
+	rm -rf docs/_build/html docs/_build/doctest docs/_build/doctrees docs/api/generated
+	$(BIN)/python -m sphinx -W --keep-going -d docs/_build/doctrees -b html docs docs/_build/html
+	$(BIN)/python -m sphinx -W --keep-going -d docs/_build/doctrees -b doctest docs docs/_build/doctest
 
 clean:
-	rm -rf $(VENV) build src/*.egg-info docs/_build docs/api/generated
+	rm -rf $(VENV) build src/*.egg-info docs/_build docs/api/generated .jupyter_cache

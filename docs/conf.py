@@ -8,6 +8,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))  # the checkout's andoyer, even beside an install
+sys.path.insert(0, str(ROOT / "docs" / "_ext"))  # this site's own extensions
 
 import andoyer  # noqa: E402
 
@@ -21,10 +22,12 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax shipped with the site: formulas render offline
     "sphinx.ext.intersphinx",
     "sphinx.ext.doctest",
     "numpydoc",
     "myst_nb",
+    "summaries",  # docs/_ext/summaries.py: API summaries not cut at "Eq."
 ]
 
 # Pages: MyST markdown and notebooks written as text (executed at build time).
@@ -34,11 +37,38 @@ master_doc = "index"
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
 
-# Notebooks run at every build; a failing cell fails the build; outputs never stored.
-nb_execution_mode = "force"
+# Notebooks run once per build (the html and doctest builders share the result) and are
+# cached between builds by jupyter-cache; a failing cell fails the build; outputs are
+# never stored in the sources. The cache is keyed by the notebook's code AND by the
+# andoyer sources, so a change of the library re-executes every notebook.
+nb_execution_mode = "cache"
 nb_execution_raise_on_error = True
 nb_execution_timeout = 300
 nb_execution_show_tb = True
+
+
+def _source_stamp() -> str:
+    """A hash of the andoyer sources (and pyproject.toml) the notebooks run against."""
+    import hashlib
+
+    digest = hashlib.sha256()
+    files = sorted((ROOT / "src" / "andoyer").rglob("*.py")) + [ROOT / "pyproject.toml"]
+    for path in files:
+        digest.update(str(path.relative_to(ROOT)).encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+# docs/_build/.jupyter_cache/<stamp>: `make docs` keeps it (it clears html/ and doctest/
+# only); caches of older sources are removed so the folder does not grow.
+_CACHE_ROOT = ROOT / "docs" / "_build" / ".jupyter_cache"
+nb_execution_cache_path = str(_CACHE_ROOT / _source_stamp())
+if _CACHE_ROOT.is_dir():
+    import shutil
+
+    for _old in _CACHE_ROOT.iterdir():
+        if _old.is_dir() and str(_old) != nb_execution_cache_path:
+            shutil.rmtree(_old, ignore_errors=True)
 
 # API reference: one page per public module, generated from the docstrings.
 autosummary_generate = True
@@ -52,10 +82,11 @@ numpydoc_xref_param_type = False
 # paragraph; numpydoc renames the labels per docstring, so Sphinx would flag each one.
 suppress_warnings = ["ref.citation"]
 
-# Cross-links to the libraries andoyer builds on. The inventories are fetched over the
-# network; where it is not reachable (this project's CI reaches only package registries)
-# set ANDOYER_DOCS_OFFLINE=1 and the links are left out instead of warning.
-intersphinx_mapping = {} if os.environ.get("ANDOYER_DOCS_OFFLINE") else {
+# Cross-links to the libraries andoyer builds on. The build is offline by default (the
+# inventories would be fetched over the network, which CI and many machines do not
+# reach): the links are left out with a note. ANDOYER_DOCS_ONLINE=1 fetches them.
+DOCS_ONLINE = os.environ.get("ANDOYER_DOCS_ONLINE", "") not in ("", "0")
+INTERSPHINX = {
     "python": ("https://docs.python.org/3", None),
     "numpy": ("https://numpy.org/doc/stable", None),
     "scipy": ("https://docs.scipy.org/doc/scipy", None),
@@ -64,6 +95,7 @@ intersphinx_mapping = {} if os.environ.get("ANDOYER_DOCS_OFFLINE") else {
     "dask": ("https://docs.dask.org/en/stable", None),
     "heyoka": ("https://bluescarni.github.io/heyoka.py", None),
 }
+intersphinx_mapping = INTERSPHINX if DOCS_ONLINE else {}
 intersphinx_timeout = 10
 # Doctests: the docstrings' examples run under pytest (--doctest-modules, with their
 # modules' names); the doctest builder runs the {doctest} blocks of these pages.
@@ -91,5 +123,15 @@ def _skip_type_aliases(app, what, name, obj, skip, options):  # noqa: ANN001, AR
     return skip
 
 
+def _offline_note(app):  # noqa: ANN001
+    if not DOCS_ONLINE:
+        from sphinx.util import logging
+
+        logging.getLogger("andoyer.docs").info(
+            "offline build: links to %s left out (ANDOYER_DOCS_ONLINE=1 fetches their "
+            "inventories)", ", ".join(INTERSPHINX))
+
+
 def setup(app):  # noqa: ANN001, ANN201
     app.connect("autodoc-skip-member", _skip_type_aliases)
+    app.connect("builder-inited", _offline_note)

@@ -67,6 +67,19 @@ def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
                 ) -> NDArray[np.float64]:
     """H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).
 
+    Parameters
+    ----------
+    body : RigidBody
+    x : array_like, shape (..., d)
+        States in ``chart`` coordinates: ``(G1, G2, G3, gamma1, gamma2, gamma3)``,
+        ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``x``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+
     Examples
     --------
     >>> from andoyer import RigidBody, to_andoyer, from_andoyer
@@ -101,6 +114,19 @@ def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
     equations (4) (``dM/dt = 0``). Hess chart: the canonical equations whose ``M = 0``
     form is (16) (``dJ3/dt = 0``). The canonical charts need regular points
     (``|L| < G``, ``|M| < G``; ``0 < J1 < J2``, ``|J3| < J2``) and raise otherwise.
+
+    Parameters
+    ----------
+    body : RigidBody
+    x : array_like, shape (..., d)
+        States in ``chart`` coordinates: ``(G1, G2, G3, gamma1, gamma2, gamma3)``,
+        ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``x``.
+
+    Returns
+    -------
+    ndarray, shape (..., d)
     """
     return canonical_field(body, x, chart)[..., : len(CHARTS[chart])]
 
@@ -108,7 +134,20 @@ def vector_field(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
 @checks_body
 def cyclic_rate(body: RigidBody, x: ArrayLike, chart: Chart = "andoyer"
                 ) -> NDArray[np.float64]:
-    """``dm/dt = dH/dM`` (``= dtheta3/dt = dH/dJ3``): the quadrature for the cyclic angle."""
+    """``dm/dt = dH/dM`` (``= dtheta3/dt = dH/dJ3``): the quadrature for the cyclic angle.
+
+    Parameters
+    ----------
+    body : RigidBody
+    x : array_like, shape (..., d)
+        States in ``chart`` coordinates: ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+    chart : {"andoyer", "hess"}
+        Chart of ``x``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
     if chart == "euler_poisson":
         raise ValueError("the cyclic angle m is a coordinate of the 'andoyer' and 'hess' "
                          "charts; convert the state with to_andoyer or to_hess first")

@@ -49,7 +49,7 @@ rotation: 12 points, one-to-one with those of ``(l, L)``.
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 """
 
 from __future__ import annotations

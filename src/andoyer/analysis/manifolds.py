@@ -62,7 +62,7 @@ Splitting
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 """
 
 from __future__ import annotations

@@ -68,7 +68,7 @@ uses :func:`scipy.integrate.quad` instead.
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 .. [2] L. N. Trefethen and J. A. C. Weideman, "The exponentially convergent trapezoidal
    rule", SIAM Review 56 (2014) 385-458.
 """

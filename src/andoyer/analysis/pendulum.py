@@ -62,7 +62,7 @@ off the manifold, ``(G, r) != 0``, comes back with a shift along the manifold of
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 """
 
 from __future__ import annotations

@@ -71,7 +71,7 @@ the closed form to 1e-10, the periodic orbits with heyoka's to 1e-11.
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 """
 
 from __future__ import annotations

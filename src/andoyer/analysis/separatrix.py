@@ -55,7 +55,7 @@ rotations), drawn by :mod:`andoyer.plot.portraits`.
 References
 ----------
 .. [1] V. V. Kyrychenko, "Andoyer-Deprit variables use to the Hess gyroscope phase
-   trajectories exploring" (``shared/paper/hess-andoyer-deprit.txt``).
+   trajectories exploring", National Aviation University, Kyiv (``andoyer.cite("paper")``).
 """
 
 from __future__ import annotations

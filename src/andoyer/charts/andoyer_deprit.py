@@ -145,6 +145,8 @@ def from_andoyer(x: ArrayLike, *, name: str = "x") -> NDArray[np.float64]:
     ----------
     x : array_like, shape (..., 5)
         ``(l, g, L, G, M)`` with ``G > 0``, ``|L| <= G``, ``|M| <= G``.
+    name : str, default "x"
+        The argument's name in error messages (a caller passes its own).
 
     Returns
     -------

@@ -75,6 +75,18 @@ def as_state(y: ArrayLike, name: str = "y") -> NDArray[np.float64]:
 def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """Total energy ``H(y)`` of Eq. (1) (kinetic + potential), shape ``(...)``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        Supplies the moments, ``mu`` and the centre of mass ``r``.
+    y : array_like, shape (..., 6)
+        Euler-Poisson states ``(G1, G2, G3, gamma1, gamma2, gamma3)``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        ``H = (G, I G)/2 + mu (r, gamma)``.
+
     Examples
     --------
     >>> from andoyer import RigidBody
@@ -88,13 +100,33 @@ def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
 
 
 def area_integral(y: ArrayLike) -> NDArray[np.float64]:
-    """Area integral ``C1 = M = (G, gamma)``, a Casimir of (1), shape ``(...)``."""
+    """Area integral ``C1 = M = (G, gamma)``, a Casimir of (1), shape ``(...)``.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states ``(G1, G2, G3, gamma1, gamma2, gamma3)``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
     arr = as_state(y)
     return np.einsum("...i,...i->...", arr[..., :3], arr[..., 3:])
 
 
 def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
-    """Geometric integral ``C2 = |gamma|^2`` (equal to 1 on the physical level)."""
+    """Geometric integral ``C2 = |gamma|^2`` (equal to 1 on the physical level).
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states ``(G1, G2, G3, gamma1, gamma2, gamma3)``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
     arr = as_state(y)
     return np.einsum("...i,...i->...", arr[..., 3:], arr[..., 3:])
 

@@ -125,6 +125,8 @@ def from_hess(body: RigidBody, x: ArrayLike, *, name: str = "x") -> NDArray[np.f
         Supplies ``phi0`` (needs ``e3 = 0``).
     x : array_like, shape (..., 5)
         ``(theta1, theta2, J1, J2, J3)``, ``J2 > 0``, ``0 <= J1 <= J2``, ``|J3| <= J2``.
+    name : str, default "x"
+        The argument's name in error messages (a caller passes its own).
 
     Returns
     -------

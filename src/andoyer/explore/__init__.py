@@ -19,14 +19,37 @@ __all__ = ["app", "serve", "Explorer"]
 
 
 def app(*args: Any, **kwargs: Any) -> Any:
-    """The explorer page as a Panel object (see :func:`andoyer.explore.server.app`)."""
+    """The explorer page as a Panel object (see :func:`andoyer.explore.server.app`).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Those of :func:`andoyer.explore.server.app` (imported on first call: it loads
+        Panel).
+
+    Returns
+    -------
+    panel.viewable.Viewable
+    """
     from andoyer.explore.server import app as _app
 
     return _app(*args, **kwargs)
 
 
 def serve(*args: Any, **kwargs: Any) -> Any:
-    """Serve the explorer (see :func:`andoyer.explore.server.serve`)."""
+    """Serve the explorer (see :func:`andoyer.explore.server.serve`).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Those of :func:`andoyer.explore.server.serve` (imported on first call: it loads
+        Panel).
+
+    Returns
+    -------
+    object
+        What :func:`andoyer.explore.server.serve` returns.
+    """
     from andoyer.explore.server import serve as _serve
 
     return _serve(*args, **kwargs)

@@ -71,6 +71,21 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson",
     ``(theta1, theta2, J1, J2, J3)``. Euler-Poisson states must have ``|gamma| = 1``
     within :data:`GAMMA_TOL`; within it gamma is renormalised, beyond it
     ``ValueError`` is raised.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Supplies ``phi0`` of the Hess chart.
+    y0 : array_like, shape (d,) or (n, d)
+        States in ``chart`` coordinates (``d`` = 6, 5, 5).
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``y0``.
+    name : str, default "y0"
+        The argument's name in error messages (a caller passes its own).
+
+    Returns
+    -------
+    ndarray, shape (n, 6)
     """
     if chart not in _CHARTS:
         raise ValueError(f"unknown chart {chart!r}; choose one of {', '.join(_CHARTS)}")
@@ -218,9 +233,19 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         E.g. ``Section("g", 0.0)``, ``"theta2=0"``, ``"G3=0:+"``.
     n_crossings : int
         Crossings wanted per orbit.
+    engine : str or Engine, optional
+        An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
+        heyoka where installed, else numba.
+    rtol, atol : float
+        Tolerances of the mixed criterion ``atol + rtol |y|`` (heyoka has a single
+        tolerance: it uses ``min(rtol, atol)``).
     t_max : float, optional
         Integrate at most to this time (default ``1000 * n_crossings``); orbits with
         fewer crossings are NaN-padded.
+    chart : {"euler_poisson", "andoyer", "hess"}
+        Chart of ``y0``.
+    progress : bool, optional
+        Show a progress line on stderr (default: when stderr is a terminal).
 
     Returns
     -------
@@ -418,6 +443,21 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     integration stops with ``ValueError`` when an orbit comes within
     ``singular_margin * G`` of them (use :func:`propagate` there: it integrates the
     regular Euler-Poisson equations). scipy's DOP853 is used.
+
+    Parameters
+    ----------
+    body : RigidBody
+    x0 : array_like, shape (5,)
+        One point of ``chart``: ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+    t : array_like, shape (k,)
+        Output times, strictly increasing; ``t[0]`` is the initial time.
+    chart : {"hess", "andoyer"}
+        The chart whose canonical equations are integrated.
+    rtol, atol : float
+        Tolerances of DOP853 (mixed criterion ``atol + rtol |y|``).
+    singular_margin : float
+        Relative distance to the singular set (fraction of ``G`` or ``J2``) at which the
+        integration stops.
 
     Returns
     -------

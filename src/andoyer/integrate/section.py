@@ -97,6 +97,16 @@ class Section:
     """The section ``coord = value``, crossed with ``coord`` increasing (``direction=+1``),
     decreasing (-1) or either way (0).
 
+    Parameters
+    ----------
+    coord : str
+        A coordinate of any chart (:data:`SECTION_KINDS`: ``"G3"``, ``"gamma1"``, ...,
+        ``"L"``, ``"g"``, ``"theta2"``, ...); not ``M`` or ``J3``, constants of motion.
+    value : float, default 0
+        The plane ``coord = value``; an angle is reduced to ``[0, 2 pi)``.
+    direction : {1, -1, 0}, default 1
+        Crossings with ``coord`` increasing, decreasing, or both.
+
     Examples
     --------
     >>> Section("theta2", 0.0)

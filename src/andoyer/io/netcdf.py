@@ -16,6 +16,18 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     """Write ``ds`` to ``path`` (NetCDF-4); nothing half-written is left on failure.
 
     Attribute values that NetCDF cannot store (booleans, None) are converted first.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset (its attrs are not changed).
+    path : str or os.PathLike
+        The file to write (replaced atomically if it exists).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
     """
     out = Path(path)
     clean = ds.copy()

@@ -611,7 +611,18 @@ def _size(b: float) -> str:
 
 
 def estimate_cost(cfg: ScanConfig) -> Cost:
-    """Rough CPU time and storage of a scan (from measured per-crossing costs)."""
+    """Rough CPU time and storage of a scan (from measured per-crossing costs).
+
+    Parameters
+    ----------
+    cfg : ScanConfig
+        The validated configuration (:func:`load_config`).
+
+    Returns
+    -------
+    Cost
+        Points, tasks, core-seconds and bytes of the store.
+    """
     seconds, values = TASKS[cfg.task].cost(dict(cfg.task_options))
     n = cfg.n_points
     return Cost(n, len(cfg.blocks()), n * seconds, n * values * 8.0)

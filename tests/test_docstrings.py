@@ -1,0 +1,117 @@
+"""The API reference is complete: every parameter documented, summaries not cut short.
+
+numpydoc's own validation (``numpydoc.validate``) checks each public function and class
+of the user's API (the ``__all__`` of ``andoyer`` and of its public packages) against
+its signature; the summaries the API tables show are extracted as Sphinx's autosummary
+extracts them, with the site's extension ``docs/_ext/summaries.py``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import importlib
+import inspect
+import pkgutil
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("numpydoc")
+from numpydoc.docscrape import NumpyDocString  # noqa: E402
+from numpydoc.validate import validate  # noqa: E402
+
+import andoyer  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+#: The packages whose ``__all__`` is the user's API (``from andoyer.scan import scan``).
+API_PACKAGES = ("andoyer", "andoyer.integrate", "andoyer.charts", "andoyer.scan",
+                "andoyer.io", "andoyer.plot", "andoyer.explore")
+#: numpydoc's checks: a parameter not documented (PR01), a documented parameter not in
+#: the signature (PR02), no docstring at all (GL08).
+CHECKS = ("PR01", "PR02", "GL08")
+
+
+def _public_modules() -> list[str]:
+    names = [m.name for m in pkgutil.walk_packages(andoyer.__path__, "andoyer.")
+             if not any(part.startswith("_") for part in m.name.split("."))]
+    return ["andoyer", *names]
+
+
+def _api() -> dict[str, object]:
+    """``dotted name -> object`` of every function and class in the API packages."""
+    found: dict[str, object] = {}
+    for package in API_PACKAGES:
+        module = importlib.import_module(package)
+        for name in module.__all__:
+            obj = getattr(module, name)
+            if inspect.isfunction(obj) or inspect.isclass(obj):
+                found[f"{obj.__module__}.{obj.__qualname__}"] = obj
+    return found
+
+
+def _attributes(obj: object) -> set[str]:
+    """Names in the "Attributes" section (a dataclass documents its fields there)."""
+    doc = NumpyDocString(inspect.getdoc(obj) or "")
+    return {n.strip() for item in doc["Attributes"] for n in item.name.split(",")}
+
+
+@pytest.mark.parametrize("name", sorted(_api()))
+def test_every_parameter_is_documented(name: str) -> None:
+    obj = _api()[name]
+    if inspect.isclass(obj) and issubclass(obj, enum.Enum):
+        return  # the signature is Enum's own (Singular("g_undefined")), not the class's
+    errors = [(code, message) for code, message in validate(name)["errors"]
+              if code in CHECKS]
+    if dataclasses.is_dataclass(obj) and _attributes(obj):
+        # a dataclass's fields are its parameters: documented as its Attributes
+        fields = {f.name for f in dataclasses.fields(obj)}
+        assert fields <= _attributes(obj), f"{name}: fields not documented: " \
+                                           f"{sorted(fields - _attributes(obj))}"
+        errors = [(c, m) for c, m in errors if c != "PR01"]
+    assert not errors, f"{name}: {errors}"
+
+
+def test_api_list_is_not_empty() -> None:
+    api = _api()
+    assert len(api) > 30 and "andoyer.integrate.api.poincare" in api
+
+
+@pytest.mark.parametrize("module", _public_modules())
+def test_every_public_module_has_a_summary(module: str) -> None:
+    doc = inspect.getdoc(importlib.import_module(module)) or ""
+    assert doc.strip(), f"{module} has no docstring (its API page would have no summary)"
+
+
+def test_summaries_are_not_cut_at_abbreviations(monkeypatch: pytest.MonkeyPatch) -> None:
+    """autosummary ends the first sentence at "Eq." unless told it is an abbreviation:
+    "H of Eq. (1) expressed in chart" was listed as "H of Eq."."""
+    from docutils.frontend import get_default_settings
+    from docutils.parsers.rst import Parser
+    from sphinx.ext import autosummary
+
+    monkeypatch.syspath_prepend(str(ROOT / "docs" / "_ext"))
+    monkeypatch.setattr(autosummary, "WELL_KNOWN_ABBREVIATIONS",
+                        autosummary.WELL_KNOWN_ABBREVIATIONS)  # restored afterwards
+    monkeypatch.delitem(sys.modules, "summaries", raising=False)
+    summaries = importlib.import_module("summaries")
+    summaries.setup(None)
+    settings = get_default_settings(Parser)
+    cut = []
+    for module_name in _public_modules():
+        module = importlib.import_module(module_name)
+        objects = [module] + [getattr(module, n) for n in getattr(module, "__all__", [])
+                              if inspect.isfunction(getattr(module, n, None))
+                              or inspect.isclass(getattr(module, n, None))]
+        for obj in objects:
+            doc = inspect.getdoc(obj)
+            if not doc:
+                continue
+            summary = autosummary.extract_summary(doc.splitlines(), settings)
+            if summary.endswith(summaries.ABBREVIATIONS):
+                cut.append(f"{getattr(obj, '__name__', obj)}: {summary!r}")
+    assert not cut, cut
+    hamiltonian = inspect.getdoc(andoyer.hamiltonian) or ""
+    assert autosummary.extract_summary(hamiltonian.splitlines(), settings) == (
+        "H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).")
