@@ -11,7 +11,8 @@ from pathlib import Path
 
 from benchmarks.harness import run
 
-RUNNERS = ("andoyer heyoka", "andoyer numba", "andoyer scipy", "heyoka plain",
+RUNNERS = ("andoyer heyoka", "andoyer numba", "andoyer taylor", "andoyer scipy",
+           "heyoka plain",
            "heyoka ensemble", "heyoka hand-tuned", "scipy DOP853", "scipy DOP853 serial",
            "scipy DOP853 pool(2)")
 

@@ -94,6 +94,7 @@ def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     table: dict[str, tuple[Callable[[], np.ndarray], int]] = {
         "andoyer heyoka": (andoyer("heyoka"), sizes.repeat),
         "andoyer numba": (andoyer("numba"), sizes.repeat),
+        "andoyer taylor": (andoyer("taylor"), sizes.repeat),
         "andoyer scipy": (andoyer("scipy"), 1),
         "heyoka plain": (lambda: hs.plain_orbit(p, y0, t, tol)[-1], sizes.repeat),
         "scipy DOP853": (lambda: ss.orbit(p, y0, t, tol, tol)[-1], max(1, sizes.repeat // 2)),
@@ -166,6 +167,7 @@ def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
         fast: dict[str, Callable[[], tuple[np.ndarray, np.ndarray]]] = {
             "andoyer heyoka": andoyer("heyoka"),
             "andoyer numba": andoyer("numba"),
+            "andoyer taylor": andoyer("taylor"),
             "heyoka plain": peer(hs.plain_section, tol),
             "heyoka ensemble": peer(hs.ensemble_section, tol, 2),
             "heyoka hand-tuned": peer(hs.tuned_section, tol),
@@ -303,7 +305,7 @@ def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
 
 
 def w4(cold: bool, runners: set[str]) -> list[Row]:
-    names = [r for r in ("andoyer-heyoka", "andoyer-numba", "heyoka-plain")
+    names = [r for r in ("andoyer-heyoka", "andoyer-numba", "andoyer-taylor", "heyoka-plain")
              if r.replace("-", " ") in runners]
     rows = []
     for runner in names:
@@ -418,6 +420,13 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
               False)
     ratio("W1: andoyer default / plain heyoka <= 1.2", get("W1", "", DEFAULT),
           get("W1", "", "heyoka plain"), 1.2, False)
+    # Issue 26: the Taylor engine in Numba against the default (heyoka) engine.
+    ratio("W1: andoyer taylor / andoyer default <= 1.2", get("W1", "", "andoyer taylor"),
+          get("W1", "", DEFAULT), 1.2, False)
+    for sec, _ in W.SECTIONS:
+        ratio(f"W2 {sec}: andoyer taylor / andoyer default <= 1.2",
+              get("W2", f"of {sec} ", "andoyer taylor"), get("W2", f"of {sec} ", DEFAULT),
+              1.2, False)
     big = [r for r in rows if r.workload == "W3" and r.note == "timed once"]
     if len(big) == 2:
         ratio(f"W3 {big[0].case}: andoyer default / hand-written heyoka ensemble <= 1",
@@ -535,6 +544,7 @@ def summary(result: dict[str, Any]) -> str:
     m = result["meta"]
     rows = [Row(**r) for r in result["rows"]]
     cols = [("andoyer (default: heyoka)", (DEFAULT,)), ("andoyer numba", ("andoyer numba",)),
+            ("andoyer taylor", ("andoyer taylor",)),
             ("heyoka plain", ("heyoka plain",)), ("heyoka hand-tuned", ("heyoka hand-tuned",)),
             ("scipy DOP853", ("scipy DOP853", "scipy DOP853 pool(2)"))]
     lines = [f"Measured {m['date'][:10]} by `python -m benchmarks` ({m['mode']} run, "
@@ -587,7 +597,8 @@ def run(quick: bool = False,
     (the harness's own tests run it on a tiny problem).
     """
     sizes = sizes if sizes is not None else (W.QUICK if quick else W.FULL)
-    everyone = {"andoyer heyoka", "andoyer numba", "andoyer scipy", "heyoka plain",
+    everyone = {"andoyer heyoka", "andoyer numba", "andoyer taylor", "andoyer scipy",
+                "heyoka plain",
                 "heyoka ensemble", "heyoka hand-tuned", "scipy DOP853",
                 "scipy DOP853 serial", "scipy DOP853 pool(2)"}
     runners = everyone if runners is None else runners

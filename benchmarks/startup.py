@@ -8,7 +8,8 @@ minus the second is what the process paid to compile or to load compiled code.
 With ``BENCH_COLD_CACHE=<dir>`` every on-disk cache (heyoka's, Numba's, andoyer's)
 points into that empty directory: the first process on a fresh machine.
 
-Runners: ``andoyer-heyoka``, ``andoyer-numba`` (``propagate`` of one orbit to
+Runners: ``andoyer-heyoka``, ``andoyer-numba``, ``andoyer-taylor`` (``propagate`` of one
+orbit to
 t = 1e4, then a 8-orbit x 20-crossing ``poincare``) and ``heyoka-plain`` (the plain
 heyoka script on the same two problems).
 """

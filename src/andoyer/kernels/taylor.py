@@ -140,7 +140,13 @@ def n_vectors(width: int) -> int:
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
 # see andoyer.kernels.dop853's notes on the cache key).
-_jit = numba.njit(nogil=True, fastmath=False)
+#: LLVM fast-math flags of the helpers: contraction (FMA), reassociation and reciprocals
+#: (not nnan/ninf: non-finite states are caught by comparisons). Measured on the W1/W2
+#: benchmarks: 10-15 % less CPU per step, the same errors against the extended-precision
+#: reference (theta2 sections, 50 orbits x 1000 crossings: median 2.01e-11 with,
+#: 2.03e-11 without; W1 2.1e-10 both).
+_FASTMATH = {"reassoc", "contract", "arcp"}
+_jit = numba.njit(nogil=True, fastmath=_FASTMATH)
 _constants = _jit(taylor_generated.ep_taylor_constants)
 _jet = _jit(taylor_generated.ep_taylor_jet)
 _tangent_jet = _jit(taylor_generated.ep_taylor_tangent_jet)
@@ -152,32 +158,40 @@ def _tape_jet(tape, C, x, order, u):
     state's jet ``x`` (the last node is the function): the tape interpreter (rows
     ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.taylor_generated.SECTION_TAPES`,
     constants ``C``)."""
-    last = tape.shape[0] - 1
-    for k in range(order + 1):
-        for n in range(last + 1):
-            op = tape[n, 0]
-            a = tape[n, 1]
-            b = tape[n, 2]
-            if op == _VAR:
-                v = x[k, a]
-            elif op == _LIN:
-                v = C[tape[n, 3]] * u[a, k]
-                if b >= 0:
-                    v += C[tape[n, 4]] * u[b, k]
-                if k == 0 and tape[n, 5] >= 0:
-                    v += C[tape[n, 5]]
-            elif op == _MUL:
+    # Node by node (each node reads earlier nodes only, and the state's jet is known to
+    # the full order): one dispatch per node, not per node and order.
+    for n in range(tape.shape[0]):
+        op = tape[n, 0]
+        a = tape[n, 1]
+        b = tape[n, 2]
+        if op == _VAR:
+            for k in range(order + 1):
+                u[n, k] = x[k, a]
+        elif op == _LIN:
+            ca = C[tape[n, 3]]
+            if b >= 0:
+                cb = C[tape[n, 4]]
+                for k in range(order + 1):
+                    u[n, k] = ca * u[a, k] + cb * u[b, k]
+            else:
+                for k in range(order + 1):
+                    u[n, k] = ca * u[a, k]
+            if tape[n, 5] >= 0:
+                u[n, 0] += C[tape[n, 5]]
+        elif op == _MUL:
+            for k in range(order + 1):
                 v = 0.0
                 for j in range(k + 1):
                     v += u[a, j] * u[b, k - j]
-            elif k == 0:  # _SQRT
-                v = math.sqrt(u[a, 0])
-            else:
+                u[n, k] = v
+        else:  # _SQRT
+            r = math.sqrt(u[a, 0])
+            u[n, 0] = r
+            for k in range(1, order + 1):
                 v = 0.0
                 for j in range(1, k):
                     v += u[n, j] * u[n, k - j]
-                v = (u[a, k] - v) / (2.0 * u[n, 0])
-            u[n, k] = v
+                u[n, k] = (u[a, k] - v) / (2.0 * r)
 
 
 @_jit

@@ -454,8 +454,10 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
     engine = itab.get("engine")
     if engine is None:
         from andoyer.integrate.engines import default_engine_name
+        from andoyer.integrate.engines.base import Capability
 
-        engine = default_engine_name()
+        # One engine for every task of a scan: the default that also has tangent flows.
+        engine = default_engine_name(Capability.TANGENT, Capability.TANGENT_CROSSINGS)
     if engine not in ENGINES:
         raise ValueError(f"{where}: [integrator] engine must be one of "
                          f"{', '.join(ENGINES)}, got {engine!r}")

@@ -1,6 +1,8 @@
 """Integration engines behind one seam (:mod:`andoyer.integrate.engines.base`).
 
-``heyoka`` (Taylor method compiled with LLVM) is the default where it is installed;
+``heyoka`` (Taylor method compiled with LLVM) is the default where it is installed,
+``taylor`` elsewhere (``numba`` for what taylor cannot do yet: tangent vectors at output
+times);
 ``numba`` (adaptive DOP853 compiled with Numba) is portable; ``taylor`` (heyoka's
 Taylor method compiled with Numba, section events inside the kernel) is portable;
 ``scipy``
@@ -24,7 +26,7 @@ from typing import Any
 from andoyer.integrate.engines.base import Capability, EngineBase
 from andoyer.integrate.engines.lazy import heyoka_available
 
-__all__ = ["ENGINES", "get_engine", "resolve_engine", "available_engines",
+__all__ = ["ENGINES", "FALLBACK_DEFAULTS", "get_engine", "resolve_engine", "available_engines",
            "default_engine_name", "engine_class", "engines_with", "capability_table",
            "EngineLike", "PACKAGES", "installed"]
 
@@ -83,13 +85,27 @@ def available_engines() -> list[str]:
     return out
 
 
-def default_engine_name() -> str:
-    """``"heyoka"`` where installed, else ``"numba"``."""
-    try:
-        importlib.import_module("heyoka")
-    except ImportError:
-        return "numba"
-    return "heyoka"
+#: The defaults where heyoka is not installed, in order: the first that has what a
+#: caller needs (taylor runs heyoka's method in Numba; numba's DOP853 also integrates
+#: tangent vectors at output times with the MEGNO quadratures).
+FALLBACK_DEFAULTS = ("taylor", "numba")
+
+
+def default_engine_name(*capabilities: Capability) -> str:
+    """``"heyoka"`` where installed, else the first of :data:`FALLBACK_DEFAULTS` that
+    declares every capability asked for.
+
+    >>> default_engine_name() in ("heyoka", "taylor")
+    True
+    >>> default_engine_name(Capability.TANGENT) in ("heyoka", "numba")
+    True
+    """
+    if heyoka_available():
+        return "heyoka"
+    for name in FALLBACK_DEFAULTS:
+        if set(capabilities) <= engine_class(name).capabilities:
+            return name
+    return FALLBACK_DEFAULTS[-1]
 
 
 def get_engine(name: str | None = None) -> EngineBase:
@@ -117,7 +133,7 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
     Parameters
     ----------
     engine : str, EngineBase or None
-        None: :func:`default_engine_name`.
+        None: :func:`default_engine_name` of ``capabilities``.
     *capabilities : Capability
         What the caller needs; ``ValueError`` naming the engines that have it otherwise.
     **options
@@ -134,7 +150,7 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
     if isinstance(engine, EngineBase):
         eng = engine
     elif engine is None or isinstance(engine, str):
-        eng = get_engine(engine)
+        eng = get_engine(default_engine_name(*capabilities) if engine is None else engine)
         given = {k: v for k, v in options.items() if v is not None}
         if given:
             accepted = inspect.signature(type(eng)).parameters
