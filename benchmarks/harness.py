@@ -256,7 +256,7 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
                 float(np.max(err)), "|FLI - FLI_ref| over the accessible points",
                 extra={"points": int(ok.sum()), "limit": asdict(limit)})]
     if "heyoka hand-tuned" in runners:
-        _say("W3 heyoka hand-tuned (var_ode_sys, batch, threads) ...")
+        _say("W3 heyoka hand-tuned (state + 1 tangent vector, SIMD batch, threads) ...")
         y0, w0, t_out = fli_heyoka.inputs(ds, b, sizes.w3_t_end)
         p = W.params(b)
         wall, cpu, walls, f = timed(lambda: fli_heyoka.fli_map(p, y0, w0, t_out, sizes.tol),

@@ -581,9 +581,15 @@ class HeyokaEngine(EngineBase):
     def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
                  t: NDArray[np.float64], pars: NDArray[np.float64], tolerance: Tolerance,
                  renormalise: bool, scale: float) -> TangentFlow:
-        """Renormalised: the SIMD/threaded system of :mod:`.heyoka_tangent`; else the
+        """Renormalised: the SIMD/threaded system of :mod:`.heyoka_tangent`; else, for one
+        vector per orbit and orbits enough to fill SIMD lanes, the 12-variable system
+        (state and ``w' = J w``) in the same blocks and threads, and otherwise the
         fundamental matrix (``var_ode_sys``, compact mode), orbit by orbit."""
         if not renormalise:
+            batch = self._batch(y0.shape[0])
+            if w0.shape[1] == 1 and batch > 1 and t[-1] > t[0]:
+                return heyoka_tangent.plain_flow(y0, w0, t, pars, tolerance.tol, batch,
+                                                 self.n_threads)
             return heyoka_tangent.matrix_flow(y0, w0, t, pars, tolerance.tol)
         return heyoka_tangent.renormalised_flow(y0, w0, t, pars, tolerance.tol, scale,
                                                 self._batch(y0.shape[0]), self.n_threads)

@@ -25,6 +25,11 @@ transforms of the one SymPy -> heyoka field (:func:`heyoka_system`) by
   singularity of the MEGNO mean at t = 0, which a Taylor integrator cannot evaluate).
   The engine returns them unscaled. Orbits run in blocks of ``batch_size`` lanes of
   one SIMD integrator and blocks on threads, each owning a copy of the integrator.
+* **plain** (:func:`plain_flow`), for the FLI alone over many orbits: the state and ONE
+  tangent vector ``w' = J w`` as is (the first column of ``var_ode_sys`` started at
+  ``w0``; 12 variables, no division, fully compiled), in the same SIMD blocks and
+  threads; ``|w|`` is not renormalised, so the caller re-runs orbits whose ``ln|w|``
+  nears overflow.
 * **the fundamental matrix** (``var_args.vars``: ``Phi = dy/dy0``, 36 variables),
   for short flights (monodromy matrices, the Jacobian of a section map): the
   columns start as the given vectors, so ``w_i(t) = Phi(t) w_i(0)``; optionally
@@ -66,7 +71,7 @@ from andoyer.kernels.constants import T_START
 from andoyer.kernels.generated import section
 
 __all__ = ["STATE_NAMES", "MEGNO_DELTA", "variational_names", "variational_system",
-           "renormalised_flow", "matrix_flow", "matrix_crossings", "warm_up",
+           "renormalised_flow", "plain_flow", "matrix_flow", "matrix_crossings", "warm_up",
            "clear_memory_cache"]
 
 #: Names of the Euler-Poisson state variables (heyoka's variables are named so).
@@ -126,7 +131,7 @@ def variational_system(k: int = 1) -> tuple[tuple[Any, Any], ...]:
 
 # ----------------------------------------------------------------------------- pool
 class _Key(NamedTuple):
-    system: str  # "renormalised" or "matrix"
+    system: str  # "renormalised", "plain" or "matrix"
     batch_size: int
     tol: float
     k: int = 1
@@ -137,6 +142,13 @@ class _Key(NamedTuple):
 
 def _compile(key: _Key) -> Any:
     fp: Any = np.longdouble if key.extended else float
+    if key.system == "plain":
+        # The state and ONE tangent column of var_ode_sys (d y / d G1(0), started at
+        # the given vector instead: the column's equations are linear in it): 12
+        # variables, compiled in full for fast steps.
+        vsys = hy.var_ode_sys(list(heyoka_system()), [heyoka_state_vars()[0]], order=1)
+        return hy.taylor_adaptive_batch(vsys, np.zeros((2 * _N, key.batch_size)),
+                                        tol=key.tol)
     if key.system == "renormalised":
         system = list(variational_system(key.k))
         n = len(system)
@@ -277,6 +289,22 @@ def _block(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
                 out[start + j] = block[j] if ok[start + j] else np.nan
 
 
+def _run_blocks(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
+                pars: NDArray[np.float64], out: NDArray[np.float64], ok: NDArray[np.bool_],
+                n_threads: int) -> None:
+    """:func:`_block` on ``n_threads`` threads sharing one queue of blocks."""
+    n = x0.shape[0]
+    tasks = _Counter(n, key.batch_size)
+    workers = min(n_threads, -(-n // key.batch_size))
+    if workers <= 1:
+        _block(key, x0, t, pars, out, ok, tasks)
+        return
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        for fut in [pool.submit(_block, key, x0, t, pars, out, ok, tasks)
+                    for _ in range(workers)]:
+            fut.result()
+
+
 def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
                       t: NDArray[np.float64], pars: NDArray[np.float64], tol: float,
                       scale: float, batch_size: int, n_threads: int) -> TangentFlow:
@@ -288,18 +316,31 @@ def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
     out = np.empty((n, t.size, x0.shape[1]))
     ok = np.zeros(n, dtype=bool)
     _template(key)  # compile or load once, before the threads start
-    tasks = _Counter(n, batch_size)
-    workers = min(n_threads, -(-n // batch_size))
-    if workers <= 1:
-        _block(key, x0, t, pars, out, ok, tasks)
-    else:
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            for fut in [pool.submit(_block, key, x0, t, pars, out, ok, tasks)
-                        for _ in range(workers)]:
-                fut.result()
+    _run_blocks(key, x0, t, pars, out, ok, n_threads)
     u = out[..., _N:_N + 6 * k].reshape(n, t.size, k, _N)
     return TangentFlow(np.broadcast_to(t, (n, t.size)).copy(), out[..., :_N], u,
                        out[..., _N + 6 * k:_N + 7 * k] * scale, out[..., -2:] * scale**2,
+                       np.full(n, t.size, dtype=np.int64), ok)
+
+
+def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.float64],
+               pars: NDArray[np.float64], tol: float, batch_size: int,
+               n_threads: int) -> TangentFlow:
+    """``w(t) = Phi(t) w(0)`` of ONE vector per orbit, not renormalised, over output
+    times ``t``: the 12-variable system (state and ``w' = J w``) in SIMD blocks of
+    ``batch_size > 1`` lanes on threads, one ``propagate_grid`` per block. ``|w|``
+    overflows past ``ln|w| ~ 709``: such orbits come back with ``ok`` False."""
+    n = y0.shape[0]
+    if w0.shape[1] != 1 or batch_size < 2:
+        raise ValueError("plain_flow takes one vector per orbit and a batch size > 1")
+    x0 = np.concatenate([y0, w0[:, 0]], axis=1)
+    key = _Key("plain", batch_size, tol)
+    out = np.empty((n, t.size, 2 * _N))
+    ok = np.zeros(n, dtype=bool)
+    _template(key)
+    _run_blocks(key, x0, t, pars, out, ok, n_threads)
+    u, rho = unit_vectors(out[..., None, _N:])
+    return TangentFlow(np.broadcast_to(t, (n, t.size)).copy(), out[..., :_N], u, rho, None,
                        np.full(n, t.size, dtype=np.int64), ok)
 
 
