@@ -10,16 +10,39 @@ Examples
 >>> bar.update(2); bar.update(1); bar.close()
 >>> bar.done
 3
+
+Inside :func:`silenced` no bar is shown (a caller that draws its own bar, such as
+``andoyer paper``, keeps the bars of the work it calls off the screen):
+
+>>> with silenced():
+...     Progress(3, "inner", enabled=True).enabled
+False
 """
 
 from __future__ import annotations
 
 import importlib.util
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import cache
 from typing import Any
 
-__all__ = ["Progress"]
+__all__ = ["Progress", "silenced"]
+
+#: True inside :func:`silenced`: every new bar is hidden.
+_SILENCED: ContextVar[bool] = ContextVar("andoyer_progress_silenced", default=False)
+
+
+@contextmanager
+def silenced() -> Iterator[None]:
+    """Hide every :class:`Progress` bar made inside this context (this thread)."""
+    token = _SILENCED.set(True)
+    try:
+        yield
+    finally:
+        _SILENCED.reset(token)
 
 
 @cache
@@ -49,6 +72,8 @@ class Progress:
             from tqdm.std import tqdm
 
         self.total, self.done = int(total), 0
+        if _SILENCED.get():
+            enabled = False
         # tqdm's disable=None hides the bar when the stream is not a terminal.
         self._bar: Any = tqdm(total=self.total, desc=label, file=sys.stderr, initial=initial,
                               disable=None if enabled is None else not enabled,
@@ -60,6 +85,19 @@ class Progress:
         """``k`` more units done."""
         self.done += k
         self._bar.update(k)
+
+    def write(self, line: str) -> None:
+        """Print ``line`` on stderr above the bar (also when the bar is hidden)."""
+        self._bar.write(line, file=sys.stderr)
+
+    def describe(self, postfix: str) -> None:
+        """Show ``postfix`` after the bar (e.g. what is running now)."""
+        self._bar.set_postfix_str(postfix, refresh=True)
+
+    def refresh(self) -> None:
+        """Redraw the bar (its clock moves on while a long unit runs)."""
+        if self.enabled:
+            self._bar.refresh()
 
     def close(self) -> None:
         """End the bar (its line stays)."""

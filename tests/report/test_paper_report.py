@@ -131,3 +131,35 @@ def test_items_in_two_processes_match_one(tmp_path):
     assert default_jobs([i for i in ITEMS if i.key in only]) == 1  # 0.8 s: no worker
     with pytest.raises(ValueError, match="jobs"):
         build_paper(tmp_path / "bad", only=only, jobs=0, progress=False)
+
+
+def test_report_names_the_engine_that_ran(tmp_path):
+    """Without heyoka (here: engine="numba") no line of the report says heyoka ran: the
+    prose takes the engine from the runs themselves (issue 24, "Words")."""
+    from andoyer.report.html import render_item
+    from andoyer.report.paper import build_paper
+
+    _, done = build_paper(tmp_path / "p", quick=True, only=["heteroclinic", "chaos"],
+                          engine="numba", progress=False, jobs=1)
+    body = RigidBody.paper()
+    texts = {item.key: render_item(item, res, dt, body) for item, res, dt in done}
+    assert "integration of the Euler-Poisson equations (numba, tol 1e-13)" in \
+        texts["heteroclinic"]
+    assert "variational equations of (1) (numba, tol 1e-12" in texts["chaos"]
+    page = (tmp_path / "p" / "index.html").read_text(encoding="utf-8")
+    for text in (*texts.values(), page):
+        assert "heyoka" not in text
+
+
+def test_report_prose_names_no_engine():
+    """The item templates never write an engine's name: it is a value of the run."""
+    from importlib.resources import files
+
+    folder = files("andoyer.report") / "templates"
+    names = [f for d in (folder, folder / "items") for f in d.iterdir()
+             if f.name.endswith(".j2")]
+    assert len(names) >= 10
+    for f in names:
+        text = f.read_text(encoding="utf-8").lower()
+        for engine in ("heyoka", "numba", "scipy", "dop853"):
+            assert engine not in text, (f.name, engine)

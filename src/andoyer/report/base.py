@@ -1,0 +1,113 @@
+"""What the report's items share: the context they build in, what they return, an item.
+
+An item's builder (in :mod:`andoyer.report.items`) computes with the analysis layer,
+draws with the plot layer, writes its files through :class:`Context` and returns a
+:class:`Result`: the files, the numbers of ``summary.json``, the values its prose needs
+and an optional table. The prose itself lives next to the templates
+(``templates/items/<key>.html.j2``), rendered by :mod:`andoyer.report.html`.
+
+Examples
+--------
+>>> t = Table(["mu", "max |Delta G|"], [[0.01, "1.2e-06"]])
+>>> t.head, len(t.rows)
+(['mu', 'max |Delta G|'], 1)
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from andoyer.atomic import atomic_path
+from andoyer.body import RigidBody
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+__all__ = ["Context", "Result", "Item", "Table"]
+
+
+@dataclass
+class Context:
+    """What every item builder gets: the output folder, the paper's body, the engine."""
+
+    out: Path
+    body: RigidBody
+    engine: str | None = None
+    quick: bool = False
+
+    def engine_name(self, supported: tuple[str, ...] | None = None) -> str:
+        """The engine that actually runs: :attr:`engine`, or the default (heyoka where
+        installed, else numba); for an analysis that runs on ``supported`` engines only,
+        the default where :attr:`engine` is not one of them.
+
+        >>> ctx = Context(Path("."), RigidBody.paper(), "scipy")
+        >>> ctx.engine_name(), ctx.engine_name(("heyoka", "numba")) != "scipy"
+        ('scipy', True)
+        """
+        from andoyer.integrate.engines import default_engine_name
+
+        if self.engine is not None and (supported is None or self.engine in supported):
+            return self.engine
+        return default_engine_name()
+
+    def figure(self, fig: Any, name: str) -> list[Path]:
+        """Write a figure as ``name.png`` and ``name.pdf``."""
+        from andoyer.plot.section import save_figure
+
+        return save_figure(fig, self.out / name, pdf=True, dpi=200)
+
+    def data(self, ds: xr.Dataset, name: str) -> Path:
+        """Write a dataset as ``name.nc`` (atomically)."""
+        from andoyer.io import write_netcdf
+
+        return write_netcdf(ds, self.out / f"{name}.nc")
+
+    def text(self, name: str, text: str) -> Path:
+        """Write ``text`` as the file ``name`` (atomically)."""
+        path = self.out / name
+        with atomic_path(path) as tmp:
+            tmp.write_text(text, encoding="utf-8")
+        return path
+
+    def json(self, name: str, value: Any) -> Path:
+        """Write ``value`` as the JSON file ``name`` (atomically)."""
+        return self.text(name, json.dumps(value, indent=1))
+
+
+@dataclass
+class Table:
+    """A table of the report: column heads and rows of cells (any values, shown as text)."""
+
+    head: list[str]
+    rows: list[list[Any]]
+
+
+@dataclass
+class Result:
+    """What an item wrote, its numbers for ``summary.json`` and the values of its prose.
+
+    ``values`` are the names its template (``templates/items/<key>.html.j2``) reads,
+    besides ``body`` and ``engine``; ``table`` and ``pre`` (preformatted text) follow the
+    prose.
+    """
+
+    files: list[Path]
+    numbers: dict[str, float] = field(default_factory=dict)
+    values: dict[str, Any] = field(default_factory=dict)
+    table: Table | None = None
+    pre: str = ""
+
+
+@dataclass(frozen=True)
+class Item:
+    """One section of the report: a key, a title and the function that builds it."""
+
+    key: str
+    title: str
+    build: Callable[[Context], Result]
+    #: Seconds it takes (measured, warm caches, 2 cores): items start longest first.
+    cost: float = 1.0

@@ -1,0 +1,81 @@
+"""``index.html`` from the Jinja2 templates of this package (``templates/``).
+
+``index.html.j2`` is the page (its style is ``report.css``); ``item.html.j2`` lays out
+one item (figures, what the paper says, what was corrected or added, files, table) and
+``items/<key>.html.j2``, which extends it, holds that item's prose. Values are escaped
+by Jinja2 (autoescape); numbers are formatted in the templates with the ``fmt`` filter
+(a :func:`format` spec).
+
+Examples
+--------
+>>> env = environment()
+>>> env.from_string("{{ x|fmt('.2e') }} {{ s }}").render(x=12345.0, s="a < b")
+'1.23e+04 a &lt; b'
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+from andoyer.atomic import atomic_path
+from andoyer.body import RigidBody
+from andoyer.report.base import Item, Result
+
+__all__ = ["environment", "render_item", "write_index", "DISPLAY_DPI"]
+
+#: Figures are written at 200 dpi and shown at most this many CSS pixels per inch (so a
+#: 6.4 in figure is at most 832 px wide; narrower windows scale it down).
+DISPLAY_DPI = 130.0
+_WRITTEN_DPI = 200.0
+
+
+@cache
+def environment() -> Any:
+    """The Jinja2 environment of the report's templates (package data)."""
+    import jinja2
+
+    env = jinja2.Environment(loader=jinja2.PackageLoader("andoyer.report", "templates"),
+                             autoescape=True, undefined=jinja2.StrictUndefined,
+                             keep_trailing_newline=True)
+    env.filters["fmt"] = lambda value, spec="": format(value, spec)
+    return env
+
+
+def _images(result: Result) -> list[dict[str, Any]]:
+    """The item's PNGs with the size they are shown at (scaled down by the page's CSS)."""
+    from PIL import Image
+
+    out = []
+    for f in result.files:
+        if f.suffix == ".png":
+            with Image.open(f) as im:
+                w, h = im.size
+            scale = DISPLAY_DPI / _WRITTEN_DPI
+            out.append({"name": f.name, "width": round(w * scale), "height": round(h * scale)})
+    return out
+
+
+def render_item(item: Item, result: Result, seconds: float, body: RigidBody) -> str:
+    """One item's section of ``index.html``: its figures, prose, files and table."""
+    template = environment().get_template(f"items/{item.key}.html.j2")
+    return str(template.render(item=item, result=result, v=result.values, seconds=seconds,
+                               body=body, images=_images(result)))
+
+
+def write_index(out: Path, body: RigidBody, engine: str,
+                done: list[tuple[Item, Result, float]]) -> Path:
+    """Write ``out/index.html`` (atomically) for the items ``done``, in their order."""
+    from markupsafe import Markup
+
+    from andoyer._version import __version__
+
+    sections = [Markup(render_item(item, res, seconds, body)) for item, res, seconds in done]
+    page = environment().get_template("index.html.j2").render(
+        version=__version__, body=body, engine=engine, items=[i for i, _, _ in done],
+        sections=sections)
+    index = out / "index.html"
+    with atomic_path(index) as tmp:
+        tmp.write_text(page, encoding="utf-8")
+    return index

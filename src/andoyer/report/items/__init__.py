@@ -1,0 +1,34 @@
+"""The report's items in report order: key, title, builder, measured cost.
+
+The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.chaos`);
+each item's prose is ``templates/items/<key>.html.j2``.
+
+Examples
+--------
+>>> [item.key for item in ITEMS][:3]
+['fig1', 'fig2', 'heteroclinic']
+"""
+
+from __future__ import annotations
+
+from andoyer.report.base import Item
+from andoyer.report.items import chaos, hess, unperturbed
+
+__all__ = ["ITEMS"]
+
+ITEMS: list[Item] = [
+    Item("fig1", "Fig. 1 — the unperturbed system (9) in (l, L)", unperturbed.fig1, 1.4),
+    Item("fig2", "Fig. 2 — the unperturbed Euler–Poinsot portrait; all fixed points",
+         unperturbed.fig2, 0.7),
+    Item("heteroclinic", "Heteroclinic orbits in closed form", unperturbed.heteroclinic, 0.1),
+    Item("solutions", "The Hess solution and the physical pendulum", hess.solutions, 1.2),
+    Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
+         "θ2 = 0", hess.fig3, 2.0),
+    Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
+         chaos.manifolds, 2.2),
+    Item("chaos", "Beyond the paper: chaos maps (FLI)", chaos.chaos, 6.2),
+    Item("border", "Beyond the paper: the border of chaos near the Hess case", chaos.border,
+         4.6),
+    Item("paper-check", "Every printed formula against the derivation",
+         unperturbed.paper_check, 0.0),
+]

@@ -1,0 +1,167 @@
+"""Build the report's items: in this process and ``jobs - 1`` worker processes
+(:class:`concurrent.futures.ProcessPoolExecutor`), longest first, with one progress bar.
+
+Each worker takes the next item as it frees up and so does this process, so the
+workers' start-up (their imports, about 2 s) overlaps the first item here. Items are
+announced in the report's order whatever order they finish in. Figures are drawn on
+each process's main thread (matplotlib is not thread-safe). On every way out (an error,
+Ctrl-C, SIGTERM turned into an exception) the pool is shut down with its queued items
+cancelled and its workers terminated; a worker also ends when this process dies
+without a word (Linux: ``PR_SET_PDEATHSIG``), and ignores Ctrl-C, which this process
+handles.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import signal
+import sys
+import threading
+import time
+from collections import deque
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from typing import Any
+
+from andoyer.progress import Progress, silenced
+from andoyer.report.base import Context, Item, Result
+
+__all__ = ["run_items", "Announcer"]
+
+#: Seconds between redraws of the bar while items run (its clock keeps moving).
+_TICK_S = 1.0
+#: Seconds a terminated worker gets to end before it is killed.
+_GRACE_S = 5.0
+
+
+class Announcer:
+    """The report's progress: a bar of items (on a terminal) with the items running now,
+    and one line per item, in report order, on stderr.
+
+    >>> a = Announcer([], enabled=False)
+    >>> a.close()
+    """
+
+    def __init__(self, items: list[Item], enabled: bool) -> None:
+        self.items = list(items)
+        self.enabled = enabled
+        self.bar = Progress(len(self.items), "andoyer paper",
+                            enabled=None if enabled else False)
+        self.running: list[str] = []
+        self.seconds: dict[str, float] = {}
+        self._next = 0
+        self._stop = threading.Event()
+        self._ticker = threading.Thread(target=self._tick, daemon=True)
+        if self.bar.enabled:
+            self._ticker.start()
+
+    def _tick(self) -> None:
+        while not self._stop.wait(_TICK_S):
+            self.bar.refresh()
+
+    def start(self, item: Item) -> None:
+        """``item`` starts."""
+        self.running.append(item.key)
+        self.bar.describe(", ".join(self.running))
+
+    def finish(self, item: Item, seconds: float) -> None:
+        """``item`` is done: count it; announce every item done up to the first not done."""
+        self.running.remove(item.key)
+        self.seconds[item.key] = seconds
+        self.bar.update(1)
+        self.bar.describe(", ".join(self.running))
+        while self._next < len(self.items) and self.items[self._next].key in self.seconds:
+            done = self.items[self._next]
+            self._next += 1
+            if self.enabled:
+                self.bar.write(f"[{self._next}/{len(self.items)}] {done.title} ... "
+                               f"{self.seconds[done.key]:.1f} s")
+
+    def close(self) -> None:
+        """End the bar and its clock."""
+        self._stop.set()
+        if self._ticker.is_alive():
+            self._ticker.join()
+        self.bar.close()
+
+
+def _build_item(item: Item, ctx: Context) -> tuple[Result, float]:
+    """Build one item (its own progress bars hidden: the report has one)."""
+    t0 = time.perf_counter()
+    with silenced():
+        res = item.build(ctx)
+    return res, time.perf_counter() - t0
+
+
+def _die_with_parent() -> None:
+    """In a worker: end with this process's parent, and leave Ctrl-C to the parent."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG
+
+
+def _end_workers(workers: set[Any]) -> None:
+    """Terminate ``workers`` (multiprocessing processes) and wait for them, bounded."""
+    for p in workers:
+        if p.is_alive():
+            p.terminate()
+    deadline = time.monotonic() + _GRACE_S
+    for p in workers:
+        p.join(max(0.0, deadline - time.monotonic()))
+        if p.is_alive():
+            p.kill()
+            p.join(1.0)
+
+
+def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
+              ) -> dict[str, tuple[Result, float]]:
+    """Build ``items`` with ``jobs`` processes (this one and ``jobs - 1`` workers).
+
+    Returns, per item key, its result and the seconds it took. The results do not
+    depend on ``jobs``; the first error of an item is raised (the other items are
+    cancelled and the workers ended).
+    """
+    announcer = Announcer(items, progress)
+    out: dict[str, tuple[Result, float]] = {}
+
+    def record(item: Item, res: Result, seconds: float) -> None:
+        out[item.key] = (res, seconds)
+        announcer.finish(item, seconds)
+
+    def here(item: Item) -> None:
+        announcer.start(item)
+        record(item, *_build_item(item, ctx))
+
+    try:
+        if jobs <= 1:
+            for item in items:
+                here(item)
+            return out
+        queue = deque(sorted(items, key=lambda i: -i.cost))
+        before = set(multiprocessing.active_children())
+        # spawn: a fresh interpreter (forking a process that may run threads is unsafe).
+        pool = ProcessPoolExecutor(jobs - 1, mp_context=multiprocessing.get_context("spawn"),
+                                   initializer=_die_with_parent)
+        running: dict[Future[tuple[Result, float]], Item] = {}
+        try:
+            while queue or running:
+                while queue and len(running) < jobs - 1:
+                    item = queue.popleft()
+                    running[pool.submit(_build_item, item, ctx)] = item
+                    announcer.start(item)
+                if queue:
+                    here(queue.popleft())
+                    finished = {f for f in running if f.done()}
+                else:
+                    finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                for f in finished:
+                    record(running.pop(f), *f.result())
+            pool.shutdown(wait=True)
+        finally:
+            pool.shutdown(wait=False, cancel_futures=True)
+            _end_workers(set(multiprocessing.active_children()) - before)
+        return out
+    finally:
+        announcer.close()

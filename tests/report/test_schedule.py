@@ -1,0 +1,147 @@
+"""The report's run: progress in report order, no stray output, no worker left behind."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from andoyer.report.paper import ITEMS, build_paper
+
+ONLY = ["fig2", "heteroclinic", "paper-check"]
+
+
+def test_items_announced_in_report_order(tmp_path, capsys):
+    """With two processes the worker's item (fig2, the longest, started first) finishes
+    after the two short ones built here: the lines still come in report order."""
+    build_paper(tmp_path / "p", quick=True, only=ONLY, jobs=2, progress=True)
+    err = capsys.readouterr().err
+    lines = err.splitlines()
+    items = [line for line in lines if line.startswith("[")]
+    titles = [i.title for i in ITEMS if i.key in ONLY]
+    assert items == [f"[{k + 1}/3] {t} ... " + line.rsplit(" ... ", 1)[1]
+                     for k, (t, line) in enumerate(zip(titles, items, strict=True))]
+    assert "" not in lines  # no stray blank line when stderr is not a terminal
+    assert lines[-1].startswith("wrote ")
+
+
+def _children(pid: int) -> set[int]:
+    """Every live descendant of ``pid`` (a /proc scan by parent pid)."""
+    parents: dict[int, int] = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                stat = (d / "stat").read_text()
+            except OSError:
+                continue
+            fields = stat.rsplit(")", 1)[1].split()
+            if fields[0] != "Z":
+                parents[int(d.name)] = int(fields[1])
+    found, todo = set(), [pid]
+    while todo:
+        p = todo.pop()
+        kids = {c for c, pp in parents.items() if pp == p}
+        found |= kids
+        todo += list(kids)
+    return found
+
+
+def _session(sid: int) -> set[int]:
+    """Live processes of session ``sid`` (those the command started)."""
+    out = set()
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if fields[0] != "Z" and int(fields[4]) == sid:
+                out.add(int(d.name))
+    return out
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/proc scan")
+@pytest.mark.timeout(240)
+def test_sigterm_leaves_no_worker(tmp_path):
+    """SIGTERM to ``andoyer paper --jobs 2`` while its worker builds an item: the
+    command ends and no process it started lives on."""
+    cmd = [sys.executable, "-m", "andoyer", "paper", "--out", str(tmp_path / "p"),
+           "--quick", "--jobs", "2", "--engine", "numba", "--only", "chaos", "border",
+           "fig1"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        worker = None
+        while worker is None and time.monotonic() < deadline and proc.poll() is None:
+            for c in _children(proc.pid):
+                try:
+                    if b"spawn_main" in Path(f"/proc/{c}/cmdline").read_bytes():
+                        worker = c
+                except OSError:
+                    pass
+            time.sleep(0.2)
+        assert worker is not None, "the worker process never started"
+        time.sleep(2.0)  # the worker is importing or building its item
+        os.kill(proc.pid, signal.SIGTERM)
+        proc.wait(timeout=60)
+        deadline = time.monotonic() + 30
+        while _session(proc.pid) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert _session(proc.pid) == set(), "processes of the command survived SIGTERM"
+    finally:
+        for p in _session(proc.pid):
+            os.kill(p, signal.SIGKILL)
+        if proc.poll() is None:
+            proc.kill()
+        proc.communicate()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs a pty")
+@pytest.mark.timeout(240)
+def test_progress_bar_in_a_terminal(tmp_path):
+    """In a terminal: the bar shows before the first item is done, item lines follow in
+    report order, and no line is blank."""
+    import pty
+
+    cmd = [sys.executable, "-m", "andoyer", "paper", "--out", str(tmp_path / "p"),
+           "--quick", "--jobs", "1", "--engine", "numba", "--only", "heteroclinic",
+           "paper-check"]
+    pid, fd = pty.fork()
+    if pid == 0:  # the child: the command, its stdout and stderr on a 40 x 120 terminal
+        import fcntl
+        import struct
+        import termios
+
+        fcntl.ioctl(0, termios.TIOCSWINSZ, struct.pack("HHHH", 40, 120, 0, 0))
+        os.execv(cmd[0], cmd)
+    chunks = []
+    try:
+        while True:
+            try:
+                data = os.read(fd, 4096)
+            except OSError:  # the terminal closed: the command ended
+                break
+            if not data:
+                break
+            chunks.append(data)
+    finally:
+        _, status = os.waitpid(pid, 0)
+        os.close(fd)
+    assert os.waitstatus_to_exitcode(status) == 0
+    text = b"".join(chunks).decode("utf-8", "replace")
+    bar = text.find("andoyer paper:")
+    first = text.find("[1/2] Heteroclinic")
+    assert 0 <= bar < first, text
+    assert text.find("[2/2] Every printed formula") > first
+    # What stays on the screen: per line, the text after the last carriage return,
+    # without the terminal's control sequences.
+    screen = [re.sub(r"\x1b\[[0-9;]*[A-Za-z]", "", line).rsplit("\r", 1)[-1].strip()
+              for line in text.replace("\r\n", "\n").split("\n")]
+    assert "" not in screen[:-1], screen
