@@ -56,11 +56,27 @@ def test_fig3_bad_input():
         fig3_trajectories(RigidBody(2.5, 2.0, 2.2, 0.01, (0.0, 0.6, 0.8)))
 
 
-def test_paper_command_writes_index(tmp_path, capsys):
+def test_paper_command_writes_index(tmp_path, capsys, monkeypatch):
+    from _figures import overlapping_texts, unlabelled_colour_bars
+    from andoyer.report.base import Context
+
+    figures = {}
+    save = Context.figure
+
+    def keep(self, fig, name):
+        figures[name] = fig
+        return save(self, fig, name)
+
+    monkeypatch.setattr(Context, "figure", keep)
     out = tmp_path / "paper"
     assert main(["paper", "--out", str(out), "--quick", "--only", "paper-check", "fig3",
                  "solutions", "heteroclinic",
-                 "--engine", "numba"]) == 0
+                 "--engine", "numba", "--jobs", "1"]) == 0
+    # The report's figures are readable: no label over another, every colour bar named.
+    assert set(figures) == {"fig3", "solutions"}
+    for name, fig in figures.items():
+        assert overlapping_texts(fig) == [], name
+        assert unlabelled_colour_bars(fig) == [], name
     names = {p.name for p in out.iterdir()}
     assert {"index.html", "fig3.png", "fig3.pdf", "fig3-trajectories.nc",
             "paper-check.txt", "paper-check.json", "solutions.png", "hess-periods.nc",

@@ -230,15 +230,19 @@ def number(widget: Any) -> float:
 
 
 def underlay_image(ds: Any) -> dict[str, list[Any]]:
-    """The FLI of a :func:`chaos_underlay` map as an RGBA image, pale to red."""
+    """The FLI of a :func:`chaos_underlay` map as an RGBA image in the FLI's colours
+    (:data:`andoyer.plot.style.SCALES`, as in the report: pale regular, dark chaotic)."""
+    import matplotlib as mpl
+
+    from andoyer.plot.style import colour_scale
+
     z = np.asarray(ds.fli.values, dtype=float)  # dims (plane y, plane x): rows are y
     ok = np.isfinite(z)
     lo, hi = np.nanpercentile(z, [5, 95]) if ok.any() else (0.0, 1.0)
     u = np.clip((np.where(ok, z, lo) - lo) / max(hi - lo, 1e-300), 0.0, 1.0)
-    r = np.full(z.shape, 250, dtype=np.uint32)
-    g = (245 - 190 * u).astype(np.uint32)
-    b = (235 - 215 * u).astype(np.uint32)
-    alpha = np.where(ok, 190, 0).astype(np.uint32)
+    rgba = (mpl.colormaps[colour_scale("fli").cmap](u) * 255).astype(np.uint32)
+    r, g, b = rgba[..., 0], rgba[..., 1], rgba[..., 2]
+    alpha = np.where(ok, 150, 0).astype(np.uint32)  # the orbits' points stay visible
     img = (alpha << 24) | (b << 16) | (g << 8) | r
     xs = np.asarray(ds[ds.fli.dims[1]].values, dtype=float)
     ys = np.asarray(ds[ds.fli.dims[0]].values, dtype=float)

@@ -11,13 +11,14 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
+import matplotlib as mpl
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
 from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS, PLANES
-from andoyer.plot.style import angle_ticks, new_figure, paper_style
+from andoyer.plot.style import angle_ticks, colour_bar, colour_scale, new_figure, paper_style
 
 __all__ = ["plot_atlas", "plot_border", "border_panel", "SYMBOLS"]
 
@@ -66,8 +67,9 @@ def _panel_section(ax: Any, p: xr.Dataset, x: str, y: str, fold: bool) -> None:
     ok = np.isfinite(X) & np.isfinite(Y)
     # Dots small enough for thousands of points, visible for a few dozen.
     size = float(np.clip(2000.0 / max(int(ok.sum()), 1), 0.4, 4.0))
-    ax.scatter(X[ok], Y[ok], c=colour[ok], s=size, marker=".", linewidths=0, cmap="turbo",
-               vmin=0, vmax=max(X.shape[0] - 1, 1), rasterized=True)
+    ax.scatter(X[ok], Y[ok], c=colour[ok], s=size, marker=".", linewidths=0,
+               cmap=colour_scale("orbit").cmap, vmin=0, vmax=max(X.shape[0] - 1, 1),
+               rasterized=True)
     if x in _ANGLES:
         hi = 2 * np.pi if fold or x != "theta1" else 4 * np.pi
         ax.set_xlim(0.0, hi)
@@ -80,7 +82,8 @@ def _panel_map(ax: Any, p: xr.Dataset, name: str, norm: tuple[float, float]) -> 
     xs = p[f"{dx}_values"].values if f"{dx}_values" in p else np.arange(v.shape[1])
     ys = p[f"{dy}_values"].values if f"{dy}_values" in p else np.arange(v.shape[0])
     mesh = ax.pcolormesh(xs, ys, np.asarray(v.values, dtype=float), shading="nearest",
-                         cmap="magma", vmin=norm[0], vmax=norm[1], rasterized=True)
+                         cmap=colour_scale(name).cmap, vmin=norm[0], vmax=norm[1],
+                         rasterized=True)
     if dx in _ANGLES:
         angle_ticks(ax, float(xs.min()), float(xs.max()))
     return mesh
@@ -188,7 +191,8 @@ def plot_atlas(ds: xr.Dataset, *, rows: str | None = None, cols: str | None = No
             for ax in axes[:, 0]:
                 ax.set_ylabel(LABELS.get(dy, dy))
             if image is not None:
-                fig.colorbar(image, ax=list(axes.ravel()), shrink=0.8, label=ind.upper())
+                fig.colorbar(image, ax=list(axes.ravel()), shrink=0.8,
+                             label=colour_scale(ind).label)
         fig.suptitle(_heading(ds, task, {d: float(sub[d].values) for d in fixed}),
                      fontsize=8)
     return fig
@@ -215,11 +219,55 @@ def _border_dims(ds: xr.Dataset) -> list[str]:
     return [str(d) for d in ds["chaotic_fraction"].dims]
 
 
+#: Annotations of a heat map's cells: largest and smallest font size (points).
+_CELL_FONT = (7.0, 4.5)
+#: Tick labels of a heat map (points).
+_TICK_FONT = 6.5
+
+
+def _cells_points(ax: Any, nx: int, ny: int) -> tuple[float, float]:
+    """Estimated width and height (points) of one cell of an ``nx x ny`` heat map in
+    ``ax``: about 60 % of the axes' share of the figure is left to the cells once labels
+    and colour bars are placed."""
+    fig = ax.get_figure(root=True)
+    width, height = fig.get_size_inches()
+    spec = ax.get_subplotspec()
+    if spec is not None:
+        rows, cols = spec.get_gridspec().get_geometry()
+        width *= len(spec.colspan) / cols
+        height *= len(spec.rowspan) / rows
+    return 0.6 * 72.0 * width / max(nx, 1), 0.6 * 72.0 * height / max(ny, 1)
+
+
+def _annotation_size(ax: Any, nx: int, ny: int, ranges: bool) -> tuple[float, bool] | None:
+    """Font size of the cell annotations of an ``nx x ny`` heat map in ``ax``, and whether
+    the bracketed range fits below the value; ``None`` where not even the value fits.
+
+    Text of about 0.6 em per character, lines 1.3 em apart, must fit inside 85 % of a
+    cell (:func:`_cells_points`).
+    """
+    cell_w, cell_h = (0.85 * v for v in _cells_points(ax, nx, ny))
+    for lines, chars in (((2, 12),) if ranges else ()) + ((1, 4),):
+        size = min(_CELL_FONT[0], cell_w / (0.6 * chars), cell_h / (1.3 * lines))
+        if size >= _CELL_FONT[1]:
+            return size, lines == 2
+    return None
+
+
+def _tick_step(cell: float, labels: list[str], vertical: bool) -> int:
+    """Every how many cells a tick label fits (labels ``_TICK_FONT`` points high and
+    0.6 em per character wide, with 1 em between them)."""
+    need = _TICK_FONT * (1.6 if vertical else 0.6 * max(map(len, labels), default=1) + 1.0)
+    return max(1, int(np.ceil(need / max(cell, 1e-9))))
+
+
 def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: str,
                  y: str | None, label: str | None = None, annotate: bool = True) -> Any:
     """One heat map of ``name`` over the swept ``(x, y)`` of a border-of-chaos dataset
     (other dims already selected); the chaotic fraction is annotated with its range under
-    ``threshold -+ margin/2``. Returns the colour mesh."""
+    ``threshold -+ margin/2`` where the cells leave room for it (the font follows the
+    cell size; no annotation where even the value does not fit). Returns the colour
+    mesh."""
     dims = (y, x) if y is not None else (x,)
     ok = np.ones(ds["chaotic_fraction"].shape, dtype=bool)
     if "done" in ds:
@@ -236,31 +284,40 @@ def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: 
     xv = np.asarray(ds[x].values, dtype=float)
     yv = np.asarray(ds[y].values, dtype=float) if y is not None else np.array([0.0])
     xs, ys = np.arange(xv.size, dtype=float), np.arange(yv.size, dtype=float)
-    top = float(np.nanmax(v)) if np.isfinite(v).any() else 1.0
-    mesh = ax.pcolormesh(_grid_edges(xs), _grid_edges(ys), v, shading="flat", vmin=0.0,
-                         vmax=max(top, 1e-12),
-                         cmap="magma" if name.startswith("chaotic") else "viridis")
-    ax.set_xticks(xs, [f"{t:.3g}" for t in xv])
-    ax.set_yticks(ys, [f"{t:.3g}" for t in yv])
+    scale = colour_scale("chaotic_fraction" if name.startswith("chaotic") else name)
+    norm = scale.norm(v)
+    mesh = ax.pcolormesh(_grid_edges(xs), _grid_edges(ys), v, shading="flat", norm=norm,
+                         cmap=scale.cmap)
+    # Tick labels at every cell where they fit, else at every k-th.
+    cell_w, cell_h = _cells_points(ax, xs.size, ys.size)
+    xl, yl = [f"{t:.3g}" for t in xv], [f"{t:.3g}" for t in yv]
+    kx, ky = _tick_step(cell_w, xl, False), _tick_step(cell_h, yl, True)
+    ax.set_xticks(xs[::kx], xl[::kx])
+    ax.set_yticks(ys[::ky], yl[::ky])
     ax.set_xlabel(f"${SYMBOLS.get(x, x)}$" + (" (rad)" if x == "epsilon" else ""))
     if y is not None:
         ax.set_ylabel(f"${SYMBOLS.get(y, y)}$")
     else:
         ax.set_yticks([])
-    if annotate and xs.size <= 10 and ys.size <= 10:
+    size = _annotation_size(ax, xs.size, ys.size, name == "chaotic_fraction")
+    if annotate and size is not None:
+        fontsize, ranges = size
         lo, hi = (grid("chaotic_fraction_high"), grid("chaotic_fraction_low"))
+        cmap = mpl.colormaps[scale.cmap]
         for i in range(v.shape[0]):
             for j in range(v.shape[1]):
                 if not np.isfinite(v[i, j]):
                     continue
                 text = f"{v[i, j]:.2f}"
-                if name == "chaotic_fraction" and xs.size <= 5:
+                if ranges:
                     text += f"\n[{lo[i, j]:.2f}, {hi[i, j]:.2f}]"
-                ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=5.5,
-                        color="w" if v[i, j] < 0.6 * top else "k")
+                # Dark text on pale cells, white on dark ones (by the cell's luminance).
+                r, g, b, _ = cmap(norm(v[i, j]))
+                ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=fontsize,
+                        color="k" if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else "w")
     if label:
-        ax.set_title(label, fontsize=8)
-    ax.tick_params(labelsize=6.5)
+        ax.set_title(label)
+    ax.tick_params(labelsize=_TICK_FONT)
     return mesh
 
 
@@ -301,10 +358,9 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     sub = ds.sel(fixed, method="nearest") if fixed else ds
     with paper_style():
         fig = new_figure(1, 2, width=width, aspect=0.8)
-        for ax, name, label in ((fig.axes[0], "chaotic_fraction", "chaotic fraction"),
-                                (fig.axes[1], "layer_width", "layer width (rad)")):
+        for ax, name in zip(fig.axes[:2], ("chaotic_fraction", "layer_width"), strict=True):
             mesh = border_panel(ax, sub, name, x=x, y=y)
-            fig.colorbar(mesh, ax=ax, shrink=0.85, label=label)
+            colour_bar(mesh, ax, name, shrink=0.85)
         a = ds.attrs
         head = [f"body {a.get('body_name', '?')}: border of chaos (MEGNO > reference + "
                 f"{float(a.get('margin', 1.0)):g})"]

@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 
 from andoyer.plot.atlas import border_panel
 from andoyer.plot.section import LABELS
-from andoyer.plot.style import COLOURS, angle_ticks, new_figure, paper_style
+from andoyer.plot.style import COLOURS, angle_ticks, colour_bar, colour_scale, paper_style
 
 __all__ = ["plot_splitting_vs_epsilon", "plot_frequency_map", "plot_border_of_chaos"]
 
@@ -38,21 +38,23 @@ def plot_splitting_vs_epsilon(ds: xr.Dataset, *, ax: Any) -> Any:
     ax.set_ylim(bottom=0.0)
     ax.set_xlabel("$\\epsilon$ (rad)")
     ax.set_ylabel("max $|\\Delta G|$ on $L = 0$")
-    ax.legend(fontsize=6, frameon=False)
+    ax.legend(fontsize=6.5, frameon=False)
     return ax
 
 
 def plot_frequency_map(ds: xr.Dataset, *, ax: Any) -> Any:
     """Seeds of a frequency map on their section plane, coloured by ``log10`` of the
-    frequency drift (dark: tori; bright: chaotic). Returns the scatter."""
+    frequency drift (its colour scale :data:`andoyer.plot.style.SCALES`: pale on tori,
+    dark in chaos). Returns the scatter."""
     x = str(ds.attrs.get("plane_x", "theta1"))
     y = str(ds.attrs.get("plane_y", "J1"))
     X = np.asarray(ds[x].values, dtype=float)
     Y = np.asarray(ds[y].values, dtype=float)
     d = np.asarray(ds.log10_drift.values, dtype=float)
     ok = np.isfinite(X) & np.isfinite(Y) & np.isfinite(d)
-    sc = ax.scatter(X[ok], Y[ok], c=d[ok], s=9, cmap="magma", vmin=max(float(d[ok].min()),
-                    -14.0) if ok.any() else -14.0, vmax=0.0, linewidths=0)
+    scale = colour_scale("log10_drift")
+    norm = scale.norm(np.maximum(d[ok], -14.0))  # below 1e-14: round-off, not drift
+    sc = ax.scatter(X[ok], Y[ok], c=d[ok], s=9, cmap=scale.cmap, norm=norm, linewidths=0)
     if x in ("theta1", "l", "g", "theta2"):
         angle_ticks(ax, 0.0, 2 * np.pi)
         ax.set_xlim(0.0, 2 * np.pi)
@@ -62,21 +64,22 @@ def plot_frequency_map(ds: xr.Dataset, *, ax: Any) -> Any:
 
 
 def plot_border_of_chaos(splitting: xr.Dataset, border: xr.Dataset,
-                         frequencies: xr.Dataset, *, width: float = 10.0) -> Figure:
-    """Three panels: (a) :func:`plot_splitting_vs_epsilon`, (b) the chaotic fraction over
-    ``(epsilon, mu)`` (:func:`~andoyer.plot.atlas.border_panel`), (c)
-    :func:`plot_frequency_map`."""
+                         frequencies: xr.Dataset, *, width: float = 7.5) -> Figure:
+    """Three panels on a grid: (a) :func:`plot_splitting_vs_epsilon` and (b) the chaotic
+    fraction over ``(epsilon, mu)`` (:func:`~andoyer.plot.atlas.border_panel`) side by
+    side, (c) :func:`plot_frequency_map` across the width below; every colour bar
+    labelled."""
     with paper_style():
-        fig = new_figure(1, 3, width=width, aspect=0.85)
-        a, b, c = fig.axes
+        fig = Figure(figsize=(width, 0.8 * width), layout="constrained")
+        axes = fig.subplot_mosaic([["a", "b"], ["c", "c"]], height_ratios=[1.0, 0.9])
+        a, b, c = axes["a"], axes["b"], axes["c"]
         plot_splitting_vs_epsilon(splitting, ax=a)
-        a.set_title(f"(a) splitting of $\\theta_1 = 0$, $\\rho = {float(splitting.rho):.3g}$",
-                    fontsize=8)
+        a.set_title(f"(a) splitting of $\\theta_1 = 0$, $\\rho = {float(splitting.rho):.3g}$")
         mesh = border_panel(b, border, "chaotic_fraction", x="epsilon", y="mu",
-                            label="(b) chaotic fraction, MEGNO")
-        fig.colorbar(mesh, ax=b, shrink=0.85)
+                            label="(b) chaotic fraction (MEGNO)")
+        colour_bar(mesh, b, "chaotic_fraction", shrink=0.9)
         sc = plot_frequency_map(frequencies, ax=c)
         mu = frequencies.attrs.get("body_mu", frequencies.attrs.get("mu", ""))
-        c.set_title(f"(c) frequency drift, $\\mu = {float(mu):g}$", fontsize=8)
-        fig.colorbar(sc, ax=c, shrink=0.85, label="log$_{10}$ drift")
+        c.set_title(f"(c) frequency drift, $\\mu = {float(mu):g}$")
+        colour_bar(sc, c, "log10_drift", shrink=0.9)
     return fig

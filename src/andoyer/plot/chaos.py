@@ -2,7 +2,8 @@
 
 Takes the dataset of :func:`andoyer.analysis.chaos.chaos_map`: the indicator as an
 image over the plane, blank where the energy level does not meet the plane, the
-accessible region's boundary on top, a colour bar named after the indicator.
+accessible region's boundary on top, a colour bar named after the indicator (colour map,
+range and label from :data:`andoyer.plot.style.SCALES`: pale regular, dark chaotic).
 """
 
 from __future__ import annotations
@@ -16,20 +17,14 @@ from matplotlib.figure import Figure
 
 from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS
-from andoyer.plot.style import COLOURS, WIDTH, angle_ticks, paper_style
+from andoyer.plot.style import COLOURS, SCALES, WIDTH, angle_ticks, colour_scale, paper_style
 
 __all__ = ["plot_chaos_map", "plot_indicators", "COLOUR_BAR_LABELS"]
 
-#: Indicator -> colour-bar label.
-COLOUR_BAR_LABELS: dict[str, str] = {
-    "fli": r"FLI $= \sup_{s \leq t}\, \ln\|w(s)\|$",
-    "megno": r"MEGNO $\langle Y\rangle$",
-    "mle": r"$\ln\|w(t)\|\,/\,t$",
-}
+#: Indicator -> colour-bar label (from :data:`andoyer.plot.style.SCALES`).
+COLOUR_BAR_LABELS: dict[str, str] = {k: SCALES[k].label for k in ("fli", "megno", "mle")}
 _ANGLES = ANGLES
 _SECTION_SYMBOL = {"g": "g", "theta2": r"\theta_2"}
-# MEGNO: 2 is the quasi-periodic value; the scale saturates at 4x that.
-_MEGNO_RANGE = (0.0, 8.0)
 # FLI and the others: the colour range spans these percentiles of the data.
 _PERCENTILES = (0.5, 99.0)
 
@@ -42,7 +37,7 @@ def _edges(c: np.ndarray, lo: float, hi: float) -> np.ndarray:
 
 def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | None = None,
                    vmin: float | None = None, vmax: float | None = None,
-                   cmap: str = "magma", title: str | None = None) -> Axes:
+                   cmap: str | None = None, title: str | None = None) -> Axes:
     """Draw a chaos map: indicator image, accessible boundary, colour bar.
 
     Parameters
@@ -55,11 +50,13 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     indicator : {"fli", "megno", "mle"}, optional
         Default: ``attrs["indicator"]`` (``"fli"`` for ``"both"``).
     vmin, vmax : float, optional
-        Colour range. Default for MEGNO ``[0, 8]`` (2 = quasi-periodic); for the others
+        Colour range. Default for MEGNO ``[0, 8]`` (2 = quasi-periodic, the scale
+        saturates at 4x that); for the others
         the 0.5 and 99th percentiles of the data (values beyond are drawn in the end
         colours, the colour bar says so).
-    cmap : str, default "magma"
-        Colour map (dark: regular, bright: chaotic).
+    cmap : str, optional
+        Colour map; default the indicator's (:data:`andoyer.plot.style.SCALES`: pale
+        regular, dark chaotic).
     title : str, optional
         Default: body, section, h, M and t_end from the attrs.
 
@@ -99,8 +96,9 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     x1 = float(a.get("plane_x_max", xs[-1] + 0.5 * (xs[-1] - xs[-2]) if xs.size > 1 else xs[0]))
     y0 = float(a.get("plane_y_min", ys[0] - 0.5 * (ys[1] - ys[0]) if ys.size > 1 else ys[0]))
     y1 = float(a.get("plane_y_max", ys[-1] + 0.5 * (ys[-1] - ys[-2]) if ys.size > 1 else ys[0]))
-    if name == "megno":
-        lo, hi = _MEGNO_RANGE
+    scale = colour_scale(name) if name in SCALES else colour_scale("fli")
+    if scale.vmin is not None and scale.vmax is not None:
+        lo, hi = scale.vmin, scale.vmax
     elif z.count():
         # Percentiles: one thin chaotic layer must not flatten the regular structure.
         lo, hi = (float(v) for v in np.percentile(z.compressed(), _PERCENTILES))
@@ -113,12 +111,13 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
         if ax is None:
             fig = Figure(figsize=(WIDTH, 0.75 * WIDTH), layout="constrained")
             ax = fig.add_subplot()
-        mesh = ax.pcolormesh(_edges(xs, x0, x1), _edges(ys, y0, y1), z, cmap=cmap,
+        mesh = ax.pcolormesh(_edges(xs, x0, x1), _edges(ys, y0, y1), z,
+                             cmap=scale.cmap if cmap is None else cmap,
                              vmin=lo, vmax=hi, shading="flat", rasterized=True)
         fig_ = ax.get_figure(root=True)
         assert fig_ is not None
         bar = fig_.colorbar(mesh, ax=ax, extend=_extend(z, lo, hi))
-        bar.set_label(COLOUR_BAR_LABELS.get(name, name))
+        bar.set_label(scale.label if name in SCALES else name)
         if "boundary_x" in ds and "boundary_y" in ds:
             ax.plot(ds.boundary_x.values, ds.boundary_y.values, color=COLOURS["boundary"],
                     lw=0.8, label="boundary of the accessible region")

@@ -12,7 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
-from andoyer.plot.style import COLOURS, angle_ticks, new_figure, paper_style
+from andoyer.plot.style import COLOURS, angle_ticks, colour_scale, new_figure, paper_style
 
 __all__ = ["plot_fig3"]
 
@@ -45,8 +45,8 @@ def _points(ax: Axes, sec: xr.Dataset, size: float) -> None:
     y = np.asarray(sec.J1.values, dtype=float)
     ok = np.isfinite(x) & np.isfinite(y)
     colour = np.broadcast_to(np.arange(x.shape[0])[:, None], x.shape)
-    ax.scatter(x[ok], y[ok], c=colour[ok], s=size, marker=".", linewidths=0, cmap="turbo",
-               rasterized=True)
+    ax.scatter(x[ok], y[ok], c=colour[ok], s=size, marker=".", linewidths=0,
+               cmap=colour_scale("orbit").cmap, rasterized=True)
 
 
 def plot_fig3(traj: xr.Dataset, section: xr.Dataset, fill: xr.Dataset | None = None

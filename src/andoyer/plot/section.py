@@ -18,6 +18,7 @@ from matplotlib.figure import Figure
 from andoyer.atomic import atomic_path
 from andoyer.integrate.section import SECTION_PLANES
 from andoyer.notation import ANGLES, COORDINATES
+from andoyer.plot.style import colour_scale
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
 
@@ -115,7 +116,7 @@ def plot_section(ds: xr.Dataset, *, ax: Axes | None = None, boundary: xr.Dataset
     ok = np.isfinite(x) & np.isfinite(y)
     n_orbits = max(int(colour.max()) + 1 if colour.size else 1, 1)
     ax.scatter(x[ok], y[ok], c=colour[ok], s=1.5, marker=".", linewidths=0,
-               cmap="turbo", vmin=0, vmax=max(n_orbits - 1, 1), rasterized=True)
+               cmap=colour_scale("orbit").cmap, vmin=0, vmax=max(n_orbits - 1, 1), rasterized=True)
     if boundary is not None:
         bx, by = _plane(boundary, "plot_section: the boundary dataset")
         if (bx, by) != (xname, yname):

@@ -4,6 +4,11 @@ Figures are made with :func:`new_figure` (a :class:`matplotlib.figure.Figure`, n
 inside :func:`paper_style`, and written with :func:`andoyer.plot.section.save_figure`.
 Plot functions take datasets and compute nothing themselves.
 
+Colour-mapped quantities (chaos indicators, frequency drift, chaotic fraction, ...) have
+one colour scale each, :data:`SCALES`: the colour map, its range and the colour bar's
+label, used by every figure, the tutorials and the explorer. Indicators of chaos run
+pale (regular) to dark (chaotic).
+
 Examples
 --------
 >>> from andoyer.plot.style import new_figure, paper_style, COLOURS
@@ -11,18 +16,24 @@ Examples
 ...     fig = new_figure(ncols=2)
 >>> len(fig.axes)
 2
+>>> SCALES["log10_drift"].cmap == SCALES["fli"].cmap
+True
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from typing import Any
 
 import matplotlib as mpl
+import numpy as np
+from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
-__all__ = ["RC", "COLOURS", "MARKERS", "WIDTH", "paper_style", "new_figure", "angle_ticks"]
+__all__ = ["RC", "COLOURS", "MARKERS", "WIDTH", "SCALES", "ColourScale", "colour_scale",
+           "colour_bar", "paper_style", "new_figure", "angle_ticks"]
 
 #: Width of a one-column figure, inches (a journal column is about 3.3 in; a page 6.7 in).
 WIDTH = 6.4
@@ -67,6 +78,63 @@ MARKERS: dict[str, dict[str, Any]] = {
     "saddle": {"marker": "X", "s": 30, "color": COLOURS["saddle"], "zorder": 5},
     "degenerate": {"marker": "s", "s": 18, "color": "0.3", "zorder": 5},
 }
+
+
+@dataclass(frozen=True)
+class ColourScale:
+    """How one quantity is coloured: its colour map, range and colour-bar label.
+
+    ``vmin`` / ``vmax`` left ``None`` follow the data (:meth:`norm`).
+    """
+
+    cmap: str
+    label: str
+    vmin: float | None = None
+    vmax: float | None = None
+
+    def norm(self, data: Any = None) -> Normalize:
+        """The colour range: the fixed ends, the others from the finite ``data``.
+
+        >>> SCALES["megno"].norm([1.0, 30.0]).vmax
+        8.0
+        """
+        v = np.asarray(data if data is not None else [], dtype=float)
+        v = v[np.isfinite(v)]
+        lo = self.vmin if self.vmin is not None else (float(v.min()) if v.size else 0.0)
+        hi = self.vmax if self.vmax is not None else (float(v.max()) if v.size else 1.0)
+        return Normalize(lo, hi if hi > lo else lo + 1.0)
+
+
+#: Colour-mapped quantity (its storage name) -> its colour scale, the same in every
+#: figure, tutorial and in the explorer. Chaos runs pale (regular) to dark (chaotic).
+SCALES: dict[str, ColourScale] = {
+    "fli": ColourScale("magma_r", r"FLI $= \sup_{s \leq t}\, \ln\|w(s)\|$"),
+    "megno": ColourScale("magma_r", r"MEGNO $\langle Y\rangle$", 0.0, 8.0),
+    "mle": ColourScale("magma_r", r"$\ln\|w(t)\|\,/\,t$"),
+    "log10_drift": ColourScale("magma_r", r"$\log_{10}$ frequency drift", None, 0.0),
+    "chaotic_fraction": ColourScale("magma_r", "chaotic fraction", 0.0, None),
+    "layer_width": ColourScale("viridis", "layer width (rad)", 0.0, None),
+    "orbit": ColourScale("turbo", "orbit"),
+}
+
+
+def colour_scale(quantity: str) -> ColourScale:
+    """The colour scale of ``quantity`` (a key of :data:`SCALES`).
+
+    >>> colour_scale("fli").cmap
+    'magma_r'
+    """
+    try:
+        return SCALES[quantity]
+    except KeyError:
+        raise ValueError(f"no colour scale for {quantity!r}; choose from "
+                         f"{', '.join(SCALES)}") from None
+
+
+def colour_bar(mappable: Any, ax: Any, quantity: str, **kwargs: Any) -> Any:
+    """A colour bar beside ``ax`` for ``mappable``, labelled with ``quantity``'s label."""
+    fig = ax.get_figure(root=True)
+    return fig.colorbar(mappable, ax=ax, label=colour_scale(quantity).label, **kwargs)
 
 
 @contextmanager

@@ -26,8 +26,8 @@ from andoyer.report.base import Item, Result
 __all__ = ["environment", "render_item", "write_index", "DISPLAY_DPI"]
 
 #: Figures are written at 200 dpi and shown at most this many CSS pixels per inch (so a
-#: 6.4 in figure is at most 832 px wide; narrower windows scale it down).
-DISPLAY_DPI = 130.0
+#: 6.4 in figure is at most 960 px wide; narrower windows scale it down).
+DISPLAY_DPI = 150.0
 _WRITTEN_DPI = 200.0
 
 

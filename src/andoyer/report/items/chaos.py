@@ -66,7 +66,7 @@ def chaos(ctx: Context) -> Result:
                   t_end=200.0 if ctx.quick else 500.0, progress=False, engine=ctx.engine),
     ]
     with paper_style():
-        fig = new_figure(1, 2, aspect=0.85)
+        fig = new_figure(1, 2, width=9.0, aspect=0.85)
         for ax, ds, label in zip(fig.axes, maps, ("(a) the paper's body, h = c/2",
                                                   "(b) Hess body (3, 1, 2), mu = 1, h = 1"),
                                  strict=True):
