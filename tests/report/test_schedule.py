@@ -74,7 +74,8 @@ def test_sigterm_leaves_no_worker(tmp_path):
     cmd = [sys.executable, "-m", "andoyer", "paper", "--out", str(tmp_path / "p"),
            "--quick", "--jobs", "2", "--engine", "numba", "--only", "chaos", "border",
            "fig1"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    log = (tmp_path / "stderr.txt").open("wb")
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=log,
                             start_new_session=True)
     try:
         deadline = time.monotonic() + 120
@@ -100,7 +101,8 @@ def test_sigterm_leaves_no_worker(tmp_path):
             os.kill(p, signal.SIGKILL)
         if proc.poll() is None:
             proc.kill()
-        proc.communicate()
+            proc.wait(timeout=30)
+        log.close()
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs a pty")

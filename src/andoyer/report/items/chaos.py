@@ -54,13 +54,14 @@ def chaos(ctx: Context) -> Result:
     import numpy as np
 
     from andoyer.analysis.chaos import chaos_map
+    from andoyer.analysis.separatrix import separatrix_energy
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.style import new_figure, paper_style
 
     body = ctx.body
     other = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
     maps = [
-        chaos_map(body, body.c / 2, 0.0, "theta2=0", n=(64, 16) if ctx.quick else (128, 32),
+        chaos_map(body, separatrix_energy(body), 0.0, "theta2=0", n=(64, 16) if ctx.quick else (128, 32),
                   t_end=300.0 if ctx.quick else 1000.0, progress=False, engine=ctx.engine),
         chaos_map(other, 1.0, 0.0, "theta2=0", n=24 if ctx.quick else 64,
                   t_end=200.0 if ctx.quick else 500.0, progress=False, engine=ctx.engine),
@@ -87,13 +88,14 @@ def border(ctx: Context) -> Result:
 
     from andoyer.analysis.chaos_border import chaos_border_map
     from andoyer.analysis.frequency import frequency_map
+    from andoyer.analysis.separatrix import separatrix_energy
     from andoyer.analysis.splitting import splitting_vs_epsilon
     from andoyer.plot.border import plot_border_of_chaos
 
     # A Hess body whose separatrices split by O(mu) (rho = 1.08): on the paper's body
     # (rho = 4.56) the splitting and the chaotic layers are exponentially small.
     body = RigidBody.hess(2.5, 1.0, 1.6, name="rho~1")
-    h = 0.5 * body.c                       # the level of the rotations with |G| = 1
+    h = separatrix_energy(body)            # the level of the rotations with |G| = 1
     eps = [0.0, 0.1, 0.2, 0.4] if not ctx.quick else [0.0, 0.2]
     split = splitting_vs_epsilon(body, eps, [0.01], n_phase=8, progress=False,
                                  engine=ctx.engine)

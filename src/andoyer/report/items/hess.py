@@ -20,6 +20,7 @@ _FLOQUET_ENGINES = ("heyoka", "numba")
 
 def fig3(ctx: Context) -> Result:
     """Fig. 3: trajectories in the Hess chart and the section theta2 = 0."""
+    from andoyer.analysis.separatrix import separatrix_energy
     from andoyer.analysis.trajectories import fig3_section, fig3_trajectories
     from andoyer.plot.fig3 import plot_fig3
 
@@ -32,7 +33,7 @@ def fig3(ctx: Context) -> Result:
     files.append(ctx.data(sec.drop_vars("y0"), "fig3-section"))
     drift = float(traj.attrs["H_max_drift"])
     return Result(files, {"H_max_drift": drift},
-                  {"h": ctx.body.c / 2, "H_max_drift": drift,
+                  {"h": separatrix_energy(ctx.body), "H_max_drift": drift,
                    "residual": float(abs(sec.section_residual).max()),
                    "engine": str(traj.attrs.get("engine", ctx.engine_name()))})
 
