@@ -27,6 +27,8 @@ from andoyer.body import RigidBody
 if TYPE_CHECKING:
     import xarray as xr
 
+    from andoyer.integrate.engines.base import Capability
+
 __all__ = ["Context", "Result", "Item", "Table"]
 
 
@@ -39,18 +41,19 @@ class Context:
     engine: str | None = None
     quick: bool = False
 
-    def engine_name(self, supported: tuple[str, ...] | None = None) -> str:
+    def engine_name(self, *capabilities: Capability) -> str:
         """The engine that actually runs: :attr:`engine`, or the default (heyoka where
-        installed, else numba); for an analysis that runs on ``supported`` engines only,
-        the default where :attr:`engine` is not one of them.
+        installed, else numba); for an analysis that needs ``capabilities`` the engine
+        lacks, the default.
 
-        >>> ctx = Context(Path("."), RigidBody.paper(), "scipy")
-        >>> ctx.engine_name(), ctx.engine_name(("heyoka", "numba")) != "scipy"
-        ('scipy', True)
+        >>> from andoyer.integrate.engines.base import Capability
+        >>> ctx = Context(Path("."), RigidBody.paper(), "numba")
+        >>> ctx.engine_name(), ctx.engine_name(Capability.EXTENDED_PRECISION) != "numba"
+        ('numba', True)
         """
-        from andoyer.integrate.engines import default_engine_name
+        from andoyer.integrate.engines import default_engine_name, engine_class
 
-        if self.engine is not None and (supported is None or self.engine in supported):
+        if self.engine is not None and set(capabilities) <= engine_class(self.engine).capabilities:
             return self.engine
         return default_engine_name()
 

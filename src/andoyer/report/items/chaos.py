@@ -13,20 +13,17 @@ from andoyer.report.base import Context, Result, Table
 
 __all__ = ["manifolds", "chaos", "border"]
 
-#: The engines that grow manifolds (the flow to the section with its Jacobian).
-_FLOW_ENGINES = ("heyoka", "numba")
-
-
 def manifolds(ctx: Context) -> Result:
     """Hyperbolic rotations, their manifolds, the splitting against the Melnikov function."""
     import numpy as np
 
     from andoyer.analysis.splitting import separatrix_splitting
+    from andoyer.integrate.engines.base import Capability
     from andoyer.plot.manifolds import plot_manifolds_summary
 
     mus = [0.0025, 0.005, 0.01] if not ctx.quick else [0.005, 0.01]
     body = ctx.body
-    engine = ctx.engine_name(_FLOW_ENGINES)
+    engine = ctx.engine_name(Capability.TANGENT_CROSSINGS)  # the flow to the section
     res = separatrix_splitting(body, mus, n_phase=8 if ctx.quick else 16, progress=False,
                                branch="theta1=4phi0", engine=engine)
     hess = separatrix_splitting(body, [mus[-1]], branch="theta1=0", n_phase=8,
@@ -61,7 +58,8 @@ def chaos(ctx: Context) -> Result:
     body = ctx.body
     other = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
     maps = [
-        chaos_map(body, separatrix_energy(body), 0.0, "theta2=0", n=(64, 16) if ctx.quick else (128, 32),
+        chaos_map(body, separatrix_energy(body), 0.0, "theta2=0",
+                  n=(64, 16) if ctx.quick else (128, 32),
                   t_end=300.0 if ctx.quick else 1000.0, progress=False, engine=ctx.engine),
         chaos_map(other, 1.0, 0.0, "theta2=0", n=24 if ctx.quick else 64,
                   t_end=200.0 if ctx.quick else 500.0, progress=False, engine=ctx.engine),

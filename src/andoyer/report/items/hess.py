@@ -14,10 +14,6 @@ from andoyer.report.base import Context, Result
 
 __all__ = ["solutions", "fig3"]
 
-#: The engines the Floquet multipliers run on (the variational monodromy).
-_FLOQUET_ENGINES = ("heyoka", "numba")
-
-
 def fig3(ctx: Context) -> Result:
     """Fig. 3: trajectories in the Hess chart and the section theta2 = 0."""
     from andoyer.analysis.separatrix import separatrix_energy
@@ -46,6 +42,7 @@ def solutions(ctx: Context) -> Result:
     from andoyer.analysis.floquet import floquet_scan, hess_rotation_multiplier
     from andoyer.analysis.hess_periods import hess_periods
     from andoyer.analysis.hess_solution import reduced_hamiltonian
+    from andoyer.integrate.engines.base import Capability
     from andoyer.plot.solutions import plot_solutions
 
     body, mu = ctx.body, ctx.body.mu
@@ -62,7 +59,7 @@ def solutions(ctx: Context) -> Result:
     other = RigidBody(body.A, body.B, body.C, mu, (0.6, 0.8, 0.0), "r = (0.6, 0.8, 0)")
     energies = mu * np.linspace(-0.95, 5.0, 13 if ctx.quick else 37)
     energies = energies[np.abs(energies - mu) > 0.02 * mu]
-    floquet_engine = ctx.engine_name(_FLOQUET_ENGINES)
+    floquet_engine = ctx.engine_name(Capability.TANGENT)  # the variational monodromy
     floq = xr.concat([floquet_scan(b, energies, engine=floquet_engine).expand_dims(
         body=[b.name]) for b in (body, other)], "body", combine_attrs="drop_conflicts")
     files = ctx.figure(plot_solutions(periods, portrait, floq), "solutions")
