@@ -163,8 +163,10 @@ def test_report_names_the_engine_that_ran(tmp_path):
         texts["heteroclinic"]
     assert "variational equations of (1) (numba, tol 1e-12" in texts["chaos"]
     page = (tmp_path / "p" / "index.html").read_text(encoding="utf-8")
-    for text in (*texts.values(), page):
+    summary = (tmp_path / "p" / "summary.json").read_text(encoding="utf-8")
+    for text in (*texts.values(), page, summary):
         assert "heyoka" not in text
+    assert '"engine": "numba"' in summary
 
 
 def test_report_prose_names_no_engine():

@@ -100,10 +100,13 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
     t_all = time.perf_counter()
     times = run_items(items, ctx, min(n_jobs, len(items)), progress)
     done = [(item, *times[item.key]) for item in items]
+    # The engines that ran (never "default"): the report's, and per item those it names.
     summary = {"andoyer_version": __version__, "body": ctx.body.attrs(),
-               "engine": ctx.engine or "default", "quick": quick,
+               "engine": ctx.engine_name(), "quick": quick,
                "items": {i.key: {"title": i.title, "seconds": round(dt, 3),
-                                 "numbers": r.numbers, "files": [f.name for f in r.files]}
+                                 "numbers": r.numbers, "files": [f.name for f in r.files],
+                                 **({"engine": r.values["engine"]} if "engine" in r.values
+                                    else {})}
                          for i, r, dt in done}}
     with atomic_path(ctx.out / "summary.json") as tmp:
         tmp.write_text(json.dumps(summary, indent=1), encoding="utf-8")
