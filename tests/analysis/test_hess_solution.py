@@ -424,3 +424,21 @@ def test_dataset_is_self_describing(solutions):
         assert key in sol.attrs
     for v in ("theta3", "theta2_signed", "J2_signed", "psi", "J1"):
         assert sol[v].attrs.get("long_name")
+
+
+@pytest.mark.parametrize("M", [0.03, -0.05])
+@pytest.mark.parametrize("offset", [0.0, 1e-9, -1e-7, 1e-3])
+@pytest.mark.parametrize("theta2_0", [0.5 * math.pi, 1.5 * math.pi])
+def test_full_precision_at_and_near_the_turning_points(theta2_0, offset, M):
+    """``cos theta2 = 0`` is a turning point of ``u = J2^2`` (``u_b`` or ``u_c``): the
+    initial phase must not come from ``sqrt(u_c - u0)`` alone (was 1.2e-8 against
+    integration and ``|H - h|`` 1e-10 exactly there, 1e-12 a little away)."""
+    body = RigidBody.paper()
+    x0 = [0.0, theta2_0 + offset, 0.05, 0.1, M]
+    t = np.linspace(0.0, 30.0, 7)
+    ds = hess_solution(body, x0, t)
+    ref = propagate_hess_manifold(body, x0, t)
+    assert float(abs(ds.H - ds.attrs["h"]).max()) <= 1e-13 * abs(ds.attrs["h"])
+    err = max(float(abs(ds[v] - ref[v]).max()) for v in ("G1", "G2", "G3", "gamma1",
+                                                          "gamma2", "gamma3"))
+    assert err < 2e-11, err

@@ -473,6 +473,34 @@ def _solution_m0(body: RigidBody, theta2_0: float, J2_0: float, psi0: float,
             "cos2": C * C / norm, "sin2": S * S / norm}
 
 
+def _initial_phase(u0: float, udot0: float, ub: float, uc: float, omega: float,
+                   m: float) -> float:
+    """The argument ``omega t0 + phase`` at ``u0 = J2(t0)^2`` of
+    ``u = u_c - (u_c - u_b) sn^2``, without the square-root cancellation of the turning points.
+
+    ``sn^2 = (u_c - u0)/(u_c - u_b)`` alone gives ``sn`` to only ``sqrt(eps)`` near
+    ``u0 = u_c`` (``cn`` near ``u_b``), where the root carries an absolute error ``eps u_c``;
+    there ``du/dt = -2 (u_c - u_b) omega sn cn dn`` gives the small factor to full
+    accuracy (``du/dt`` is a product with the state's ``cos theta2``): ``sn = D/(cn dn)``
+    near ``u_c``, ``cn = D/(sn dn)`` near ``u_b``, ``D = -(du/dt)/(2 (u_c - u_b) omega)``.
+    Measured at the turning points (``M = 0.03``, paper body): the state against
+    integration from 1.2e-8 to 1.5e-12, ``|H - h|`` from 1e-10 to 4e-18.
+    """
+    width = uc - ub
+    if not width > 0.0:
+        return 0.0
+    s2 = min(1.0, max(0.0, (uc - u0) / width))
+    c2 = min(1.0, max(0.0, (u0 - ub) / width))
+    D = -udot0 / (2.0 * width * omega)  # = sn cn dn
+    if s2 <= c2:       # nearer u_c: sn is the small factor, cn > 0 chosen
+        cn = math.sqrt(c2)
+        sn = D / (cn * math.sqrt(1.0 - m * s2))
+    else:              # nearer u_b: cn is the small factor, sn > 0 chosen
+        sn = math.sqrt(s2)
+        cn = D / (sn * math.sqrt(1.0 - m * s2))
+    return float(ellipkinc(math.atan2(sn, cn), m))
+
+
 def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: float,
                 tau: NDArray[np.float64], rtol: float, atol: float
                 ) -> dict[str, NDArray[np.float64]]:
@@ -486,10 +514,7 @@ def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: f
     m = width / (uc - ua)
     u0 = J2_0 * J2_0
     udot0 = -2.0 * mu * math.sqrt((J2_0 - M) * (J2_0 + M)) * math.cos(theta2_0)
-    sn0 = math.sqrt(max(0.0, (uc - u0) / width)) if width > 0 else 0.0
-    cn0 = math.sqrt(max(0.0, (u0 - ub) / width)) if width > 0 else 1.0
-    # du/dt = -2 width omega sn cn dn: increasing u needs sn cn < 0.
-    phase = float(ellipkinc(math.atan2(sn0, -cn0 if udot0 > 0 else cn0), m))
+    phase = _initial_phase(u0, udot0, ub, uc, omega, m)
 
     # At the centre the roots u_b = u_c are ill-conditioned (sqrt(eps)): hold J2 there.
     still = classify_motion(body, h, M) == "equilibrium"
