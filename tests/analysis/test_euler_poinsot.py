@@ -83,3 +83,54 @@ def test_momentum_at_any_time_by_jacobi_functions(moments):
                        atol=1e-13).isel(orbit=0)
         numeric = np.stack([ds.G1.values, ds.G2.values, ds.G3.values], axis=-1)
         assert np.max(np.abs(closed - numeric)) < 1e-10
+
+
+def test_permanent_rotations_about_the_stable_axes_are_the_limits():
+    """``2h = r G^2`` and ``2h = p G^2`` are the stable rotations (major and minor axes):
+    the period of the small oscillations, ``k^2 = 0``, and the rate of g there
+    (was inf/NaN); the limit from inside the range agrees."""
+    body = _free(2.5, 2.0, 2.2)   # p = b (axis 2), q = c (axis 3), r = a (axis 1)
+    p, q, r = body.b, body.c, body.a
+    for G in (1.0, 3.0):
+        for x, lam, rate in ((r, math.sqrt((q - r) * (p - r)), r),
+                             (p, math.sqrt((p - q) * (p - r)), p)):
+            f = euler_poinsot_frequencies(body, 0.5 * x * G * G, G)
+            assert f.modulus < 1e-14
+            assert abs(f.period - 2.0 * math.pi / (lam * G)) < 1e-13 * f.period
+            assert abs(f.g_rate - rate * G) < 1e-14 * G
+            near = euler_poinsot_frequencies(body, 0.5 * x * (1.0 + (1e-9 if x == r else -1e-9))
+                                             * G * G, G)
+            assert abs(near.period / f.period - 1.0) < 1e-8
+            assert abs(near.g_rate / f.g_rate - 1.0) < 1e-8
+
+
+@pytest.mark.parametrize("s", [1e-150, 1e-30, 1e30, 1e150])
+def test_huge_and_tiny_scales_stay_finite_and_homogeneous(s):
+    from andoyer.analysis.euler_poinsot import euler_poinsot_momentum
+
+    body = _free(2.5, 2.0, 2.2)
+    f1 = euler_poinsot_frequencies(body, 0.21, 1.0)
+    f = euler_poinsot_frequencies(body, 0.21 * s * s, s)
+    assert all(math.isfinite(v) for v in f[:4])
+    assert abs(f.period * s / f1.period - 1.0) < 1e-12
+    assert abs(f.g_rate / (s * f1.g_rate) - 1.0) < 1e-12
+    g0, t = np.array([0.3, 0.8, 0.5]), np.array([0.0, 3.0, 10.0])
+    G = euler_poinsot_momentum(body, s * g0, t / s)
+    assert np.all(np.isfinite(G))
+    assert np.allclose(G / s, euler_poinsot_momentum(body, g0, t), rtol=0, atol=1e-12)
+
+
+def test_momentum_on_the_permanent_rotations_and_bad_times():
+    from andoyer.analysis.euler_poinsot import euler_poinsot_momentum
+
+    body = _free(2.5, 2.0, 2.2)
+    t = np.linspace(0.0, 50.0, 6)
+    for g0 in ([2.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.5], [0.0, 0.0, 0.0]):
+        assert np.array_equal(euler_poinsot_momentum(body, g0, t), np.tile(g0, (6, 1)))
+    G = euler_poinsot_momentum(body, [1.0, 1e-20, 0.0], t)   # next to the major axis
+    assert np.all(np.isfinite(G)) and np.allclose(G[:, 0], 1.0, rtol=0, atol=1e-15)
+    assert np.max(np.abs(G[:, 1:])) < 2e-20
+    for bad, what in (([0.0, np.nan], "t must be"), ([[0.0, 1.0]], "t must be"),
+                      ([0.0, 1e300], "periods")):
+        with pytest.raises(ValueError, match=what):
+            euler_poinsot_momentum(body, [0.3, 0.8, 0.5], bad)

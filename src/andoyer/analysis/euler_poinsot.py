@@ -51,10 +51,14 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from andoyer.body import RigidBody, checks_body
-from andoyer.validation import finite, positive
+from andoyer.validation import finite, positive, real_array
 
 __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi",
-           "euler_poinsot_momentum"]
+           "euler_poinsot_momentum", "MAX_PERIODS"]
+
+#: Most periods :func:`euler_poinsot_momentum` follows: beyond, the phase ``lambda t`` has
+#: lost about ``log10(MAX_PERIODS) + 1`` of its 16 digits (a 1e-5 rad phase error here).
+MAX_PERIODS = 1e10
 
 
 def elliptic_pi(n: float, m: float) -> float:
@@ -106,28 +110,51 @@ def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoins
     body : RigidBody
         Its moments (``mu`` is ignored: this is the ``mu = 0`` motion); distinct moments.
     h : float
-        Energy ``H0 = (a G1^2 + b G2^2 + c G3^2)/2``; ``r G^2 < 2h < p G^2``, ``2h != q G^2``.
+        Energy ``H0 = (a G1^2 + b G2^2 + c G3^2)/2``; ``r G^2 <= 2h <= p G^2``,
+        ``2h != q G^2``. The ends are the stable permanent rotations about the axes of the
+        largest and the smallest moment: there the values are the limits (the period of
+        the small oscillations about the rotation, ``k^2 = 0``).
     G : float
         Length of the angular momentum, ``> 0``.
 
     Returns
     -------
     EulerPoinsotFrequencies
+        Finite for every accepted input: the motion is computed on ``|G| = 1`` at
+        ``h / G^2`` (the flow is homogeneous: ``T ~ 1/G``, ``<dg/dt> ~ G``), so huge or
+        tiny ``G`` do not overflow; a period or rate beyond the float range is refused.
+
+    Examples
+    --------
+    The permanent rotation about the axis of the largest moment (``2h = r G^2``):
+
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
+    >>> f = euler_poinsot_frequencies(body, 0.5 * body.a, 1.0)
+    >>> lam = math.sqrt((body.c - body.a) * (body.b - body.a))
+    >>> bool(abs(f.period - 2 * math.pi / lam) < 1e-12), f.modulus
+    (True, 0.0)
     """
     h, G = finite("h", h), positive("G", G)
     p, q, r = sorted((body.a, body.b, body.c), reverse=True)
     if not p > q > r:
         raise ValueError(f"euler_poinsot_frequencies needs three distinct moments, got "
                          f"A={body.A}, B={body.B}, C={body.C}")
-    G2 = G * G
-    if not r * G2 < 2.0 * h < p * G2:
-        raise ValueError(f"h = {h!r} is off the accessible range ({0.5 * r * G2!r}, "
-                         f"{0.5 * p * G2!r}) for G = {G!r} (r G^2 < 2h < p G^2)")
-    A1, B1, A2, B2 = 2.0 * h - r * G2, q - r, p * G2 - 2.0 * h, p - q
-    if abs(2.0 * h - q * G2) <= 1e-14 * q * G2:
+    x = 2.0 * ((h / G) / G)   # 2h / G^2 without overflow
+    ulp = 4.0 * np.finfo(float).eps
+    if r * (1.0 - ulp) <= x < r:      # the rotation about the axis of r, up to round-off
+        x = r
+    elif p < x <= p * (1.0 + ulp):
+        x = p
+    if not r <= x <= p:
+        raise ValueError(f"h = {h!r} is off the accessible range [{0.5 * r * G * G!r}, "
+                         f"{0.5 * p * G * G!r}] for G = {G!r} (r G^2 <= 2h <= p G^2)")
+    # The motion on |G| = 1 at 2h = x.
+    A1, B1, A2, B2 = x - r, q - r, p - x, p - q
+    if abs(x - q) <= 1e-14 * q:
         raise ValueError("2h = q G^2 is the separatrix: the period is infinite")
     # Squared components alpha + beta sn^2 on the axes of p, q, r.
-    if 2.0 * h < q * G2:
+    if x < q:
         lam, m, U2 = math.sqrt(B1 * A2), B2 * A1 / (B1 * A2), A1 / B1
         regime = "about the axis of the smallest inverse moment (largest moment)"
     else:
@@ -136,16 +163,21 @@ def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoins
     comp = {p: (A1 / (p - r), -B1 * U2 / (p - r)), q: (0.0, U2),
             r: (A2 / (p - r), -B2 * U2 / (p - r))}
     K = float(ellipk(m))
-    T = 4.0 * K / lam
+    T1 = 4.0 * K / lam
     c = body.c
     alpha, beta = comp[c]
-    rest = G2 - alpha
+    rest = 1.0 - alpha
     if not rest > 0.0:
         raise ValueError("the motion reaches L = +-G (G along body axis 3): g is undefined")
     nn = beta / rest
-    mean_inv = elliptic_pi(nn, m) / (rest * K)  # <1 / (G^2 - G3^2)>
-    g_rate = G * c + G * (2.0 * h - c * G2) * mean_inv
-    return EulerPoinsotFrequencies(T, g_rate, g_rate * T / (2.0 * math.pi), m, regime)
+    mean_inv = elliptic_pi(nn, m) / (rest * K)  # <1 / (1 - G3^2)> on |G| = 1
+    g1 = c + (x - c) * mean_inv
+    with np.errstate(over="ignore"):
+        T, g_rate = T1 / G, g1 * G
+    if not (math.isfinite(T) and math.isfinite(g_rate)):
+        raise ValueError(f"G = {G!r}: the period {T1!r}/G or the rate of g {g1!r} G "
+                         "is beyond the float range")
+    return EulerPoinsotFrequencies(T, g_rate, g1 * T1 / (2.0 * math.pi), m, regime)
 
 
 @checks_body
@@ -165,9 +197,10 @@ def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDAr
     body : RigidBody
         Distinct moments; ``mu`` is ignored.
     G0 : array_like, shape (3,)
-        Initial ``(G1, G2, G3)``, off the separatrices (``2h != q G^2``).
+        Initial ``(G1, G2, G3)``, finite, off the separatrices (``2h != q G^2``). Along a
+        principal axis (a permanent rotation, or 0: at rest) the motion is ``G0`` itself.
     t : array_like, shape (k,)
-        Times from ``t = 0``.
+        Finite times from ``t = 0``, within :data:`MAX_PERIODS` periods.
 
     Returns
     -------
@@ -182,10 +215,14 @@ def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDAr
     ...                                                             np.linalg.norm(G[0])))
     (True, True)
     """
-    g0 = np.asarray(G0, dtype=float)
+    g0 = real_array("G0", G0)
     if g0.shape != (3,) or not np.all(np.isfinite(g0)):
         raise ValueError(f"G0 must be 3 finite numbers (G1, G2, G3), got {G0!r}")
-    times = np.asarray(t, dtype=float)
+    times = real_array("t", t)
+    if times.ndim > 1 or not np.all(np.isfinite(times)):
+        raise ValueError(f"t must be a finite number or a 1-D array of finite times, got "
+                         f"shape {times.shape}")
+    times = times.reshape(-1)
     inv = np.array([body.a, body.b, body.c])
     order = np.argsort(inv)[::-1]            # indices of p, q, r
     ip, iq, ir = (int(i) for i in order)
@@ -193,29 +230,49 @@ def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDAr
     if not p > q > r:
         raise ValueError(f"euler_poinsot_momentum needs three distinct moments, got "
                          f"A={body.A}, B={body.B}, C={body.C}")
-    G2 = float(g0 @ g0)
-    h2 = float(inv @ (g0 * g0))              # 2h
-    if abs(h2 - q * G2) <= 1e-14 * q * G2:
+    if np.count_nonzero(g0) <= 1:
+        # At rest or a permanent rotation about a principal axis (stable about the axes
+        # of p and r, unstable about that of q): an equilibrium of Euler's equations.
+        return np.tile(g0, (times.size, 1))
+    # The flow is homogeneous of degree 2: G(t) = s n(s t) with n(0) = G0 / s; huge and
+    # tiny G0 are scaled to 1 so that no square overflows or underflows.
+    scale = float(np.max(np.abs(g0)))
+    if 1e-100 < scale < 1e100:
+        scale = 1.0
+    g0n = g0 / scale
+    Gp, u, Gr = g0n[ip], g0n[iq], g0n[ir]
+    # 2h - r G^2 and p G^2 - 2h from the components: no cancellation near a rotation.
+    A1 = (p - r) * Gp * Gp + (q - r) * u * u
+    A2 = (p - q) * u * u + (p - r) * Gr * Gr
+    B1, B2 = q - r, p - q
+    sep = (p - q) * Gp * Gp - (q - r) * Gr * Gr   # 2h - q G^2
+    if abs(sep) <= 1e-14 * q * float(g0n @ g0n):
         raise ValueError("2h = q G^2: the state is on a separatrix (no periodic solution)")
-    A1, B1, A2, B2 = h2 - r * G2, q - r, p * G2 - h2, p - q
     # Euler: dG_q/dt = kq G_p G_r, kq = a_k - a_j for (q, j, k) cyclic.
     j, k = (iq + 1) % 3, (iq + 2) % 3
     kq = inv[k] - inv[j]
     sq = math.copysign(1.0, kq)
-    if h2 < q * G2:   # about the axis of r: G_r = sr sqrt(A2/(p-r)) dn, G_p = sp ... cn
+    if sep < 0.0:   # about the axis of r: G_r = sr sqrt(A2/(p-r)) dn, G_p = sp ... cn
         lam, m, U = math.sqrt(B1 * A2), B2 * A1 / (B1 * A2), math.sqrt(A1 / B1)
         i_cn, i_dn, amp_cn, amp_dn = ip, ir, math.sqrt(A1 / (p - r)), math.sqrt(A2 / (p - r))
-    else:             # about the axis of p: G_p = sp sqrt(A1/(p-r)) dn, G_r = sr ... cn
+    else:           # about the axis of p: G_p = sp sqrt(A1/(p-r)) dn, G_r = sr ... cn
         lam, m, U = math.sqrt(B2 * A1), B1 * A2 / (B2 * A1), math.sqrt(A2 / B2)
         i_cn, i_dn, amp_cn, amp_dn = ir, ip, math.sqrt(A2 / (p - r)), math.sqrt(A1 / (p - r))
-    s_dn = math.copysign(1.0, g0[i_dn])
+    s_dn = math.copysign(1.0, g0n[i_dn])
     # du/dt = kq G_p G_r = U lam cn dn  =>  sign(kq) s_cn s_dn = +1.
     s_cn = sq * s_dn
-    phi0 = math.atan2(g0[iq] / U, s_cn * g0[i_cn] / amp_cn)
-    theta = lam * times + float(ellipkinc(phi0, m))
+    phi0 = math.atan2(g0n[iq] / U, s_cn * g0n[i_cn] / amp_cn)
+    with np.errstate(over="ignore"):
+        theta = (lam * scale) * times + float(ellipkinc(phi0, m))
+    turns = float(np.max(np.abs(theta), initial=0.0)) / (4.0 * float(ellipk(m)))
+    if not turns <= MAX_PERIODS:
+        raise ValueError(f"t reaches {turns:.3g} periods of the motion (|t| up to "
+                         f"{float(np.max(np.abs(times))):.3g}): beyond {MAX_PERIODS:.0e} "
+                         "periods the phase has lost more than 10 of its 16 digits; ask for "
+                         "shorter times")
     sn, cn, dn, _ = ellipj(theta, m)
     out = np.empty((times.size, 3))
     out[:, iq] = U * sn
     out[:, i_cn] = s_cn * amp_cn * cn
     out[:, i_dn] = s_dn * amp_dn * dn
-    return out
+    return scale * out
