@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import math
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import ParamSpec, TypeVar
@@ -274,8 +275,10 @@ class RigidBody:
             raise ValueError(
                 f"the Hess conditions (2) need A > C > B, got A={A}, B={B}, C={C}; "
                 "order the principal axes so that C is the middle moment")
-        if branch not in (1, -1):
+        if isinstance(branch, bool) or not isinstance(branch, numbers.Real) \
+                or branch not in (1, -1):  # True == 1 would pass for a branch
             raise ValueError(f"branch must be +1 or -1, got {branch!r}")
+        branch = int(branch)
         phi0 = math.atan(math.sqrt(A * (C - B) / (B * (A - C))))
         return cls(A, B, C, mu, (math.cos(phi0), branch * math.sin(phi0), 0.0), name)
 

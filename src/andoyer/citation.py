@@ -6,6 +6,7 @@ The same facts as ``CITATION.cff`` at the repository root; a test keeps the two 
 from __future__ import annotations
 
 from andoyer._version import __version__
+from andoyer.validation import choice
 
 __all__ = ["cite", "TOOL_BIBTEX", "PAPER_BIBTEX"]
 
@@ -50,9 +51,8 @@ def cite(what: str = "all") -> str:
     >>> "@software{andoyer," in andoyer.cite()
     True
     """
+    what = choice("what", what, ("all", "tool", "paper"))
     entries = {"tool": TOOL_BIBTEX.format(version=__version__), "paper": PAPER_BIBTEX}
     if what == "all":
         return "\n\n".join(entries.values()) + "\n"
-    if what not in entries:
-        raise ValueError(f"what must be 'all', 'tool' or 'paper', got {what!r}")
     return entries[what] + "\n"

@@ -4,17 +4,22 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["finite", "positive", "integer", "real_array", "floats"]
+__all__ = ["finite", "positive", "integer", "real_array", "finite_array", "floats", "choice"]
 
 
 def _real(name: str, value: Any) -> float:
-    """``float(value)`` (NaN and infinity included), or ``ValueError`` naming ``name``."""
-    if isinstance(value, bool):  # float(True) = 1.0 would hide a wrong argument
+    """``float(value)`` (NaN and infinity included), or ``ValueError`` naming ``name``.
+
+    A bool (``float(True) = 1.0``) and text (``float("1")``) would hide a wrong argument:
+    both are refused; text from a command line or a form is parsed where it is read.
+    """
+    if isinstance(value, (bool, str, bytes)):
         raise ValueError(f"{name} must be a real number, got {value!r}")
     try:
         return float(value)
@@ -25,8 +30,12 @@ def _real(name: str, value: Any) -> float:
 def finite(name: str, value: Any) -> float:
     """``float(value)``, or ``ValueError`` naming ``name`` if it is not a finite real.
 
-    >>> finite("h", "0.25")
+    >>> finite("h", 0.25)
     0.25
+    >>> finite("h", "0.25")
+    Traceback (most recent call last):
+    ...
+    ValueError: h must be a real number, got '0.25'
     """
     v = _real(name, value)
     if not math.isfinite(v):
@@ -107,6 +116,48 @@ def real_array(name: str, value: Any, *, copy: bool = False) -> NDArray[np.float
         text = repr(value)
         raise ValueError(f"{name} must hold real numbers, got "
                          f"{text if len(text) <= 60 else text[:57] + '...'}") from None
+
+
+def finite_array(name: str, value: Any, *, ndim: int | None = None,
+                 copy: bool = False) -> NDArray[np.float64]:
+    """:func:`real_array` whose values are all finite (and of ``ndim`` dimensions when
+    given), or ``ValueError`` naming ``name``: a NaN in goes no further than here.
+
+    >>> finite_array("theta2_0", [0.0, 1.0]).tolist()
+    [0.0, 1.0]
+    >>> finite_array("theta2_0", [float("nan")])
+    Traceback (most recent call last):
+    ...
+    ValueError: theta2_0 must be finite, got NaN or infinity in [nan]
+    """
+    arr = real_array(name, value, copy=copy)
+    if ndim is not None and arr.ndim != ndim:
+        raise ValueError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        text = repr(value)
+        raise ValueError(f"{name} must be finite, got NaN or infinity in "
+                         f"{text if len(text) <= 60 else text[:57] + '...'}")
+    return arr
+
+
+def choice(name: str, value: Any, options: Iterable[str]) -> str:
+    """``value`` if it is one of the strings ``options``, or ``ValueError`` naming
+    ``name`` and listing them (a list, a number or ``None`` included: no ``TypeError:
+    unhashable type`` from a dictionary look-up).
+
+    >>> choice("what", "tool", ("all", "tool", "paper"))
+    'tool'
+    >>> choice("what", ["tool"], ("all", "tool", "paper"))
+    Traceback (most recent call last):
+    ...
+    ValueError: what must be one of 'all', 'tool', 'paper', got ['tool']
+    """
+    opts = tuple(options)
+    if isinstance(value, str) and value in opts:
+        return value
+    text = repr(value)
+    raise ValueError(f"{name} must be one of {', '.join(repr(o) for o in opts)}, got "
+                     f"{text if len(text) <= 60 else text[:57] + '...'}")
 
 
 def floats(text: str, n: int, what: str) -> list[float]:

@@ -114,3 +114,53 @@ def test_bad_input_is_refused() -> None:
     with pytest.raises(ValueError, match="finite"):
         naff(np.full(64, np.nan), 0.1)
     assert frequency_drift(np.ones(64, dtype=complex), 0.1) >= 0.0
+
+
+@pytest.mark.parametrize("periods", [0.2, 1.0, 2.0, 3.3])
+def test_a_signal_shorter_than_a_few_periods_is_flagged_not_converged(periods) -> None:
+    """Below one period NAFF returned omega_l 34x off with a drift of exactly 0, as if
+    converged: such orbits are ``short`` with NaN frequencies and drifts."""
+    f = euler_poinsot_frequencies(FREE, 0.232, 1.0)
+    y0 = [0.6, 0.8, 0.0, 0.0, 0.0, 1.0]
+    ds = orbit_frequencies(FREE, [y0, y0], periods * f.period, n_samples=1025)
+    assert list(ds.status.values) == ["short", "short"]
+    for v in ("omega_l", "omega_g", "drift_l", "drift_g", "period", "frequency_ratio",
+              "rotation_number_g_section"):
+        assert np.all(np.isnan(ds[v].values)), v
+    assert np.all(ds.n_periods.values < 4.0) and list(ds.resonance.values) == ["", ""]
+    long = orbit_frequencies(FREE, y0, 20 * f.period, n_samples=4097)
+    assert str(long.status.values[0]) == "ok"
+    assert abs(float(long.omega_l[0]) * f.period / (2 * math.pi) - 1.0) < 1e-6
+    assert 19.0 < float(long.n_periods[0]) < 21.0
+
+
+@pytest.mark.parametrize("axis", [0, 1, 2])
+def test_permanent_rotations_are_flagged_with_their_rate(axis) -> None:
+    """A permanent rotation has no (l, L) motion: it was reported as a torus with
+    period = t_end; now ``rotation``, omega_l NaN, omega_g the rotation's rate."""
+    y0 = np.zeros(6)
+    y0[axis] = 1.5
+    y0[3 + (axis + 1) % 3] = 1.0
+    ds = orbit_frequencies(FREE, y0, 300.0, n_samples=1025)
+    assert str(ds.status.values[0]) == "rotation"
+    assert np.isnan(float(ds.omega_l[0])) and np.isnan(float(ds.period[0]))
+    if axis < 2:   # about axis 1 or 2, g advances at a_axis G (about axis 3 g is singular)
+        rate = FREE.params[axis] * 1.5
+        assert abs(float(ds.omega_g[0]) - rate) < 1e-10
+
+
+def test_naff_takes_one_1d_signal_and_numpy_scalars() -> None:
+    t = np.linspace(0.0, 400.0, 4001)
+    z = np.exp(1j * 0.731 * t)
+    for dt in (np.float32(0.1), np.float64(0.1), np.int64(1)):
+        assert np.isfinite(naff(z, dt).frequency[0])
+    for bad in (z.reshape(1, -1), z.reshape(-1, 1), np.stack([z, z])):
+        with pytest.raises(ValueError, match="1-D"):
+            naff(bad, 0.1)
+        with pytest.raises(ValueError, match="1-D"):
+            frequency_drift(bad, 0.1)
+    for bad_dt in (True, "0.1", np.nan, -0.1, 1e306):
+        with pytest.raises(ValueError, match="dt"):
+            naff(z, bad_dt)
+    with pytest.raises(ValueError, match="z must hold"):
+        naff(["x"] * 20, 0.1)

@@ -61,6 +61,7 @@ from andoyer.integrate.api import initial_states
 from andoyer.integrate.engines import EngineLike, resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance
+from andoyer.validation import real_array
 
 __all__ = ["sali", "gali", "initial_tangents", "alignment_indices", "MAX_K"]
 
@@ -83,8 +84,28 @@ def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
+def _vectors(name: str, value: ArrayLike, min_ndim: int) -> NDArray[np.float64]:
+    """``value`` as finite deviation vectors along the last axis, none of them zero (a
+    zero vector has no direction: its alignment is undefined), or ``ValueError``."""
+    arr = real_array(name, value)
+    if arr.ndim < min_ndim or arr.shape[-1] < 2:
+        need = "(..., d)" if min_ndim == 1 else "(..., k, d)"
+        raise ValueError(f"{name} must have shape {need} with d >= 2 components, got shape "
+                         f"{arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got NaN or infinity")
+    # Scale each vector first: the norm of a huge vector (1e300) must not overflow.
+    top = np.max(np.abs(arr), axis=-1, keepdims=True)
+    if np.any(top == 0.0):
+        raise ValueError(f"{name} holds a zero vector: it has no direction, so its "
+                         "alignment is undefined")
+    return arr / top
+
+
 def sali(w1: ArrayLike, w2: ArrayLike) -> NDArray[np.float64]:
     """Smaller alignment index of two deviation vectors (any lengths), along the last axis.
+
+    ``ValueError`` for zero, non-finite or mismatched vectors.
 
     Examples
     --------
@@ -93,14 +114,25 @@ def sali(w1: ArrayLike, w2: ArrayLike) -> NDArray[np.float64]:
     >>> float(sali([1, 1, 0, 0, 0, 0], [-2, -2, 0, 0, 0, 0]))  # anti-parallel
     0.0
     """
-    u1 = _unit(np.asarray(w1, dtype=float))
-    u2 = _unit(np.asarray(w2, dtype=float))
+    u1 = _unit(_vectors("w1", w1, 1))
+    u2 = _unit(_vectors("w2", w2, 1))
+    if u1.shape[-1] != u2.shape[-1]:
+        raise ValueError(f"w1 and w2 must have the same number of components, got "
+                         f"{u1.shape[-1]} and {u2.shape[-1]}")
+    try:
+        np.broadcast_shapes(u1.shape, u2.shape)
+    except ValueError:
+        raise ValueError(f"w1 and w2 must have broadcastable shapes, got {u1.shape} and "
+                         f"{u2.shape}") from None
     return np.minimum(np.linalg.norm(u1 + u2, axis=-1), np.linalg.norm(u1 - u2, axis=-1))
 
 
 def gali(W: ArrayLike) -> NDArray[np.float64]:
     """GALI_k of ``k`` deviation vectors ``W[..., i, :]``: the product of the singular
     values of the matrix of the unit vectors (the volume they span).
+
+    ``k`` must not exceed the dimension ``d`` (``k > d`` vectors span no k-volume: GALI
+    is not defined); zero and non-finite vectors are refused (``ValueError``).
 
     Examples
     --------
@@ -109,7 +141,11 @@ def gali(W: ArrayLike) -> NDArray[np.float64]:
     >>> round(float(gali([[1, 0, 0, 0, 0, 0], [1, 1, 0, 0, 0, 0]])), 12)  # sin 45 deg
     0.707106781187
     """
-    U = _unit(np.asarray(W, dtype=float))
+    U = _unit(_vectors("W", W, 2))
+    k, d = U.shape[-2:]
+    if k > d:
+        raise ValueError(f"W holds k = {k} vectors of dimension d = {d}: GALI_k needs "
+                         "k <= d (more vectors than dimensions span no k-volume)")
     return np.prod(np.linalg.svd(U, compute_uv=False), axis=-1)
 
 

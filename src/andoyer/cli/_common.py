@@ -56,7 +56,15 @@ def real(*, positive: bool = False) -> Callable[[str], float]:
     >>> real(positive=True)("1e-12")
     1e-12
     """
-    return _flag_type("real", _positive if positive else finite)
+    check = _positive if positive else finite
+
+    def parse(name: str, text: str) -> float:
+        try:
+            value: Any = float(text)
+        except ValueError:
+            value = text  # refused by the check, with its message
+        return check(name, value)
+    return _flag_type("real", parse)
 
 
 def _flag_type(kind: str, check: Callable[[str, str], Any]) -> Callable[[str], Any]:

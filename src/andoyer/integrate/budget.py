@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import numbers
 from collections.abc import Iterator
 
 import numpy as np
@@ -50,16 +51,28 @@ SECONDS_PER_STEP = 4e-7
 def set_limits(steps: float | None = None, memory: float | None = None) -> dict[str, float]:
     """Set the limits (``None`` keeps one; ``math.inf`` removes it); returns the old ones.
 
-    ``memory`` is in bytes.
+    ``memory`` is in bytes. All or nothing: every value is checked (a real number > 0,
+    not a bool, a string or NaN) before any limit changes.
+
+    >>> old = set_limits(steps=1e3, memory=-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: memory limit must be a real number > 0 (math.inf for none), got -1
+    >>> LIMITS["steps"] == 5e9
+    True
     """
-    old = dict(LIMITS)
+    new: dict[str, float] = {}
     for name, value in (("steps", steps), ("memory", memory)):
         if value is None:
             continue
-        v = float(value)
+        v = float(value) if (isinstance(value, numbers.Real)
+                             and not isinstance(value, bool)) else math.nan
         if not v > 0:
-            raise ValueError(f"{name} limit must be > 0 (math.inf for none), got {value!r}")
-        LIMITS[name] = v
+            raise ValueError(f"{name} limit must be a real number > 0 (math.inf for none), "
+                             f"got {value!r}")
+        new[name] = v
+    old = dict(LIMITS)
+    LIMITS.update(new)
     return old
 
 
