@@ -23,8 +23,8 @@ from typing import ParamSpec, TypeVar
 import numpy as np
 
 from andoyer.errors import ArgumentTypeError
+from andoyer.validation import checks_arguments, real_array
 from andoyer.validation import finite as _finite
-from andoyer.validation import real_array
 
 __all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
 
@@ -33,6 +33,8 @@ HESS_RTOL = 1e-12
 
 
 def _finite_positive(name: str, value: float) -> float:
+    if isinstance(value, bool | str | bytes):  # float(True), float("2") hide a wrong argument
+        raise ValueError(f"{name} must be a real number, got {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -104,6 +106,8 @@ class RigidBody:
             raise ValueError(
                 f"mu (weight x distance to the centre of mass) must be finite and >= 0, "
                 f"got {mu!r}")
+        if not isinstance(self.name, str):
+            raise ValueError(f"name must be a string, got {self.name!r}")
         r = real_array("r", self.r)
         if r.shape != (3,) or not np.all(np.isfinite(r)):
             raise ValueError(f"r must be 3 finite numbers (e1, e2, e3), got {self.r!r}")
@@ -395,7 +399,8 @@ _R = TypeVar("_R")
 
 def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
     """Decorator of the public functions whose first argument is a body: anything but a
-    :class:`RigidBody` there raises one clear ``TypeError`` naming the function.
+    :class:`RigidBody` there raises one clear ``TypeError`` naming the function; the
+    scalar arguments are checked by :func:`andoyer.validation.checks_arguments`.
 
     Examples
     --------
@@ -406,6 +411,8 @@ def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
     andoyer.errors.ArgumentTypeError: energy: body must be a RigidBody (...), got str 'paper'
     """
 
+    checked = checks_arguments(func)
+
     @functools.wraps(func)
     def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
         body = args[0] if args else kwargs.get("body")
@@ -413,6 +420,6 @@ def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
             raise ArgumentTypeError(
                 f"{func.__name__}: body must be a RigidBody (e.g. RigidBody.paper() or "
                 f"RigidBody.hess(A, B, C, mu)), got {type(body).__name__} {repr(body)[:60]}")
-        return func(*args, **kwargs)
+        return checked(*args, **kwargs)
 
     return wrapper

@@ -6,7 +6,7 @@ The same facts as ``CITATION.cff`` at the repository root; a test keeps the two 
 from __future__ import annotations
 
 from andoyer._version import __version__
-from andoyer.validation import choice
+from andoyer.validation import checks_arguments, choice
 
 __all__ = ["cite", "TOOL_BIBTEX", "PAPER_BIBTEX"]
 
@@ -30,6 +30,7 @@ PAPER_BIBTEX = """@article{kyrychenko_hess_andoyer_deprit,
 }"""
 
 
+@checks_arguments
 def cite(what: str = "all") -> str:
     """BibTeX for the tool and for the paper it implements.
 

@@ -39,8 +39,10 @@ _FIELDS: dict[str, Callable[..., Any]] = {
 
 def _chart_args(body: RigidBody, x: ArrayLike, chart: str
                 ) -> tuple[NDArray[np.float64], tuple[float, ...]]:
+    if not isinstance(chart, str) or chart not in CHARTS:
+        raise ValueError(f"unknown chart {chart!r}; choose one of {sorted(CHARTS)}")
     if chart == "euler_poisson":
-        return as_state(x), body.params
+        return as_state(x, name="x"), body.params
     if chart == "andoyer":
         arr = as_andoyer(x)
         return arr, body.params

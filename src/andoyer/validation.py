@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import numbers
-from collections.abc import Iterable
-from typing import Any
+from collections.abc import Callable, Iterable
+from typing import Any, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["finite", "positive", "integer", "real_array", "finite_array", "floats", "choice"]
+__all__ = ["MAX_ACTION", "finite", "positive", "integer", "real_array", "finite_array",
+           "floats", "choice", "grid", "flag", "checks_arguments"]
 
 
 def _real(name: str, value: Any) -> float:
@@ -43,15 +46,27 @@ def finite(name: str, value: Any) -> float:
     return v
 
 
-def positive(name: str, value: Any) -> float:
-    """``float(value)``, or ``ValueError`` naming ``name`` unless finite and > 0.
+#: Largest momentum (``G``, ``J2``, ``G0``) an action argument takes: its square, an
+#: energy, must stay a float (``G^2`` overflows near 1.3e154).
+MAX_ACTION = 1e150
+
+
+def positive(name: str, value: Any, *, maximum: float | None = None) -> float:
+    """``float(value)``, or ``ValueError`` naming ``name`` unless finite and > 0 (and
+    ``<= maximum`` when given).
 
     >>> positive("J2", 1)
     1.0
+    >>> positive("J2", 1e300, maximum=MAX_ACTION)
+    Traceback (most recent call last):
+    ...
+    ValueError: J2 must be <= 1e+150, got 1e+300
     """
     v = _real(name, value)
     if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name} must be finite and > 0, got {v!r}")
+    if maximum is not None and v > maximum:
+        raise ValueError(f"{name} must be <= {maximum:g}, got {v!r}")
     return v
 
 
@@ -160,6 +175,41 @@ def choice(name: str, value: Any, options: Iterable[str]) -> str:
                      f"{text if len(text) <= 60 else text[:57] + '...'}")
 
 
+def grid(name: str, value: Any, minimum: int = 2) -> tuple[int, int]:
+    """A grid size ``n`` or ``(nx, ny)`` as ``(nx, ny)``, or ``ValueError`` naming ``name``.
+
+    >>> grid("n", 8), grid("n", (8, 4))
+    ((8, 8), (8, 4))
+    >>> grid("n", "8")
+    Traceback (most recent call last):
+    ...
+    ValueError: n must be an integer or a pair (nx, ny), got '8'
+    """
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        k = integer(name, value, minimum)
+        return k, k
+    if isinstance(value, str | bytes) or not hasattr(value, "__len__") or len(value) != 2:
+        raise ValueError(f"{name} must be an integer or a pair (nx, ny), got {value!r}")
+    nx, ny = value
+    return integer(f"{name}[0] (nx)", nx, minimum), integer(f"{name}[1] (ny)", ny, minimum)
+
+
+def flag(name: str, value: Any, *, optional: bool = True) -> bool | None:
+    """A yes/no option: a bool (NumPy's too), or ``None`` when ``optional`` (the default
+    is decided later), or ``ValueError`` naming ``name`` (``"no"`` and ``[]`` would pass
+    for their truth values).
+
+    >>> flag("progress", None), flag("double_cover", True)
+    (None, True)
+    """
+    if value is None and optional:
+        return None
+    if isinstance(value, bool | np.bool_):
+        return bool(value)
+    raise ValueError(f"{name} must be True or False{' (or None)' if optional else ''}, "
+                     f"got {value!r}")
+
+
 def floats(text: str, n: int, what: str) -> list[float]:
     """``n`` numbers from ``"a,b,c"`` or ``"a b c"`` (command line, explorer fields).
 
@@ -173,3 +223,131 @@ def floats(text: str, n: int, what: str) -> list[float]:
     if len(vals) != n:
         raise ValueError(f"{what} needs {n} numbers, got {len(vals)}")
     return vals
+
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+#: The scalar annotations :func:`checks_arguments` enforces.
+_SCALARS = ("float", "int", "bool", "str")
+
+
+#: Annotations of numeric arrays (checked for type: numbers, not text, bools or None).
+_ARRAYS = ("ArrayLike", "NDArray[np.float64]", "Sequence[float]")
+
+
+def _scalar_kind(annotation: Any, namespace: dict[str, Any] | None = None
+                 ) -> tuple[Any, bool] | None:
+    """``(kind, optional)`` of an annotation :func:`checks_arguments` enforces: a plain
+    scalar (``float``, ``int | None``, ...), a numeric array (``ArrayLike``), or one class
+    of the function's module (``RotationSection | None``); else ``None`` (tuples,
+    literals, unions of several types stay each function's own check)."""
+    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", "")
+    parts = [t.strip() for t in text.split("|")]
+    optional = "None" in parts
+    kinds = [t for t in parts if t != "None"]
+    if len(kinds) == 1 and kinds[0] in _SCALARS:
+        return kinds[0], optional
+    if kinds and all(k in _ARRAYS for k in kinds) and any(k != "Sequence[float]"
+                                                          for k in kinds):
+        return "array", optional
+    if len(kinds) == 1 and kinds[0].isidentifier() and namespace is not None:
+        cls = namespace.get(kinds[0])
+        if isinstance(cls, type) and cls.__module__.startswith("andoyer."):
+            return cls, optional
+    return None
+
+
+def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
+    if value is None and optional:
+        return
+    if kind == "int":  # the type only: ranges are the function's integer() check
+        ok = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_) \
+            and (isinstance(value, numbers.Integral)
+                 or (math.isfinite(value) and float(value).is_integer()))
+        if not ok:
+            text = repr(value)
+            raise ValueError(f"{name} must be an integer{' or None' if optional else ''}, "
+                             f"got {text if len(text) <= 60 else text[:57] + '...'}")
+        return
+    text = repr(value)
+    text = text if len(text) <= 60 else text[:57] + "..."
+    if isinstance(kind, type):
+        if not isinstance(value, kind):
+            raise ValueError(f"{name} must be a {kind.__name__}"
+                             f"{' or None' if optional else ''}, got {type(value).__name__} "
+                             f"{text}")
+        return
+    if kind == "array":
+        # The values NumPy would turn silently into a number: None (NaN), a bool (1.0), a
+        # numeric text ("1"). Ragged rows, text or bools in a list, complex values are
+        # each function's real_array check (with its own name for the argument).
+        if value is None or isinstance(value, bool | np.bool_ | str | bytes):
+            raise ValueError(f"{name} must be a number or an array of numbers"
+                             f"{' or None' if optional else ''}, got {text}")
+        return
+    if kind == "bool":
+        if not isinstance(value, bool | np.bool_):
+            raise ValueError(f"{name} must be True or False"
+                             f"{' or None' if optional else ''}, got {text}")
+    elif kind == "str":
+        if not isinstance(value, str):
+            raise ValueError(f"{name} must be a string{' or None' if optional else ''}, "
+                             f"got {text}")
+    elif kind == "float":
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value[()]
+        if not isinstance(value, numbers.Real) or isinstance(value, bool | np.bool_):
+            raise ValueError(f"{name} must be a real number{' or None' if optional else ''}"
+                             f", got {text}")
+        if math.isnan(value):
+            raise ValueError(f"{name} must be a number, got NaN")
+
+
+def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Decorator of a public function: every argument annotated as a plain scalar
+    (``float``, ``int``, ``bool``, ``str``, each optionally ``| None``) is checked to be
+    one before the function runs (a bool, text, a list or None where a number belongs;
+    NaN for a ``float``; a fraction for an ``int``); one annotated ``ArrayLike`` must not
+    be None, a bool or text; one annotated with a class of the package must be an
+    instance of it. Each failure is a ``ValueError`` naming the argument (a module's
+    ``ARGUMENT_NAMES`` dict may give a longer name). Ranges, shapes, NaN in arrays and
+    choices stay each function's own checks.
+
+    >>> @checks_arguments
+    ... def period(h: float, n: int = 1, *, progress: bool | None = None) -> float:
+    ...     return h * n
+    >>> period(2.0, 3), float(period(np.float32(0.5)))
+    (6.0, 0.5)
+    >>> period("2.0")
+    Traceback (most recent call last):
+    ...
+    ValueError: h must be a real number, got '2.0'
+    >>> period(1.0, progress="yes")
+    Traceback (most recent call last):
+    ...
+    ValueError: progress must be True or False or None, got 'yes'
+    """
+    sig = inspect.signature(func)
+    namespace = getattr(func, "__globals__", None)
+    checks = {p.name: kind for p in sig.parameters.values()
+              if (kind := _scalar_kind(p.annotation, namespace)) is not None}
+    if not checks:
+        return func
+    where = getattr(func, "__name__", "function")
+    # A module may give an argument a longer name for messages ("n (number of plane
+    # points)"): ARGUMENT_NAMES = {"n": ...} beside the function.
+    labels: dict[str, str] = dict((namespace or {}).get("ARGUMENT_NAMES", {}))
+
+    @functools.wraps(func)
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        try:
+            bound = sig.bind(*args, **kwargs)
+        except TypeError as exc:
+            raise TypeError(f"{where}: {exc}") from None
+        for name, value in bound.arguments.items():
+            if name in checks:
+                _check_scalar(labels.get(name, name), value, *checks[name])
+        return func(*args, **kwargs)
+
+    return wrapper

@@ -61,7 +61,7 @@ from andoyer.integrate.api import initial_states
 from andoyer.integrate.engines import EngineLike, resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance
-from andoyer.validation import real_array
+from andoyer.validation import checks_arguments, real_array
 
 __all__ = ["sali", "gali", "initial_tangents", "alignment_indices", "MAX_K"]
 
@@ -102,6 +102,7 @@ def _vectors(name: str, value: ArrayLike, min_ndim: int) -> NDArray[np.float64]:
     return arr / top
 
 
+@checks_arguments
 def sali(w1: ArrayLike, w2: ArrayLike) -> NDArray[np.float64]:
     """Smaller alignment index of two deviation vectors (any lengths), along the last axis.
 
@@ -127,6 +128,7 @@ def sali(w1: ArrayLike, w2: ArrayLike) -> NDArray[np.float64]:
     return np.minimum(np.linalg.norm(u1 + u2, axis=-1), np.linalg.norm(u1 - u2, axis=-1))
 
 
+@checks_arguments
 def gali(W: ArrayLike) -> NDArray[np.float64]:
     """GALI_k of ``k`` deviation vectors ``W[..., i, :]``: the product of the singular
     values of the matrix of the unit vectors (the volume they span).

@@ -61,7 +61,6 @@ References
 from __future__ import annotations
 
 import math
-import numbers
 from typing import Any, Literal
 
 import numpy as np
@@ -87,7 +86,10 @@ from andoyer.integrate.results import (
 from andoyer.integrate.variational import MEGNO_DELTA
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
-from andoyer.validation import integer, positive, real_array
+from andoyer.validation import checks_arguments, finite, grid, integer, positive, real_array
+
+#: Longer names of arguments in messages (andoyer.validation.checks_arguments).
+ARGUMENT_NAMES = {"w0": "w0 (initial tangent direction)"}
 
 __all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
            "TANGENT_SPACES"]
@@ -249,7 +251,8 @@ def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float
 def _engine(engine: EngineLike, **options: Any) -> EngineBase:
     """The engine (name or instance; ``None``: heyoka where installed, else numba)."""
     able = engines_with(Capability.TANGENT)
-    if isinstance(engine, str) and engine not in able:
+    if not (engine is None or isinstance(engine, str | EngineBase)) \
+            or (isinstance(engine, str) and engine not in able):
         raise ValueError(f"engine {engine!r} cannot integrate the variational equations; "
                          f"choose one of {', '.join(able)}")
     return resolve_engine(engine, Capability.TANGENT, **options)
@@ -298,6 +301,7 @@ def _fli_only(eng: EngineBase, y: NDArray[np.float64], w: NDArray[np.float64],
 # ----------------------------------------------------------------------------- single orbits
 
 
+@checks_arguments
 def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.float64]:
     """The output times of an indicator: ``t`` if given (checked: 1-D, increasing, finite,
     starting at 0), else ``linspace(0, t_end, n_times)``.
@@ -426,16 +430,6 @@ def _describe(ds: xr.Dataset) -> None:
 # ----------------------------------------------------------------------------- maps
 
 
-def _grid_size(n: Any) -> tuple[int, int]:
-    if isinstance(n, numbers.Integral) and not isinstance(n, bool):
-        return integer("n", n, 2), integer("n", n, 2)
-    try:
-        nx, ny = n
-    except (TypeError, ValueError):
-        raise ValueError(f"n must be an integer or a pair (nx, ny), got {n!r}") from None
-    return integer("n[0] (nx)", nx, 2), integer("n[1] (ny)", ny, 2)
-
-
 @checks_body
 def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
               t_end: float = 1000.0, indicator: Indicator = "fli", *,
@@ -518,9 +512,9 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     (('J1', 'theta1'), True)
     """
     eng = _engine(engine, batch_size=batch_size, n_threads=n_threads)
-    h = float(h)
-    M = float(M)
-    nx, ny = _grid_size(n)
+    h = finite("h", h)
+    M = finite("M", M)
+    nx, ny = grid("n", n)
     # Grid, roots and result arrays: about 400 bytes per grid point; checked before any.
     budget.check("chaos_map", memory=400.0 * nx * ny)
     T = positive("t_end", t_end)

@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -60,7 +60,7 @@ from andoyer.analysis.chaos import chaos_map
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import describe_variables
 from andoyer.integrate.section import Section
-from andoyer.validation import finite, positive
+from andoyer.validation import checks_arguments, finite, finite_array, flag, grid, integer, positive
 
 __all__ = ["chaos_border", "chaos_border_map", "regular_reference", "layer_width", "hess_line",
            "MARGIN"]
@@ -70,9 +70,16 @@ MARGIN = 1.0
 
 
 def _section(section: Any) -> Section:
-    sec = Section.parse(section) if isinstance(section, str) else (
-        Section(str(section[0]), float(section[1])) if isinstance(section, tuple | list)
-        else section)
+    if isinstance(section, Section):
+        sec = section
+    elif isinstance(section, str):
+        sec = Section.parse(section)
+    elif isinstance(section, tuple | list) and len(section) == 2 \
+            and isinstance(section[0], str):
+        sec = Section(section[0], finite("section value", section[1]))
+    else:
+        raise ValueError(f"section must be ('theta2', value), ('g', value), a string such "
+                         f"as 'theta2=0' or a Section, got {section!r}")
     if sec.coord not in ("theta2", "g"):
         raise ValueError(f"section must be theta2 = const or g = const, got {sec.coord!r}")
     return sec
@@ -92,6 +99,7 @@ def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, val
     return float(np.nanmax(Y))
 
 
+@checks_body
 def regular_reference(body: RigidBody, h: float, M: float = 0.0,
                       section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                       t_end: float = 300.0, engine: str | None = None,
@@ -105,16 +113,17 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
     True
     """
     sec = _section(section)
-    if np.ndim(n) == 0:
-        k = int(cast(int, n))
-        nn = (k, k)
-    else:
-        nx, ny = cast(tuple[int, int], n)
-        nn = (int(nx), int(ny))
-    return _reference(body.A, body.B, body.C, float(h), float(M), sec.coord,
-                      float(sec.value), nn, float(t_end), engine, float(tol), n_threads)
+    nn = grid("n", n)
+    if n_threads is not None:
+        n_threads = integer("n_threads", n_threads, 1)
+    if engine is not None and not isinstance(engine, str):
+        raise ValueError(f"engine must be an engine's name or None, got {engine!r}")
+    return _reference(body.A, body.B, body.C, finite("h", h), finite("M", M), sec.coord,
+                      float(sec.value), nn, positive("t_end", t_end), engine,
+                      positive("tol", tol), n_threads)
 
 
+@checks_arguments
 def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
                 theta1: NDArray[np.float64], line: float = 0.0
                 ) -> tuple[NDArray[np.float64], float]:
@@ -131,7 +140,19 @@ def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
     >>> np.round(w / (2 * np.pi / 6), 6).tolist(), round(med / (2 * np.pi / 6), 6)
     ([3.0, 0.0], 1.5)
     """
+    chaotic = np.asarray(chaotic)
+    accessible = np.asarray(accessible)
+    if chaotic.dtype.kind != "b" or chaotic.ndim != 2:
+        raise ValueError(f"chaotic must be a 2-D boolean array (rows of the plane), got "
+                         f"{chaotic.dtype} of shape {chaotic.shape}")
+    if accessible.dtype.kind != "b" or accessible.shape != chaotic.shape:
+        raise ValueError(f"accessible must be a boolean array of the shape of chaotic "
+                         f"{chaotic.shape}, got {accessible.dtype} of shape {accessible.shape}")
     ny, nx = chaotic.shape
+    theta1 = finite_array("theta1", theta1, ndim=1)
+    if theta1.size != nx:
+        raise ValueError(f"theta1 must hold one angle per column ({nx}), got {theta1.size}")
+    line = finite("line", line)
     dx = float(theta1[1] - theta1[0]) if nx > 1 else 2.0 * math.pi
     order = np.argsort(np.mod(np.asarray(theta1) - line, 2.0 * math.pi), kind="stable")
     chaotic, accessible = chaotic[:, order], accessible[:, order]
@@ -150,6 +171,7 @@ def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
     return widths, float(np.median(rows)) if rows.size else math.nan
 
 
+@checks_body
 def hess_line(body: RigidBody) -> float:
     """``theta1`` of the former Hess separatrix in ``body``'s Hess chart, in ``[0, 2 pi)``.
 
@@ -213,9 +235,9 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
     True
     """
     sec = _section(section)
-    finite("h", h)
-    finite("M", M)
+    h, M = finite("h", h), finite("M", M)
     positive("margin", margin)
+    flag("progress", progress)
     ref = regular_reference(body, h, M, sec, n=n, t_end=t_end, engine=engine, tol=tol,
                             n_threads=n_threads)
     ds = chaos_map(body, float(h), float(M), (sec.coord, sec.value), n=n, t_end=t_end,
@@ -273,6 +295,7 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
                             "separatrix, per row", "rad", "(14)")})
 
 
+@checks_body
 def chaos_border_map(body: RigidBody, mu: Any, epsilon: Any, h: float, M: float = 0.0,
                      section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                      t_end: float = 300.0, margin: float = MARGIN,
@@ -312,10 +335,18 @@ def chaos_border_map(body: RigidBody, mu: Any, epsilon: Any, h: float, M: float 
 
     hess = body.nearest_hess()
     sign = 1 if hess.e2 >= 0.0 else -1
-    mus = np.atleast_1d(np.asarray(mu, dtype=float))
-    eps = np.atleast_1d(np.asarray(epsilon, dtype=float))
-    if mus.ndim != 1 or eps.ndim != 1 or not (mus.size and eps.size):
-        raise ValueError("mu and epsilon must be non-empty 1-D lists of values")
+    mus = np.atleast_1d(finite_array("mu", mu))
+    eps = np.atleast_1d(finite_array("epsilon", epsilon))
+    for name, arr in (("mu", mus), ("epsilon", eps)):
+        if arr.ndim != 1 or not arr.size:
+            raise ValueError(f"{name} must be a non-empty 1-D list of values, got shape "
+                             f"{arr.shape}")
+    h, M = finite("h", h), finite("M", M)
+    _section(section)
+    grid("n", n)
+    positive("t_end", t_end)
+    positive("margin", margin)
+    flag("progress", progress)
     names = ("chaotic_fraction", "chaotic_fraction_low", "chaotic_fraction_high",
              "layer_width", "threshold", "hess_line", "n_accessible")
     grids = {k: np.full((mus.size, eps.size), np.nan) for k in names}

@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
+from andoyer.validation import MAX_ACTION, checks_arguments
 from andoyer.validation import positive as _positive
 
 __all__ = [
@@ -68,6 +69,21 @@ def _ep_jacobian() -> Callable[..., Any]:
     return sp.lambdify((*S.y, *S.body), jac.tolist(), "numpy")
 
 
+def _eigenvalues(name: str, value: Any) -> NDArray[np.complex128]:
+    """A finite 1-D array of an even number of eigenvalues (a Hamiltonian system's come
+    in pairs), or ``ValueError`` naming ``name``."""
+    try:
+        ev = np.asarray(value)
+    except ValueError:
+        ev = np.asarray([], dtype=object)
+    if ev.dtype.kind not in "iufc" or ev.ndim != 1 or ev.size % 2 or not ev.size \
+            or not np.all(np.isfinite(ev)):
+        raise ValueError(f"{name} must be a 1-D array of an even number of finite "
+                         f"eigenvalues, got {value!r}"[:200])
+    return ev.astype(complex)
+
+
+@checks_arguments
 def classify(eigenvalues: Sequence[complex] | NDArray[np.complex128], scale: float) -> str:
     """Linear type of a fixed point of a Hamiltonian system from its eigenvalues.
 
@@ -80,7 +96,7 @@ def classify(eigenvalues: Sequence[complex] | NDArray[np.complex128], scale: flo
     >>> classify([1j, -1j], 1.0), classify([0.5, -0.5], 1.0), classify([0, 0], 1.0)
     ('centre', 'saddle', 'degenerate')
     """
-    ev = np.asarray(eigenvalues, dtype=complex)
+    ev = _eigenvalues("eigenvalues", eigenvalues)
     tol = TYPE_RTOL * scale
     if np.any(np.abs(ev) <= tol):
         return "degenerate"
@@ -95,12 +111,14 @@ def classify(eigenvalues: Sequence[complex] | NDArray[np.complex128], scale: flo
     return "-".join(["saddle"] * n_saddle + ["centre"] * n_centre)
 
 
+@checks_arguments
 def sorted_eigenvalues(ev: NDArray[np.complex128]) -> tuple[complex, ...]:
-    ev = np.asarray(ev, dtype=complex)
+    ev = _eigenvalues("ev", ev)
     order = np.lexsort((ev.imag, ev.real))
     return tuple(complex(v) for v in ev[order])
 
 
+@checks_body
 def require_distinct_moments(body: RigidBody) -> None:
     I = (body.a, body.b, body.c)
     gaps = [abs(I[i] - I[j]) for i, j in ((0, 1), (1, 2), (0, 2))]
@@ -181,7 +199,7 @@ def permanent_rotations(body: RigidBody, G0: float = 1.0) -> tuple[PermanentRota
     [('+x', 'major', 'centre'), ('+y', 'minor', 'centre'), ('+z', 'middle', 'saddle')]
     """
     require_distinct_moments(body)
-    G0 = _positive("G0", G0)
+    G0 = _positive("G0", G0, maximum=MAX_ACTION)
     jac = _ep_jacobian()
     I = np.array([body.a, body.b, body.c])
     moments = np.array([body.A, body.B, body.C])

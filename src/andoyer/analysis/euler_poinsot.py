@@ -51,7 +51,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
 
 from andoyer.body import RigidBody, checks_body
-from andoyer.validation import finite, positive, real_array
+from andoyer.validation import checks_arguments, finite, positive, real_array
 
 __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi",
            "euler_poinsot_momentum", "MAX_PERIODS"]
@@ -61,6 +61,7 @@ __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi"
 MAX_PERIODS = 1e10
 
 
+@checks_arguments
 def elliptic_pi(n: float, m: float) -> float:
     """Complete elliptic integral of the third kind ``Pi(n | m)``, ``n < 1``, ``m < 1``.
 

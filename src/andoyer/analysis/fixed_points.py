@@ -74,6 +74,7 @@ from andoyer.analysis.equilibria import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
+from andoyer.validation import MAX_ACTION, checks_arguments
 from andoyer.validation import positive as _positive
 
 __all__ = ["FixedPoint", "FixedPointSet", "andoyer_fixed_points", "hess_fixed_points",
@@ -312,6 +313,7 @@ def _l_closed_forms(body: RigidBody, G0: float
     return pts
 
 
+@checks_arguments
 def theta_text(value: float, period: float, phi0: float, lstar: float | None) -> str:
     """Name ``value`` (mod ``period``) as ``k pi + m phi0 (+ n l*)``, simplest first."""
     terms = [("phi0", phi0)] + ([("l*", lstar)] if lstar is not None else [])
@@ -518,7 +520,7 @@ def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
     ...                                                  for fp in fps.points)
     (12, 4, 4)
     """
-    G0 = _positive("G0", G0)
+    G0 = _positive("G0", G0, maximum=MAX_ACTION)
     return _fixed_points(body, "andoyer", G0, math.tau, _n_seed(n_seed))
 
 
@@ -546,7 +548,7 @@ def hess_fixed_points(body: RigidBody, J2: float = 1.0, *, double_cover: bool = 
     >>> [(fp.closed_form, fp.linear_type, fp.motion) for fp in fps.points][:2]
     [('(0, 0)', 'saddle', '-z'), ('(4 phi0, 0)', 'saddle', '-z')]
     """
-    J2 = _positive("J2", J2)
+    J2 = _positive("J2", J2, maximum=MAX_ACTION)
     period = 2.0 * math.tau if double_cover else math.tau
     nq, npp = _n_seed(n_seed)
     return _fixed_points(body, "hess", J2, period, (nq * (2 if double_cover else 1), npp))

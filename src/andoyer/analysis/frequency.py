@@ -43,6 +43,7 @@ Examples
 from __future__ import annotations
 
 import math
+import numbers
 from typing import NamedTuple
 
 import numpy as np
@@ -53,7 +54,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.notation import renamed
-from andoyer.validation import integer, positive
+from andoyer.validation import checks_arguments, integer, positive
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
            "resonance_label", "RESONANCE_ORDER", "RESONANCE_DRIFT", "MIN_PERIODS",
@@ -89,6 +90,7 @@ def _signal(z: ArrayLike) -> NDArray[np.complex128]:
     return zz
 
 
+@checks_arguments
 def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     """The ``n_freq`` strongest spectral lines of a uniformly sampled complex signal.
 
@@ -133,6 +135,7 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     return Lines(omega, np.conj(np.asarray(A, dtype=np.complex128)), float((n - 1) * dt))
 
 
+@checks_arguments
 def frequency_drift(z: ArrayLike, dt: float, *, window: int = 2) -> float:
     """Relative change of the main frequency between the two halves of a signal.
 
@@ -175,11 +178,15 @@ ROTATION_RTOL = 1e-9
 def resonance_label(nu: float, tol: float, max_order: int = RESONANCE_ORDER) -> str:
     """``"p:q"`` when the rotation number ``nu`` (turns of g per period of (l, L)) is
     within ``tol`` of ``p/q`` with ``|p| + q <= max_order`` (lowest order first), else
-    ``""``.
+    ``""`` (also for a NaN or infinite ``nu``: an orbit without a rotation number).
 
     >>> resonance_label(0.5 + 1e-9, 1e-6), resonance_label(0.4142, 1e-6)
     ('1:2', '')
     """
+    if isinstance(nu, bool) or not isinstance(nu, numbers.Real):
+        raise ValueError(f"nu must be a real number, got {nu!r}")
+    tol = positive("tol", tol)
+    max_order = integer("max_order", max_order, 1, 1000)
     if not math.isfinite(nu):
         return ""
     for order in range(1, max_order + 1):

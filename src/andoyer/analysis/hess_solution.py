@@ -83,6 +83,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.integrate.hess_manifold import THETA1_TOL
 from andoyer.integrate.results import provenance, states_dataset
+from andoyer.validation import checks_arguments, finite_array
 
 __all__ = [
     "MOTIONS",
@@ -117,6 +118,18 @@ def _check_hess(body: RigidBody) -> None:
 
 
 # ----------------------------------------------------------------------------- reduction
+def _points(**values: ArrayLike) -> list[NDArray[np.float64]]:
+    """Finite coordinate arrays broadcast together, or ``ValueError`` naming the one that
+    is NaN, infinite or of a shape that does not broadcast."""
+    arrays = [finite_array(name, v) for name, v in values.items()]
+    try:
+        return list(np.broadcast_arrays(*arrays))
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in zip(values, arrays, strict=True))
+        raise ValueError(f"the coordinates must broadcast together, got shapes {shapes}"
+                         ) from None
+
+
 @cache
 def derive_reduced_hamiltonian() -> Any:
     """The Hess-chart Hamiltonian on ``theta1 = 0``, derived with SymPy from Eq. (1).
@@ -150,7 +163,7 @@ def reduced_hamiltonian(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, M: fl
     ...                 hamiltonian(body, [0.0, 1.0, 0.25, 0.8, 0.3], "hess")))
     True
     """
-    t2, j2 = np.asarray(theta2, dtype=float), np.asarray(J2, dtype=float)
+    t2, j2 = finite_array("theta2", theta2), finite_array("J2", J2)
     if M == 0.0:
         return np.asarray(0.5 * body.c * j2**2 + body.mu * np.sin(t2))
     return np.asarray(0.5 * body.c * j2**2
@@ -187,7 +200,11 @@ def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLi
     if abs(off) > THETA1_TOL:
         raise ValueError(f"theta1 = {theta1!r} is not on the Hess manifold theta1 = 0 (mod 2 pi)")
     eps = 1.0 if abs(math.remainder(float(theta1), 4.0 * math.pi)) <= THETA1_TOL else -1.0
-    t2, j1, j2 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (theta2, J1, J2)))
+    t2, j1, j2 = _points(theta2=theta2, J1=J1, J2=J2)
+    if np.any(j2 <= abs(M)) or np.any(j1 < 0.0) or np.any(j1 > j2):
+        raise ValueError(f"reduced_field needs |M| < J2 and 0 <= J1 <= J2 (the Hess chart's "
+                         f"domain), got J1 in [{j1.min():g}, {j1.max():g}], J2 in "
+                         f"[{j2.min():g}, {j2.max():g}], M = {M:g}")
     c, mu = body.c, body.mu
     root = np.sqrt((j2 - M) * (j2 + M))
     st, ct = np.sin(t2), np.cos(t2)
@@ -394,7 +411,7 @@ def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike
     ``sin J = sin psi`` (``sin psi < 0`` is the sheet ``theta1 = 2 pi``). At ``M = 0``
     ``J2`` may be negative (the signed pendulum picture): the map is regular at ``G = 0``.
     """
-    t2, j2, ps = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (theta2, J2, psi)))
+    t2, j2, ps = _points(theta2=theta2, J2=J2, psi=psi)
     if M == 0.0:
         cI, sI = np.zeros(j2.shape), np.ones(j2.shape)
     else:
@@ -406,6 +423,7 @@ def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike
     return np.stack(np.broadcast_arrays(*cols), axis=-1)
 
 
+@checks_arguments
 def signed_to_hess(theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike, M: float = 0.0
                    ) -> NDArray[np.float64]:
     """Hess-chart values ``(theta1, theta2, J1, J2, J3)`` of signed-picture states.
@@ -415,7 +433,7 @@ def signed_to_hess(theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike, M: float = 
     notes). ``theta1 = 0`` where ``sin psi >= 0``, else ``2 pi``; ``J1 = J2 cos^2(psi/2)``;
     ``theta2`` reduced to ``[0, 2 pi)``.
     """
-    t2, j2, ps = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (theta2, J2, psi)))
+    t2, j2, ps = _points(theta2=theta2, J2=J2, psi=psi)
     neg = j2 < 0.0
     if np.any(neg) and M != 0.0:
         raise ValueError("J2 < 0 only exists in the M = 0 signed picture")

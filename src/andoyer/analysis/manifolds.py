@@ -93,7 +93,7 @@ from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
-from andoyer.validation import integer, positive
+from andoyer.validation import checks_arguments, integer, positive
 
 __all__ = [
     "Stability",
@@ -197,6 +197,7 @@ class ManifoldBranch:
                 "period": self.orbit.period, "tolerance": self.orbit.tol}
 
 
+@checks_body
 def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
                          ) -> tuple[float, int]:
     """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``
@@ -404,6 +405,7 @@ def _needs_point(g: NDArray[np.float64], G: NDArray[np.float64], max_gap: float,
     return split
 
 
+@checks_arguments
 def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float = 0.15,
                   max_angle: float = 0.1, max_points: int = 2000, s_margin: float = 0.05,
                   min_ds: float = 1e-9) -> ManifoldCurve:

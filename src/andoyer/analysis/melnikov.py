@@ -92,7 +92,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.integrate.results import provenance, values_from_attrs
-from andoyer.validation import integer, positive, real_array
+from andoyer.validation import MAX_ACTION, choice, finite, finite_array, integer, positive
 
 __all__ = [
     "heteroclinic_line",
@@ -139,7 +139,7 @@ def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     >>> round(melnikov_rho(RigidBody.paper()), 6)
     4.564355
     """
-    J2 = positive("J2", J2)
+    J2 = positive("J2", J2, maximum=MAX_ACTION)
     return body.c * J2 / heteroclinic_rate(body, J2)
 
 
@@ -187,7 +187,7 @@ def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.
     # pi rho / sinh(pi rho), without overflow for large rho.
     x = math.pi * rho
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
-    th = real_array("theta2_0", theta2_0)
+    th = finite_array("theta2_0", theta2_0)
     return np.asarray(-s * factor * (np.sin(theta1 + th) - np.sin(th)))
 
 
@@ -229,7 +229,7 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
     lam = heteroclinic_rate(body, J2)
     omega = body.c * J2
     T = (TAIL + math.log(2.0 * lam + 1.0)) / lam
-    th = np.atleast_1d(real_array("theta2_0", theta2_0))
+    th = np.atleast_1d(finite_array("theta2_0", theta2_0))
     out = np.empty(th.shape)
 
     def f(t: ArrayLike, phase: float) -> NDArray[np.float64]:
@@ -260,8 +260,9 @@ def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 
     ``Delta E = mu M(g - theta1/2)``, ``Delta G = -Delta E / (c G)`` (see the module
     notes), with the closed-form ``M``.
     """
+    g = finite_array("g", g)
     theta1, _ = heteroclinic_line(body, G, branch, sheet)
-    dE = float(mu) * melnikov_closed_form(body, np.asarray(g, dtype=float) - theta1 / 2.0,
+    dE = float(mu) * melnikov_closed_form(body, g - theta1 / 2.0,
                                           J2=G, branch=branch, sheet=sheet)
     return dE, -dE / (body.c * G)
 
@@ -307,12 +308,12 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
     >>> f"{float(ds.amplitude):.4e}", round(float(ds.epsilon), 12)
     ('3.3913e-06', 0.1)
     """
-    J2 = positive("J2", J2)
+    J2 = positive("J2", J2, maximum=MAX_ACTION)
     if theta2_0 is None:
         n = integer("n", n, 1)
         th = math.tau * np.arange(n) / n
     else:
-        th = np.atleast_1d(real_array("theta2_0", theta2_0))
+        th = np.atleast_1d(finite_array("theta2_0", theta2_0))
         if th.ndim != 1 or not np.all(np.isfinite(th)):
             raise ValueError("theta2_0 must be a 1-D array of finite phases")
     hess = body.nearest_hess()
@@ -418,9 +419,9 @@ def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
     (True, True)
     """
     body.require_hess("melnikov_off_hess")
-    eps = float(epsilon)
-    if not math.isfinite(eps):
-        raise ValueError(f"epsilon must be finite, got {epsilon!r}")
+    eps = finite("epsilon", epsilon)
+    method = choice("method", method, ("closed_form", "trapezoid"))
+    finite_array("theta2_0", theta2_0)
     if method == "trapezoid":
         branch_sign = 1 if body.e2 >= 0.0 else -1
         turned = RigidBody.near_hess(body.A, body.B, body.C, body.mu, eps, branch=branch_sign)
@@ -430,7 +431,7 @@ def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
         h = min(math.tau / omega, math.tau / lam) / 32
         n = math.ceil(T / h)
         t = h * np.arange(-n, n + 1)
-        th = np.atleast_1d(real_array("theta2_0", theta2_0))
+        th = np.atleast_1d(finite_array("theta2_0", theta2_0))
         out = np.array([h * float(np.sum(melnikov_integrand(
             turned, heteroclinic(body, J2, t, branch, sign=sheet, theta2_0=float(p)).y.values)))
             for p in th.ravel()])
@@ -440,6 +441,6 @@ def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
     theta1, s = heteroclinic_line(body, J2, branch, sheet)
     x = math.pi * melnikov_rho(body, J2)
     factor = 2.0 * x * math.exp(-x) / (1.0 - math.exp(-2.0 * x))
-    th = real_array("theta2_0", theta2_0)
+    th = finite_array("theta2_0", theta2_0)
     return np.asarray(-2.0 * s * factor * math.sin(0.5 * theta1 + eps)
                       * np.cos(th + 0.5 * theta1))

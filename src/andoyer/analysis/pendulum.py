@@ -76,6 +76,7 @@ from scipy.special import ellipj, ellipk, ellipkinc
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance, states_dataset
+from andoyer.validation import checks_arguments, finite_array
 from andoyer.validation import positive as _positive
 
 __all__ = [
@@ -109,6 +110,7 @@ _EPS = float(np.finfo(float).eps)
 SEPARATRIX_RTOL = 4.0 * _EPS
 
 
+@checks_body
 def require_pendulum_body(body: RigidBody, what: str) -> None:
     """A body whose physical pendulum exists (callers check the type: ``@checks_body``)."""
     body.require_planar(what)
@@ -118,9 +120,11 @@ def require_pendulum_body(body: RigidBody, what: str) -> None:
 
 
 # ----------------------------------------------------------------------------- the pendulum
+@checks_arguments
 def pendulum_energy(c: float, mu: float, q: ArrayLike, p: ArrayLike) -> NDArray[np.float64]:
     """``H = c p^2 / 2 + mu sin q``: the reduced Hamiltonian of both pendulums."""
-    return np.asarray(0.5 * c * np.asarray(p) ** 2 + mu * np.sin(q), dtype=float)
+    qq, pp = finite_array("q", q), finite_array("p", p)
+    return np.asarray(0.5 * c * pp**2 + mu * np.sin(qq), dtype=float)
 
 
 def _excess(c: float, mu: float, q: float, p: float) -> float:
@@ -129,6 +133,7 @@ def _excess(c: float, mu: float, q: float, p: float) -> float:
     return 0.5 * c * p * p + 2.0 * mu * math.sin(0.5 * phi) ** 2
 
 
+@checks_arguments
 def pendulum_motion(mu: float, h: float) -> str:
     """``"equilibrium"``, ``"libration"``, ``"separatrix"`` or ``"rotation"`` at energy ``h``.
 
@@ -144,6 +149,7 @@ def pendulum_motion(mu: float, h: float) -> str:
     return "libration" if h < mu else "rotation"
 
 
+@checks_arguments
 def pendulum_modulus(mu: float, h: float) -> float:
     """Parameter ``m = k^2`` of the elliptic functions (scipy's convention).
 
@@ -158,6 +164,7 @@ def pendulum_modulus(mu: float, h: float) -> float:
     return 2.0 * mu / (h + mu)
 
 
+@checks_arguments
 def pendulum_period(c: float, mu: float, h: float) -> float:
     """Period of ``H = c p^2/2 + mu sin q`` at energy ``h``, via ``scipy.special.ellipk``.
 
@@ -181,6 +188,7 @@ def pendulum_period(c: float, mu: float, h: float) -> float:
     return float(4.0 * ellipk(m) / math.sqrt(c * mu))
 
 
+@checks_arguments
 def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
                       ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Closed-form solution of ``dq/dt = c p``, ``dp/dt = -mu cos q`` from ``(q0, p0)`` at ``t[0]``.
@@ -210,7 +218,7 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
     q0, p0 = float(q0), float(p0)
     if not (math.isfinite(q0) and math.isfinite(p0)):
         raise ValueError(f"initial state (q0, p0) = ({q0!r}, {p0!r}) is not finite")
-    times = np.asarray(t, dtype=float)
+    times = finite_array("t", t)
     tau = times - times.flat[0] if times.size else times
     omega0 = math.sqrt(c * mu)
     e = _excess(c, mu, q0, p0)  # h + mu
@@ -257,7 +265,7 @@ def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArra
     ``mu (r, gamma) = mu sin(vartheta)``; on ``L > 0`` (``L = G``), ``vartheta = g + l + phi0``.
     """
     body.require_planar("the physical pendulum")
-    th, LL = np.broadcast_arrays(np.asarray(vartheta, dtype=float), np.asarray(L, dtype=float))
+    th, LL = np.broadcast_arrays(finite_array("vartheta", vartheta), finite_array("L", L))
     z = np.zeros(th.shape)
     a = th - body.phi0
     return np.stack([z, z, LL, np.sin(a), np.cos(a), z], axis=-1)
@@ -284,7 +292,7 @@ def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int 
     body.require_planar("the physical-pendulum potential")
     if L_sign not in (1, -1):
         raise ValueError(f"L_sign must be +1 (L = G) or -1 (L = -G), got {L_sign!r}")
-    l_, g_ = np.asarray(l, dtype=float), np.asarray(g, dtype=float)
+    l_, g_ = finite_array("l", l), finite_array("g", g)
     if L_sign == 1:
         return np.asarray(body.mu * np.sin(g_ + l_ + body.phi0))
     return np.asarray(body.mu * np.sin(g_ - l_ - body.phi0))
@@ -299,7 +307,7 @@ def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
     use :func:`pendulum_potential`.
     """
     body.require_planar("the physical-pendulum potential")
-    return np.asarray(np.sin(np.asarray(g, dtype=float) + np.asarray(l, dtype=float)
+    return np.asarray(np.sin(finite_array("g", g) + finite_array("l", l)
                              - body.phi0) / body.mu)
 
 

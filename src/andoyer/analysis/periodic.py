@@ -104,7 +104,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.kernels.constants import T_START
-from andoyer.validation import integer
+from andoyer.validation import checks_arguments, finite_array, integer
 
 __all__ = [
     "DEFAULT_TOL",
@@ -250,7 +250,13 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     sec = RotationSection() if section is None else section
     engine = flow_engine(engine)
     middle_axis_rate(body)
-    x = np.zeros(2) if guess is None else np.asarray(guess, dtype=float).reshape(2).copy()
+    if guess is None:
+        x = np.zeros(2)
+    else:
+        x = finite_array("guess", guess, copy=True)
+        if x.shape != (2,):
+            raise ValueError(f"guess must be a section point (x1, x2), shape (2,), got shape "
+                             f"{x.shape}")
     step, iterations = np.inf, 0
     while step > xtol:
         if iterations == max_iter:
@@ -337,10 +343,15 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
     return orbits, orbits_dataset(orbits)
 
 
+@checks_arguments
 def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
     """Dataset (dim ``mu``) of periodic orbits found by :func:`rotation_orbit`."""
     if not orbits:
         raise ValueError("no orbits")
+    if not (isinstance(orbits, list | tuple) and orbits
+            and all(isinstance(o, RotationOrbit) for o in orbits)):
+        raise ValueError(f"orbits must be a non-empty list of RotationOrbit, got "
+                         f"{orbits!r}"[:200])
     first = orbits[0]
     mus = np.array([o.body.mu for o in orbits])
     ds = xr.Dataset(

@@ -20,6 +20,7 @@ from andoyer.analysis.separatrix import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance, values_from_attrs
+from andoyer.validation import MAX_ACTION
 from andoyer.validation import positive as _positive
 
 __all__ = ["portrait_andoyer", "portrait_hess"]
@@ -181,7 +182,7 @@ def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] 
     >>> bool(ds.level_is_separatrix.any()), int(ds.sizes["fixed_point"])
     (True, 12)
     """
-    G0 = _positive("G0", G0)
+    G0 = _positive("G0", G0, maximum=MAX_ACTION)
     return _portrait(body, "andoyer", G0, n, n_levels, check_grid_size(n_curve, "n_curve"), False)
 
 
@@ -201,6 +202,6 @@ def portrait_hess(body: RigidBody, J2: float = 1.0, n: int | tuple[int, int] = (
     >>> sorted(ds.fp_closed_form.values.tolist())[:3]
     ['(0, 0)', '(0, J2)', '(2 phi0 + pi, J2/2)']
     """
-    J2 = _positive("J2", J2)
+    J2 = _positive("J2", J2, maximum=MAX_ACTION)
     return _portrait(body, "hess", J2, n, n_levels, check_grid_size(n_curve, "n_curve"),
                      double_cover)

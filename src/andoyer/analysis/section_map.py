@@ -30,7 +30,7 @@ from andoyer.dynamics import vector_field
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines import EngineLike, engine_class, engines_with, resolve_engine
 from andoyer.integrate.engines.base import Capability, SectionEvent, Tolerance
-from andoyer.validation import positive
+from andoyer.validation import checks_arguments, finite, positive, real_array
 
 __all__ = [
     "Crossing", "DEFAULT_TOL", "FLOW_ENGINES", "RotationSection", "SectionReturn",
@@ -75,12 +75,14 @@ def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
     return separatrix_energy(body, positive("G", G))
 
 
+@checks_arguments
 def gamma_phase(y: ArrayLike) -> NDArray[np.float64]:
     """``psi = atan2(gamma1, gamma2)`` in ``[0, 2 pi)``, the section angle of this module."""
     arr = as_state(y)
     return np.mod(np.arctan2(arr[..., 3], arr[..., 4]), 2.0 * np.pi)
 
 
+@checks_arguments
 def section_coords(y: ArrayLike) -> NDArray[np.float64]:
     """``(x1, x2) = (G1, G2)/|G|`` of Euler-Poisson states, shape ``(..., 2)``."""
     arr = as_state(y)
@@ -123,12 +125,14 @@ class RotationSection:
 
     def __post_init__(self) -> None:
         try:
+            if isinstance(self.psi0, bool | str | bytes):
+                raise TypeError
             v = float(self.psi0)
         except (TypeError, ValueError):
             raise ValueError(f"psi0 must be a number, got {self.psi0!r}") from None
         if not math.isfinite(v):
             raise ValueError(f"psi0 must be finite, got {v!r}")
-        if self.sign not in (1, -1):
+        if isinstance(self.sign, bool) or self.sign not in (1, -1):
             raise ValueError(f"sign must be +1 (rotation L = +G) or -1 (L = -G), "
                              f"got {self.sign!r}")
         object.__setattr__(self, "psi0", math.remainder(v, 2 * math.pi) % (2 * math.pi))
@@ -180,6 +184,7 @@ class _Descriptions(Mapping[str, str]):
 FLOW_ENGINES: Mapping[str, str] = _Descriptions()
 
 
+@checks_arguments
 def flow_engine(engine: EngineLike = None) -> str:
     """The name of the engine of :func:`flow_to_section`: ``engine`` (a name or an
     engine), else heyoka where installed, else numba; it must have the
@@ -280,6 +285,9 @@ def _polish(body: RigidBody, kind: str, psi0: float, y: NDArray[np.float64], t: 
 
 def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
     """Gradient of the (linear) section function in the Euler-Poisson variables."""
+    if not isinstance(kind, str) or kind not in ("psi", "L"):
+        raise ValueError(f"kind must be one of ('psi', 'L'), got {kind!r}")
+    psi0 = finite("psi0", psi0)
     g = np.zeros(6)
     if kind == "psi":
         g[3], g[4] = math.cos(psi0), -math.sin(psi0)
@@ -292,7 +300,11 @@ def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
 def event_projector(body: RigidBody, y: NDArray[np.float64], kind: str,
                     psi0: float = 0.0) -> NDArray[np.float64]:
     """``I - F grad(f)^T / (grad(f), F)``: the event sensitivity at a crossing ``y``."""
-    F = vector_field(body, y)
+    yy = as_state(y, name="y")
+    if yy.shape != (6,) or not np.all(np.isfinite(yy)):
+        raise ValueError(f"y must be one finite state (G1, ..., gamma3), shape (6,), got "
+                         f"shape {yy.shape}")
+    F = vector_field(body, yy)
     grad = _section_gradient(kind, psi0)
     return _I6 - np.outer(F, grad) / float(grad @ F)
 
@@ -350,7 +362,10 @@ def section_state(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
     (-0.985056, [0.0, 1.0, 0.0])
     """
     sec = RotationSection() if section is None else section
-    xv = np.asarray(x, dtype=float).reshape(2)
+    xv = real_array("x", x)
+    if xv.shape != (2,) or not np.all(np.isfinite(xv)):
+        raise ValueError(f"x must be a finite section point (x1, x2), shape (2,), got "
+                         f"{x!r}"[:200])
     n, n3 = _unit_momentum(xv, sec.sign)
     s0, c0 = math.sin(sec.psi0), math.cos(sec.psi0)
     a, b, c, mu, e1, e2, e3 = body.params

@@ -78,8 +78,8 @@ from andoyer.integrate.results import (
     provenance,
     values_from_attrs,
 )
+from andoyer.validation import MAX_ACTION, checks_arguments, integer
 from andoyer.validation import finite as _finite
-from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["BRANCHES", "DEFAULT_BRANCH", "heteroclinic_rate", "heteroclinic", "separatrix_energy",
@@ -100,6 +100,7 @@ BRANCHES = ("theta1=0", "theta1=4phi0")
 DEFAULT_BRANCH = "theta1=0"
 
 
+@checks_body
 def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     """Rate ``lambda = 2 sigma J2`` of the unperturbed heteroclinic orbits, ``J1 ~ e^{-lambda t}``.
 
@@ -126,7 +127,7 @@ def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     0.099585919546
     """
     sigma = body.require_middle_axis("a heteroclinic orbit between L = -G and L = G")
-    return 2.0 * sigma * _positive("J2", J2)
+    return 2.0 * sigma * _positive("J2", J2, maximum=MAX_ACTION)
 
 
 def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
@@ -195,7 +196,7 @@ def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = DEFAULT
     'decreasing'
     """
     body.require_hess("heteroclinic")
-    J2 = _positive("J2", J2)
+    J2 = _positive("J2", J2, maximum=MAX_ACTION)
     if sign not in (1, -1):
         raise ValueError(f"sign must be +1 or -1, got {sign!r}")
     times = np.atleast_1d(np.asarray(t, dtype=float))
@@ -297,7 +298,7 @@ def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     >>> round(separatrix_energy(RigidBody.paper()), 12)
     0.227272727273
     """
-    G0 = _positive("G0", G0)
+    G0 = _positive("G0", G0, maximum=MAX_ACTION)
     return 0.5 * _middle(body)[1] * G0**2
 
 
@@ -387,8 +388,11 @@ def _curves(body: RigidBody, chart: str, action: float, period: float, n: int
     return out
 
 
+@checks_body
 def separatrix_curves(body: RigidBody, chart: str, action: float, period: float,
                     n: int) -> xr.Dataset:
+    if not isinstance(chart, str) or chart not in ("andoyer", "hess"):
+        raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
     qn, pn = ("theta1", "J1") if chart == "hess" else ("l_angle", "L_action")
     curves = _curves(body, chart, action, period, n)
     h = separatrix_energy(body, action)
@@ -416,6 +420,7 @@ SEPARATRIX_LEVEL: dict[str, VariableMeta] = {
     "separatrix_H0": ("H_0", "energy of the separatrix level (the saddle's)", "1", "(9)")}
 
 
+@checks_arguments
 def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:
     """A sample count ``n`` of at least ``minimum`` (``ValueError`` naming ``what``)."""
     return integer(what, n, minimum)
@@ -453,7 +458,7 @@ def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dat
     >>> [str(t) for t in ds.separatrix_text.values[ds.separatrix_hess.values]]
     ['l = pi - |phi0|', 'l = 2 pi - |phi0|']
     """
-    G0 = _positive("G0", G0)
+    G0 = _positive("G0", G0, maximum=MAX_ACTION)
     return separatrix_curves(body, "andoyer", G0, math.tau, check_grid_size(n, "n"))
 
 
@@ -475,7 +480,7 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
     ...         ds.separatrix_kind.values) if k == "separatrix"})
     [0.0, 2.959523, 6.283185]
     """
-    J2 = _positive("J2", J2)
+    J2 = _positive("J2", J2, maximum=MAX_ACTION)
     body.require_planar("the Hess chart")
     period = 2.0 * math.tau if double_cover else math.tau
     return separatrix_curves(body, "hess", J2, period, check_grid_size(n, "n"))

@@ -27,16 +27,25 @@ from andoyer.analysis.periodic import (
     continue_rotation_orbit,
 )
 from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
-from andoyer.analysis.separatrix import DEFAULT_BRANCH, separatrix_energy
+from andoyer.analysis.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance, values_from_attrs
-from andoyer.validation import positive
+from andoyer.validation import (
+    MAX_ACTION,
+    checks_arguments,
+    choice,
+    finite_array,
+    flag,
+    integer,
+    positive,
+)
 
 __all__ = ["measure_splitting", "separatrix_splitting", "splitting_at", "splitting_vs_epsilon"]
 
 
 # ----------------------------------------------------------------------------- splitting
+@checks_arguments
 def splitting_at(wu: ManifoldCurve, ws: ManifoldCurve, g: float) -> dict[str, Any]:
     """Fresh points of both manifolds on the line ``g = const`` of ``Sigma_0``.
 
@@ -71,6 +80,7 @@ def _shoelace(xs: NDArray[np.float64], ys: NDArray[np.float64]) -> float:
     return 0.5 * float(np.dot(xs, np.roll(ys, -1)) - np.dot(ys, np.roll(xs, -1)))
 
 
+@checks_arguments
 def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32,
                       locate: bool | None = None, gtol: float = 1e-13,
                       noise: float = 1e-11) -> tuple[xr.Dataset, xr.Dataset]:
@@ -225,8 +235,9 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
 def _mu_values(body: RigidBody, mu: Sequence[float] | ArrayLike | None
                ) -> NDArray[np.float64]:
     """The values of mu asked for, or the body's own."""
-    mus = np.atleast_1d(np.asarray(body.mu if mu is None else mu, dtype=float))
-    if mus.ndim != 1 or mus.size == 0 or not np.all(np.isfinite(mus)) or np.any(mus <= 0):
+    mus = np.atleast_1d(np.asarray(body.mu, dtype=float) if mu is None
+                        else finite_array("mu", mu))
+    if mus.ndim != 1 or mus.size == 0 or np.any(mus <= 0):
         where = f"the body's mu = {body.mu!r}" if mu is None else f"mu = {mu!r}"
         raise ValueError(f"mu must be a non-empty list of finite values > 0 (the splitting "
                          f"vanishes at mu = 0), got {where}")
@@ -309,6 +320,9 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     from andoyer.analysis.periodic import orbits_dataset
     from andoyer.progress import Progress
 
+    if grow is not None and not isinstance(grow, dict):
+        raise ValueError(f"grow must be a dict of grow_manifold's keyword arguments, got "
+                         f"{grow!r}")
     mus = _mu_values(body, mu)
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
@@ -478,7 +492,13 @@ def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
     from andoyer.progress import Progress
 
     hess = body.nearest_hess()
-    eps = np.atleast_1d(np.asarray(epsilon, dtype=float))
+    eps = np.atleast_1d(finite_array("epsilon", epsilon))
+    branch = choice("branch", branch, BRANCHES)
+    positive("G", G, maximum=MAX_ACTION)
+    integer("n_phase", n_phase, 1)
+    positive("delta", delta)
+    positive("tol", tol)
+    flag("progress", progress)
     if eps.ndim != 1 or eps.size == 0 or not np.all(np.abs(eps) < 0.5 * math.pi):
         raise ValueError(f"epsilon must be a non-empty list of turns in (-pi/2, pi/2), got "
                          f"{epsilon!r}")

@@ -27,6 +27,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.api import poincare, propagate
 from andoyer.integrate.fill import fill_section
 from andoyer.integrate.results import values_from_attrs
+from andoyer.validation import MAX_ACTION, integer, positive, real_array
 
 __all__ = ["fig3_trajectories", "fig3_section", "separatrix_energy", "zoom_box", "DEFAULT_J1"]
 
@@ -42,6 +43,7 @@ def zoom_box(body: RigidBody, J2: float = 1.0
     Returns ``((theta1_min, theta1_max), (J1_min, J1_max))``.
     """
     t = 4.0 * body.phi0
+    J2 = positive("J2", J2, maximum=MAX_ACTION)
     return (t - 0.3, t + 0.3), (0.0, 0.06 * J2)
 
 
@@ -87,7 +89,7 @@ def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
         caption data.
     """
     _check_body(body)
-    seeds = np.asarray(J1, dtype=float).ravel()
+    seeds = real_array("J1", J1).ravel()
     if seeds.size == 0 or np.any(~np.isfinite(seeds)) or np.any(seeds <= 0) \
             or np.any(seeds > 0.5):
         raise ValueError(f"J1 seeds must be fractions of J2 in (0, 1/2], got {list(seeds)}")
@@ -149,6 +151,8 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
     """
     _check_body(body)
     level = separatrix_energy(body, J2) if h is None else float(h)
+    n_orbits = integer("n_orbits", n_orbits, 1)
+    n_zoom = integer("n_zoom", n_zoom, 0)
     fill = fill_section(body, level, 0.0, ("theta2", theta2), n_orbits=n_orbits)
     y0 = fill["y0"].values
     if n_zoom > 0:

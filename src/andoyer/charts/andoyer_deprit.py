@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.euler_poisson import as_state
 from andoyer.errors import SingularChartWarning
-from andoyer.validation import real_array
+from andoyer.validation import checks_arguments, real_array
 
 __all__ = [
     "COORDS",
@@ -138,6 +138,7 @@ def as_andoyer(x: ArrayLike, name: str = "x") -> NDArray[np.float64]:
     return arr
 
 
+@checks_arguments
 def from_andoyer(x: ArrayLike, *, name: str = "x") -> NDArray[np.float64]:
     """Euler-Poisson state from Andoyer-Deprit coordinates, Eqs. (5)-(6).
 
@@ -234,6 +235,7 @@ def to_andoyer(y: ArrayLike, *, with_mask: Literal[False] = ...) -> NDArray[np.f
 @overload
 def to_andoyer(y: ArrayLike, *, with_mask: Literal[True]
                ) -> tuple[NDArray[np.float64], NDArray[np.int_]]: ...
+@checks_arguments
 def to_andoyer(y: ArrayLike, *, with_mask: bool = False
                ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.int_]]:
     """Andoyer-Deprit coordinates of Euler-Poisson states (inverse of (5)-(6)).

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.body import checks_body
-from andoyer.validation import real_array
+from andoyer.validation import checks_arguments, real_array
 
 if TYPE_CHECKING:
     from andoyer.body import RigidBody
@@ -99,6 +99,7 @@ def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(hamiltonian_expr(*args))
 
 
+@checks_arguments
 def area_integral(y: ArrayLike) -> NDArray[np.float64]:
     """Area integral ``C1 = M = (G, gamma)``, a Casimir of (1), shape ``(...)``.
 
@@ -115,6 +116,7 @@ def area_integral(y: ArrayLike) -> NDArray[np.float64]:
     return np.einsum("...i,...i->...", arr[..., :3], arr[..., 3:])
 
 
+@checks_arguments
 def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
     """Geometric integral ``C2 = |gamma|^2`` (equal to 1 on the physical level).
 

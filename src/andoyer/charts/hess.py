@@ -180,6 +180,9 @@ def to_hess(body: RigidBody, y: ArrayLike, *, with_mask: bool = False,
     """
     arr = as_state(y)
     phi0 = body.phi0
+    if andoyer is not None and not (isinstance(andoyer, tuple) and len(andoyer) == 2):
+        raise ValueError("andoyer must be the pair (x, flags) of to_andoyer(y, "
+                         f"with_mask=True), got {type(andoyer).__name__}")
     x, flags = to_andoyer(arr, with_mask=True) if andoyer is None else andoyer
     l, g, L, G, M = np.moveaxis(x, -1, 0)
     theta1, theta2, J1, J2, J3 = andoyer_to_hess_expr(l, g, L, G, M, phi0)

@@ -48,6 +48,9 @@ from andoyer.notation import renamed
 from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 
+#: Longer names of arguments in messages (andoyer.validation.checks_arguments).
+ARGUMENT_NAMES = {"n_orbits": "n_orbits (number of plane points)"}
+
 __all__ = ["fill_section", "section_roots", "default_h", "SECTION_PLANES", "SINGULAR_MARGIN"]
 
 

@@ -120,16 +120,18 @@ class Section:
     direction: int = 1
 
     def __post_init__(self) -> None:
-        if self.coord not in SECTION_KINDS:
+        if not isinstance(self.coord, str) or self.coord not in SECTION_KINDS:
             raise ValueError(f"unknown section coordinate {self.coord!r}; choose one of "
                              f"{', '.join(SECTION_KINDS)} (M and J3 are constants of motion)")
         try:
+            if isinstance(self.value, bool | str | bytes):
+                raise TypeError
             v = float(self.value)
         except (TypeError, ValueError):
             raise ValueError(f"section value must be a number, got {self.value!r}") from None
         if not math.isfinite(v):
             raise ValueError(f"section value must be finite, got {v!r}")
-        if self.direction not in (-1, 0, 1):
+        if isinstance(self.direction, bool) or self.direction not in (-1, 0, 1):
             raise ValueError(f"section direction must be +1, -1 or 0, got {self.direction!r}")
         if self.coord in ANGLES:
             v = math.remainder(v, 2 * math.pi) % (2 * math.pi)
