@@ -55,7 +55,7 @@ def hess_periods(body: RigidBody, M_values: Sequence[float], n: int, n_check: in
         ``T_elliptic_check`` (dims ``M, check``).
     """
     body.require_hess("hess_periods")
-    M_values = finite_array("M_values", M_values, ndim=1)
+    M_values = finite_array("M_values", M_values, ndim=1).tolist()
     mu, c = body.mu, body.c
     h = np.linspace(-0.98 * mu, 5.0 * mu, int(n))
     T = np.full((len(M_values), h.size), np.nan)
