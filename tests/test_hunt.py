@@ -315,6 +315,7 @@ def test_every_public_subpackage_is_hunted_or_placed():
             "melnikov_off_hess", "chaos_border", "propagate", "cite"} <= set(API)
 
 
+@pytest.mark.timeout(120)  # a hang is a finding, not a stuck suite
 @pytest.mark.parametrize("name", sorted(API))
 def test_public_api_refuses_bad_types_naming_the_argument(name):
     """bool, text, a wrong shape, None and NaN for every argument of every public
@@ -326,6 +327,7 @@ def test_public_api_refuses_bad_types_naming_the_argument(name):
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(600)
 @pytest.mark.parametrize("name", sorted(API))
 def test_public_api_refuses_extreme_values_or_stays_finite(name):
     """Every bad class, the numeric extremes included (inf, 1e300, -1): refused naming
@@ -336,6 +338,7 @@ def test_public_api_refuses_extreme_values_or_stays_finite(name):
     assert not failures, "\n".join(failures)
 
 
+@pytest.mark.timeout(180)
 @pytest.mark.parametrize("name", sorted(API))
 @settings(max_examples=8, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])

@@ -70,9 +70,13 @@ def elliptic_pi(n: float, m: float) -> float:
     >>> round(elliptic_pi(0.0, 0.5), 12) == round(float(ellipk(0.5)), 12)
     True
     """
+    n, m = finite("n", n), finite("m", m)
     if not (n < 1.0 and m < 1.0):
         raise ValueError(f"elliptic_pi needs n < 1 and m < 1, got n = {n!r}, m = {m!r}")
-    return float(elliprf(0.0, 1.0 - m, 1.0) + n * elliprj(0.0, 1.0 - m, 1.0, 1.0 - n) / 3.0)
+    value = float(elliprf(0.0, 1.0 - m, 1.0) + n * elliprj(0.0, 1.0 - m, 1.0, 1.0 - n) / 3.0)
+    if not math.isfinite(value):
+        raise ValueError(f"elliptic_pi(n = {n!r}, m = {m!r}) is beyond the float range")
+    return value
 
 
 class EulerPoinsotFrequencies(NamedTuple):

@@ -56,6 +56,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
@@ -74,7 +75,7 @@ from andoyer.analysis.equilibria import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance
-from andoyer.validation import MAX_ACTION, checks_arguments
+from andoyer.validation import MAX_ACTION, checks_arguments, integer
 from andoyer.validation import positive as _positive
 
 __all__ = ["FixedPoint", "FixedPointSet", "andoyer_fixed_points", "hess_fixed_points",
@@ -480,12 +481,15 @@ def _fixed_points(body: RigidBody, chart: ReducedChart, action: float, period: f
 
 
 def _n_seed(n_seed: Any) -> tuple[int, int]:
-    try:
-        nq, npp = (int(n_seed), int(n_seed) // 2 + 1) if np.ndim(n_seed) == 0 else (
-            int(n_seed[0]), int(n_seed[1]))
-    except (TypeError, ValueError, IndexError):
+    if isinstance(n_seed, numbers.Real) and not isinstance(n_seed, bool):
+        k = integer("n_seed", n_seed, 1, 100_000)
+        nq, npp = k, k // 2 + 1
+    elif isinstance(n_seed, tuple | list) and len(n_seed) == 2:
+        nq = integer("n_seed[0] (n_angle)", n_seed[0], 1, 100_000)
+        npp = integer("n_seed[1] (n_action)", n_seed[1], 1, 100_000)
+    else:
         raise ValueError(f"n_seed must be an int or a pair (n_angle, n_action), got "
-                         f"{n_seed!r}") from None
+                         f"{n_seed!r}")
     if nq < 8 or npp < 3:
         raise ValueError(f"n_seed = {n_seed!r} is too coarse: use at least (8, 3)")
     return nq, npp

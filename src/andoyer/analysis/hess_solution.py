@@ -83,7 +83,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.integrate.hess_manifold import THETA1_TOL
 from andoyer.integrate.results import provenance, states_dataset
-from andoyer.validation import checks_arguments, finite_array
+from andoyer.validation import MAX_ACTION, checks_arguments, finite_array
 
 __all__ = [
     "MOTIONS",
@@ -233,13 +233,25 @@ def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
         return 0.0, -mu
 
     def slope(J: float) -> float:  # dH/dJ2 along theta2 = 3 pi/2
-        return c * J - mu * M * M / (J * J * math.sqrt((J - M) * (J + M)))
+        try:
+            return c * J - mu * M * M / (J * J * math.sqrt((J - M) * (J + M)))
+        except (ZeroDivisionError, OverflowError):  # under- or overflow: no float answer
+            return math.nan
 
+    if M > MAX_ACTION:
+        raise ValueError(f"M must be <= {MAX_ACTION:g} in absolute value, got {M!r}")
     lo, hi = M * (1.0 + 1e-15), 2.0 * M
-    while slope(lo) > 0.0:  # round-off guard: the slope is -inf at M+
+    for _ in range(1100):  # round-off guard: the slope is -inf at M+
+        if not slope(lo) > 0.0:
+            break
         lo = M + 2.0 * (lo - M)
-    while slope(hi) < 0.0:
+    for _ in range(1100):
+        if not slope(hi) < 0.0:
+            break
         hi *= 2.0
+    if not (math.isfinite(lo) and math.isfinite(hi) and slope(lo) <= 0.0 <= slope(hi)):
+        raise ValueError(f"M = {M!r}: the minimum of the reduced energy is not bracketed "
+                         "in floating point (M too large or too small for this body)")
     J = float(brentq(slope, lo, hi, xtol=1e-16, rtol=4 * _EPS, maxiter=200))
     return J, float(reduced_hamiltonian(body, 1.5 * math.pi, J, M))
 
