@@ -11,8 +11,8 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "SingularChartWarning",
-           "SingularPassageWarning"]
+__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "NoCacheWarning",
+           "SingularChartWarning", "SingularPassageWarning"]
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -50,4 +50,11 @@ class SingularPassageWarning(UserWarning):
 
     Such passages are not crossings: they are counted and timed apart
     (``singular_passages``, ``singular_passage_t`` in the section dataset).
+    """
+
+
+class NoCacheWarning(UserWarning):
+    """No folder was writable for the compiled kernels: they are compiled in every run.
+
+    Set ``ANDOYER_CACHE_DIR`` to a writable folder (see :mod:`andoyer.kernels.cache`).
     """

@@ -9,10 +9,16 @@ function that runs, so that ``andoyer --help`` stays fast.
 from __future__ import annotations
 
 import argparse
+import atexit
 import importlib
+import os
 import pkgutil
+import shutil
 import sys
+import tempfile
+import warnings
 from collections.abc import Sequence
+from pathlib import Path
 
 from andoyer._version import __version__
 
@@ -111,6 +117,49 @@ def _unrecognized(parser: argparse.ArgumentParser, command: str, extra: list[str
             + f"; see andoyer {command} --help")
 
 
+def _show_warning(message: Warning | str, category: type[Warning], filename: str,
+                  lineno: int, file: object = None, line: str | None = None) -> None:
+    """andoyer's own warnings as one line, ``andoyer: warning: ...``; others as Python's."""
+    if category.__module__ == "andoyer.errors":
+        sys.stderr.write(f"andoyer: warning: {message}\n")
+    else:
+        _python_show_warning(message, category, filename, lineno, file, line)  # type: ignore[arg-type]
+
+
+_python_show_warning = warnings.showwarning
+
+
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            return True
+    except OSError:
+        return False
+
+
+def _matplotlib_config() -> None:
+    """A private Matplotlib folder for this run where the user's is not writable.
+
+    Matplotlib keeps its font cache in its configuration folder and, where that is read
+    only (a read-only home), warns in every process that imports it; this run (and the
+    processes it starts, which inherit ``MPLCONFIGDIR``) uses a temporary folder
+    instead, removed at exit. Nothing is imported.
+    """
+    if os.environ.get("MPLCONFIGDIR"):
+        return
+    if sys.platform.startswith("linux"):
+        base = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config")
+        folder = base / "matplotlib"
+    else:
+        folder = Path.home() / ".matplotlib"
+    if _writable(folder):
+        return
+    tmp = tempfile.mkdtemp(prefix="andoyer-matplotlib-")
+    atexit.register(shutil.rmtree, tmp, ignore_errors=True)
+    os.environ["MPLCONFIGDIR"] = tmp
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``andoyer`` console script.
 
@@ -122,6 +171,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args, extra = parser.parse_known_args(argv)
     if extra:  # the command's usage, not the top-level one, with a suggestion
         _unrecognized(parser, args.command, extra)
+    warnings.showwarning = _show_warning
+    _matplotlib_config()
     try:
         if args.no_limits:
             import math

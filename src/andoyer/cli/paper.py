@@ -24,7 +24,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def register(sub: Any) -> None:
-    from andoyer.report.paper import DEFAULT_OUT
+    from andoyer.report import DEFAULT_OUT
 
     p = sub.add_parser(NAME, help="rebuild the paper's figures, their data and the formula "
                                   "check into a folder with an index.html (the main job)")

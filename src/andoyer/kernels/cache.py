@@ -19,6 +19,12 @@ environment are untouched. Entries are keyed by Numba on the source file's path,
 and time stamp (and by andoyer on a hash of the generated kernels, see
 :mod:`andoyer.kernels.dop853`), so two installs or versions never share an entry.
 
+Where nothing is writable (a read-only install and a read-only home, as on many
+clusters and containers: Numba finds no folder of its own either), the kernels are
+compiled without a cache: andoyer runs, compiles in every process, and says so once
+(:class:`~andoyer.errors.NoCacheWarning`, once per run: child processes inherit the
+fact that it was said).
+
 >>> cache_folder().name
 'numba'
 """
@@ -26,6 +32,7 @@ and time stamp (and by andoyer on a hash of the generated kernels, see
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -33,10 +40,16 @@ from typing import Any
 import numba
 import platformdirs
 
-__all__ = ["cache_folder", "cached_njit", "CACHE_ENV"]
+from andoyer.errors import NoCacheWarning
+
+__all__ = ["cache_folder", "cached_njit", "writable", "warn_no_cache", "CACHE_ENV"]
 
 #: Environment variable that moves andoyer's caches (Numba's under ``<dir>/numba``).
 CACHE_ENV = "ANDOYER_CACHE_DIR"
+
+#: Set in the environment once the missing cache was reported, so that the worker
+#: processes of the same run (report jobs, Dask workers) do not report it again.
+_WARNED_ENV = "ANDOYER_NO_CACHE_WARNED"
 
 
 def cache_folder() -> Path:
@@ -69,7 +82,9 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
     -------
     callable
         A decorator. If the folder cannot be created or written, Numba falls back to
-        its own locations (a read-only install then caches in Numba's user folder).
+        its own locations (beside the source, then Numba's user folder); if none is
+        writable, the function is compiled without a cache, with one
+        :class:`~andoyer.errors.NoCacheWarning` per run.
     """
     options["cache"] = True
 
@@ -80,7 +95,48 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
         config.CACHE_DIR = str(cache_folder())
         try:
             return numba.njit(**options)(function)
+        except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
+            if "no locator" not in str(exc):
+                raise
+            warn_no_cache(f"{cache_folder()}, the package's folder and Numba's user folder")
+            return numba.njit(**{**options, "cache": False})(function)
         finally:
             config.CACHE_DIR = previous
 
     return decorate
+
+
+def writable(folder: str | os.PathLike[str]) -> bool:
+    """Whether a file can be created in ``folder`` (created if missing).
+
+    Tried for real, not read off permission bits, which root ignores (a read-only
+    mount refuses even root).
+
+    >>> writable("/proc")
+    False
+    """
+    import tempfile
+
+    try:
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            return True
+    except OSError:
+        return False
+
+
+def warn_no_cache(tried: str) -> None:
+    """Say once per run (this process and the ones it starts) that nothing is cached.
+
+    Parameters
+    ----------
+    tried : str
+        The folders that were tried, for the message.
+    """
+    if os.environ.get(_WARNED_ENV):
+        return
+    os.environ[_WARNED_ENV] = "1"
+    warnings.warn(
+        f"no writable folder for compiled code (tried {tried}): andoyer runs, but "
+        "compiles its kernels again in every process (seconds to a minute); set "
+        f"{CACHE_ENV} to a writable folder to keep them", NoCacheWarning, stacklevel=3)

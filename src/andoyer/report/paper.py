@@ -23,14 +23,12 @@ import time
 from pathlib import Path
 
 from andoyer.body import RigidBody
+from andoyer.report import DEFAULT_OUT
 from andoyer.report.base import Context, Item, Result
 from andoyer.report.items import ITEMS
 from andoyer.validation import integer
 
 __all__ = ["Item", "Result", "Context", "ITEMS", "build_paper", "default_jobs", "DEFAULT_OUT"]
-
-#: Default output folder of ``andoyer paper``.
-DEFAULT_OUT = "andoyer-paper"
 
 #: A worker process starts in about 2 s (its imports): worth it above this much work.
 _WORKER_WORTH_S = 5.0

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import importlib
 import types
+from collections.abc import Callable
 from typing import Any
 
 __all__ = ["LazyModule", "heyoka", "heyoka_available"]
@@ -26,9 +27,11 @@ __all__ = ["LazyModule", "heyoka", "heyoka_available"]
 class LazyModule(types.ModuleType):
     """A module imported at its first attribute access."""
 
-    def __init__(self, name: str, hint: str = "") -> None:
+    def __init__(self, name: str, hint: str = "",
+                 on_import: Callable[[types.ModuleType], None] | None = None) -> None:
         super().__init__(name)
         self._hint = hint
+        self._on_import = on_import
 
     def __getattr__(self, attr: str) -> Any:
         # Probes such as inspect.unwrap's __wrapped__ must not import the module.
@@ -40,7 +43,22 @@ class LazyModule(types.ModuleType):
             raise ModuleNotFoundError(
                 f"{self.__name__} is not installed here; {self._hint or 'install it'}",
                 name=self.__name__) from None
+        if self._on_import is not None:
+            hook, self._on_import = self._on_import, None
+            hook(module)
         return getattr(module, attr)
+
+
+def _heyoka_disk_cache(hy: Any) -> None:
+    """heyoka keeps compiled integrators in the user's cache folder; where that is not
+    writable (a read-only home) it would warn at every compilation: its disk cache is
+    turned off instead, with andoyer's one warning (:mod:`andoyer.kernels.cache`)."""
+    from andoyer.kernels.cache import warn_no_cache, writable
+
+    state = hy.llvm_state
+    if state.get_diskcache_enabled() and not writable(state.get_diskcache_path()):
+        state.set_diskcache_enabled(False)
+        warn_no_cache(f"heyoka's {state.get_diskcache_path()}")
 
 
 #: heyoka.py, imported at first use.
@@ -48,7 +66,7 @@ heyoka: Any = LazyModule(
     "heyoka", "it has wheels for Linux only (pip install heyoka, or conda-forge). Every "
               "analysis runs on engine='numba' without it (orbits, sections, chaos "
               "indicators, periodic orbits, manifolds, Floquet multipliers); only "
-              "engine='heyoka' itself needs it")
+              "engine='heyoka' itself needs it", on_import=_heyoka_disk_cache)
 
 
 def heyoka_available() -> bool:
