@@ -1,14 +1,59 @@
-"""Atomic file output: write to a temporary file beside the target, then rename."""
+"""Atomic file output: write to a temporary file beside the target, then rename.
+
+A full file system is named: whatever library did the writing (Python's own files, Zarr,
+the NetCDF/HDF5 C library, whose message is only "HDF error"), running out of space
+while writing under a folder raises :class:`~andoyer.errors.NoSpaceError` naming it.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import shutil
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["atomic_path"]
+from andoyer.errors import NoSpaceError
+
+__all__ = ["atomic_path", "named_when_full", "FULL_BELOW"]
+
+#: A write that failed while fewer bytes than this were free on its file system failed
+#: for want of space (libraries such as HDF5 do not pass ``ENOSPC`` on).
+FULL_BELOW = 1 << 20
+
+
+def _full(exc: BaseException, where: Path) -> bool:
+    if isinstance(exc, NoSpaceError) or not isinstance(exc, OSError | RuntimeError):
+        return False
+    if isinstance(exc, OSError) and exc.errno == errno.ENOSPC:
+        return True
+    folder = where if where.is_dir() else where.parent
+    try:
+        return shutil.disk_usage(folder).free < FULL_BELOW
+    except OSError:
+        return False
+
+
+@contextlib.contextmanager
+def named_when_full(where: str | os.PathLike[str]) -> Iterator[None]:
+    """Turn running out of space while writing under ``where`` into
+    :class:`~andoyer.errors.NoSpaceError` naming it; other errors pass unchanged.
+
+    >>> import errno
+    >>> with named_when_full("/data/out"):
+    ...     raise OSError(errno.ENOSPC, "No space left on device")
+    Traceback (most recent call last):
+    ...
+    andoyer.errors.NoSpaceError: [Errno 28] no space left on /data/out: '/data/out'
+    """
+    try:
+        yield
+    except (OSError, RuntimeError) as exc:
+        if _full(exc, Path(where)):
+            raise NoSpaceError(where) from exc
+        raise
 
 
 def _umask() -> int:
@@ -21,7 +66,8 @@ def _umask() -> int:
 def atomic_path(final: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path in ``final``'s folder; rename it to ``final`` on success.
 
-    On any exception the temporary file is removed and ``final`` is left untouched.
+    On any exception the temporary file is removed and ``final`` is left untouched; a
+    full file system raises :class:`~andoyer.errors.NoSpaceError` naming ``final``.
     The file gets the ordinary permissions (``0o666 & ~umask``), not mkstemp's 0o600.
     """
     out = Path(final)
@@ -33,6 +79,9 @@ def atomic_path(final: str | os.PathLike[str]) -> Iterator[Path]:
         yield Path(tmp)
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, out)
-    except BaseException:
+    except BaseException as exc:
+        full = _full(exc, out)  # before the partial file is removed and frees its space
         Path(tmp).unlink(missing_ok=True)
+        if full:
+            raise NoSpaceError(out) from exc
         raise

@@ -11,8 +11,12 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["ArgumentTypeError", "CostLimitError", "IntegrationError", "NoCacheWarning",
-           "SingularChartWarning", "SingularPassageWarning"]
+import errno
+import os
+
+__all__ = ["ArgumentTypeError", "CostLimitError", "DamagedFileError", "DamagedStoreWarning",
+           "IntegrationError", "NoCacheWarning", "NoSpaceError", "SingularChartWarning",
+           "SingularPassageWarning"]
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -27,6 +31,26 @@ class CostLimitError(ValueError):
 
     The message gives the estimate, the limit and the argument that overrides it.
     """
+
+
+class DamagedFileError(ValueError):
+    """An input file or store is damaged, truncated or not what it should be.
+
+    The message names the file (or the points of a store) and what is wrong with it.
+    """
+
+
+class NoSpaceError(OSError):
+    """The file system ran out of space while andoyer wrote under ``where``.
+
+    An ``OSError`` with ``errno.ENOSPC``; the message names the folder or file. What was
+    being written was removed (files are written atomically; a scan chunk not marked
+    done is computed again on resume).
+    """
+
+    def __init__(self, where: str | os.PathLike[str]) -> None:
+        super().__init__(errno.ENOSPC, f"no space left on {os.fspath(where)}",
+                         os.fspath(where))
 
 
 class IntegrationError(FloatingPointError):
@@ -58,3 +82,8 @@ class NoCacheWarning(UserWarning):
 
     Set ``ANDOYER_CACHE_DIR`` to a writable folder (see :mod:`andoyer.kernels.cache`).
     """
+
+
+class DamagedStoreWarning(UserWarning):
+    """Points of a scan store marked done had missing or damaged data: they are named
+    and computed again (:func:`andoyer.scan.store.verify`)."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import atexit
+import errno
 import importlib
 import os
 import pkgutil
@@ -82,6 +83,10 @@ def _classify(exc: BaseException) -> tuple[str, str]:
                                  "points or output times)")
     if isinstance(exc, ModuleNotFoundError):
         return "missing dependency", f"{exc}; install it or choose another --engine"
+    if isinstance(exc, OSError) and exc.errno == errno.ENOSPC:
+        where = exc.filename or "the device"
+        return "file system", (f"no space left on {where}; free some space or write "
+                               "elsewhere (nothing half-written was left behind)")
     if isinstance(exc, OSError):
         where = f" {exc.filename!r}" if getattr(exc, "filename", None) else ""
         return "file system", f"{exc.strerror or exc}{':' if where else ''}{where}"

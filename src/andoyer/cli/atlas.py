@@ -17,11 +17,10 @@ def run(args: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    import xarray as xr
-
     from andoyer.cli._common import distinct_outputs, floats, output_file
     from andoyer.plot.atlas import plot_atlas, plot_border
     from andoyer.plot.section import save_figure
+    from andoyer.scan.store import open_store
 
     png = output_file(args.out, ".png")
     store = Path(args.store)
@@ -29,7 +28,7 @@ def run(args: argparse.Namespace) -> int:
     if not (store / "zarr.json").is_file() and not (store / ".zgroup").is_file():
         raise ValueError(f"{store} is not a Zarr store; give the store written by "
                          "andoyer scan")
-    ds = xr.open_zarr(store, consolidated=True)
+    ds = open_store(store)  # every point marked done checked: missing or damaged refused
     select = {}
     for item in args.select or []:
         name, sep, value = item.partition("=")

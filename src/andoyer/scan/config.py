@@ -92,6 +92,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from andoyer.body import RigidBody
+from andoyer.errors import DamagedFileError
 from andoyer.integrate.engines import ENGINES, installed
 from andoyer.integrate.engines.base import Tolerance
 from andoyer.notation import TERMS
@@ -574,10 +575,17 @@ def load_config(source: str | os.PathLike[str] | Mapping[str, Any]) -> ScanConfi
     path = Path(source)
     if not path.is_file():
         raise ValueError(f"configuration file {str(path)!r} not found")
+    raw = path.read_bytes()
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise DamagedFileError(
+            f"{path}: not UTF-8 text (byte {raw[exc.start]:#04x} at offset {exc.start}): "
+            "a scan configuration is a TOML text file; is this the right file?") from None
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML: {exc}") from None
+        raise DamagedFileError(f"{path}: not valid TOML: {exc}") from None
     return parse_config(data, str(path))
 
 
