@@ -568,3 +568,25 @@ def test_undefined_as_nan_follows_the_singular_sets():
     assert np.isnan(out[:, :2]).tolist() == [[True, True], [False, True], [True, True],
                                              [False, False]]
     np.testing.assert_array_equal(out[~np.isnan(out)], x[~np.isnan(out)])
+
+
+@pytest.mark.parametrize("k", [667, -664, 1023, -1000])
+def test_from_andoyer_is_exact_for_huge_and_tiny_actions(k):
+    """(5)-(6) are homogeneous in the actions: G1..G3 scale with them, gamma not. With
+    G = 2^k (1e201, 1e-200, the largest float's exponent, 1e-301) the map is exact.
+    Before, G = 1e201 gave inf/NaN ((G - L)(G + L) overflowed) and tiny G lost sin J."""
+    G = 2.0**k
+    x = np.array([[0.3, 0.2, 0.5, 1.0, 0.1], [1.0, 2.0, 1.0, 1.0, -1.0],
+                  [4.0, 5.0, -0.999999, 1.0, 0.3]])
+    unit = from_andoyer(x)
+    y = from_andoyer(x * np.array([1.0, 1.0, G, G, G]))
+    assert np.all(np.isfinite(y))
+    assert np.array_equal(y[:, :3], unit[:, :3] * G)
+    assert np.array_equal(y[:, 3:], unit[:, 3:])
+
+
+def test_from_andoyer_of_the_example_from_the_issue():
+    y = from_andoyer([0.3, 0.2, 0.5e201, 1e201, 0.1e201])
+    np.testing.assert_allclose(y[:3] / 1e201, from_andoyer([0.3, 0.2, 0.5, 1.0, 0.1])[:3],
+                               rtol=1e-14)
+    np.testing.assert_allclose(to_andoyer(y)[2:] / 1e201, [0.5, 1.0, 0.1], rtol=1e-14)

@@ -26,7 +26,7 @@ from andoyer.scan.store import CHECKSUM, open_store, verify
 
 # Three points along mu, one task each; 2 orbits x 3 crossings (seconds to run).
 SMALL = {"parameters": {"mu": [0.01, 0.1, 0.3], "h": 0.3},
-         "task": {"kind": "section", "orbits": 2, "crossings": 3},
+         "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3},
          "integrator": {"engine": "numba"}}
 
 

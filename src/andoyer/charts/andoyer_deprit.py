@@ -161,9 +161,17 @@ def from_andoyer(x: ArrayLike, *, name: str = "x") -> NDArray[np.float64]:
     True
     """
     arr = as_andoyer(x, name)
+    # The map is homogeneous in the actions (L, G, M): of degree 1 for G1, G2, G3 and 0
+    # for gamma. It is evaluated at actions scaled by a power of two (exact), G/s in
+    # [1, 2), so that the radicands (G - L)(G + L) neither overflow (G = 1e201) nor
+    # underflow (G = 1e-200), and keep their accuracy near L = +-G.
+    s = np.ldexp(1.0, np.frexp(arr[..., 3])[1] - 1)
+    arr[..., 2:] /= s[..., None]
     cols = andoyer_to_ep_expr(*np.moveaxis(arr, -1, 0), sin=np.sin, cos=np.cos,
                               sqrt=np.sqrt)
-    return np.stack(np.broadcast_arrays(*cols), axis=-1)
+    y = np.stack(np.broadcast_arrays(*cols), axis=-1)
+    y[..., :3] *= s[..., None]
+    return y
 
 
 def singular_mask(y: ArrayLike, scale: ArrayLike | None = None) -> NDArray[np.int_]:
@@ -273,7 +281,11 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
     >>> x.round(12).tolist(), Singular(int(flags))
     ([0.0, 0.0, 1.0, 1.0, 0.8], <Singular.L_EQ_PM_G: 1>)
     """
-    arr = as_state(y)
+    arr = np.array(as_state(y), dtype=float)
+    # The angles are homogeneous of degree 0 in (G1, G2, G3), the actions of degree 1:
+    # evaluated at G scaled by a power of two (exact) so that |G|^2 cannot overflow.
+    s = np.ldexp(1.0, np.frexp(np.max(np.abs(arr[..., :3]), axis=-1))[1] - 1)
+    arr[..., :3] /= s[..., None]
     flags, G, rho, gnorm = singular_flags(arr)
     G1, G2, G3, gamma1, gamma2, gamma3 = np.moveaxis(arr, -1, 0)
     M = G1 * gamma1 + G2 * gamma2 + G3 * gamma3
@@ -297,6 +309,7 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
     x = np.where(zero[..., None], 0.0, x)
     # mod can round 2 pi - tiny up to exactly 2 pi.
     x[..., :2] = np.where(x[..., :2] >= math.tau, 0.0, x[..., :2])
+    x[..., 2:] *= s[..., None]
     if with_mask:
         return x, flags
     warn_singular(flags, "to_andoyer")
