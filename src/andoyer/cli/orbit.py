@@ -23,6 +23,7 @@ ORDER = 30
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from andoyer.integrate import budget
     from andoyer.integrate.api import propagate
     from andoyer.io import write_netcdf
 
@@ -31,6 +32,8 @@ def run(args: argparse.Namespace) -> int:
     state, chart = state_from_args(args, body)  # type: ignore[misc]
     if args.t_end <= 0 or args.n_out < 2:
         raise ValueError("--t-end must be > 0 and --n-out >= 2")
+    # Costed before the output times are even allocated (--n-out 1e9: 8 GB of times).
+    budget.check(f"--n-out {args.n_out}", memory=budget.DATASET_BYTES * args.n_out)
     t = np.linspace(0.0, args.t_end, args.n_out)
     ds = propagate(body, state, t, chart=chart, engine=args.engine, rtol=args.rtol, atol=args.atol,
                    progress=True)

@@ -23,6 +23,7 @@ def run(args: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
+    from andoyer.integrate import budget
     from andoyer.integrate.api import poincare
     from andoyer.integrate.fill import fill_section
     from andoyer.integrate.section import Section
@@ -40,6 +41,10 @@ def run(args: argparse.Namespace) -> int:
         from andoyer.integrate.fill import default_h
 
         args.h = default_h(body, args.M)
+    budget.check_level(body, args.h, "--energy")
+    # Costed before the fill seeds a single orbit, naming the flags.
+    budget.check(f"--n-orbits {args.n_orbits} x --n-crossings {args.n_crossings}",
+                 memory=budget.DATASET_BYTES * float(args.n_orbits) * args.n_crossings)
     fill = fill_section(body, args.h, args.M, (sec.coord, sec.value),
                         n_orbits=args.n_orbits, sampling=args.sampling)
     y0 = fill["y0"].values

@@ -52,9 +52,6 @@ RESIDUAL_BOUND = 1e-10
 #: Rounds of continuation past singular passages before :func:`poincare` gives up on an
 #: orbit (each round asks the engine for more roots than the last, so few are needed).
 _MAX_ROUNDS = 40
-#: Bytes per state of a states dataset (about 30 float64 variables: the state, three
-#: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
-_DATASET_BYTES = 30 * 8
 #: A regular state standing in for NaN padding while roots are classified.
 _DUMMY_STATE = np.array([0.6, 0.0, 0.8, 0.0, 0.6, 0.8])
 #: Largest scratch array of crossings one engine call may allocate (bytes).
@@ -109,6 +106,7 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson",
         raise ValueError(f"y0 must be one state or a list of states, got shape {y.shape}")
     if y.shape[0] == 0:
         raise ValueError("y0 holds no state")
+    budget.check_momentum(float(np.max(np.abs(y[:, :3]))), name)
     return y
 
 
@@ -201,7 +199,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     times = check_times(t)
     y = initial_states(body, y0, chart)
     budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
-                 memory=_DATASET_BYTES * y.shape[0] * times.size)
+                 memory=budget.DATASET_BYTES * y.shape[0] * times.size)
     eng = resolve_engine(engine, Capability.PROPAGATE)
     name = eng.name
     params = body.engine_params
@@ -299,7 +297,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     # user gave is costed in steps.
     budget.check("poincare",
                  steps=0.0 if t_max is None else budget.estimate_steps(body, y, t_end, rtol),
-                 memory=_DATASET_BYTES * y.shape[0] * int(n_crossings))
+                 memory=budget.DATASET_BYTES * y.shape[0] * int(n_crossings))
     eng = resolve_engine(engine, Capability.CROSSINGS)
     name = eng.name
     params = body.engine_params

@@ -38,7 +38,8 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.errors import CostLimitError
 
-__all__ = ["LIMITS", "set_limits", "limits", "check", "estimate_steps", "SECONDS_PER_STEP"]
+__all__ = ["LIMITS", "set_limits", "limits", "check", "estimate_steps", "SECONDS_PER_STEP",
+           "MAX_MOMENTUM", "check_momentum", "check_level", "DATASET_BYTES"]
 
 #: Current limits: integration steps of one call, and bytes of its results.
 #: Defaults: 5e9 steps (about half an hour on one core), 4 GiB.
@@ -46,6 +47,15 @@ LIMITS: dict[str, float] = {"steps": 5e9, "memory": 4.0 * 2**30}
 _DEFAULTS = dict(LIMITS)
 #: Measured cost of one DOP853 step of the Euler-Poisson field on one core (numba).
 SECONDS_PER_STEP = 4e-7
+
+#: Bytes per state of a states dataset (about 30 float64 variables: the state, three
+#: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
+DATASET_BYTES = 30 * 8
+
+#: Largest |G| the integrators take. The field (1) is quadratic in G and the step
+#: control multiplies it once more, so beyond about 1e102 intermediate values overflow
+#: (a section at h = 1e300, |G| ~ 1e150, ended in a division by zero inside the kernel).
+MAX_MOMENTUM = 1e100
 
 
 def set_limits(steps: float | None = None, memory: float | None = None) -> dict[str, float]:
@@ -110,6 +120,33 @@ def _human(nbytes: float) -> str:
             return f"{nbytes:.3g} {unit}"
         nbytes /= 1024
     return f"{nbytes:.3g} TiB"  # pragma: no cover
+
+
+def check_momentum(G: float, name: str) -> None:
+    """``ValueError`` naming ``name`` if ``|G|`` exceeds :data:`MAX_MOMENTUM`.
+
+    >>> check_momentum(1e150, "y0")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: y0: |G| = 1e+150 is beyond the 1e+100 that the integrators take ...
+    """
+    if not G <= MAX_MOMENTUM:
+        raise ValueError(f"{name}: |G| = {G:.3g} is beyond the {MAX_MOMENTUM:.3g} that the "
+                         "integrators take (the field (1) and its error control would "
+                         "overflow); rescale the problem (time by 1/|G|, energies by "
+                         "1/|G|^2)")
+
+
+@checks_body
+def check_level(body: RigidBody, h: float, name: str = "h") -> None:
+    """``ValueError`` naming ``name`` if the level ``H = h`` reaches ``|G|`` beyond
+    :data:`MAX_MOMENTUM` (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, Eq. (1))."""
+    reach = math.sqrt(2.0 * max(h + body.mu, 0.0) / min(body.a, body.b, body.c))
+    if not reach <= MAX_MOMENTUM:
+        raise ValueError(f"{name} = {h:g}: the energy level reaches |G| = {reach:.3g}, "
+                         f"beyond the {MAX_MOMENTUM:.3g} that the integrators take (the "
+                         "field (1) and its error control would overflow); take a lower "
+                         "level")
 
 
 def check(what: str, *, steps: float = 0.0, memory: float = 0.0) -> None:

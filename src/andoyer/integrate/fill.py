@@ -47,6 +47,7 @@ from andoyer.kernels import generated as K
 from andoyer.notation import renamed
 from andoyer.validation import finite as _finite
 from andoyer.validation import integer
+from andoyer.validation import positive as _positive
 
 #: Longer names of arguments in messages (andoyer.validation.checks_arguments).
 ARGUMENT_NAMES = {"n_orbits": "n_orbits (number of plane points)"}
@@ -523,7 +524,8 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
     boundary_grid : int, default 200
         Resolution of the accessible-region grid (``boundary_grid`` squared points).
     tol : float, default 1e-12
-        Largest accepted ``|H(y0) - h| / max(|h|, mu)``.
+        Largest accepted ``|H(y0) - h| / max(|h|, mu)`` (> 0); states above it are
+        refused with a ``ValueError`` naming ``tol``.
 
     Returns
     -------
@@ -567,6 +569,8 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
     """
     plane, value = _parse_section(section)
     h, M = _finite("h", h), _finite("M", M)
+    budget.check_level(body, h)
+    tol = _positive("tol", tol)
     n = integer("n_orbits (number of plane points)", n_orbits, 1)
     if sampling not in ("grid", "sobol", "halton"):
         raise ValueError(f"unknown sampling {sampling!r}; choose 'grid', 'sobol' or "
@@ -627,8 +631,11 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
     scale = max(abs(h), body.mu)
     residual = np.abs(energy(body, y) - h) / scale
     if np.any(residual > tol):
-        raise RuntimeError(f"the energy residual {residual.max():.3g} exceeds tol = {tol:g} "
-                           f"on {int(np.sum(residual > tol))} states; please report this")
+        raise ValueError(f"the energy residual |H(y0) - h| / max(|h|, mu) reaches "
+                         f"{residual.max():.3g} on {int(np.sum(residual > tol))} states, "
+                         f"above tol = {tol:g}: the roots of the action are found to about "
+                         "1e-15 relative, less near a tangency of the level (a fold of the "
+                         "accessible region); raise tol")
     rate = vector_field(body, x, plane.chart)[:, 1]
     lines = _polylines(xs, ys, F)
 

@@ -193,7 +193,11 @@ def _values(where: str, v: Any) -> Value:
             raise ValueError(f"{where}: a range needs start, stop and num; missing "
                              f"{', '.join(missing)}")
         start, stop = _number(f"{where}.start", v["start"]), _number(f"{where}.stop", v["stop"])
+        # Bounded before anything is allocated (num = 1e12 would ask for 8 TB).
         num = integer(f"{where}.num", v["num"], 1)
+        if num > MAX_POINTS:
+            raise ValueError(f"{where}.num = {num} values: more than the {MAX_POINTS} "
+                             "points a whole grid may have; sweep fewer values")
         spacing = v.get("spacing", "linear")
         if spacing == "linear":
             vals = np.linspace(start, stop, int(num))
@@ -501,21 +505,34 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
 
 
 def _check_bodies_and_levels(cfg: ScanConfig, where: str) -> None:
-    """Every grid point must make a body, and a level set H = h, (G, gamma) = M."""
-    names = ("A", "B", "C", "mu") + (("epsilon",) if cfg.body_kind == "hess" else ())
-    bodies: list[RigidBody] = []
-    for combo in itertools.product(*(cfg.values(k) for k in names)):
-        values = dict(zip(names, combo, strict=True))
+    """Every grid point must make a body, and a level set H = h, (G, gamma) = M.
+
+    The body's shape (A, B, C and, for Hess bodies, epsilon: its centre of mass
+    direction) does not depend on mu, which only has to be >= 0: every shape is built at
+    the first mu and every mu with the first shape, so that a grid swept in mu and the
+    levels costs a few bodies, not one per point (an 810 000-point grid loads at once).
+    The levels are checked where they are tightest (smallest mu and largest moment).
+    """
+    shape_names = ("A", "B", "C") + (("epsilon",) if cfg.body_kind == "hess" else ())
+    mus = cfg.values("mu")
+
+    def make(values: dict[str, float]) -> RigidBody:
         try:
-            bodies.append(cfg.body_at(values))
+            return cfg.body_at(values)
         except ValueError as exc:
             point = ", ".join(f"{k} = {v:g}" for k, v in values.items()
                               if k != "epsilon" or v != 0.0)
-            swept = [k for k in names if k in cfg.swept]
+            swept = [k for k in (*shape_names, "mu") if k in cfg.swept]
             raise ValueError(
                 f"{where}: [parameters] the grid point {point} makes no {cfg.body_kind} "
                 f"body: {exc}" + (f"; narrow the ranges of {', '.join(swept)}"
                                   if swept else "")) from None
+
+    shapes = [dict(zip(shape_names, combo, strict=True))
+              for combo in itertools.product(*(cfg.values(k) for k in shape_names))]
+    bodies = [make({**shape, "mu": mus[0]}) for shape in shapes]
+    for other in mus[1:]:
+        make({**shapes[0], "mu": other})
     validate = TASKS[cfg.task].validate
     if validate is not None:
         try:
@@ -525,7 +542,7 @@ def _check_bodies_and_levels(cfg: ScanConfig, where: str) -> None:
     if "h" not in dict(cfg.parameters):
         return
     # H >= -mu everywhere; |M| <= G <= sqrt(2 (h + mu) max(A, B, C)) on the level h.
-    mu = np.array(cfg.values("mu"))[:, None]
+    mu = np.array(mus)[:, None]
     h = np.array(cfg.values("h"))[None, :]
     if np.any(h <= -mu):
         i, j = np.argwhere(h <= -mu)[0]
@@ -533,18 +550,19 @@ def _check_bodies_and_levels(cfg: ScanConfig, where: str) -> None:
                          f"below the minimum -mu of H (Eq. (1)): the level is empty; "
                          "take h > -mu")
     abc = np.array([max(b.A, b.B, b.C) for b in bodies])
-    mus = np.array([b.mu for b in bodies])
-    for hv in cfg.values("h"):
-        gmax = np.sqrt(2.0 * np.maximum(hv + mus, 0.0) * abc)
-        for M in cfg.values("M"):
-            bad = np.flatnonzero(abs(M) >= gmax)
-            if bad.size:
-                b = bodies[int(bad[0])]
-                raise ValueError(
-                    f"{where}: [parameters] M = {M:g} is out of reach on the level h = "
-                    f"{hv:g} (mu = {b.mu:g}, A, B, C = {b.A:g}, {b.B:g}, {b.C:g}): "
-                    f"|M| <= G <= sqrt(2 (h + mu) max(A, B, C)) = {gmax[bad[0]]:.6g}; "
-                    "lower |M| or raise h")
+    k = int(np.argmin(abc))
+    mu_min = min(mus)
+    gmax = np.sqrt(2.0 * np.maximum(np.array(cfg.values("h")) + mu_min, 0.0) * abc[k])
+    M = np.abs(np.array(cfg.values("M")))
+    bad = np.argwhere(M[None, :] >= gmax[:, None])
+    if bad.size:
+        i, j = bad[0]
+        b = bodies[k]
+        raise ValueError(
+            f"{where}: [parameters] M = {cfg.values('M')[j]:g} is out of reach on the level "
+            f"h = {cfg.values('h')[i]:g} (mu = {mu_min:g}, A, B, C = {b.A:g}, {b.B:g}, "
+            f"{b.C:g}): |M| <= G <= sqrt(2 (h + mu) max(A, B, C)) = {gmax[i]:.6g}; "
+            "lower |M| or raise h")
 
 
 def load_config(source: str | os.PathLike[str] | Mapping[str, Any]) -> ScanConfig:
@@ -635,7 +653,7 @@ def estimate_cost(cfg: ScanConfig) -> Cost:
     """
     seconds, values = TASKS[cfg.task].cost(dict(cfg.task_options))
     n = cfg.n_points
-    return Cost(n, len(cfg.blocks()), n * seconds, n * values * 8.0)
+    return Cost(n, math.prod(cfg.block_shape), n * seconds, n * values * 8.0)
 
 
 def check_size(cfg: ScanConfig, max_core_hours: float, max_store_gb: float) -> Cost:
