@@ -120,17 +120,18 @@ def test_hunt_huge_counts_end_in_the_guard_naming_the_flag(argv, flag, value, ca
     assert flag in err and "out of memory" not in err, err
 
 
-@pytest.mark.parametrize("value", ["1e101", "1e150", "1e300", "-1e300"])
-@pytest.mark.parametrize("argv, flag", [
-    (["orbit", "--y0", "{},0,0,0,0,1"], "--y0"),
-    (["orbit", "--andoyer", "0.3,1,0,{},0"], "--andoyer"),
-    (["section", "--energy", "{}"], "--energy"),
+# |G| beyond 1e100: states from 1e101, levels (h ~ G^2) from about 1e201.
+@pytest.mark.parametrize("argv, flag, values", [
+    (["orbit", "--y0", "{},0,0,0,0,1"], "--y0", ["1e101", "1e150", "1e300", "-1e300"]),
+    (["orbit", "--andoyer", "0.3,1,0,{},0"], "--andoyer", ["1e101", "1e150", "1e300"]),
+    (["section", "--energy", "{}"], "--energy", ["1e201", "1e250", "1e300", "1.7e308"]),
 ])
-def test_hunt_huge_levels_and_states_are_refused_naming_the_flag(argv, flag, value,
+def test_hunt_huge_levels_and_states_are_refused_naming_the_flag(argv, flag, values,
                                                                 capsys):
-    code, err = _fails([a.format(value) for a in argv] + ["--engine", "numba"], capsys)
-    assert code == EXIT_CODES["bad input"], err
-    assert flag in err and "integration failed" not in err and "internal" not in err, err
+    for value in values:
+        code, err = _fails([a.format(value) for a in argv] + ["--engine", "numba"], capsys)
+        assert code == EXIT_CODES["bad input"], err
+        assert flag in err and "integration failed" not in err and "internal" not in err
 
 
 def test_the_momentum_limit_keeps_the_field_finite():
