@@ -17,7 +17,11 @@ from pathlib import Path
 
 from andoyer.errors import NoSpaceError
 
-__all__ = ["atomic_path", "named_when_full", "FULL_BELOW"]
+__all__ = ["atomic_path", "named_when_full", "FULL_BELOW", "remove_pending"]
+
+#: Temporary files of this process being written now (removed on any failure, and by
+#: :func:`remove_pending` when a signal ends a worker process at once).
+_PENDING: set[Path] = set()
 
 #: A write that failed while fewer bytes than this were free on its file system failed
 #: for want of space (libraries such as HDF5 do not pass ``ENOSPC`` on).
@@ -75,6 +79,7 @@ def atomic_path(final: str | os.PathLike[str]) -> Iterator[Path]:
         raise ValueError(f"folder {str(out.parent)!r} does not exist; create it first")
     fd, tmp = tempfile.mkstemp(dir=out.parent, prefix=f".{out.name}.", suffix=".tmp")
     os.close(fd)
+    _PENDING.add(Path(tmp))
     try:
         yield Path(tmp)
         os.chmod(tmp, 0o666 & ~_umask())
@@ -85,3 +90,13 @@ def atomic_path(final: str | os.PathLike[str]) -> Iterator[Path]:
         if full:
             raise NoSpaceError(out) from exc
         raise
+    finally:
+        _PENDING.discard(Path(tmp))
+
+
+def remove_pending() -> None:
+    """Remove the temporary files of :func:`atomic_path` this process is writing now
+    (for a process that must end at once, without unwinding)."""
+    for tmp in list(_PENDING):
+        tmp.unlink(missing_ok=True)
+        _PENDING.discard(tmp)

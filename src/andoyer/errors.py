@@ -15,8 +15,9 @@ import errno
 import os
 
 __all__ = ["ArgumentTypeError", "CostLimitError", "DamagedFileError", "DamagedStoreWarning",
-           "IntegrationError", "NoCacheWarning", "NoSpaceError", "SingularChartWarning",
-           "SingularPassageWarning"]
+           "IntegrationError", "Interrupted", "NoCacheWarning", "NoSpaceError",
+           "OutputInUseError", "SingularChartWarning", "SingularPassageWarning",
+           "StaleLockWarning"]
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -58,6 +59,30 @@ class IntegrationError(FloatingPointError):
 
     A ``FloatingPointError``, which is what the engines raised before it existed.
     """
+
+
+class OutputInUseError(ValueError):
+    """The output is being written by another run (named in the message, with its pid,
+    host and start time); see :mod:`andoyer.outputs`."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """The run was ended by a signal: Ctrl-C (SIGINT), SIGTERM or SIGHUP, all alike.
+
+    A ``KeyboardInterrupt``, so that every ``finally`` and every handler of Ctrl-C
+    cleans up the same way. ``signal`` is the signal's name; ``note`` says what was kept
+    (e.g. how to resume), for the one line the command line prints.
+    """
+
+    def __init__(self, signal: str = "SIGINT", note: str | None = None) -> None:
+        super().__init__(signal)
+        self.signal = signal
+        self.note = note
+
+
+class StaleLockWarning(UserWarning):
+    """The lock of an output was left by a run that did not finish (killed); this run
+    takes it over (see :mod:`andoyer.outputs`)."""
 
 
 class SingularChartWarning(UserWarning):

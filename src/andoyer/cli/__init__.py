@@ -22,6 +22,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from andoyer._version import __version__
+from andoyer.cli._signals import interrupts
+from andoyer.outputs import release_all
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
 
@@ -74,8 +76,10 @@ def _classify(exc: BaseException) -> tuple[str, str]:
     from andoyer.errors import CostLimitError, IntegrationError
 
     if isinstance(exc, KeyboardInterrupt):
-        return "interrupted", ("interrupted; files already written are complete, nothing "
-                               "half-written was left behind")
+        signame = getattr(exc, "signal", "SIGINT")
+        note = getattr(exc, "note", None) or ("files already written are complete, nothing "
+                                              "half-written was left behind")
+        return "interrupted", f"interrupted ({signame}); {note}"
     if isinstance(exc, CostLimitError):
         return "cost limit", str(exc)
     if isinstance(exc, MemoryError):
@@ -179,16 +183,27 @@ def main(argv: Sequence[str] | None = None) -> int:
     warnings.showwarning = _show_warning
     _matplotlib_config()
     try:
-        if args.no_limits:
-            import math
+        with interrupts() as signals:
+            try:
+                if args.no_limits:
+                    import math
 
-            from andoyer.integrate.budget import set_limits
+                    from andoyer.integrate.budget import set_limits
 
-            set_limits(steps=math.inf, memory=math.inf)
-        return int(args.func(args))
+                    set_limits(steps=math.inf, memory=math.inf)
+                return int(args.func(args))
+            finally:
+                release_all()
     except (Exception, KeyboardInterrupt) as exc:
         if getattr(args, "debug", False):
             raise
+        if signals and not isinstance(exc, KeyboardInterrupt):
+            # a failure caused by the interruption (a pool whose worker was ended)
+            import signal
+
+            from andoyer.errors import Interrupted
+
+            exc = Interrupted(signal.Signals(signals[0]).name)
         kind, message = _classify(exc)
         sys.stderr.write(f"andoyer {args.command}: error: {message}\n")
         raise SystemExit(EXIT_CODES[kind]) from None

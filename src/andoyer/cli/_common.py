@@ -11,6 +11,7 @@ from typing import Any
 
 from andoyer.integrate.engines import ENGINES
 from andoyer.notation import VOCABULARY
+from andoyer.outputs import guard_folder, hold
 from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
@@ -130,12 +131,17 @@ def output_file(text: str, suffix: str, flag: str = "--out") -> Path:
     """Check an output file named on the command line before any computation.
 
     It must end in ``suffix``, must not be a folder, and its folder must exist and be
-    writable. Raises ``ValueError`` naming the flag and its value.
+    writable; it is then locked for the rest of the command (:func:`andoyer.outputs.hold`:
+    a second run writing it is refused, naming this one). Raises ``ValueError`` naming the
+    flag and its value.
 
     Examples
     --------
-    >>> output_file("sec.nc", ".nc").name
+    >>> import tempfile, pathlib
+    >>> from andoyer.outputs import release_all
+    >>> output_file(str(pathlib.Path(tempfile.mkdtemp()) / "sec.nc"), ".nc").name
     'sec.nc'
+    >>> release_all()  # what the command line does when the command ends
     >>> output_file("sec.png", ".nc")
     Traceback (most recent call last):
     ...
@@ -148,21 +154,29 @@ def output_file(text: str, suffix: str, flag: str = "--out") -> Path:
     if path.is_dir():
         raise ValueError(f"{flag} {text!r} is an existing folder; name a file")
     _writable_folder(path.parent if str(path.parent) else Path("."), flag, text)
+    hold(path)
     return path
 
 
 def output_folder(text: str, flag: str = "--out") -> Path:
-    """Check an output folder: an existing writable folder, or one that can be created."""
+    """Check an output folder: an existing writable folder, or one that can be created.
+
+    It is then locked for the rest of the command, and refused if it holds files andoyer
+    did not write there (:func:`andoyer.outputs.guard_folder`: a folder's manifest lists
+    what andoyer wrote).
+    """
     path = Path(text)
     if path.exists():
         if not path.is_dir():
             raise ValueError(f"{flag} {text!r} is an existing file; name a folder")
         _writable_folder(path, flag, text)
-        return path
-    parent = path.parent
-    while not parent.exists() and parent != parent.parent:
-        parent = parent.parent
-    _writable_folder(parent, flag, text)
+    else:
+        parent = path.parent
+        while not parent.exists() and parent != parent.parent:
+            parent = parent.parent
+        _writable_folder(parent, flag, text)
+        path.parent.mkdir(parents=True, exist_ok=True)
+    guard_folder(path, flag)
     return path
 
 

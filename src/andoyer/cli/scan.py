@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
 
 from andoyer.cli._common import count, real
@@ -34,10 +33,12 @@ def run(args: argparse.Namespace) -> int:
                       overwrite=args.overwrite, retries=args.retries,
                       progress=None if args.progress is None else args.progress,
                       max_core_hours=args.max_core_hours, max_store_gb=args.max_store_gb)
-    except KeyboardInterrupt:
-        print(f"\ninterrupted: the chunks marked done in {store} are kept; run the same "
-              "command to resume", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:  # the boundary prints it, with how to resume
+        from andoyer.errors import Interrupted
+
+        raise Interrupted(getattr(exc, "signal", "SIGINT"),
+                          f"the chunks marked done in {store} are kept; run the same "
+                          "command to resume") from None
     if report.dashboard:
         print(f"dashboard was at {report.dashboard}")
     print(summary(report))

@@ -26,6 +26,8 @@ from typing import Any
 
 import xarray as xr
 
+from andoyer.outputs import OutputLock
+from andoyer.processes import children_ignore_interrupts
 from andoyer.progress import Progress
 from andoyer.scan.config import ScanConfig, check_size, load_config
 from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
@@ -34,6 +36,9 @@ from andoyer.validation import integer
 
 __all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB",
            "ChunkResult", "run_point", "run_chunk"]
+
+#: The only interface the servers of a local cluster listen on.
+LOOPBACK = "127.0.0.1"
 
 #: Limits of the size check (see :func:`andoyer.scan.config.check_size`).
 DEFAULT_MAX_CORE_HOURS = 100.0
@@ -149,10 +154,14 @@ def _client(scheduler: str | None, client: Any, n_workers: int | None
         return
     n = n_workers or os.cpu_count() or 1
     # One thread per worker process: a task runs single-threaded (andoyer.scan.tasks),
-    # and fill_section is NumPy code that holds the GIL.
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=logging.ERROR) as cluster, \
-            Client(cluster) as c:
+    # and fill_section is NumPy code that holds the GIL. Every server of the cluster
+    # (scheduler, nannies, workers, dashboard) listens on the loopback interface only.
+    # Its threads and processes never see Ctrl-C: this process ends them.
+    with children_ignore_interrupts():
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
+                               silence_logs=logging.ERROR)
+    with cluster, Client(cluster) as c:
         yield c
 
 
@@ -225,35 +234,38 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     path = Path(store)
     if not path.parent.exists():
         raise ValueError(f"folder {str(path.parent)!r} of the store does not exist; create it")
-    t0 = time.perf_counter()
-    done = prepare(path, cfg, overwrite=overwrite)
-    blocks = cfg.blocks()
-    todo = blocks if done is None else [b for b in blocks
-                                        if not done[cfg.block_slices(b)].all()]
-    schema = None if done is None else store_schema(path, cfg)
-    report = ScanReport(path, len(blocks), len(blocks) - len(todo), 0)
-    if not todo:
-        return report
-    serial = scheduler == "serial"
-    with contextlib.ExitStack() as stack:
-        dashboard = None
-        if serial:
-            results = _serial(cfg, todo)
-        else:
-            c = stack.enter_context(_client(scheduler, client, n_workers))
-            dashboard = _dashboard(c)
-            threads = sum(c.nthreads().values()) or 1
-            window = max_in_flight or max(2, 2 * threads)
-            results = _dask(c, cfg, todo, retries, window)
-            stack.callback(results.close)
-        bar = Progress(len(blocks), f"scan ({len(blocks) - report.resumed} of "
-                       f"{len(blocks)} tasks to compute)", progress,
-                       postfix=f"Dask dashboard {dashboard}" if dashboard else None,
-                       initial=report.resumed)
-        stack.callback(bar.close)
-        computed, empty = _consume(results, path, cfg, schema, overwrite, bar)
-    return ScanReport(path, len(blocks), report.resumed, computed, empty,
-                      time.perf_counter() - t0, dashboard)
+    # One writer per store, for the whole run: a second scan (with --overwrite too) is
+    # refused, naming this one, instead of replacing the store under it.
+    with OutputLock(path):
+        t0 = time.perf_counter()
+        done = prepare(path, cfg, overwrite=overwrite)
+        blocks = cfg.blocks()
+        todo = blocks if done is None else [b for b in blocks
+                                            if not done[cfg.block_slices(b)].all()]
+        schema = None if done is None else store_schema(path, cfg)
+        report = ScanReport(path, len(blocks), len(blocks) - len(todo), 0)
+        if not todo:
+            return report
+        serial = scheduler == "serial"
+        with contextlib.ExitStack() as stack:
+            dashboard = None
+            if serial:
+                results = _serial(cfg, todo)
+            else:
+                c = stack.enter_context(_client(scheduler, client, n_workers))
+                dashboard = _dashboard(c)
+                threads = sum(c.nthreads().values()) or 1
+                window = max_in_flight or max(2, 2 * threads)
+                results = _dask(c, cfg, todo, retries, window)
+                stack.callback(results.close)
+            bar = Progress(len(blocks), f"scan ({len(blocks) - report.resumed} of "
+                           f"{len(blocks)} tasks to compute)", progress,
+                           postfix=f"Dask dashboard {dashboard}" if dashboard else None,
+                           initial=report.resumed)
+            stack.callback(bar.close)
+            computed, empty = _consume(results, path, cfg, schema, overwrite, bar)
+        return ScanReport(path, len(blocks), report.resumed, computed, empty,
+                          time.perf_counter() - t0, dashboard)
 
 
 def _consume(results: Iterator[ChunkResult], path: Path, cfg: ScanConfig,
