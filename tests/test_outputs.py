@@ -144,7 +144,7 @@ def test_scan_never_replaces_a_store_under_a_live_writer(tmp_path, other_process
     from andoyer.scan.run import scan
 
     cfg = {"parameters": {"mu": [0.01, 0.1], "h": 0.3},
-           "task": {"kind": "section", "orbits": 2, "crossings": 3}}
+           "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3}}
     store = tmp_path / "s.zarr"
     scan(cfg, store, scheduler="serial", progress=False)
     before = sorted(p.relative_to(store) for p in store.rglob("*"))

@@ -45,15 +45,15 @@ h = 0.3
 [task]
 kind = "section"
 section = "theta2=0"
-orbits = 3
-crossings = 300
+n_orbits = 3
+n_crossings = 300
 [integrator]
 engine = "numba"
 """
 
 #: The long commands, each small enough for a test.
 COMMANDS: dict[str, list[str]] = {
-    "section": ["section", "--orbits", "6", "--crossings", "300", "--out", "s.nc"],
+    "section": ["section", "--n-orbits", "6", "--n-crossings", "300", "--out", "s.nc"],
     "orbit": ["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "30000", "--n-out",
               "30001", "--out", "o.nc"],
     "chaos-map": ["chaos-map", "--n", "8", "--t-end", "300", "--out", "c.nc"],
