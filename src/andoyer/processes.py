@@ -68,6 +68,11 @@ def children_ignore_interrupts() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    # Multiprocessing starts its resource tracker with SIGINT blocked, then *unblocks*
+    # SIGINT in the calling thread: started here first, it cannot undo the block below.
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
     signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
     try:
         yield

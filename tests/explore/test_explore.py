@@ -434,3 +434,35 @@ def test_command_rejects_bad_input() -> None:
     with pytest.raises(SystemExit) as exc:
         main(["explore", "--section", "G3=0", "--no-browser"])
     assert exc.value.code == 2
+
+
+def test_pages_past_the_cap_say_so_and_share_the_plane() -> None:
+    """Past ``max_sessions`` open pages a page says so (it was: every load built an
+    explorer and its plane, and 50 rapid loads starved the server); pages of one setting
+    share one read-only plane."""
+    from bokeh.client import pull_session
+
+    from andoyer.explore.server import serve
+    from andoyer.explore.state import make_settings, shared_plane_view
+
+    handle = serve(threaded=True, max_sessions=1, n_crossings=5)
+    assert handle is not None
+    sessions = []
+    try:
+        for _ in range(2):
+            sessions.append(pull_session(url=handle.url))
+        first, second = (s.document for s in sessions)
+        assert first.select_one({"name": "andoyer-plane"}) is not None
+        assert second.select_one({"name": "andoyer-plane"}) is None
+        texts = [m.text for m in second.select({}) if isinstance(getattr(m, "text", None), str)]
+        assert any("1 pages are open, the most this server keeps" in t for t in texts), texts
+    finally:
+        for s in sessions:
+            s.close()
+        handle.stop()
+    view = shared_plane_view(make_settings(None), 40)
+    assert view is shared_plane_view(make_settings(None), 40)
+    with pytest.raises(ValueError, match="read-only"):
+        view.boundary_x[0] = 0.0
+    with pytest.raises(ValueError, match="max_sessions"):
+        serve(threaded=True, max_sessions=0)

@@ -31,7 +31,7 @@ def run(args: argparse.Namespace) -> int:
 
     serve(body, port=args.port, show=not args.no_browser, on_start=started, h=args.h,
           M=args.M, section=section, n_crossings=args.n_crossings, engine=args.engine,
-          rtol=args.rtol, atol=args.atol)
+          rtol=args.rtol, atol=args.atol, max_sessions=args.max_sessions)
     print("andoyer explore: stopped")
     return 0
 
@@ -46,6 +46,8 @@ def register(sub: Any) -> None:
              help="crossings per orbit (default 500)")
     add_engine_args(p)
     p.add_argument("--port", type=count(0, 65535), default=0, help="port (default 0: a free port)")
+    p.add_argument("--max-sessions", type=count(1), default=8,
+                   help="pages open at once; a page past it says so (default 8)")
     p.add_argument("--no-browser", action="store_true",
                    help="do not open the page in a web browser")
     p.set_defaults(func=run)

@@ -18,8 +18,15 @@ from andoyer.explore.state import (
     make_settings,
 )
 from andoyer.explore.ui import Explorer
+from andoyer.validation import integer
 
-__all__ = ["ServerHandle", "app", "serve"]
+__all__ = ["ServerHandle", "app", "serve", "MAX_SESSIONS"]
+
+#: Pages a server keeps open at once (each has its orbits and two worker threads); a page
+#: opened past it says so and asks to close one. A page loaded but never connected
+#: (no browser behind it) is dropped after :data:`_UNUSED_MS`.
+MAX_SESSIONS = 8
+_UNUSED_MS = 10_000
 
 
 # ---------------------------------------------------------------------- entry points
@@ -55,12 +62,47 @@ def _free_port(address: str) -> int:
 def _make_server(factory: Callable[[], Any], port: int, address: str, loop: Any) -> Any:
     return pn.serve({"/": factory}, port=port, address=address, show=False, start=False,
                     loop=loop, verbose=False, title="andoyer explore", location=False,
-                    websocket_origin=[f"{address}:{port}", f"localhost:{port}"])
+                    websocket_origin=[f"{address}:{port}", f"localhost:{port}"],
+                    unused_session_lifetime_milliseconds=_UNUSED_MS,
+                    check_unused_sessions_milliseconds=1_000)
+
+
+def _capped(factory: Callable[[], Any], max_sessions: int) -> Callable[[], Any]:
+    """``factory`` for at most ``max_sessions`` open pages; past it, a page saying so.
+
+    A page's place is freed when Bokeh destroys its session (tab closed, or never
+    connected), and with it the page's explorer (:meth:`Explorer.close`).
+    """
+    live: set[str] = set()
+    lock = threading.Lock()
+
+    def page() -> Any:
+        doc = pn.state.curdoc
+        ctx = doc.session_context if doc is not None else None
+        with lock:
+            if len(live) >= max_sessions:
+                return pn.pane.HTML(
+                    f"<h3>andoyer explore: {max_sessions} pages are open, the most this "
+                    "server keeps</h3><p>Close another page of the explorer, then reload "
+                    "this one (or restart it with a larger <code>--max-sessions</code>)."
+                    "</p>", name="andoyer-busy")
+            if ctx is not None:
+                live.add(ctx.id)
+        if doc is not None and ctx is not None:
+            doc.on_session_destroyed(lambda c: _forget(live, lock, c.id))
+        return factory()
+    return page
+
+
+def _forget(live: set[str], lock: threading.Lock, sid: str) -> None:
+    with lock:
+        live.discard(sid)
 
 
 def serve(body: RigidBody | None = None, *, port: int = 0, address: str = "127.0.0.1",
           show: bool = False, threaded: bool = False,
-          on_start: Callable[[str], None] | None = None, **kwargs: Any) -> ServerHandle | None:
+          on_start: Callable[[str], None] | None = None, max_sessions: int = MAX_SESSIONS,
+          **kwargs: Any) -> ServerHandle | None:
     """Serve the explorer on ``http://address:port/`` (one :class:`Explorer` per page).
 
     Parameters
@@ -78,14 +120,22 @@ def serve(body: RigidBody | None = None, *, port: int = 0, address: str = "127.0
         otherwise block until interrupted (Ctrl-C) and return None.
     on_start : callable, optional
         Called with the page's address once the server listens.
+    max_sessions : int, default :data:`MAX_SESSIONS`
+        Pages open at once; a page past it says so (what the server does is bounded:
+        the plane of a setting is computed once and shared by the pages, a closed page
+        frees its explorer).
     """
     if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
         raise ValueError(f"port must be an integer in [0, 65535], got {port!r}")
     settings = {k: v for k, v in kwargs.items() if k != "boundary_grid"}
     make_settings(body, **settings)  # bad input fails here, not in every page
 
-    def factory() -> Any:
+    max_sessions = integer("max_sessions", max_sessions, 1)
+
+    def explorer() -> Any:
         return Explorer(body, **kwargs).panel
+
+    factory = _capped(explorer, max_sessions)
 
     from tornado.ioloop import IOLoop
 

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import logging
 import math
+import threading
 from functools import partial
 from typing import Any
 
@@ -87,13 +88,32 @@ from andoyer.explore.state import (
     crossing_stages,
     integral_drifts,
     orbit_indicators,
-    plane_view,
     seed,
+    shared_plane_view,
 )
 from andoyer.integrate.engines import ENGINES
 from andoyer.integrate.section import Section
 
 __all__ = ["Explorer"]
+
+#: Integrators already warmed up in this process (one page does it for all).
+_WARM: set[tuple[Any, ...]] = set()
+_WARM_LOCK = threading.Lock()
+
+
+def _warm_up(settings: Settings, view: PlaneView) -> None:
+    """Compile (or load from heyoka's cache) the engine now, not at the first click: a
+    few crossings of the fill's own seed; once per process and integrator."""
+    from andoyer.integrate.api import poincare
+
+    key = (settings.body, settings.section, settings.engine, settings.rtol, settings.atol)
+    with _WARM_LOCK:
+        if key in _WARM:
+            return
+        poincare(settings.body, view.fill.y0.values[:1], settings.section, 2,
+                 engine=settings.engine, rtol=settings.rtol, atol=settings.atol,
+                 progress=False)
+        _WARM.add(key)
 
 log = logging.getLogger("andoyer.explore")  # the logger of andoyer.explore.base
 
@@ -307,16 +327,10 @@ class Explorer(ExplorerBase):
 
         def job() -> None:
             try:
-                view = plane_view(settings, self.boundary_grid)
+                view = shared_plane_view(settings, self.boundary_grid)
                 self._schedule(lambda: self._show_view(gen, view))
                 if warm_up:
-                    # Compile (or load from heyoka's cache) the engine now, not at the
-                    # first click: a few crossings of the fill's own seed.
-                    from andoyer.integrate.api import poincare
-
-                    poincare(settings.body, view.fill.y0.values[:1], settings.section, 2,
-                             engine=settings.engine, rtol=settings.rtol, atol=settings.atol,
-                             progress=False)
+                    _warm_up(settings, view)
             finally:
                 self._schedule(self._job_done)
         self._background(self._work, job)
