@@ -57,7 +57,7 @@ COMMANDS: dict[str, list[str]] = {
     "orbit": ["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "30000", "--n-out",
               "30001", "--out", "o.nc"],
     "chaos-map": ["chaos-map", "--n", "8", "--t-end", "300", "--out", "c.nc"],
-    "manifolds": ["manifolds", "--mu-list", "0.01", "--n-phase", "4", "--no-hess-check",
+    "manifolds": ["manifolds", "--mu-list", "0.01", "--n-phase", "8", "--no-hess-check",
                   "--out", "m"],
     "paper": ["paper", "--out", "p", "--quick", "--only", "fig2", "paper-check",
               "--jobs", "2"],

@@ -21,6 +21,7 @@ CLI_ONLY = {
     "--n-out": "output times (API t)", "--mu-list": "the list of mu (API mu of "
     "separatrix_splitting; --mu is the body's)", "--no-hess-check": "skip a second run",
     "--port": "server port", "--no-browser": "server option", "--pdf": "also a PDF",
+    "--max-sessions": "server option (API serve(max_sessions=))",
     "--rows": "atlas layout", "--cols": "atlas layout", "--select": "atlas slice",
     "--maps": "atlas layout", "--width": "figure size", "--scheduler": "Dask",
     "--workers": "Dask", "--overwrite": "store", "--retries": "Dask", "--dry-run": "scan",

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from andoyer._version import __version__
-from andoyer.cli._signals import interrupts
+from andoyer.cli._signals import ignore_until_exit, interrupts
 from andoyer.outputs import release_all
 
 __all__ = ["main", "build_parser", "EXIT_CODES"]
@@ -207,6 +207,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         kind, message = _classify(exc)
         sys.stderr.write(f"andoyer {args.command}: error: {message}\n")
         raise SystemExit(EXIT_CODES[kind]) from None
+    finally:
+        if argv is None:  # the command line: the process exits next
+            ignore_until_exit()
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -18,7 +18,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["SIGNALS", "interrupts"]
+__all__ = ["SIGNALS", "interrupts", "ignore_until_exit"]
 
 #: The signals a command ends on, cleanly.
 SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
@@ -59,3 +59,12 @@ def interrupts() -> Iterator[list[int]]:
     finally:
         for sig, h in old.items():
             signal.signal(sig, h if h is not None else signal.SIG_DFL)
+
+
+def ignore_until_exit() -> None:
+    """Ignore the signals from now on: the command has ended (its exit code is set), and
+    the interpreter's shutdown, which resets Python's handlers to the default, would
+    otherwise die of a late signal with no exit code of ours."""
+    if threading.current_thread() is threading.main_thread():
+        for sig in SIGNALS:
+            signal.signal(sig, signal.SIG_IGN)
