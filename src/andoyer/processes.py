@@ -36,15 +36,9 @@ def child_signals() -> None:
     """In a child process (an ``initializer=`` of a pool): ignore SIGINT and SIGHUP, and
     on SIGTERM (its parent ending it) remove the temporary files it is writing
     (:func:`andoyer.atomic.remove_pending`) and exit at once."""
-    from tqdm import tqdm
-
     for sig in CHILD_IGNORES:
         signal.signal(sig, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _end_now)
-    # tqdm's default lock is a multiprocessing semaphore, made in the child, which an
-    # ended child would leave to the resource tracker ("leaked semaphore" on stderr);
-    # this process's bars need a thread lock only.
-    tqdm.set_lock(threading.RLock())
 
 
 def _end_now(signum: int, frame: object) -> None:

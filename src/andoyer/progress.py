@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -71,6 +72,12 @@ class Progress:
         else:  # tqdm.auto would warn in a notebook without ipywidgets: a text bar
             from tqdm.std import tqdm
 
+        if not hasattr(tqdm, "_lock"):
+            # tqdm's default lock holds a multiprocessing semaphore: a worker process
+            # ended by its parent (andoyer.processes) would leave it to multiprocessing's
+            # resource tracker, which prints "leaked semaphore" on stderr. Bars of
+            # andoyer need a thread lock only.
+            tqdm.set_lock(threading.RLock())
         self.total, self.done = int(total), 0
         if _SILENCED.get():
             enabled = False

@@ -15,6 +15,7 @@ import contextlib
 import logging
 import signal
 import threading
+import warnings
 from collections.abc import Iterator
 from typing import Any
 
@@ -26,9 +27,12 @@ SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 def _quiet_shutdown() -> None:
     """Dask's and Tornado's loggers report the closing of killed workers and streams as
-    errors, with tracebacks: the run is ending on purpose, so they are silenced."""
+    errors, with tracebacks, and Zarr's interrupted writes leave coroutines that Python
+    reports as never awaited: the run is ending on purpose, so they are silenced."""
     for name in ("distributed", "tornado", "asyncio", "bokeh"):
         logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    warnings.filterwarnings("ignore", message="coroutine .* was never awaited",
+                            category=RuntimeWarning)
 
 
 @contextlib.contextmanager
