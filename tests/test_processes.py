@@ -282,3 +282,16 @@ def test_every_signal_to_every_long_command(tmp_path, command, sig, when):
     assert all(ipaddress.ip_address(ip).is_loopback for ip, _ in o.listening), o.listening
     if command == "scan" and o.returncode == 130:
         _resume_is_exact(tmp_path)
+
+
+@pytest.mark.slow  # a fresh interpreter imports Panel and serves: ~10-20 s
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_andoyer_explore_listens_on_loopback_and_stops_on_every_signal(tmp_path, sig):
+    """``andoyer explore``: every listening socket of its tree is on 127.0.0.1; each
+    signal stops it as Ctrl-C does (it says "stopped", exit 0), nothing left."""
+    o = run_signalled(["explore", "--port", "0", "--no-browser"], tmp_path, sig,
+                      lambda tree, t: bool(listening_sockets(tree)) and t > 1.0)
+    assert o.signalled and o.listening, (o.returncode, o.err)
+    assert all(ipaddress.ip_address(ip).is_loopback for ip, _ in o.listening), o.listening
+    assert o.returncode == 0 and "stopped" in o.out, (o.returncode, o.out, o.err)
+    assert "Traceback" not in o.err, o.err
