@@ -17,6 +17,7 @@ from __future__ import annotations
 import ipaddress
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -31,6 +32,8 @@ import pytest
 psutil = pytest.importorskip("psutil")
 
 ANDOYER = [sys.executable, "-m", "andoyer"]
+#: Progress output on stderr (tqdm bars, the report's "[k/n] item ... s" lines).
+PROGRESS = re.compile(r"\d+%\||^\[\d+/\d+\] ")
 TIMEOUT = 300.0  # seconds for any one command, after which the test fails
 
 #: A small scan whose chunks take a while each (so that it can be interrupted); numba:
@@ -170,10 +173,9 @@ def assert_clean_end(o: Outcome, cwd: Path, command: str) -> None:
     if o.returncode == 0:  # it finished before the signal was handled
         return
     assert o.returncode == EXIT_CODES["interrupted"], (o.returncode, o.err)
-    last = o.err.strip().splitlines()[-1]
-    assert last.startswith(f"andoyer {command}: error: interrupted (SIG"), o.err
-    lines = [ln for ln in o.err.splitlines() if ln.strip() and not ln.startswith("[")]
-    assert len(lines) == 1, o.err  # progress lines ([k/n] ...) aside: one line
+    lines = [ln for ln in re.split(r"[\r\n]", o.err) if ln.strip() and not PROGRESS.search(ln)]
+    assert len(lines) == 1, o.err  # progress bars and [k/n] item lines aside: one line
+    assert lines[0].startswith(f"andoyer {command}: error: interrupted (SIG"), o.err
 
 
 def _prepare(cwd: Path) -> None:

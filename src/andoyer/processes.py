@@ -62,10 +62,13 @@ def children_ignore_interrupts() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    # Multiprocessing starts its resource tracker with SIGINT blocked, then *unblocks*
-    # SIGINT in the calling thread: started here first, it cannot undo the block below.
+    # Multiprocessing's resource tracker (a child too) ignores SIGINT and SIGTERM but
+    # not SIGHUP, and starting it *unblocks* SIGINT in the calling thread: it is started
+    # here with both blocked (it inherits the blocked SIGHUP), then they are blocked
+    # again.
     from multiprocessing import resource_tracker
 
+    signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
     resource_tracker.ensure_running()
     signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
     try:
