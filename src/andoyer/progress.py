@@ -30,7 +30,7 @@ from contextvars import ContextVar
 from functools import cache
 from typing import Any
 
-__all__ = ["Progress", "silenced"]
+__all__ = ["Progress", "silenced", "close_all"]
 
 #: True inside :func:`silenced`: every new bar is hidden.
 _SILENCED: ContextVar[bool] = ContextVar("andoyer_progress_silenced", default=False)
@@ -115,3 +115,12 @@ class Progress:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def close_all() -> None:
+    """Close every bar still open (a command ended by an error or a signal mid-way), so
+    that the message that follows starts on a line of its own."""
+    from tqdm.std import tqdm
+
+    for bar in list(getattr(tqdm, "_instances", ())):
+        bar.close()

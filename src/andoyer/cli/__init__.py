@@ -205,6 +205,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
             exc = Interrupted(signal.Signals(signals[0]).name)
         kind, message = _classify(exc)
+        from andoyer.progress import close_all
+
+        close_all()  # a bar left open would run into the message
         sys.stderr.write(f"andoyer {args.command}: error: {message}\n")
         raise SystemExit(EXIT_CODES[kind]) from None
     finally:
