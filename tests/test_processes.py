@@ -148,6 +148,7 @@ def run_signalled(args: list[str], cwd: Path, sig: signal.Signals | None,
                 else:  # a terminal sends these to the whole foreground group
                     os.killpg(proc.pid, sig)
                 signalled = True
+                listening |= listening_sockets(tree)  # what ready() may just have seen
             time.sleep(0.05)
         out, err = proc.communicate(timeout=max(1.0, TIMEOUT - (time.monotonic() - t0)))
     finally:

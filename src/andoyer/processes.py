@@ -55,13 +55,16 @@ def children_ignore_interrupts() -> Iterator[None]:
 
     The block blocks both signals in this thread; a thread or process started meanwhile
     inherits the blocked mask (and keeps it across ``exec``), so a worker restarted later
-    by such a thread has them blocked too. A signal that comes during the block waits
-    and is delivered to this thread when it ends: delayed, never lost. Outside the main
-    thread, does nothing (the main thread handles signals).
+    by such a thread has them blocked too. SIGTERM is held back in the block (children
+    must keep it: it is how they are ended). A signal that comes during the block is
+    delivered when it ends, once whatever the block started can be closed: delayed,
+    never lost. Outside the main thread, does nothing (the main thread handles signals).
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    held: list[int] = []
+    old_term = signal.signal(signal.SIGTERM, lambda signum, frame: held.append(signum))
     # Multiprocessing's resource tracker (a child too) ignores SIGINT and SIGTERM but
     # not SIGHUP, and starting it *unblocks* SIGINT in the calling thread: it is started
     # here with both blocked (it inherits the blocked SIGHUP), then they are blocked
@@ -69,12 +72,15 @@ def children_ignore_interrupts() -> Iterator[None]:
     from multiprocessing import resource_tracker
 
     signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
-    resource_tracker.ensure_running()
-    signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
     try:
+        resource_tracker.ensure_running()
+        signal.pthread_sigmask(signal.SIG_BLOCK, CHILD_IGNORES)
         yield
     finally:
+        signal.signal(signal.SIGTERM, old_term)
         signal.pthread_sigmask(signal.SIG_UNBLOCK, CHILD_IGNORES)
+        if held:
+            signal.raise_signal(signal.SIGTERM)
 
 
 def end_children(timeout: float = 2.0) -> list[int]:

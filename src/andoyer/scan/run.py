@@ -157,12 +157,13 @@ def _client(scheduler: str | None, client: Any, n_workers: int | None
     # and fill_section is NumPy code that holds the GIL. Every server of the cluster
     # (scheduler, nannies, workers, dashboard) listens on the loopback interface only.
     # Its threads and processes never see Ctrl-C: this process ends them.
-    with children_ignore_interrupts():
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
-                               silence_logs=logging.ERROR)
-    with cluster, Client(cluster) as c:
-        yield c
+    # A signal in the start is delivered once the cluster can be closed (the stack).
+    with contextlib.ExitStack() as stack:
+        with children_ignore_interrupts():
+            cluster = stack.enter_context(LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, host=LOOPBACK,
+                dashboard_address=f"{LOOPBACK}:0", silence_logs=logging.ERROR))
+        yield stack.enter_context(Client(cluster))
 
 
 def _dashboard(client: Any) -> str | None:
