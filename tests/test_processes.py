@@ -124,9 +124,10 @@ def _alive(pids: set[int]) -> list[str]:
 
 
 def run_signalled(args: list[str], cwd: Path, sig: signal.Signals | None,
-                  ready: Callable[[list[psutil.Process], float], bool]) -> Outcome:
-    """Run ``andoyer ARGS`` in ``cwd``; send ``sig`` once ``ready(tree, seconds)``, the
-    seconds counted from when the command started (its signal handlers installed)."""
+                  ready: Callable[..., bool]) -> Outcome:
+    """Run ``andoyer ARGS`` in ``cwd``; send ``sig`` once ``ready(tree, seconds,
+    listening)``, the seconds counted from when the command started (its signal handlers
+    installed), ``listening`` the sockets seen so far."""
     proc = subprocess.Popen([*ANDOYER, *args], cwd=cwd, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
     t0 = time.monotonic()
@@ -142,13 +143,12 @@ def run_signalled(args: list[str], cwd: Path, sig: signal.Signals | None,
             if started is None and handles_sigterm(proc.pid):
                 started = time.monotonic()
             if (sig is not None and not signalled and started is not None
-                    and ready(tree, time.monotonic() - started)):
+                    and ready(tree, time.monotonic() - started, listening)):
                 if sig == signal.SIGTERM:
                     proc.send_signal(sig)
                 else:  # a terminal sends these to the whole foreground group
                     os.killpg(proc.pid, sig)
                 signalled = True
-                listening |= listening_sockets(tree)  # what ready() may just have seen
             time.sleep(0.05)
         out, err = proc.communicate(timeout=max(1.0, TIMEOUT - (time.monotonic() - t0)))
     finally:
@@ -215,7 +215,7 @@ def _resume_is_exact(cwd: Path) -> None:
 def test_sigterm_ends_a_command_without_children_cleanly(tmp_path):
     """SIGTERM to ``andoyer section`` (no children) once its work has started."""
     o = run_signalled(COMMANDS["section"], tmp_path, signal.SIGTERM,
-                      lambda tree, t: t > 1.0)
+                      lambda tree, t, *_: t > 1.0)
     assert o.signalled and o.returncode == 130, (o.returncode, o.err)
     assert_clean_end(o, tmp_path, "section")
 
@@ -224,7 +224,7 @@ def test_sigterm_ends_a_process_pool_and_its_worker(tmp_path):
     """SIGTERM to ``andoyer paper --jobs 2`` once its worker process runs: the worker
     ends too (it used to live on), its temporary files are removed, one line."""
     o = run_signalled(COMMANDS["paper"], tmp_path, signal.SIGTERM,
-                      lambda tree, t: len(tree) >= 2 and t > 3.0)
+                      lambda tree, t, *_: len(tree) >= 2 and t > 3.0)
     assert o.signalled and o.seen, "the worker process never started"
     assert o.returncode == 130, (o.returncode, o.err)
     assert_clean_end(o, tmp_path, "paper")
@@ -236,7 +236,7 @@ def test_ctrl_c_on_a_local_cluster_scan_is_one_line_and_resumes_exactly(tmp_path
     of the cluster listened on 127.0.0.1 only, and the resumed store is exact."""
     _prepare(tmp_path)
     o = run_signalled(COMMANDS["scan"], tmp_path, signal.SIGINT,
-                      lambda tree, t: _done_chunks(tmp_path / "s.zarr") >= 1)
+                      lambda tree, t, *_: _done_chunks(tmp_path / "s.zarr") >= 1)
     assert o.signalled and len(o.seen) >= 2, "no worker process started"
     assert_clean_end(o, tmp_path, "scan")
     assert o.listening, "no listening socket seen (scheduler, workers, dashboard)"
@@ -280,7 +280,7 @@ def _moments() -> list[tuple[str, signal.Signals, float]]:
                          ids=[f"{c}-{s.name}-{w}s" for c, s, w in _moments()])
 def test_every_signal_to_every_long_command(tmp_path, command, sig, when):
     _prepare(tmp_path)
-    o = run_signalled(COMMANDS[command], tmp_path, sig, lambda tree, t: t > when)
+    o = run_signalled(COMMANDS[command], tmp_path, sig, lambda tree, t, *_: t > when)
     assert_clean_end(o, tmp_path, command)
     assert all(ipaddress.ip_address(ip).is_loopback for ip, _ in o.listening), o.listening
     if command == "scan" and o.returncode == 130:
@@ -293,7 +293,7 @@ def test_andoyer_explore_listens_on_loopback_and_stops_on_every_signal(tmp_path,
     """``andoyer explore``: every listening socket of its tree is on 127.0.0.1; each
     signal stops it as Ctrl-C does (it says "stopped", exit 0), nothing left."""
     o = run_signalled(["explore", "--port", "0", "--no-browser"], tmp_path, sig,
-                      lambda tree, t: bool(listening_sockets(tree)) and t > 1.0)
+                      lambda tree, t, seen: bool(seen) and t > 1.0)
     assert o.signalled and o.listening, (o.returncode, o.err)
     assert all(ipaddress.ip_address(ip).is_loopback for ip, _ in o.listening), o.listening
     assert o.returncode == 0 and "stopped" in o.out, (o.returncode, o.out, o.err)
