@@ -22,6 +22,7 @@ from collections import deque
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Any
 
+from andoyer.processes import child_signals, children_ignore_interrupts
 from andoyer.progress import Progress, silenced
 from andoyer.report.base import Context, Item, Result
 
@@ -93,8 +94,10 @@ def _build_item(item: Item, ctx: Context) -> tuple[Result, float]:
 
 
 def _die_with_parent() -> None:
-    """In a worker: end with this process's parent, and leave Ctrl-C to the parent."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    """In a worker: the signal rules of every child process
+    (:func:`andoyer.processes.child_signals`: SIGINT and SIGHUP left to the parent,
+    SIGTERM removes the temporary files being written), and end with the parent."""
+    child_signals()
     if sys.platform.startswith("linux"):
         import ctypes
 
@@ -142,8 +145,11 @@ def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
         queue = deque(sorted(items, key=lambda i: -i.cost))
         before = set(multiprocessing.active_children())
         # spawn: a fresh interpreter (forking a process that may run threads is unsafe).
-        pool = ProcessPoolExecutor(jobs - 1, mp_context=multiprocessing.get_context("spawn"),
-                                   initializer=_die_with_parent)
+        # Started with SIGINT/SIGHUP blocked (multiprocessing's resource tracker too).
+        with children_ignore_interrupts():
+            pool = ProcessPoolExecutor(jobs - 1,
+                                       mp_context=multiprocessing.get_context("spawn"),
+                                       initializer=_die_with_parent)
         running: dict[Future[tuple[Result, float]], Item] = {}
         try:
             while queue or running:
