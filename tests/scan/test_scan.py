@@ -25,6 +25,8 @@ import xarray as xr
 from andoyer import RigidBody
 from andoyer.cli import main
 from andoyer.integrate import fill_section, poincare
+from andoyer.integrate.engines import default_engine_name
+from andoyer.integrate.engines.base import Capability
 from andoyer.scan import estimate_cost, load_config, scan
 from andoyer.scan.config import check_size
 from andoyer.scan.store import Schema, Variable, _check_names
@@ -100,7 +102,10 @@ def test_each_point_is_the_public_api_result(reference, i, j):
     body = RigidBody.paper(mu)
     fill = fill_section(body, h, 0.0, ("theta2", 0.0), n_orbits=5, sampling="sobol", seed=0,
                         boundary_grid=64)
-    direct = poincare(body, fill["y0"].values[:5], "theta2=0", 20)
+    # The scan's engine (its default also has tangent flows: numba where heyoka is
+    # absent, while a bare poincare's default there is taylor).
+    engine = default_engine_name(Capability.TANGENT, Capability.TANGENT_CROSSINGS)
+    direct = poincare(body, fill["y0"].values[:5], "theta2=0", 20, engine=engine)
     point = ds.isel(mu=i, h_level=j).load()
     assert int(point.n_orbits) == 5
     for name in ("t", "theta1", "J1", "J2", "G1", "gamma3", "H", "l_angle", "L_action",
