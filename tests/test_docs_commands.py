@@ -291,6 +291,12 @@ def _params() -> list[object]:
     return out
 
 
+def _has_heyoka() -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("heyoka") is not None
+
+
 @pytest.mark.timeout(600)
 @pytest.mark.parametrize("command, way", _params())
 def test_documented_command_runs(command: str, way: Way, tmp_path: Path,
@@ -310,6 +316,8 @@ def test_documented_command_runs(command: str, way: Way, tmp_path: Path,
     elif way.kind == "serve":
         _serve(way.argv)
     elif way.kind == "process":
+        if way.argv[:3] == ("python", "-m", "benchmarks") and not _has_heyoka():
+            pytest.skip("the benchmarks compare with heyoka (pip install -e '.[bench]')")
         program = sys.executable if way.argv[0] == "python" else str(BIN / way.argv[0])
         done = subprocess.run([program, *way.argv[1:]], cwd=ROOT, capture_output=True,
                               text=True, timeout=300)
