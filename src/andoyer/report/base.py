@@ -55,7 +55,7 @@ class Context:
 
         if self.engine is not None and set(capabilities) <= engine_class(self.engine).capabilities:
             return self.engine
-        return default_engine_name()
+        return default_engine_name(*capabilities)
 
     def figure(self, fig: Any, name: str) -> list[Path]:
         """Write a figure as ``name.png`` and ``name.pdf``."""
