@@ -52,9 +52,9 @@ SECONDS_PER_STEP = 4e-7
 #: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
 DATASET_BYTES = 30 * 8
 
-#: Largest |G| the integrators take. The field (1) is quadratic in G and the step
+#: Largest ``|G|`` the integrators take. The field (1) is quadratic in G and the step
 #: control multiplies it once more, so beyond about 1e102 intermediate values overflow
-#: (a section at h = 1e300, |G| ~ 1e150, ended in a division by zero inside the kernel).
+#: (a section at h = 1e300, ``|G|`` ~ 1e150, ended in a division by zero inside the kernel).
 MAX_MOMENTUM = 1e100
 
 
