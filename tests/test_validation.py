@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody, from_hess, to_andoyer
-from andoyer.analysis.chaos import chaos_map, indicators
-from andoyer.analysis.frequency import naff
-from andoyer.analysis.melnikov import melnikov_function, melnikov_rho
-from andoyer.analysis.paper_check import paper_check
-from andoyer.analysis.portraits import portrait_andoyer
-from andoyer.analysis.separatrix import separatrix_on_level
+from andoyer.analysis.chaos.frequency import naff
+from andoyer.analysis.chaos.indicators import chaos_map, indicators
+from andoyer.analysis.paper.paper_check import paper_check
+from andoyer.analysis.splitting.melnikov import melnikov_function, melnikov_rho
+from andoyer.analysis.unperturbed.portraits import portrait_andoyer
+from andoyer.analysis.unperturbed.separatrix import separatrix_on_level
 from andoyer.integrate import fill_section, poincare, propagate, propagate_hess_manifold
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine
 from andoyer.integrate.engines.numba_engine import NumbaEngine

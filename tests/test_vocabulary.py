@@ -37,11 +37,11 @@ COMMAND_API = {
     "section": ("andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare"),
     "orbit": ("andoyer.integrate.api:propagate",),
     "explore": ("andoyer.explore.state:make_settings",),
-    "chaos-map": ("andoyer.analysis.chaos:chaos_map",),
-    "manifolds": ("andoyer.analysis.splitting:separatrix_splitting",),
-    "frequencies": ("andoyer.analysis.frequency:orbit_frequencies",
-                    "andoyer.analysis.frequency:frequency_map"),
-    "indicators": ("andoyer.analysis.chaos:indicators",),
+    "chaos-map": ("andoyer.analysis.chaos.indicators:chaos_map",),
+    "manifolds": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
+    "frequencies": ("andoyer.analysis.chaos.frequency:orbit_frequencies",
+                    "andoyer.analysis.chaos.frequency:frequency_map"),
+    "indicators": ("andoyer.analysis.chaos.indicators:indicators",),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.

@@ -27,17 +27,17 @@ SCRIPT = textwrap.dedent("""
     assert ds.attrs["engine"] == "taylor" and abs(ds.H_drift).max() < 1e-12
     ds = poincare(body, [0.3, 0, 0.3, 1, 0], "theta2=0", 3, chart="andoyer")
     assert int(ds.crossings_found[0]) == 3
-    from andoyer.analysis.chaos import indicators
+    from andoyer.analysis.chaos.indicators import indicators
     ds = indicators(body, [0.3, 0, 0.3, 1, 0], 5.0, chart="andoyer")
     assert ds.attrs["engine"] == "numba" and sys.modules["heyoka"] is None
-    from andoyer.analysis.alignment import alignment_indices
+    from andoyer.analysis.chaos.alignment import alignment_indices
     ds = alignment_indices(body, [0.3, 0, 0.3, 1, 0], 5.0, chart="andoyer", k=3)
     assert float(ds.gali.isel(orbit=0, time=-1)) > 0
     import math
-    from andoyer.analysis.periodic import RotationSection, rotation_energy, rotation_orbit
+    from andoyer.analysis.splitting.periodic import RotationSection, rotation_energy, rotation_orbit
     orb = rotation_orbit(body, rotation_energy(body), 0.0, RotationSection(0.0, 1))
     assert abs(orb.multipliers[0] / math.exp(2 * math.pi * body.sigma / body.c) - 1) < 1e-9
-    from andoyer.analysis.floquet import floquet_multipliers
+    from andoyer.analysis.hess.floquet import floquet_multipliers
     assert floquet_multipliers(body, 5 * body.mu).stability == "hyperbolic"
     print("ok")
 """)

@@ -1,4 +1,4 @@
-"""SALI and GALI_k (:mod:`andoyer.analysis.alignment`) where the answer is known.
+"""SALI and GALI_k (:mod:`andoyer.analysis.chaos.alignment`) where the answer is known.
 
 Theory (Skokos, Bountis & Antonopoulos 2007) for the reduced system on a symplectic
 leaf, N = 2 degrees of freedom, vectors in the leaf's 4-dimensional tangent space:
@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody, from_andoyer
-from andoyer.analysis.alignment import alignment_indices, gali, initial_tangents, sali
-from andoyer.analysis.chaos import initial_tangent
+from andoyer.analysis.chaos.alignment import alignment_indices, gali, initial_tangents, sali
+from andoyer.analysis.chaos.indicators import initial_tangent
 from andoyer.integrate.engines import engines_with
 from andoyer.integrate.engines.base import Capability
 

@@ -29,7 +29,7 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody, from_andoyer
-from andoyer.analysis.chaos import chaos_map, indicators, initial_tangent
+from andoyer.analysis.chaos.indicators import chaos_map, indicators, initial_tangent
 from andoyer.charts.euler_poisson import (
     STATE,
     area_integral,

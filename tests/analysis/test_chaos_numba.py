@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos import chaos_map, indicators
+from andoyer.analysis.chaos.indicators import chaos_map, indicators
 from andoyer.integrate import engines
 
 PAPER = RigidBody.paper()

@@ -12,10 +12,10 @@ import pytest
 
 import andoyer.analysis
 from andoyer import RigidBody
-from andoyer.analysis.euler_poinsot import euler_poinsot_frequencies
-from andoyer.analysis.melnikov import melnikov_off_hess, melnikov_rho
-from andoyer.analysis.separatrix import DEFAULT_BRANCH
-from andoyer.analysis.splitting import separatrix_splitting, splitting_vs_epsilon
+from andoyer.analysis.splitting.measure import separatrix_splitting, splitting_vs_epsilon
+from andoyer.analysis.splitting.melnikov import melnikov_off_hess, melnikov_rho
+from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
+from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH
 
 
 def _functions_with_a_branch():

@@ -9,8 +9,8 @@ import pytest
 
 from _eigs import close_eigs as _close_eigs
 from andoyer import RigidBody
-from andoyer.analysis.equilibria import euler_poisson_equilibria, permanent_rotations
-from andoyer.analysis.fixed_points import andoyer_fixed_points
+from andoyer.analysis.unperturbed.equilibria import euler_poisson_equilibria, permanent_rotations
+from andoyer.analysis.unperturbed.fixed_points import andoyer_fixed_points
 
 
 def test_permanent_rotations_regular_route(paper_body: RigidBody) -> None:

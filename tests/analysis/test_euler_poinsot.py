@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from andoyer import RigidBody, energy, from_andoyer
-from andoyer.analysis.euler_poinsot import elliptic_pi, euler_poinsot_frequencies
+from andoyer.analysis.unperturbed.euler_poinsot import elliptic_pi, euler_poinsot_frequencies
 from andoyer.integrate import poincare, propagate
 
 BODIES = [(2.5, 2.0, 2.2), (1.0, 2.0, 3.0), (3.0, 1.0, 2.0), (2.0, 3.0, 1.2)]
@@ -71,7 +71,7 @@ def test_bad_levels_and_the_separatrix_are_refused():
 
 @pytest.mark.parametrize("moments", BODIES)
 def test_momentum_at_any_time_by_jacobi_functions(moments):
-    from andoyer.analysis.euler_poinsot import euler_poinsot_momentum
+    from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_momentum
 
     body = _free(*moments)
     rng = np.random.default_rng(7)

@@ -14,9 +14,9 @@ import pytest
 
 from _eigs import close_eigs as _close_eigs
 from andoyer import RigidBody
-from andoyer.analysis import fixed_points as fpmod
-from andoyer.analysis.equilibria import classify, euler_poisson_equilibria
-from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
+from andoyer.analysis.unperturbed import fixed_points as fpmod
+from andoyer.analysis.unperturbed.equilibria import classify, euler_poisson_equilibria
+from andoyer.analysis.unperturbed.fixed_points import andoyer_fixed_points, hess_fixed_points
 
 PI = math.pi
 

@@ -17,14 +17,14 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.floquet import (
+from andoyer.analysis.hess.floquet import (
     floquet_multipliers,
     floquet_scan,
     hess_rotation_multiplier,
     monodromy,
     physical_pendulum_monodromy,
 )
-from andoyer.analysis.pendulum import IN_PLANE, TRANSVERSE, pendulum_state
+from andoyer.analysis.hess.pendulum import IN_PLANE, TRANSVERSE, pendulum_state
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.engines.base import Capability, EngineBase
 

@@ -2,7 +2,7 @@
 
 Independent routes: synthetic quasi-periodic signals (exact frequencies and amplitudes),
 the free top's period and mean rate of g in elliptic integrals
-(:mod:`andoyer.analysis.euler_poinsot`), and the chaos indicators (a chaotic orbit's
+(:mod:`andoyer.analysis.unperturbed.euler_poinsot`), and the chaos indicators (a chaotic orbit's
 frequencies drift, a torus's do not).
 """
 
@@ -14,14 +14,14 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.euler_poinsot import euler_poinsot_frequencies
-from andoyer.analysis.frequency import (
+from andoyer.analysis.chaos.frequency import (
     frequency_drift,
     frequency_map,
     naff,
     orbit_frequencies,
     resonance_label,
 )
+from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
 
 FREE = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))  # the paper's moments, mu = 0
 CHAOTIC_BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)

@@ -18,9 +18,9 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody
-from andoyer.analysis.manifolds import grow_manifold, manifold_branch
-from andoyer.analysis.periodic import rotation_energy
-from andoyer.analysis.splitting import measure_splitting, separatrix_splitting, splitting_at
+from andoyer.analysis.splitting.manifolds import grow_manifold, manifold_branch
+from andoyer.analysis.splitting.measure import measure_splitting, separatrix_splitting, splitting_at
+from andoyer.analysis.splitting.periodic import rotation_energy
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.cli import main
 

@@ -2,7 +2,7 @@
 
 Routes: the closed form by residues; the trapezoidal rule and scipy's quad on the
 Euler-Poisson integrand ``grad E . X_{H1}`` along the closed-form orbit of
-``andoyer.analysis.separatrix``; the Hess-chart form of ``H0``, ``H1`` and of the
+``andoyer.analysis.unperturbed.separatrix``; the Hess-chart form of ``H0``, ``H1`` and of the
 integrand checked against the package's derived Hamiltonian (a private copy here, not in
 src). The comparison with the measured splitting is in ``test_manifolds.py``.
 """
@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.manifolds import euler_poinsot_excess
-from andoyer.analysis.melnikov import (
+from andoyer.analysis.splitting.manifolds import euler_poinsot_excess
+from andoyer.analysis.splitting.melnikov import (
     melnikov_closed_form,
     melnikov_function,
     melnikov_integrand,
@@ -24,7 +24,7 @@ from andoyer.analysis.melnikov import (
     melnikov_rho,
     predicted_splitting,
 )
-from andoyer.analysis.separatrix import heteroclinic
+from andoyer.analysis.unperturbed.separatrix import heteroclinic
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import hamiltonian
 
@@ -130,7 +130,7 @@ def test_invalid_inputs():
 @pytest.mark.parametrize("branch", ["theta1=0", "theta1=4phi0"])
 @pytest.mark.parametrize("eps", [0.0, 1e-3, 0.1, -0.3])
 def test_off_hess_melnikov_closed_form_against_quadrature(branch, eps):
-    from andoyer.analysis.melnikov import melnikov_off_hess
+    from andoyer.analysis.splitting.melnikov import melnikov_off_hess
 
     th = np.linspace(0.0, 6.0, 7)
     for body in (RigidBody.hess(2.5, 1.0, 1.6), RigidBody.paper()):
@@ -140,7 +140,7 @@ def test_off_hess_melnikov_closed_form_against_quadrature(branch, eps):
 
 
 def test_off_hess_amplitude_on_the_hess_branch_is_explicit_in_epsilon():
-    from andoyer.analysis.melnikov import melnikov_off_hess, melnikov_rho
+    from andoyer.analysis.splitting.melnikov import melnikov_off_hess, melnikov_rho
 
     body = RigidBody.hess(2.5, 1.0, 1.6)
     x = np.pi * melnikov_rho(body)

@@ -16,14 +16,14 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from andoyer import RigidBody, Singular, from_andoyer, to_andoyer
-from andoyer.analysis.floquet import (
+from andoyer.analysis.hess.floquet import (
     floquet_multipliers,
     floquet_scan,
     hess_rotation_multiplier,
     monodromy,
     physical_pendulum_monodromy,
 )
-from andoyer.analysis.pendulum import (
+from andoyer.analysis.hess.pendulum import (
     IN_PLANE,
     STABILITY,
     TRANSVERSE,

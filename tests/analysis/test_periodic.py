@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.periodic import (
+from andoyer.analysis.splitting.periodic import (
     RotationSection,
     continue_rotation_orbit,
     gamma_phase,
@@ -138,7 +138,7 @@ def test_continuation_from_the_permanent_rotation():
 
 def test_the_engine_argument_reaches_the_flow_and_the_provenance():
     """engine='numba' (no heyoka needed) finds the same orbit; the dataset says which."""
-    from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
+    from andoyer.analysis.splitting.section_map import FLOW_ENGINES, flow_engine
 
     body = RigidBody.paper(0.05)
     h = rotation_energy(body)

@@ -1,4 +1,5 @@
-"""Heteroclinic orbits and separatrices of the unperturbed system (andoyer.analysis.separatrix).
+"""Heteroclinic orbits and separatrices of the unperturbed system
+(andoyer.analysis.unperturbed.separatrix).
 
 Routes: the closed forms against integration of the regular Euler-Poisson equations
 (heyoka, rtol 1e-13) and of the Hess-chart equations (scipy DOP853); the separatrix
@@ -13,8 +14,8 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
-from andoyer.analysis.separatrix import (
+from andoyer.analysis.unperturbed.portraits import portrait_andoyer, portrait_hess
+from andoyer.analysis.unperturbed.separatrix import (
     heteroclinic,
     heteroclinic_rate,
     separatrix_andoyer,

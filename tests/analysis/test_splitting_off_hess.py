@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.melnikov import melnikov_function
-from andoyer.analysis.splitting import separatrix_splitting, splitting_vs_epsilon
+from andoyer.analysis.splitting.measure import separatrix_splitting, splitting_vs_epsilon
+from andoyer.analysis.splitting.melnikov import melnikov_function
 
 RHO1 = RigidBody.hess(2.5, 1.0, 1.6, name="rho~1")
 

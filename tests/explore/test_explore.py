@@ -235,7 +235,7 @@ def test_plane_view(settings: Settings) -> None:
 
 
 def test_indicators_and_underlay(settings: Settings) -> None:
-    pytest.importorskip("andoyer.analysis.chaos")
+    pytest.importorskip("andoyer.analysis.chaos.indicators")
     from andoyer.explore.base import underlay_image as _underlay_image
     from andoyer.explore.state import chaos_underlay, orbit_indicators
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from andoyer import RigidBody, paper_check
-from andoyer.analysis.equilibria import euler_poisson_equilibria
-from andoyer.analysis.fixed_points import hess_fixed_points
+from andoyer.analysis.unperturbed.equilibria import euler_poisson_equilibria
+from andoyer.analysis.unperturbed.fixed_points import hess_fixed_points
 from andoyer.io.tables import format_table
 
 

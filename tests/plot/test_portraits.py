@@ -10,8 +10,8 @@ from matplotlib.collections import PathCollection
 from matplotlib.figure import Figure
 
 from andoyer import RigidBody
-from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
-from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
+from andoyer.analysis.unperturbed.fixed_points import andoyer_fixed_points, hess_fixed_points
+from andoyer.analysis.unperturbed.portraits import portrait_andoyer, portrait_hess
 from andoyer.dynamics import hamiltonian
 from andoyer.plot.portraits import plot_fig1, plot_fig2
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.trajectories import (
+from andoyer.analysis.paper.trajectories import (
     fig3_section,
     fig3_trajectories,
     separatrix_energy,

@@ -406,7 +406,7 @@ def chaos_store(tmp_path_factory) -> Path:
 
 @pytest.mark.parametrize("i", [0, 1])
 def test_chaos_map_points_are_the_public_api_result(chaos_store, i):
-    from andoyer.analysis.chaos import chaos_map
+    from andoyer.analysis.chaos.indicators import chaos_map
 
     ds = xr.open_zarr(chaos_store).isel(mu=i).load()
     direct = chaos_map(RigidBody.paper(float(ds.mu)), 0.5, 0.0, "theta2=0", n=(4, 3),
@@ -443,7 +443,7 @@ def border_store(tmp_path_factory) -> Path:
 
 
 def test_border_scan_points_are_the_public_api_result(border_store):
-    from andoyer.analysis.chaos_border import chaos_border
+    from andoyer.analysis.chaos.chaos_border import chaos_border
 
     ds = xr.open_zarr(border_store).load()
     assert ds.epsilon.attrs["units"] == "rad" and ds.chaotic_fraction.dims == ("mu", "epsilon")
@@ -476,7 +476,7 @@ def test_border_atlas_draws_the_fraction_and_the_width(border_store, tmp_path, c
 @pytest.mark.slow
 def test_splitting_scan_scales_with_mu(tmp_path):
     """Splitting at two mu: the public API's numbers; first order in mu (Melnikov)."""
-    from andoyer.analysis.splitting import separatrix_splitting
+    from andoyer.analysis.splitting.measure import separatrix_splitting
 
     cfg = {"parameters": {"mu": [0.005, 0.01]},
            "task": {"kind": "splitting", "n_phase": 8, "delta": 1e-4,

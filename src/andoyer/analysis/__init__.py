@@ -2,21 +2,30 @@
 
 Every function takes a :class:`~andoyer.body.RigidBody` and returns data (an xarray
 dataset or a small frozen dataclass) with the equations of the paper it evaluates; the
-figures are drawn by :mod:`andoyer.plot`. One module per concept, imported on demand
-(``from andoyer.analysis.chaos import indicators``):
+figures are drawn by :mod:`andoyer.plot`. One sub-package per concept, one module per
+topic, imported on demand (``from andoyer.analysis.chaos.indicators import indicators``):
 
-- the unperturbed system: :mod:`~andoyer.analysis.fixed_points`,
-  :mod:`~andoyer.analysis.separatrix`, :mod:`~andoyer.analysis.portraits`,
-  :mod:`~andoyer.analysis.equilibria`, :mod:`~andoyer.analysis.euler_poinsot`;
-- the Hess solution and the pendulum: :mod:`~andoyer.analysis.hess_solution`,
-  :mod:`~andoyer.analysis.hess_periods`, :mod:`~andoyer.analysis.pendulum`,
-  :mod:`~andoyer.analysis.floquet`;
-- chaos: :mod:`~andoyer.analysis.chaos` (FLI, MEGNO, chaos maps),
-  :mod:`~andoyer.analysis.alignment` (SALI, GALI), :mod:`~andoyer.analysis.frequency`
-  (NAFF, frequency drift), :mod:`~andoyer.analysis.chaos_border`;
-- splitting of the separatrices: :mod:`~andoyer.analysis.periodic`,
-  :mod:`~andoyer.analysis.section_map`, :mod:`~andoyer.analysis.manifolds`,
-  :mod:`~andoyer.analysis.splitting`, :mod:`~andoyer.analysis.melnikov`;
-- the paper itself: :mod:`~andoyer.analysis.trajectories` (Fig. 3) and
-  :mod:`~andoyer.analysis.paper_check` (every printed formula against the derivation).
+- :mod:`~andoyer.analysis.unperturbed`, the unperturbed system:
+  :mod:`~andoyer.analysis.unperturbed.fixed_points`,
+  :mod:`~andoyer.analysis.unperturbed.separatrix`,
+  :mod:`~andoyer.analysis.unperturbed.portraits`,
+  :mod:`~andoyer.analysis.unperturbed.equilibria`,
+  :mod:`~andoyer.analysis.unperturbed.euler_poinsot`;
+- :mod:`~andoyer.analysis.hess`, the Hess solution and the pendulum:
+  :mod:`~andoyer.analysis.hess.hess_solution`, :mod:`~andoyer.analysis.hess.hess_periods`,
+  :mod:`~andoyer.analysis.hess.pendulum`, :mod:`~andoyer.analysis.hess.floquet`;
+- :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.indicators` (FLI, MEGNO,
+  chaos maps), :mod:`~andoyer.analysis.chaos.alignment` (SALI, GALI),
+  :mod:`~andoyer.analysis.chaos.frequency` (NAFF, frequency drift),
+  :mod:`~andoyer.analysis.chaos.chaos_border`;
+- :mod:`~andoyer.analysis.splitting`, splitting of the separatrices:
+  :mod:`~andoyer.analysis.splitting.periodic`, :mod:`~andoyer.analysis.splitting.section_map`,
+  :mod:`~andoyer.analysis.splitting.manifolds`, :mod:`~andoyer.analysis.splitting.measure`,
+  :mod:`~andoyer.analysis.splitting.melnikov`;
+- :mod:`~andoyer.analysis.paper`, the paper itself:
+  :mod:`~andoyer.analysis.paper.trajectories` (Fig. 3) and
+  :mod:`~andoyer.analysis.paper.paper_check` (every printed formula against the derivation).
+
+The former flat module paths (``andoyer.analysis.separatrix``, ...) import for one
+release with a ``DeprecationWarning``.
 """

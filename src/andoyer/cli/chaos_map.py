@@ -40,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     matplotlib.use("Agg")
-    from andoyer.analysis.chaos import chaos_map
+    from andoyer.analysis.chaos.indicators import chaos_map
     from andoyer.integrate.variational import warm_up
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_chaos_map

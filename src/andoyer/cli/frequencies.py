@@ -31,7 +31,7 @@ def run(args: argparse.Namespace) -> int:
     given = state_from_args(args, body, required=False)
     if given is None:
         return _map(args, body, out)
-    from andoyer.analysis.frequency import orbit_frequencies
+    from andoyer.analysis.chaos.frequency import orbit_frequencies
 
     state, chart = given
     ds = orbit_frequencies(body, state, args.t_end, n_samples=args.n_samples, chart=chart,
@@ -58,7 +58,7 @@ def _map(args: argparse.Namespace, body: Any, out: Any) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from andoyer.analysis.frequency import frequency_map
+    from andoyer.analysis.chaos.frequency import frequency_map
     from andoyer.integrate.section import Section
     from andoyer.io import write_netcdf
     from andoyer.plot.border import plot_frequency_map

@@ -25,7 +25,7 @@ def run(args: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from andoyer.analysis.chaos import indicators
+    from andoyer.analysis.chaos.indicators import indicators
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_indicators
     from andoyer.plot.section import save_figure
@@ -53,7 +53,7 @@ def register(sub: Any) -> None:
                                   "+ PNG",
                        description="Fast Lyapunov indicator, MEGNO and the maximal Lyapunov "
                                    "exponent of one orbit against time, from the "
-                                   "variational equations (andoyer.analysis.chaos."
+                                   "variational equations (andoyer.analysis.chaos.indicators."
                                    "indicators).")
     add_body_args(p)
     add_state_args(p)

@@ -32,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
     import xarray as xr
 
-    from andoyer.analysis.splitting import separatrix_splitting
+    from andoyer.analysis.splitting.measure import separatrix_splitting
     from andoyer.io import write_netcdf
     from andoyer.plot.manifolds import plot_manifolds_summary
     from andoyer.plot.section import save_figure

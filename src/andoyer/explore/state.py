@@ -208,7 +208,7 @@ def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: fl
     ----------
     body : RigidBody
     h : float
-        Energy level; the curves are those of :mod:`andoyer.analysis.separatrix` at
+        Energy level; the curves are those of :mod:`andoyer.analysis.unperturbed.separatrix` at
         ``G0 = sqrt(2 h / I_mid)`` (``I_mid`` the middle of ``a, b, c``), the G of the
         unperturbed separatrix on ``H0 = h``.
     plane : Plane
@@ -240,7 +240,7 @@ def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: fl
     ...     [0.0, round(4 * body.phi0, 6), round(2 * math.pi, 6)])
     True
     """
-    from andoyer.analysis.separatrix import separatrix_on_level
+    from andoyer.analysis.unperturbed.separatrix import separatrix_on_level
 
     ds = separatrix_on_level(body, h, plane.chart, n,
                              double_cover=period > 1.5 * math.tau)
@@ -535,8 +535,8 @@ UNDERLAY_T_END = 300.0
 def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float = 1000.0
                      ) -> dict[str, float]:
     """FLI, MEGNO ``<Y>`` and the finite-time Lyapunov exponent of one orbit at ``t_end``
-    (:func:`andoyer.analysis.chaos.indicators`), and the relative energy drift."""
-    from andoyer.analysis.chaos import indicators
+    (:func:`andoyer.analysis.chaos.indicators.indicators`), and the relative energy drift."""
+    from andoyer.analysis.chaos.indicators import indicators
 
     # The variational engines are heyoka, numba and scipy: the orbit engine's name, or
     # the default (heyoka where installed, else numba).
@@ -548,9 +548,9 @@ def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float =
 
 def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
                    t_end: float = UNDERLAY_T_END) -> xr.Dataset:
-    """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.chaos_map`), on the
+    """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.indicators.chaos_map`), on the
     same box, for the underlay of the section plane."""
-    from andoyer.analysis.chaos import chaos_map
+    from andoyer.analysis.chaos.indicators import chaos_map
 
     sec = settings.section
     return chaos_map(settings.body, settings.h, settings.M, (sec.coord, sec.value), n=n,

@@ -4,7 +4,7 @@ The page shows the section plane of :mod:`andoyer.explore.state` (accessible reg
 unperturbed separatrices), the seeded orbits' section points as they arrive, the list
 of orbits and a side panel for the selected orbit (its initial state in the three
 charts, the drift of the integrals, a time plot, its chaos indicator when
-:mod:`andoyer.analysis.chaos` provides one), and exports of what is on screen.
+:mod:`andoyer.analysis.chaos.indicators` provides one), and exports of what is on screen.
 
 Threads
 -------
@@ -312,7 +312,7 @@ class Explorer(ExplorerBase):
         self.w_indicator.on_click(lambda _e: self._guard(self._request_indicator))
         self.indicator = pn.pane.HTML("" if self._chaos is not None else
                                       "<small>FLI/MEGNO: not available in this version "
-                                      "(no andoyer.analysis.chaos)</small>", width=340)
+                                      "(no andoyer.analysis.chaos.indicators)</small>", width=340)
         self.time_pane = pn.pane.Bokeh(tfig)
         self.side_panel = pn.Column(pn.pane.Markdown("#### selected orbit"), self.info,
                                     self.w_coords, self.w_span, self.time_pane,
@@ -638,7 +638,7 @@ class Explorer(ExplorerBase):
     def _request_indicator(self) -> None:
         o = self.session.orbits.get(self._selected) if self._selected is not None else None
         if self._chaos is None:
-            self._status("FLI/MEGNO need andoyer.analysis.chaos", "warning")
+            self._status("FLI/MEGNO need andoyer.analysis.chaos.indicators", "warning")
             return
         if o is None:
             self._status("select an orbit in the table first", "warning")
@@ -667,7 +667,8 @@ class Explorer(ExplorerBase):
                 self._show_view(self._generation, self.view)
             return
         if self._chaos is None:
-            self._status("the chaos-map underlay needs andoyer.analysis.chaos", "warning")
+            self._status("the chaos-map underlay needs andoyer.analysis.chaos.indicators",
+                         "warning")
             return
         view, gen = self.view, self._generation
         if view is None:

@@ -1,8 +1,8 @@
 """Plain-text tables of analysis results (presentation only: nothing is computed here).
 
-:func:`format_table` takes a fixed-point set (:mod:`andoyer.analysis.fixed_points`), the
-Euler-Poisson equilibria (:mod:`andoyer.analysis.equilibria`) or the rows of the paper
-check (:mod:`andoyer.analysis.paper_check`) and returns the table the report writes and
+:func:`format_table` takes a fixed-point set (:mod:`andoyer.analysis.unperturbed.fixed_points`), the
+Euler-Poisson equilibria (:mod:`andoyer.analysis.unperturbed.equilibria`) or the rows of the paper
+check (:mod:`andoyer.analysis.paper.paper_check`) and returns the table the report writes and
 the command line prints.
 """
 
@@ -12,9 +12,9 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from andoyer.analysis.equilibria import EquilibriumSet
-    from andoyer.analysis.fixed_points import FixedPointSet
-    from andoyer.analysis.paper_check import CheckRow
+    from andoyer.analysis.paper.paper_check import CheckRow
+    from andoyer.analysis.unperturbed.equilibria import EquilibriumSet
+    from andoyer.analysis.unperturbed.fixed_points import FixedPointSet
 
 __all__ = ["format_table", "eigenvalue_text"]
 
@@ -43,12 +43,12 @@ def format_table(result: FixedPointSet | EquilibriumSet | Sequence[CheckRow]) ->
     Examples
     --------
     >>> from andoyer import RigidBody
-    >>> from andoyer.analysis.fixed_points import hess_fixed_points
+    >>> from andoyer.analysis.unperturbed.fixed_points import hess_fixed_points
     >>> print(format_table(hess_fixed_points(RigidBody.paper())).splitlines()[0])
     Fixed points of the unperturbed system in (theta1, J1), J2 = 1, theta1 in [0, 2 pi)
     """
-    from andoyer.analysis.equilibria import EquilibriumSet
-    from andoyer.analysis.fixed_points import FixedPointSet
+    from andoyer.analysis.unperturbed.equilibria import EquilibriumSet
+    from andoyer.analysis.unperturbed.fixed_points import FixedPointSet
 
     if isinstance(result, EquilibriumSet):
         return _equilibria_table(result)

@@ -3,9 +3,9 @@ separatrix against the turn ``epsilon`` of the centre of mass, the chaotic fract
 ``(mu, epsilon)``, and a frequency map.
 
 Every panel takes a dataset of the analysis layer
-(:func:`andoyer.analysis.splitting.splitting_vs_epsilon`,
-:func:`andoyer.analysis.chaos_border.chaos_border_map`,
-:func:`andoyer.analysis.frequency.frequency_map`).
+(:func:`andoyer.analysis.splitting.measure.splitting_vs_epsilon`,
+:func:`andoyer.analysis.chaos.chaos_border.chaos_border_map`,
+:func:`andoyer.analysis.chaos.frequency.frequency_map`).
 """
 
 from __future__ import annotations

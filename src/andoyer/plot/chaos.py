@@ -1,6 +1,6 @@
 """Chaos maps: an indicator over a section's plane, drawn from a dataset (nothing computed).
 
-Takes the dataset of :func:`andoyer.analysis.chaos.chaos_map`: the indicator as an
+Takes the dataset of :func:`andoyer.analysis.chaos.indicators.chaos_map`: the indicator as an
 image over the plane, blank where the energy level does not meet the plane, the
 accessible region's boundary on top, a colour bar named after the indicator (colour map,
 range and label from :data:`andoyer.plot.style.SCALES`: pale regular, dark chaotic).
@@ -43,7 +43,7 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`andoyer.analysis.chaos.chaos_map` (dims ``(y, x)`` of the plane,
+        From :func:`andoyer.analysis.chaos.indicators.chaos_map` (dims ``(y, x)`` of the plane,
         attrs ``plane_x``, ``plane_y``, ``plane_*_min/max``).
     ax : matplotlib Axes, optional
         Draw into it; by default a new figure in andoyer's style (no pyplot).
@@ -82,7 +82,7 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     if xname not in ds.coords or yname not in ds.coords:
         raise ValueError("plot_chaos_map: the dataset lacks the plane coordinates named by "
                          f"attrs plane_x = {xname!r}, plane_y = {yname!r}; pass the dataset "
-                         "of andoyer.analysis.chaos.chaos_map")
+                         "of andoyer.analysis.chaos.indicators.chaos_map")
     name = indicator or str(a.get("indicator", "fli"))
     if name == "both":
         name = "fli"
@@ -162,7 +162,8 @@ def _title(a: dict[Any, Any], name: str) -> str:
 def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH, title: str | None = None
                     ) -> Figure:
     """FLI and MEGNO of each orbit against time, from
-    :func:`andoyer.analysis.chaos.indicators` (two panels; MEGNO's regular value 2 dashed).
+    :func:`andoyer.analysis.chaos.indicators.indicators` (two panels; MEGNO's regular value 2
+    dashed).
 
     Parameters
     ----------

@@ -1,7 +1,7 @@
 """The paper's Fig. 3: trajectories of (16) on (theta1, J1), enlarged near the separatrix,
 and the same phase space as a Poincare section theta2 = const.
 
-Datasets in (from :mod:`andoyer.analysis.trajectories`), a figure out; nothing computed.
+Datasets in (from :mod:`andoyer.analysis.paper.trajectories`), a figure out; nothing computed.
 """
 
 from __future__ import annotations
@@ -58,9 +58,9 @@ def plot_fig3(traj: xr.Dataset, section: xr.Dataset, fill: xr.Dataset | None = N
     Parameters
     ----------
     traj : xarray.Dataset
-        :func:`andoyer.analysis.trajectories.fig3_trajectories`.
+        :func:`andoyer.analysis.paper.trajectories.fig3_trajectories`.
     section : xarray.Dataset
-        :func:`andoyer.analysis.trajectories.fig3_section` (first item).
+        :func:`andoyer.analysis.paper.trajectories.fig3_section` (first item).
     fill : xarray.Dataset, optional
         Its second item: the accessible region's boundary is drawn in (c).
 
@@ -73,7 +73,7 @@ def plot_fig3(traj: xr.Dataset, section: xr.Dataset, fill: xr.Dataset | None = N
     missing = [k for k in need if k not in a]
     if missing:
         raise ValueError(f"plot_fig3: traj lacks attrs {missing}; build it with "
-                         "andoyer.analysis.trajectories.fig3_trajectories")
+                         "andoyer.analysis.paper.trajectories.fig3_trajectories")
     phi0, J2 = float(a["phi0"]), float(a["J2"])
     box = (float(a["zoom_theta1_min"]), float(a["zoom_theta1_max"]),
            float(a["zoom_J1_min"]), float(a["zoom_J1_max"]))

@@ -1,6 +1,6 @@
 """Invariant manifolds and separatrix splitting: datasets in, figures out (nothing computed).
 
-The datasets come from :func:`andoyer.analysis.splitting.separatrix_splitting`: the
+The datasets come from :func:`andoyer.analysis.splitting.measure.separatrix_splitting`: the
 manifold curves on the section ``L = 0`` in its Darboux coordinates ``(g, G)``, the
 heteroclinic points, and the splitting ``Delta G`` as a function of the phase ``g`` and
 of ``mu`` with its first-order (Melnikov) prediction.
@@ -49,7 +49,7 @@ def plot_manifold_curves(unstable: xr.Dataset, stable: xr.Dataset,
     Parameters
     ----------
     unstable, stable : xarray.Dataset
-        Curves of :meth:`andoyer.analysis.manifolds.ManifoldCurve.dataset`.
+        Curves of :meth:`andoyer.analysis.splitting.manifolds.ManifoldCurve.dataset`.
     intersections : xarray.Dataset, optional
         Heteroclinic points (variables ``g``, ``G``; a ``mu`` dim is reduced to its last
         value, the ``mu`` of the curves).
@@ -183,7 +183,7 @@ def plot_manifolds_summary(result: dict[str, xr.Dataset], hess: xr.Dataset | Non
     Parameters
     ----------
     result : dict of xarray.Dataset
-        What :func:`andoyer.analysis.splitting.separatrix_splitting` returns.
+        What :func:`andoyer.analysis.splitting.measure.separatrix_splitting` returns.
     hess : xarray.Dataset, optional
         The ``"splitting"`` dataset of the Hess branch ``theta1 = 0``.
     """

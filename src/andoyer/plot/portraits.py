@@ -1,7 +1,7 @@
 """Figures 1 and 2 of [1]_: unperturbed phase portraits, drawn from datasets only.
 
-The datasets come from :func:`andoyer.analysis.portraits.portrait_andoyer` (plane
-``(l, L)``) and :func:`andoyer.analysis.portraits.portrait_hess` (plane
+The datasets come from :func:`andoyer.analysis.unperturbed.portraits.portrait_andoyer` (plane
+``(l, L)``) and :func:`andoyer.analysis.unperturbed.portraits.portrait_hess` (plane
 ``(theta1, J1)``); these functions compute nothing. Artists carry a ``gid``
 (``"contour"``, ``"separatrix"``, ``"separatrix-hess"``, ``"singular"``,
 ``"fixed-point-<type>"``, ``"label"``) so that tests and users can find them.
@@ -121,7 +121,7 @@ def plot_fig1(ds: xr.Dataset) -> Figure:
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`andoyer.analysis.portraits.portrait_andoyer`.
+        From :func:`andoyer.analysis.unperturbed.portraits.portrait_andoyer`.
 
     Returns
     -------
@@ -132,7 +132,7 @@ def plot_fig1(ds: xr.Dataset) -> Figure:
     Examples
     --------
     >>> from andoyer import RigidBody
-    >>> from andoyer.analysis.portraits import portrait_andoyer
+    >>> from andoyer.analysis.unperturbed.portraits import portrait_andoyer
     >>> fig = plot_fig1(portrait_andoyer(RigidBody.paper(), n=(33, 17), n_curve=11))
     >>> len(fig.axes)
     1
@@ -160,13 +160,13 @@ def plot_fig2(ds_andoyer: xr.Dataset, ds_hess: xr.Dataset) -> Figure:
     Parameters
     ----------
     ds_andoyer, ds_hess : xarray.Dataset
-        From :func:`~andoyer.analysis.portraits.portrait_andoyer` and
-        :func:`~andoyer.analysis.portraits.portrait_hess` of the same body.
+        From :func:`~andoyer.analysis.unperturbed.portraits.portrait_andoyer` and
+        :func:`~andoyer.analysis.unperturbed.portraits.portrait_hess` of the same body.
 
     Examples
     --------
     >>> from andoyer import RigidBody
-    >>> from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
+    >>> from andoyer.analysis.unperturbed.portraits import portrait_andoyer, portrait_hess
     >>> body = RigidBody.paper()
     >>> fig = plot_fig2(portrait_andoyer(body, n=(33, 17), n_curve=11),
     ...                 portrait_hess(body, n=(33, 9), n_curve=11))

@@ -1,7 +1,7 @@
 """The Hess solution and the physical pendulum: periods, the reduced portrait, stability.
 
-Datasets in (built by ``andoyer paper`` from :mod:`andoyer.analysis.hess_solution` and
-:mod:`andoyer.analysis.pendulum`), a figure out; nothing computed here.
+Datasets in (built by ``andoyer paper`` from :mod:`andoyer.analysis.hess.hess_solution` and
+:mod:`andoyer.analysis.hess.pendulum`), a figure out; nothing computed here.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ def plot_solutions(periods: xr.Dataset, portrait: xr.Dataset, floquet: xr.Datase
     portrait : xarray.Dataset
         ``H`` on (``J2``, ``theta2``) with attrs ``mu``, ``separatrix``.
     floquet : xarray.Dataset
-        :func:`andoyer.analysis.floquet.floquet_scan` output(s), stacked on dim ``body``.
+        :func:`andoyer.analysis.hess.floquet.floquet_scan` output(s), stacked on dim ``body``.
     """
     with paper_style():
         fig = new_figure(1, 3, aspect=0.95)

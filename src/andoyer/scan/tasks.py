@@ -12,15 +12,15 @@ Registered kinds (:data:`TASKS`):
     section plane at ``(h, M)``, and the first ``n_crossings`` crossings of each orbit
     are found by the engine (the computation of :func:`andoyer.integrate.poincare`).
 ``chaos_map``
-    :func:`andoyer.analysis.chaos.chaos_map` (FLI or MEGNO over a grid of the section
+    :func:`andoyer.analysis.chaos.indicators.chaos_map` (FLI or MEGNO over a grid of the section
     plane), enabled when that module is installed.
 ``splitting``
-    :func:`andoyer.analysis.splitting.separatrix_splitting` at the point's mu: the
+    :func:`andoyer.analysis.splitting.measure.separatrix_splitting` at the point's mu: the
     splitting of the separatrices of the rotations about the middle axis, measured and
     predicted by Melnikov (sweep mu, and A, B, C, to see how it scales; sweep epsilon
     to split the Hess branch ``theta1 = 0``).
 ``chaos_border``
-    :func:`andoyer.analysis.chaos_border.chaos_border`: the chaotic fraction of the
+    :func:`andoyer.analysis.chaos.chaos_border.chaos_border`: the chaotic fraction of the
     section plane from MEGNO (threshold from the regular free top) and the width of the
     chaotic layer around the former Hess separatrix; sweep ``mu`` and ``epsilon`` for
     the border of chaos (``andoyer atlas`` draws it).
@@ -48,7 +48,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 import xarray as xr
 
-from andoyer.analysis.separatrix import DEFAULT_BRANCH
+from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH
 from andoyer.validation import integer
 
 if TYPE_CHECKING:
@@ -283,9 +283,9 @@ def _section_cost(options: Mapping[str, Any]) -> tuple[float, float]:
 # ---------------------------------------------------------------------- chaos map
 def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
                  integ: Integrator) -> xr.Dataset | Empty:
-    """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.chaos_map`
+    """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.indicators.chaos_map`
     (one thread; heyoka's tolerance ``min(rtol, atol)``)."""
-    from andoyer.analysis import chaos
+    from andoyer.analysis.chaos import indicators as chaos
     from andoyer.integrate.section import Section
     sec = Section.parse(options["section"])
     try:
@@ -335,13 +335,13 @@ def _small_positive(key: str, v: Any) -> float:
 def _splitting_point(body: RigidBody, h: float | None, M: float | None,
                      options: Mapping[str, Any], integ: Integrator) -> xr.Dataset | Empty:
     """Separatrix splitting at this body's mu,
-    :func:`andoyer.analysis.splitting.separatrix_splitting` with one value of mu.
+    :func:`andoyer.analysis.splitting.measure.separatrix_splitting` with one value of mu.
 
     Dims ``phase`` (the splitting grid on Sigma_0) and ``intersection`` (heteroclinic
     points, NaN-padded to ``n_phase``); the intersection variables are prefixed
     ``heteroclinic_`` (their ``g``, ``G`` become ``g_angle``, ``G_action``).
     """
-    from andoyer.analysis import splitting as manifolds
+    from andoyer.analysis.splitting import measure as manifolds
     try:
         out = manifolds.separatrix_splitting(
             body, [body.mu], G=options["G"], branch=options["branch"],
@@ -396,9 +396,9 @@ def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
 def _border_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
                   integ: Integrator) -> xr.Dataset | Empty:
     """Chaotic fraction and layer width by
-    :func:`~andoyer.analysis.chaos_border.chaos_border` (one thread; tolerance
+    :func:`~andoyer.analysis.chaos.chaos_border.chaos_border` (one thread; tolerance
     ``min(rtol, atol)``)."""
-    from andoyer.analysis.chaos_border import chaos_border
+    from andoyer.analysis.chaos.chaos_border import chaos_border
     from andoyer.integrate.section import Section
 
     sec = Section.parse(options["section"])

@@ -19,7 +19,7 @@ A Poincare section "coordinate = value" of any chart becomes a smooth function
 :data:`EXTRA_ANGLES` are section angles of the analysis modules that are not chart
 coordinates: ``psi = atan2(gamma1, gamma2)``, the phase of the vertical about the body
 axis 3 (the sections of the rotations about the middle axis,
-:mod:`andoyer.analysis.section_map`), ``(cos psi, sin psi) ~ (gamma2, gamma1)``. They are
+:mod:`andoyer.analysis.splitting.section_map`), ``(cos psi, sin psi) ~ (gamma2, gamma1)``. They are
 generated after the chart kinds (kernels take them by index) but are not offered as
 coordinates of :class:`andoyer.integrate.section.Section`.
 

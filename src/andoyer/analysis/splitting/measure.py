@@ -1,7 +1,7 @@
 """Splitting of the separatrices: the distance between the unstable and stable manifolds
-of :mod:`andoyer.analysis.manifolds` on the section, the splitting angle and lobe areas,
+of :mod:`andoyer.analysis.splitting.manifolds` on the section, the splitting angle and lobe areas,
 and the driver that measures them over mu against the Melnikov prediction of
-:mod:`andoyer.analysis.melnikov`.
+:mod:`andoyer.analysis.splitting.melnikov`.
 """
 
 from __future__ import annotations
@@ -14,20 +14,20 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.analysis.manifolds import (
+from andoyer.analysis.splitting.manifolds import (
     ManifoldCurve,
     euler_poinsot_excess,
     grow_manifold,
     heteroclinic_line_of,
     manifold_branch,
 )
-from andoyer.analysis.periodic import (
+from andoyer.analysis.splitting.periodic import (
     DEFAULT_TOL,
     RotationSection,
     continue_rotation_orbit,
 )
-from andoyer.analysis.section_map import FLOW_ENGINES, flow_engine
-from andoyer.analysis.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_energy
+from andoyer.analysis.splitting.section_map import FLOW_ENGINES, flow_engine
+from andoyer.analysis.unperturbed.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import provenance, values_from_attrs
@@ -260,7 +260,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         the (e1, e2) plane (:meth:`~andoyer.body.RigidBody.near_hess`). The lines and
         the Melnikov phase are those of
         :meth:`~andoyer.body.RigidBody.nearest_hess`; the prediction is
-        :func:`~andoyer.analysis.melnikov.melnikov_off_hess` at ``epsilon =``
+        :func:`~andoyer.analysis.splitting.melnikov.melnikov_off_hess` at ``epsilon =``
         :attr:`~andoyer.body.RigidBody.hess_epsilon` (the Hess branch ``theta1 = 0``
         splits by ``2 mu (pi rho/sinh pi rho) |sin epsilon| / (c G)``).
     mu : sequence of float, optional
@@ -270,7 +270,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         ``mu = 0``); the Melnikov prediction uses ``J2 = G``.
     branch, sheet :
         The heteroclinic line: ``"theta1=0"`` (default,
-        :data:`~andoyer.analysis.separatrix.DEFAULT_BRANCH`: the Hess separatrix, which
+        :data:`~andoyer.analysis.unperturbed.separatrix.DEFAULT_BRANCH`: the Hess separatrix, which
         does not split on a Hess body and does once the centre of mass is turned) or
         ``"theta1=4phi0"`` (splits on a Hess body too).
     psi0, delta :
@@ -285,7 +285,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         Progress line on stderr (default: when stderr is a terminal).
     engine : {"heyoka", "numba"}, optional
         The engine of the flow (default heyoka where installed, else numba;
-        :func:`~andoyer.analysis.section_map.flow_engine`).
+        :func:`~andoyer.analysis.splitting.section_map.flow_engine`).
 
     Returns
     -------
@@ -301,7 +301,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         * ``"intersections"`` (mu, intersection): heteroclinic points ``g``, ``G``,
           ``state_distance``, ``Delta_G``, ``angle``, ``lobe_area`` and their
           first-order predictions ``angle_melnikov``, ``lobe_area_melnikov`` (NaN-padded).
-        * ``"melnikov"``: :func:`~andoyer.analysis.melnikov.melnikov_function` at the
+        * ``"melnikov"``: :func:`~andoyer.analysis.splitting.melnikov.melnikov_function` at the
           phases of the grid.
         * ``"orbit_leaves"``, ``"orbit_reaches"`` (mu): the periodic orbits the line
           leaves and reaches, continued from ``mu = 0`` (:func:`~andoyer.analysis.
@@ -316,8 +316,8 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     >>> float(out["splitting"].relative_error[0]) < 0.05            # doctest: +SKIP
     True
     """
-    from andoyer.analysis.melnikov import melnikov_function
-    from andoyer.analysis.periodic import orbits_dataset
+    from andoyer.analysis.splitting.melnikov import melnikov_function
+    from andoyer.analysis.splitting.periodic import orbits_dataset
     from andoyer.progress import Progress
 
     if grow is not None and not isinstance(grow, dict):
@@ -453,7 +453,7 @@ def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
                          engine: str | None = None) -> xr.Dataset:
     """The splitting of a separatrix branch as the centre of mass turns off the Hess
     direction: measured (:func:`separatrix_splitting`) against the first-order Melnikov
-    prediction (:func:`~andoyer.analysis.melnikov.melnikov_off_hess`) over ``epsilon``.
+    prediction (:func:`~andoyer.analysis.splitting.melnikov.melnikov_off_hess`) over ``epsilon``.
 
     On the Hess branch ``theta1 = 0`` the amplitude is
     ``mu 2 (pi rho/sinh pi rho) |sin epsilon| / (c G) + O(mu^2)``: it vanishes at

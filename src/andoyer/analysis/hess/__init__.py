@@ -1,0 +1,1 @@
+"""The Hess case: the Hess solution, its periods, the pendulums and their Floquet multipliers."""

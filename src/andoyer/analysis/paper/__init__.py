@@ -1,0 +1,1 @@
+"""The paper itself: the check of its printed formulas and the trajectories of Fig. 3."""

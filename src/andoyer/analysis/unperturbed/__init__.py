@@ -1,0 +1,2 @@
+"""The unperturbed body: Euler-Poinsot motion, equilibria, fixed points, separatrices,
+phase portraits."""
