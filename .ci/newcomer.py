@@ -85,7 +85,7 @@ def hess_separatrix_splitting() -> dict[str, float]:
 
 def rotation_number_by_naff() -> dict[str, float]:
     from andoyer import RigidBody, propagate
-    from andoyer.analysis.frequency import orbit_frequencies
+    from andoyer.analysis.chaos.frequency import orbit_frequencies
 
     body = RigidBody.paper()
     y0 = ORBIT
