@@ -65,7 +65,7 @@ def section_coloured_by_megno() -> dict[str, float]:
 
 def hess_separatrix_splitting() -> dict[str, float]:
     from andoyer import RigidBody
-    from andoyer.analysis.splitting import separatrix_splitting
+    from andoyer.analysis.splitting.measure import separatrix_splitting
 
     body = RigidBody.near_hess(2.5, 2, 2.2, mu=0.01, epsilon=0.1)
     # The defaults: the Hess branch theta1 = 0 and the body's own mu.

@@ -17,7 +17,7 @@ def manifolds(ctx: Context) -> Result:
     """Hyperbolic rotations, their manifolds, the splitting against the Melnikov function."""
     import numpy as np
 
-    from andoyer.analysis.splitting import separatrix_splitting
+    from andoyer.analysis.splitting.measure import separatrix_splitting
     from andoyer.integrate.engines.base import Capability
     from andoyer.plot.manifolds import plot_manifolds_summary
 
@@ -50,8 +50,8 @@ def chaos(ctx: Context) -> Result:
     """FLI maps of the section theta2 = 0: the paper's body and a Hess body with chaos."""
     import numpy as np
 
-    from andoyer.analysis.chaos import chaos_map
-    from andoyer.analysis.separatrix import separatrix_energy
+    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.style import new_figure, paper_style
 
@@ -84,10 +84,10 @@ def border(ctx: Context) -> Result:
     chaotic fraction over (mu, epsilon), a frequency map."""
     import numpy as np
 
-    from andoyer.analysis.chaos_border import chaos_border_map
-    from andoyer.analysis.frequency import frequency_map
-    from andoyer.analysis.separatrix import separatrix_energy
-    from andoyer.analysis.splitting import splitting_vs_epsilon
+    from andoyer.analysis.chaos.chaos_border import chaos_border_map
+    from andoyer.analysis.chaos.frequency import frequency_map
+    from andoyer.analysis.splitting.measure import splitting_vs_epsilon
+    from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.border import plot_border_of_chaos
 
     # A Hess body whose separatrices split by O(mu) (rho = 1.08): on the paper's body

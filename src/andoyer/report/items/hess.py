@@ -16,8 +16,8 @@ __all__ = ["solutions", "fig3"]
 
 def fig3(ctx: Context) -> Result:
     """Fig. 3: trajectories in the Hess chart and the section theta2 = 0."""
-    from andoyer.analysis.separatrix import separatrix_energy
-    from andoyer.analysis.trajectories import fig3_section, fig3_trajectories
+    from andoyer.analysis.paper.trajectories import fig3_section, fig3_trajectories
+    from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.fig3 import plot_fig3
 
     traj = fig3_trajectories(ctx.body, engine=ctx.engine,
@@ -39,9 +39,9 @@ def solutions(ctx: Context) -> Result:
     import numpy as np
     import xarray as xr
 
-    from andoyer.analysis.floquet import floquet_scan, hess_rotation_multiplier
-    from andoyer.analysis.hess_periods import hess_periods
-    from andoyer.analysis.hess_solution import reduced_hamiltonian
+    from andoyer.analysis.hess.floquet import floquet_scan, hess_rotation_multiplier
+    from andoyer.analysis.hess.hess_periods import hess_periods
+    from andoyer.analysis.hess.hess_solution import reduced_hamiltonian
     from andoyer.integrate.engines.base import Capability
     from andoyer.plot.solutions import plot_solutions
 

@@ -18,7 +18,7 @@ __all__ = ["fig1", "fig2", "heteroclinic", "paper_check"]
 
 def paper_check(ctx: Context) -> Result:
     """Every formula printed in the paper, evaluated against the derivation."""
-    from andoyer.analysis.paper_check import paper_check as check
+    from andoyer.analysis.paper.paper_check import paper_check as check
     from andoyer.io.tables import format_table
 
     rows = check(n=50 if ctx.quick else 200)
@@ -33,7 +33,7 @@ def paper_check(ctx: Context) -> Result:
 
 def fig1(ctx: Context) -> Result:
     """Fig. 1: the unperturbed portrait in (l, L)."""
-    from andoyer.analysis.portraits import portrait_andoyer
+    from andoyer.analysis.unperturbed.portraits import portrait_andoyer
     from andoyer.plot.portraits import plot_fig1
 
     ds = portrait_andoyer(ctx.body, 1.0)
@@ -44,10 +44,10 @@ def fig1(ctx: Context) -> Result:
 
 def fig2(ctx: Context) -> Result:
     """Fig. 2: both unperturbed portraits and every fixed point, with their tables."""
-    from andoyer.analysis.equilibria import euler_poisson_equilibria
-    from andoyer.analysis.fixed_points import andoyer_fixed_points, hess_fixed_points
-    from andoyer.analysis.portraits import portrait_andoyer, portrait_hess
-    from andoyer.analysis.separatrix import FIG2_CAPTION
+    from andoyer.analysis.unperturbed.equilibria import euler_poisson_equilibria
+    from andoyer.analysis.unperturbed.fixed_points import andoyer_fixed_points, hess_fixed_points
+    from andoyer.analysis.unperturbed.portraits import portrait_andoyer, portrait_hess
+    from andoyer.analysis.unperturbed.separatrix import FIG2_CAPTION
     from andoyer.io.tables import format_table
     from andoyer.plot.portraits import plot_fig2
 
@@ -70,7 +70,7 @@ def heteroclinic(ctx: Context) -> Result:
     import numpy as np
     import xarray as xr
 
-    from andoyer.analysis.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
+    from andoyer.analysis.unperturbed.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
     from andoyer.integrate.api import propagate
 
     body0 = ctx.body.with_mu(0.0)
