@@ -243,8 +243,8 @@ def test_defaults_agree_with_the_api_or_say_why():
     pairs = [(cmd, COMMAND_API[cmd], {a.dest: a.default for a in _visible(p)})
              for cmd, p in commands.items() if cmd in COMMAND_API]
     scan_api = {"section": ("andoyer.integrate.fill:fill_section",),
-                "chaos_map": ("andoyer.analysis.chaos:chaos_map",),
-                "splitting": ("andoyer.analysis.splitting:separatrix_splitting",),
+                "chaos_map": ("andoyer.analysis.chaos.indicators:chaos_map",),
+                "splitting": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
                 "chaos_border": ("andoyer.analysis.chaos.chaos_border:chaos_border",)}
     pairs += [(f"scan:{k}", paths, {n: o.default for n, o in TASKS[k].options.items()})
               for k, paths in scan_api.items()]

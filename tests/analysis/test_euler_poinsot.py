@@ -106,7 +106,7 @@ def test_permanent_rotations_about_the_stable_axes_are_the_limits():
 
 @pytest.mark.parametrize("s", [1e-150, 1e-30, 1e30, 1e150])
 def test_huge_and_tiny_scales_stay_finite_and_homogeneous(s):
-    from andoyer.analysis.euler_poinsot import euler_poinsot_momentum
+    from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_momentum
 
     body = _free(2.5, 2.0, 2.2)
     f1 = euler_poinsot_frequencies(body, 0.21, 1.0)
@@ -121,7 +121,7 @@ def test_huge_and_tiny_scales_stay_finite_and_homogeneous(s):
 
 
 def test_momentum_on_the_permanent_rotations_and_bad_times():
-    from andoyer.analysis.euler_poinsot import euler_poinsot_momentum
+    from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_momentum
 
     body = _free(2.5, 2.0, 2.2)
     t = np.linspace(0.0, 50.0, 6)

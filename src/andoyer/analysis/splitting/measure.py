@@ -304,7 +304,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         * ``"melnikov"``: :func:`~andoyer.analysis.splitting.melnikov.melnikov_function` at the
           phases of the grid.
         * ``"orbit_leaves"``, ``"orbit_reaches"`` (mu): the periodic orbits the line
-          leaves and reaches, continued from ``mu = 0`` (:func:`~andoyer.analysis.
+          leaves and reaches, continued from ``mu = 0`` (:func:`~andoyer.analysis.splitting.
           periodic.orbits_dataset`).
         * ``"curve_unstable"``, ``"curve_stable"`` (point): the manifold curves on
           ``Sigma_0`` at the largest ``mu`` (:meth:`ManifoldCurve.dataset`).
