@@ -152,6 +152,8 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "melnikov_off_hess": {"body": HESS, "epsilon": 0.05},
     "check_grid_size": {"what": "n"},
     "elliptic_pi": {"n": 0.3},
+    "lagrange_top": {"body": RigidBody.lagrange(1.0, 0.6, 1.0),
+                     "y0": [0.2, 0.1, 1.5, 0.0, math.sin(0.8), math.cos(0.8)]},
     "euler_poinsot_frequencies": {"body": FREE, "h": 0.21},
     "euler_poinsot_momentum": {"body": FREE},
     "orbit_frequencies": {"body": FREE, "t_end": 500.0, "n_samples": 64},

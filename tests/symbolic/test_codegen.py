@@ -56,6 +56,7 @@ def random_args(names: list[str], rng: np.random.Generator, n: int) -> list[np.n
         "c": rng.uniform(0.2, 1.0, n), "mu": rng.uniform(0.0, 2.0, n),
         "e1": rng.normal(size=n), "e2": rng.normal(size=n), "e3": rng.normal(size=n),
         "phi0": rng.uniform(-np.pi, np.pi, n),
+        **{f"q{i}": rng.normal(size=n) for i in range(4)},
     }
     return [values[name] for name in names]
 

@@ -24,7 +24,9 @@ topic, imported on demand (``from andoyer.analysis.chaos.indicators import indic
   :mod:`~andoyer.analysis.splitting.melnikov`;
 - :mod:`~andoyer.analysis.paper`, the paper itself:
   :mod:`~andoyer.analysis.paper.trajectories` (Fig. 3) and
-  :mod:`~andoyer.analysis.paper.paper_check` (every printed formula against the derivation).
+  :mod:`~andoyer.analysis.paper.paper_check` (every printed formula against the derivation);
+- :mod:`~andoyer.analysis.space`, the body in space:
+  :mod:`~andoyer.analysis.space.lagrange_top` (the Lagrange top in closed form).
 
 The former flat module paths (``andoyer.analysis.separatrix``, ...) import for one
 release with a ``DeprecationWarning``.

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from andoyer.integrate.api import integrate_canonical as integrate_canonical
     from andoyer.integrate.api import poincare as poincare
     from andoyer.integrate.api import propagate as propagate
+    from andoyer.integrate.attitude import attitude as attitude
     from andoyer.integrate.fill import fill_section as fill_section
     from andoyer.integrate.hess_manifold import (
         propagate_hess_manifold as propagate_hess_manifold,
@@ -22,6 +23,7 @@ if TYPE_CHECKING:
     from andoyer.integrate.section import Section as Section
 
 _LAZY = {
+    "attitude": "andoyer.integrate.attitude",
     "initial_states": "andoyer.integrate.api",
     "integrate_canonical": "andoyer.integrate.api",
     "poincare": "andoyer.integrate.api",
@@ -31,8 +33,8 @@ _LAZY = {
     "Section": "andoyer.integrate.section",
 }
 
-__all__ = ["Section", "fill_section", "initial_states", "integrate_canonical", "poincare",
-           "propagate", "propagate_hess_manifold"]
+__all__ = ["Section", "attitude", "fill_section", "initial_states", "integrate_canonical",
+           "poincare", "propagate", "propagate_hess_manifold"]
 
 
 def __getattr__(name: str) -> object:

@@ -80,6 +80,27 @@ def ep_jacobian(G1, G2, G3, gamma1, gamma2, gamma3, a, b, c, mu, e1, e2, e3):
     )
 
 
+def attitude_field(G1, G2, G3, gamma1, gamma2, gamma3, q0, q1, q2, q3, a, b, c, mu, e1, e2, e3):
+    """Field (1) with the attitude quaternion (scalar first, body -> space): d(G1, G2, G3, gamma1, gamma2, gamma3, q0, q1, q2, q3)/dt."""
+    x0 = gamma3*mu
+    x1 = G1*G3
+    x2 = G2*b
+    x3 = G1*a
+    x4 = G3*c
+    return (
+        -G2*G3*b + G2*G3*c - e2*x0 + e3*gamma2*mu,
+        a*x1 - c*x1 + e1*x0 - e3*gamma1*mu,
+        -G1*G2*a + G1*G2*b - e1*gamma2*mu + e2*gamma1*mu,
+        G3*c*gamma2 - gamma3*x2,
+        -gamma1*x4 + gamma3*x3,
+        G2*b*gamma1 - gamma2*x3,
+        -1/2*q1*x3 - 1/2*q2*x2 - 1/2*q3*x4,
+        (1/2)*q0*x3 + (1/2)*q2*x4 - 1/2*q3*x2,
+        (1/2)*q0*x2 - 1/2*q1*x4 + (1/2)*q3*x3,
+        (1/2)*q0*x4 + (1/2)*q1*x2 - 1/2*q2*x3,
+    )
+
+
 def andoyer_hamiltonian(l, g, L, G, M, a, b, c, mu, e1, e2, e3):
     """H of Eq. (7) in Andoyer-Deprit variables."""
     x0 = sin(l)

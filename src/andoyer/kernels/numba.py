@@ -13,6 +13,7 @@ __all__ = [
     "ep_hamiltonian",
     "ep_field",
     "ep_jacobian",
+    "attitude_field",
     "andoyer_hamiltonian",
     "andoyer_field",
     "hess_hamiltonian",
@@ -24,6 +25,7 @@ _jit = cached_njit(fastmath=False, nogil=True)
 ep_hamiltonian = _jit(_g.ep_hamiltonian)
 ep_field = _jit(_g.ep_field)
 ep_jacobian = _jit(_g.ep_jacobian)
+attitude_field = _jit(_g.attitude_field)
 andoyer_hamiltonian = _jit(_g.andoyer_hamiltonian)
 andoyer_field = _jit(_g.andoyer_field)
 hess_hamiltonian = _jit(_g.hess_hamiltonian)

@@ -19,6 +19,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 
 from andoyer.atomic import atomic_path
+from andoyer.symbolic import attitude as att
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 
@@ -37,6 +38,9 @@ KERNELS: dict[str, tuple[tuple[sp.Symbol, ...], Callable[[], Sequence[sp.Expr]],
     "ep_jacobian": (S.y + S.body, sym.euler_poisson_jacobian,
                     "Jacobian of (1), row-major: J[6 i + j] = d f_i / d y_j (variational "
                     "equations dw/dt = J w)."),
+    "attitude_field": (S.y + att.Q + S.body, att.attitude_field,
+                       "Field (1) with the attitude quaternion (scalar first, body -> space): "
+                       "d(G1, G2, G3, gamma1, gamma2, gamma3, q0, q1, q2, q3)/dt."),
     "andoyer_hamiltonian": (S.andoyer + S.body, lambda: [sym.H_andoyer()],
                             "H of Eq. (7) in Andoyer-Deprit variables."),
     "andoyer_field": (S.andoyer + S.body, sym.andoyer_field,

@@ -11,8 +11,8 @@ Taylor method compiled with Numba, section events inside the kernel) is portable
 (:func:`capability_table`); callers ask :func:`resolve_engine` for an engine and check
 capabilities, never names.
 
->>> print(capability_table().splitlines()[0])
-| engine | propagate | crossings | backward | tangent | tangent_crossings | extended_precision |
+>>> print(capability_table().splitlines()[0].replace(" | ", ", "))
+| engine, propagate, crossings, backward, tangent, tangent_crossings, extended_precision, attitude |
 """
 
 from __future__ import annotations

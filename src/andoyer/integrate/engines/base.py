@@ -56,6 +56,14 @@ and knows nothing of datasets, charts or bodies.
 ``_tangent_crossings(y0, w0, par, event, n_crossings, t_max, tolerance, extended_precision)``
     (for ``TANGENT_CROSSINGS``) the crossings of ``_crossings`` with the tangent
     vectors there (the tangent flow at the crossing *time*); ``megno`` is None.
+``_attitude(z0, t, par, tolerance)`` (for ``ATTITUDE``)
+    ``z0`` (n, 10): the state with the attitude quaternion ``(G, gamma, q0, q1, q2, q3)``
+    (scalar first, body -> space, :mod:`andoyer.charts.rotation`); integrates (1) with
+    ``dq/dt = q (x) (0, omega) / 2``, ``omega = I G`` (the SymPy field
+    :func:`andoyer.symbolic.attitude.attitude_field`, generated as
+    :func:`andoyer.kernels.generated.attitude_field`), ``t`` as for ``_propagate``.
+    Returns (n, m, 10) with ``[:, 0]`` equal to ``z0``; the quaternion's length is an
+    integral of the flow and is not renormalised by the engine.
 
 A failed integration (non-finite state, too many steps) raises
 :class:`~andoyer.errors.IntegrationError` (a ``FloatingPointError``) from
@@ -107,6 +115,7 @@ __all__ = [
     "Capability", "SectionEvent", "Tolerance", "Crossings", "TangentFlow", "Engine",
     "EngineBase", "PARAMETERS", "PAR", "runtime_parameters", "REVERSIBLE", "REVERSAL",
     "TOLERANCE_FACTOR", "check_tolerance_factor", "Params", "ALL_KINDS", "unit_vectors",
+    "ATTITUDE_REVERSAL",
 ]
 
 #: (a, b, c, mu, e1, e2, e3, phi0)
@@ -123,6 +132,9 @@ PAR: dict[str, int] = {name: i for i, name in enumerate(PARAMETERS)}
 
 #: Time reversal of (1): ``y(-t; y0) = R y(t; R y0)``.
 REVERSAL = np.array([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
+#: Time reversal of (1) with the attitude: ``omega`` flips with ``G`` and ``dq/dt`` with
+#: the time, so the quaternion is carried over unchanged (:meth:`EngineBase.attitude`).
+ATTITUDE_REVERSAL = np.concatenate([REVERSAL, np.ones(4)])
 
 #: Section -> sign ``s`` with ``f(R y; s value) = s f(y; value)``: the sections a
 #: forward-only engine can run backward (momentum components flip, gamma and ``|G|``
@@ -146,6 +158,8 @@ class Capability(enum.Enum):
     TANGENT_CROSSINGS = "tangent_crossings"
     #: ``extended_precision=True`` (80-bit long double) for tangent crossings.
     EXTENDED_PRECISION = "extended_precision"
+    #: The attitude quaternion integrated with the state (:meth:`EngineBase.attitude`).
+    ATTITUDE = "attitude"
 
     def __str__(self) -> str:
         return self.value
@@ -163,6 +177,7 @@ _DESCRIPTIONS = {
     Capability.TANGENT: "integrate tangent vectors",
     Capability.TANGENT_CROSSINGS: "find section crossings with tangent vectors",
     Capability.EXTENDED_PRECISION: "integrate in extended precision",
+    Capability.ATTITUDE: "integrate the attitude (orientation quaternion)",
 }
 
 
@@ -449,6 +464,10 @@ class EngineBase:
                            extended_precision: bool) -> TangentFlow:
         raise NotImplementedError
 
+    def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
+                  par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        raise NotImplementedError
+
     def warm_up(self, capability: Capability, tolerance: Tolerance, *, n: int = 1,
                 k: int = 1) -> tuple[str, float]:
         """Prepare the code of ``capability`` for ``n`` orbits with ``k`` tangent vectors
@@ -518,6 +537,57 @@ class EngineBase:
         self.require(Capability.BACKWARD, "propagate backward")
         z = self._propagate(REVERSAL * y, 2.0 * times[0] - times, par, tol)
         return REVERSAL * z
+
+    def attitude(self, y0: ArrayLike, q0: ArrayLike, t: ArrayLike, params: ArrayLike,
+                 tolerance: Tolerance) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """States and attitude quaternions at times ``t`` (``ATTITUDE``).
+
+        Parameters
+        ----------
+        y0 : array_like, shape (6,) or (n, 6)
+        q0 : array_like, shape (4,) or (n, 4)
+            Unit quaternions, scalar first, body -> space (``gamma = R(q)^T e_Z``:
+            :func:`andoyer.charts.rotation.quaternion_from_vertical` builds one).
+        t : array_like, shape (m,)
+            As for :meth:`propagate` (decreasing: backward, by time reversal).
+        params : sequence of 8 floats
+        tolerance : Tolerance
+
+        Returns
+        -------
+        y : ndarray, shape (n, m, 6)
+        q : ndarray, shape (n, m, 4)
+        """
+        self.require(Capability.ATTITUDE)
+        tol = _tolerance(tolerance)
+        y = _states(y0)
+        q = np.asarray(q0, dtype=np.float64)
+        if q.ndim == 1:
+            q = q[None]
+        if q.ndim != 2 or q.shape[1] != 4 or q.shape[0] not in (1, y.shape[0]):
+            raise ValueError(f"q0 must have shape (4,) or (n, 4) with n = {y.shape[0]} "
+                             f"orbits, got {np.shape(q0)}")
+        if not (np.all(np.isfinite(y)) and np.all(np.isfinite(q))):
+            raise ValueError("y0 and q0 must be finite")
+        norm = np.linalg.norm(q, axis=1)
+        if np.any(np.abs(norm - 1.0) > 1e-12):
+            raise ValueError("q0 must hold unit quaternions (|q| = 1 to 1e-12)")
+        z = np.ascontiguousarray(np.concatenate(
+            [y, np.broadcast_to(q, (y.shape[0], 4))], axis=1))
+        times = _times(t)
+        if z.shape[0] == 0 or times.size == 0:
+            return np.empty((z.shape[0], times.size, 6)), np.empty((z.shape[0], times.size, 4))
+        par = runtime_parameters(params)
+        step = np.diff(times)
+        if np.all(step >= 0.0) or "attitude" in self.native_backward:
+            out = self._attitude(z, times, par, tol)
+        else:
+            if not np.all(step <= 0.0):
+                raise ValueError("t must be monotonic (increasing, or decreasing backward)")
+            self.require(Capability.BACKWARD, "integrate the attitude backward")
+            out = ATTITUDE_REVERSAL * self._attitude(ATTITUDE_REVERSAL * z,
+                                                     2.0 * times[0] - times, par, tol)
+        return out[..., :6], out[..., 6:]
 
     def crossings(self, y0: ArrayLike, params: ArrayLike, event: SectionEvent,
                   n_crossings: int, t_max: float, tolerance: Tolerance, *,

@@ -103,6 +103,7 @@ from andoyer.integrate.engines.base import (
     Tolerance,
 )
 from andoyer.integrate.engines.heyoka_symbolic import (
+    attitude_system,
     field_at,
     field_cfunc,
     heyoka_system,
@@ -122,6 +123,7 @@ __all__ = ["HeyokaEngine", "T_START", "tolerance", "warm_up"]
 _DIRECTIONS = {1: "positive", -1: "negative", 0: "any"}
 
 _NO_SECTION = -1
+_ATTITUDE = -2  # the attitude integrator (10 variables), scalar
 _T = TypeVar("_T")
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
 
@@ -188,8 +190,11 @@ class _Slot(NamedTuple):
 
 
 def _build(key: _Key) -> _Slot:
-    system = list(heyoka_system(scalar=key.batch_size == 1))
     common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
+    if key.kind == _ATTITUDE:
+        ta = hy.taylor_adaptive(list(attitude_system()), [0.0] * 10, **common)
+        return _Slot(ta, None, int(np.shape(ta.pars)[0]))
+    system = list(heyoka_system(scalar=key.batch_size == 1))
     if key.kind == _NO_SECTION:
         if key.batch_size == 1:
             ta = hy.taylor_adaptive(system, [0.0] * 6, **common)
@@ -623,6 +628,16 @@ class HeyokaEngine(EngineBase):
         blocks = _run([partial(_propagate_batch, key, y0[s:s + m], t, pars)
                        for s in range(0, n, m)], self.n_threads)
         return np.concatenate(blocks)
+
+    def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
+                  pars: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        """A scalar integrator of (1) with the quaternion
+        (:func:`~andoyer.integrate.engines.heyoka_symbolic.attitude_system`) per orbit,
+        orbits in threads."""
+        key = _Key(1, _ATTITUDE, 0, tolerance.tol)
+        rows = _run([partial(_propagate_scalar, key, z0[i], t, pars)
+                     for i in range(z0.shape[0])], self.n_threads)
+        return np.stack(rows)
 
     def _crossings(self, y0: NDArray[np.float64], pars: NDArray[np.float64],
                    event: SectionEvent, n_crossings: int, t_max: float,

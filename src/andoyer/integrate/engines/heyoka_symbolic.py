@@ -28,7 +28,7 @@ from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
 __all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "INV_SCALE", "par", "heyoka_state_vars",
            "symbol_map", "taylor_form", "heyoka_system", "section_exprs", "section_cfunc",
-           "field_cfunc", "field_at"]
+           "field_cfunc", "field_at", "attitude_vars", "attitude_system"]
 
 #: ``cos phi0``, ``sin phi0`` as runtime parameters of their own in the section functions:
 #: heyoka would expand ``cos(par)``, ``sin(par)`` by their Taylor recursions at every step
@@ -122,6 +122,27 @@ def heyoka_system(scalar: bool = False) -> tuple[tuple[Any, Any], ...]:
     smap = symbol_map()
     return tuple((x, taylor_form(e) if scalar else hy.from_sympy(e, smap))
                  for x, e in zip(heyoka_state_vars(), euler_poisson_field(), strict=True))
+
+
+@cache
+def attitude_vars() -> tuple[Any, ...]:
+    """The heyoka variables of the state with the attitude quaternion ``(G, gamma, q)``."""
+    from andoyer.symbolic.attitude import Q
+
+    return (*heyoka_state_vars(), *hy.make_vars(*(str(s) for s in Q)))
+
+
+@cache
+def attitude_system() -> tuple[tuple[Any, Any], ...]:
+    """(1) with ``dq/dt = q (x) (0, I G) / 2`` as heyoka ``(variable, rhs)`` pairs, from
+    :func:`andoyer.symbolic.attitude.attitude_field` (scalar-first quaternion, body ->
+    space)."""
+    from andoyer.symbolic.attitude import Q, attitude_field
+
+    variables = attitude_vars()
+    smap = {**symbol_map(), **dict(zip(Q, variables[len(S.y):], strict=True))}
+    return tuple((x, hy.from_sympy(e, smap))
+                 for x, e in zip(variables, attitude_field(), strict=True))
 
 
 @cache

@@ -58,6 +58,12 @@ def _tangent_kernels() -> Any:
     return tangent
 
 
+def _attitude_kernels() -> Any:
+    from andoyer.kernels import attitude  # its machine code loads here, not at import
+
+    return attitude
+
+
 def _raise_on_failure(info: NDArray[np.int64], what: str) -> None:
     status = info[:, dop853.INFO.index("status")]
     bad = np.flatnonzero(status != dop853.SUCCESS)
@@ -134,7 +140,7 @@ class NumbaEngine(EngineBase):
     min_tolerance = 1e-13
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
                               Capability.BACKWARD, Capability.TANGENT,
-                              Capability.TANGENT_CROSSINGS})
+                              Capability.TANGENT_CROSSINGS, Capability.ATTITUDE})
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  tolerance_factor: float = TOLERANCE_FACTOR,
@@ -162,6 +168,17 @@ class NumbaEngine(EngineBase):
                                      self.max_steps, block=self.chunksize,
                                      threads=self.n_threads)
         _raise_on_failure(info, "in propagate")
+        return out
+
+    def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
+                  par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        """(1) with the quaternion (:mod:`andoyer.kernels.attitude`), read off the dense
+        output as :meth:`_propagate`."""
+        rtol, atol = tolerance.scaled(self.tolerance_factor)
+        out, info = _attitude_kernels().propagate(z0, t, _kernel_params(par), rtol, atol,
+                                                  self.max_steps, block=self.chunksize,
+                                                  threads=self.n_threads)
+        _raise_on_failure(info, "integrating the attitude")
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],

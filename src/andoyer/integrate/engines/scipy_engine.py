@@ -42,7 +42,7 @@ from andoyer.integrate.engines.base import (
 from andoyer.integrate.engines.ivp import check_solution
 from andoyer.integrate.engines.ivp import solve_dop853 as solve_dop853
 from andoyer.kernels.constants import T_START
-from andoyer.kernels.generated import ep_field, ep_jacobian, section
+from andoyer.kernels.generated import attitude_field, ep_field, ep_jacobian, section
 
 __all__ = ["ScipyEngine", "solve_dop853"]
 
@@ -67,6 +67,16 @@ class _Field:
         if not math.isfinite(sum(dy)):
             raise IntegrationError(f"scipy DOP853: non-finite field at t = {t!r}")
         return np.array(dy)
+
+
+class _Attitude(_Field):
+    """``fun(t, z)``: the generated field (1) with the attitude quaternion (10 components)."""
+
+    def __call__(self, t: float, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        dz = attitude_field(*z.tolist(), *self.p)
+        if not math.isfinite(sum(dz)):
+            raise IntegrationError(f"scipy DOP853: non-finite field at t = {t!r}")
+        return np.array(dz)
 
 
 class _Tangent:
@@ -139,7 +149,7 @@ class ScipyEngine(EngineBase):
     #: 0.5, 5, 20): monodromy matrices agree to 8e-13 (entries up to 54), 6e-14, 8e-15.
     min_tolerance = 1e-13
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
-                              Capability.BACKWARD, Capability.TANGENT})
+                              Capability.BACKWARD, Capability.TANGENT, Capability.ATTITUDE})
 
     def __init__(self, *, tolerance_factor: float = TOLERANCE_FACTOR) -> None:
         self.tolerance_factor = check_tolerance_factor(tolerance_factor)
@@ -158,8 +168,15 @@ class ScipyEngine(EngineBase):
 
     def _propagate(self, y: NDArray[np.float64], times: NDArray[np.float64],
                    par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
-        out = np.empty((y.shape[0], times.size, 6))
-        fun = _Field(par)
+        return self._solve(_Field(par), y, times, tolerance)
+
+    def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
+                  par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        return self._solve(_Attitude(par), z0, t, tolerance)
+
+    def _solve(self, fun: _Field, y: NDArray[np.float64], times: NDArray[np.float64],
+               tolerance: Tolerance) -> NDArray[np.float64]:
+        out = np.empty((y.shape[0], times.size, y.shape[1]))
         for i in range(y.shape[0]):
             out[i, 0] = y[i]
             if times[-1] == times[0]:

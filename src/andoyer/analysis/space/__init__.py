@@ -1,0 +1,3 @@
+"""The body in space: closed forms of the attitude and inertial-space analysis, on the
+datasets of :func:`andoyer.integrate.attitude` (:mod:`~andoyer.analysis.space.lagrange_top`:
+nutation bounds and mean precession of the Lagrange top)."""
