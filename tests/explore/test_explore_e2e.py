@@ -236,3 +236,109 @@ def test_orbit_table_follows_the_work_without_a_click(tmp_path: Path) -> None:
                 browser.close()
     finally:
         server.stop()
+
+
+#: The two window sizes of the layout test: a desktop and a narrow laptop window (at
+#: 1000 px the side panel once stood 330 px beyond the window's right edge).
+WINDOWS = [(1400, 960), (1000, 800)]
+
+#: JavaScript: what is wrong with the page's layout, as sentences. Every rendered part of
+#: the three columns (``andoyer-controls``, ``andoyer-main``, ``andoyer-side``: widgets,
+#: panes, figures; a figure's own parts are drawn inside its box) is measured: none may
+#: leave the window or its own column, parts of different columns may not overlap, no
+#: part's content may be wider than its box, and the page must not scroll sideways.
+_LAYOUT = """() => {
+  const groups = ['andoyer-controls', 'andoyer-main', 'andoyer-side'];
+  const groupOf = v => {
+    for (let p = v; p; p = p.parent) {
+      const c = (p.model && p.model.css_classes) || [];
+      const g = groups.find(n => c.includes(n));
+      if (g) return g;
+    }
+    return null;
+  };
+  const boxes = [], overflowing = [];
+  for (const v of Bokeh.index.all_views()) {
+    if (!(v.el instanceof Element) || !v.el.isConnected
+        || !Array.isArray(v.model.css_classes)) continue;
+    let inPlot = false;  // a figure's parts (frame, glyphs, axes) are drawn in its box
+    for (let p = v.parent; p; p = p.parent)
+      if (p.model && (p.model.type === 'Figure' || p.model.type === 'Plot')) inPlot = true;
+    if (inPlot) continue;
+    const g = groupOf(v);
+    if (g === null) continue;
+    const r = v.el.getBoundingClientRect();
+    if (r.width < 1 || r.height < 1) continue;
+    const root = (v.model.css_classes || []).includes(g);
+    boxes.push({g, root, what: v.model.name || v.model.type, l: r.left + scrollX,
+                r: r.right + scrollX, t: r.top + scrollY, b: r.bottom + scrollY});
+    const inner = v.shadow_el || v.el;  // content wider than its box runs out of it
+    if (!root && inner.scrollWidth > v.el.clientWidth + 1
+        && getComputedStyle(v.el).overflowX === 'visible')
+      overflowing.push(`${g}/${v.model.name || v.model.type}: content ${inner.scrollWidth} px `
+                       + `wide in a ${v.el.clientWidth} px box`);
+  }
+  const problems = [...overflowing];
+  const W = window.innerWidth;
+  if (document.documentElement.scrollWidth > W)
+    problems.push(`the page is ${document.documentElement.scrollWidth} px wide `
+                  + `in a ${W} px window`);
+  for (const x of boxes)
+    if (x.l < -0.5 || x.r > W + 0.5)
+      problems.push(`${x.g}/${x.what} spans ${x.l}-${x.r}, outside the window 0-${W}`);
+  for (const x of boxes) {
+    const col = boxes.find(c => c.root && c.g === x.g);
+    if (col && (x.l < col.l - 0.5 || x.r > col.r + 0.5))
+      problems.push(`${x.g}/${x.what} spans ${x.l}-${x.r}, outside its column ${col.l}-${col.r}`);
+  }
+  for (let i = 0; i < boxes.length; i++)
+    for (let j = i + 1; j < boxes.length; j++) {
+      const a = boxes[i], b = boxes[j];
+      if (a.g === b.g) continue;  // nested parts of one column contain each other
+      const w = Math.min(a.r, b.r) - Math.max(a.l, b.l);
+      const h = Math.min(a.b, b.b) - Math.max(a.t, b.t);
+      if (w > 0.5 && h > 0.5)
+        problems.push(`${a.g}/${a.what} overlaps ${b.g}/${b.what} `
+                      + `(${w.toFixed(1)} x ${h.toFixed(1)} px)`);
+    }
+  const seen = groups.filter(g => boxes.some(x => x.g === g));
+  return {problems, groups: seen, n: boxes.length};
+}"""
+
+
+def test_layout_fits_wide_and_narrow_windows(tmp_path: Path) -> None:
+    """At 1400 x 960 and at 1000 x 800, with an orbit seeded and selected (its side
+    panel filled: description, time plot), nothing overlaps or leaves the window
+    (issue 29); a screenshot of the whole page is taken at each size."""
+    sync_api = _need_browser()
+    from andoyer.explore.server import serve
+
+    server = serve(RigidBody.paper(), threaded=True, n_crossings=CROSSINGS)
+    page_errors: list[str] = []
+    try:
+        with sync_api.sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            try:
+                for width, height in WINDOWS:
+                    page = browser.new_page(viewport={"width": width, "height": height})
+                    page.on("pageerror", lambda exc: page_errors.append(str(exc)))
+                    page.goto(server.url)
+                    _wait(page, "s.view_ready && s.pending === 0")
+                    _click(page, *CLICKS[0])
+                    _wait(page, "s.n_orbits === 1 && s.pending === 0 && s.selected === 1")
+                    page.wait_for_function(
+                        f"() => ({_MODEL})('andoyer-timeseries').data.xs.length > 0",
+                        timeout=60_000)
+                    layout = page.evaluate(_LAYOUT)
+                    assert layout["groups"] == ["andoyer-controls", "andoyer-main",
+                                                "andoyer-side"], layout
+                    assert layout["problems"] == [], f"at {width} x {height}: {layout}"
+                    shot = tmp_path / f"explore-{width}.png"
+                    page.screenshot(path=str(shot), full_page=True)
+                    assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+                    page.close()
+            finally:
+                browser.close()
+    finally:
+        server.stop()
+    assert not page_errors, f"JavaScript errors on the page: {page_errors}"

@@ -158,8 +158,11 @@ class Explorer(ExplorerBase):
         self._build_plane()
         self._build_controls()
         self._build_side()
+        # A wrapping row: where the window is too narrow for the three columns
+        # (300 + 670 + 370 px), the side panel moves below instead of running out of the
+        # window (at 1000 px it stood 330 px beyond the right edge).
         self.panel = pn.Row(self.controls, self.main, self.side_panel,
-                            sizing_mode="stretch_width")
+                            sizing_mode="stretch_width", styles={"flex-wrap": "wrap"})
         if self._doc is not None and self._doc.session_context is not None:
             self._doc.on_session_destroyed(lambda _ctx: self.close())
         self._submit_view(self.settings, warm_up=True)
@@ -215,8 +218,8 @@ class Explorer(ExplorerBase):
                      TableColumn(field="seed_x", title="x", formatter=num),
                      TableColumn(field="seed_y", title="y", formatter=num),
                      TableColumn(field="action", title="solved action", formatter=num),
-                     TableColumn(field="crossings", title="crossings", width=70),
-                     TableColumn(field="status", title="status", width=180)])
+                     TableColumn(field="crossings", title="crossings", width=90),
+                     TableColumn(field="status", title="status", width=160)])
         self.orbits.selected.on_change("indices", self._on_select)
         # Bokeh's DataTable redraws its cells when its view's indices change, not when the
         # values of rows already shown do: redraw on every change of the source here.
@@ -224,7 +227,7 @@ class Explorer(ExplorerBase):
         for what in ("data", "patching", "streaming"):
             self.orbits.js_on_change(what, redraw)
         self.plane_pane = pn.pane.Bokeh(column(self.status, fig, self.table, self.state_div))
-        self.main = pn.Column(self.plane_pane)
+        self.main = pn.Column(self.plane_pane, css_classes=["andoyer-main"])
 
     def _build_controls(self) -> None:
         s = self.settings
@@ -285,7 +288,8 @@ class Explorer(ExplorerBase):
             self.w_body, pn.Row(self.w_A, self.w_B, self.w_C), self.w_mu, self.w_r,
             self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
             self.w_crossings, self.w_engine, self.w_root, self.w_underlay,
-            pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=CONTROLS_WIDTH)
+            pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=CONTROLS_WIDTH,
+            css_classes=["andoyer-controls"])
 
     def _build_side(self) -> None:
         self.info = pn.pane.HTML("<i>no orbit selected</i>", width=340,
@@ -317,7 +321,7 @@ class Explorer(ExplorerBase):
         self.side_panel = pn.Column(pn.pane.Markdown("#### selected orbit"), self.info,
                                     self.w_coords, self.w_span, self.time_pane,
                                     self.w_indicator_t, self.w_indicator, self.indicator,
-                                    width=360)
+                                    width=360, css_classes=["andoyer-side"])
 
     # ------------------------------------------------------------------ the plane
     def _submit_view(self, settings: Settings, warm_up: bool = False) -> None:
