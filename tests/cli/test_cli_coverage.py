@@ -75,6 +75,9 @@ def test_frequencies_command_one_orbit(tmp_path, capsys):
     assert float(o.frequency_ratio * o.rotation_number_g_section) == pytest.approx(1.0)
     assert 7.0 < float(o.frequency_ratio) < 9.0      # the paper's body: about 8
     assert "section" in ds.rotation_number_g_section.attrs["long_name"]
+    # Like every command's figure, the PNG beside the NetCDF (issue 29).
+    assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert f"wrote {out} and {tmp_path / 'f.png'}" in text
 
 
 def test_frequencies_command_map(tmp_path):
@@ -98,3 +101,17 @@ def test_each_command_prints_its_own_usage(capsys, argv, usage, hint):
     assert info.value.code == 2
     assert err.startswith(usage) and "usage: andoyer [-h]" not in err
     assert f"andoyer {argv[0]}: error: unrecognized arguments" in err and hint in err
+
+
+@pytest.mark.parametrize("command", ["section", "frequencies", "chaos-map"])
+def test_level_commands_check_the_level_before_work_naming_the_flag(tmp_path, capsys,
+                                                                    command):
+    """The commands that seed a section plane take their body, section and level through
+    one helper (cli._common.inputs_from_args): an energy level beyond what the integrators
+    take is refused naming --energy, before anything is integrated or compiled."""
+    with pytest.raises(SystemExit) as info:
+        main([command, "--energy", "1e300", "--out", str(tmp_path / "x.nc")])
+    err = capsys.readouterr().err
+    assert info.value.code == 2
+    assert f"andoyer {command}: error: --energy = 1e+300: the energy level reaches" in err
+    assert "compiled" not in err and not (tmp_path / "x.nc").exists()

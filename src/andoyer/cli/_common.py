@@ -7,7 +7,7 @@ import os
 import sys
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal, NamedTuple
 
 from andoyer.integrate.engines import ENGINES
 from andoyer.notation import VOCABULARY
@@ -17,7 +17,8 @@ from andoyer.validation import positive as _positive
 
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
            "add_term", "add_state_args", "state_from_args", "floats", "output_file",
-           "output_folder", "distinct_outputs", "count", "real"]
+           "output_folder", "distinct_outputs", "count", "real", "Inputs",
+           "inputs_from_args"]
 
 #: The body flags each --body takes (others are refused, not ignored).
 BODY_FLAGS = {
@@ -293,6 +294,72 @@ def state_from_args(args: argparse.Namespace, body: Any, *, required: bool = Tru
     state = floats(text, 6 if chart == "euler_poisson" else 5, flag)
     initial_states(body, state, chart, name=flag)  # errors name the flag, not y0
     return state, chart
+
+
+class Inputs(NamedTuple):
+    """What a command checked before any work (:func:`inputs_from_args`)."""
+
+    out: Path
+    """The output file, checked and locked (:func:`output_file`)."""
+    body: Any
+    """The body of ``--body`` and its flags (:func:`body_from_args`)."""
+    state: list[float] | None
+    """The initial state of ``--y0`` / ``--andoyer`` / ``--hess``, or None."""
+    chart: str | None
+    """Its chart (``euler_poisson``, ``andoyer``, ``hess``), or None."""
+    section: Any
+    """The :class:`~andoyer.integrate.section.Section` of ``--section``, or None."""
+    h: float | None
+    """The energy level: ``--energy``, or the default level of the body and ``--M``."""
+
+
+def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
+                     state: Literal["none", "required", "optional"] = "none",
+                     level: bool = False) -> Inputs:
+    """The inputs of a command that integrates a body, checked in one order before any
+    work: the output file (``--out``, ending in ``suffix``; figures are written beside
+    it), the body, the initial state where the command takes one (``state``), and, where
+    the command seeds orbits on a section plane (``level``) and no initial state was
+    given, the section and the energy level: ``--energy``, or by default the level of
+    :func:`andoyer.integrate.fill.default_h` on ``--M``, checked on the body
+    (:func:`andoyer.integrate.budget.check_level`, naming ``--energy``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (flags of :func:`add_body_args`, :func:`add_state_args`
+        where ``state`` is not ``"none"``, :func:`add_level_args` where ``level``).
+    suffix : str, default ".nc"
+        What ``--out`` must end in.
+    state : {"none", "required", "optional"}, default "none"
+        Whether the command takes an initial state, and must have one.
+    level : bool, default False
+        Whether the command seeds orbits on a section plane of a level (when no initial
+        state is given).
+
+    Returns
+    -------
+    Inputs
+        ``out, body, state, chart, section, h`` (None where not asked for or not given).
+    """
+    out = output_file(args.out, suffix)
+    body = body_from_args(args)
+    given = None if state == "none" else state_from_args(args, body,
+                                                         required=state == "required")
+    y0, chart = given if given is not None else (None, None)
+    section = h = None
+    if level and given is None:
+        from andoyer.integrate import budget
+        from andoyer.integrate.section import Section
+
+        section = Section.parse(args.section)
+        h = args.h
+        if h is None:
+            from andoyer.integrate.fill import default_h
+
+            h = default_h(body, args.M)
+        budget.check_level(body, h, "--energy")
+    return Inputs(out, body, y0, chart, section, h)
 
 
 def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> None:

@@ -8,9 +8,8 @@ from typing import Any
 from andoyer.cli._common import (
     add_body_args,
     add_level_args,
-    body_from_args,
     count,
-    output_file,
+    inputs_from_args,
     real,
 )
 from andoyer.integrate.engines import ENGINES
@@ -46,18 +45,14 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.section import save_figure
 
-    out = output_file(args.out, ".nc")
-    body = body_from_args(args)
+    out, body, _, _, _, h = inputs_from_args(args, level=True)
+    assert h is not None  # a level command without a state has its level
     grid = _grid(args.n)
-    if args.h is None:
-        from andoyer.integrate.fill import default_h
-
-        args.h = default_h(body, args.M)
     source, seconds = warm_up(tol=args.tol, engine=args.engine)
     if source != "ready":  # an engine that compiles per setting (heyoka)
         print(f"variational integrator: {source} in {seconds:.2f} s")
     t0 = time.perf_counter()
-    ds = chaos_map(body, args.h, args.M, args.section, n=grid,
+    ds = chaos_map(body, h, args.M, args.section, n=grid,
                    t_end=args.t_end, indicator=args.indicator, engine=args.engine,
                    chunk=args.chunk, progress=True, tol=args.tol, root=args.root,
                    tangent=args.tangent)
@@ -75,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     n_ok = int(ds.attrs["n_accessible"]) - int(ds.attrs["n_failed"])
     what = ", ".join(f"{v} in [{float(np.nanmin(ds[v])):.3g}, {float(np.nanmax(ds[v])):.3g}]"
                      for v in ("fli", "megno") if v in ds)
-    print(f"{n_ok} orbits on H = {args.h:g}, M = {args.M:g} to t = {args.t_end:g} in "
+    print(f"{n_ok} orbits on H = {h:g}, M = {args.M:g} to t = {args.t_end:g} in "
           f"{elapsed:.1f} s; {what}; max energy error {float(ds.H_error.max()):.1e}")
     print(f"wrote {out} and {', '.join(str(f) for f in figures)}")
     return 0

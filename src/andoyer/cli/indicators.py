@@ -10,11 +10,9 @@ from andoyer.cli._common import (
     add_engine_args,
     add_state_args,
     add_term,
-    body_from_args,
     count,
-    output_file,
+    inputs_from_args,
     real,
-    state_from_args,
 )
 
 NAME = "indicators"
@@ -30,9 +28,8 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.chaos import plot_indicators
     from andoyer.plot.section import save_figure
 
-    out = output_file(args.out, ".nc")
-    body = body_from_args(args)
-    state, chart = state_from_args(args, body)  # type: ignore[misc]
+    out, body, state, chart, _, _ = inputs_from_args(args, state="required")
+    assert state is not None and chart is not None  # required: given, or refused
     ds = indicators(body, state, args.t_end, n_times=args.n_times, chart=chart,
                     tangent=args.tangent, tol=args.tol, engine=args.engine)
     write_netcdf(ds, out)

@@ -9,11 +9,9 @@ from andoyer.cli._common import (
     add_body_args,
     add_engine_args,
     add_state_args,
-    body_from_args,
     count,
-    output_file,
+    inputs_from_args,
     real,
-    state_from_args,
 )
 
 NAME = "orbit"
@@ -27,9 +25,8 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.integrate.api import propagate
     from andoyer.io import write_netcdf
 
-    out_path = output_file(args.out, ".nc")
-    body = body_from_args(args)
-    state, chart = state_from_args(args, body)  # type: ignore[misc]
+    out_path, body, state, chart, _, _ = inputs_from_args(args, state="required")
+    assert state is not None and chart is not None  # required: given, or refused
     if args.t_end <= 0 or args.n_out < 2:
         raise ValueError("--t-end must be > 0 and --n-out >= 2")
     # Costed before the output times are even allocated (--n-out 1e9: 8 GB of times).

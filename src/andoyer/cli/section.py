@@ -10,9 +10,8 @@ from andoyer.cli._common import (
     add_engine_args,
     add_level_args,
     add_term,
-    body_from_args,
     count,
-    output_file,
+    inputs_from_args,
 )
 
 NAME = "section"
@@ -26,36 +25,29 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.integrate import budget
     from andoyer.integrate.api import poincare
     from andoyer.integrate.fill import fill_section
-    from andoyer.integrate.section import Section
     from andoyer.io import write_netcdf
     from andoyer.plot.section import plot_section, save_figure
 
-    out = output_file(args.out, ".nc")
-    body = body_from_args(args)
-    sec = Section.parse(args.section)
+    out, body, _, _, sec, h = inputs_from_args(args, level=True)
+    assert h is not None  # a level command without a state has its level
     if sec.coord not in ("g", "theta2"):
         raise ValueError("andoyer section fills the planes of 'g=...' (l, L) and "
                          "'theta2=...' (theta1, J1) sections; use the Python API poincare() "
                          "for other sections")
-    if args.h is None:
-        from andoyer.integrate.fill import default_h
-
-        args.h = default_h(body, args.M)
-    budget.check_level(body, args.h, "--energy")
     # Costed before the fill seeds a single orbit, naming the flags.
     budget.check(f"--n-orbits {args.n_orbits} x --n-crossings {args.n_crossings}",
                  memory=budget.DATASET_BYTES * float(args.n_orbits) * args.n_crossings)
-    fill = fill_section(body, args.h, args.M, (sec.coord, sec.value),
+    fill = fill_section(body, h, args.M, (sec.coord, sec.value),
                         n_orbits=args.n_orbits, sampling=args.sampling)
     y0 = fill["y0"].values
-    print(f"{y0.shape[0]} orbits on H = {args.h:g}, M = {args.M:g}; "
+    print(f"{y0.shape[0]} orbits on H = {h:g}, M = {args.M:g}; "
           f"{args.n_crossings} crossings each")
     ds = poincare(body, y0, sec, args.n_crossings, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, progress=True)
-    ds.attrs.update(h=args.h, M=args.M)
+    ds.attrs.update(h=h, M=args.M)
     write_netcdf(ds, out)
     ax = plot_section(ds, boundary=fill,
-                      title=f"{body.name or 'body'}: H = {args.h:.6g}, M = {args.M:g}, "
+                      title=f"{body.name or 'body'}: H = {h:.6g}, M = {args.M:g}, "
                             f"{sec.coord} = {sec.value:g}")
     fig = ax.get_figure(root=True)
     assert fig is not None
