@@ -1,0 +1,18 @@
+"""Resonances predicted, then measured: the ``p/q`` island chains of the heavy top.
+
+- :mod:`~andoyer.analysis.resonance.torus`: the free top's tori in their angle
+  variables, the phase of a state, the Fourier coefficients of the perturbation
+  ``(r, gamma)`` by FFT;
+- :mod:`~andoyer.analysis.resonance.predict`: where (the resonant tori ``W = p/q``) and
+  how wide (the first-order pendulum: half-widths, periodic orbits, their stability);
+- :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
+  Poincare sections of the perturbed flow.
+"""
+
+from andoyer.analysis.resonance.predict import (
+    resonance_widths,
+    resonant_tori,
+    section_rotation_number,
+)
+
+__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number"]

@@ -1,0 +1,574 @@
+r"""Where the ``p/q`` island chains sit and how wide they are: first order in ``mu``.
+
+The derivation, referred to as (R1)-(R9) in the docstrings and tests.
+
+(R1) On the tori of the free top (:mod:`andoyer.analysis.resonance.torus`), with angles
+``phi1`` (of the ``(l, L)`` motion) and ``phi2`` (``g`` less its periodic part), actions
+``I1`` and ``G`` (``m``, ``M`` cyclic/constant), the Hamiltonian (1) reads
+``H = H0(I1, G) + mu V(phi1, phi2; I1, G)``, ``V = (r, gamma)``,
+``dH0/dI1 = omega_l``, ``dH0/dG = omega_g``.
+
+(R2) On ``H = h`` the section map of ``g = const`` (equally of ``phi2 = const``) is the
+flow over one turn of ``phi2`` of the one-degree-of-freedom Hamiltonian ``K = -G``
+(``dl/dg = (dH/dL)/(dH/dG) = d(-G)/dL`` on the level). Solving ``H = h`` for ``G`` to
+first order: ``K = K0(I1) + mu V / omega_g + O(mu^2)`` with ``K0 = -G0(I1)``,
+``K0' = omega_l / omega_g = W`` -- the rotation number of the section map,
+``rotation_number_g_section`` -- and, since ``dG0/dI1 = -W`` on the level,
+``K0'' = dW/dI1 = -W dW/dG`` (``dW/dG`` along the level ``H0 = h``).
+
+(R3) ``V = sum_k V_k exp(i (k1 phi1 + k2 phi2))``; ``gamma`` is linear in ``cos g``,
+``sin g``, so ``V_k = 0`` for ``|k2| >= 2``.
+
+(R4) A resonant torus has ``W(G*) = p/q`` (``gcd(p, q) = 1``, ``q > 0``; ``W > 0``
+because ``dg/dt > 0``). With the slow angle ``psi = q phi1 - p phi2`` and ``I1 = q J``
+(generating function ``J (q phi1 - p phi2)``), averaging over the fast ``phi2`` keeps the
+harmonics ``k = j (q, -p)``:
+``Kbar = K0(q J) - p J + mu sum_j V_{jk} exp(i j psi) / omega_g``.
+
+(R5) By (R3) only ``j = +-1`` of ``|p| = 1`` survive, and ``Kbar`` is a pendulum about
+``J*``: ``Kbar = beta (J - J*)^2 / 2 + A cos(psi + alpha)``, ``beta = q^2 K0''``,
+``A = 2 mu |V_k| / omega_g``, ``alpha = arg V_k``, ``k = (q, -p)``. For ``|p| >= 2`` the
+resonant harmonic is absent: the chain's width is ``O(mu)``, from the second order
+(not computed here: ``half_width`` NaN, ``mu_order = 2``).
+
+(R6) The separatrix of (R5) reaches ``|J - J*| = 2 sqrt(A / |beta|)`` (at the stable
+point), i.e. ``Delta I1 = q Delta J = 2 sqrt(A / |K0''|)`` and on the energy level
+``Delta G = W Delta I1 = 2 sqrt(2 mu |V_k| W / (omega_g |dW/dG|))``.
+
+(R7) The equilibria ``chi = psi + alpha = 0, pi``; the linearised pendulum
+``chi'' = beta A cos(chi) chi`` is stable where ``beta A cos chi < 0`` (``chi = 0`` if
+``beta < 0``, ``chi = pi`` if ``beta > 0``), with the libration frequency
+``Omega = sqrt(|beta| A)`` per radian of ``phi2``.
+
+(R8) The stable and unstable periodic orbits close after ``q`` returns (``phi2`` advances
+``2 pi q``): eigenvalues of the ``q``-th power of the section map
+``exp(+-2 pi i q Omega)`` and ``exp(+-2 pi q Omega)``; Greene's residues
+``R = (2 - trace) / 4 = sin^2(pi q Omega)`` and ``-sinh^2(pi q Omega)``.
+
+(R9) In the section plane the torus ``G* + dG`` is the level curve
+``H0(l, L, G* + dG) = h`` (Eq. (9)); to first order it lies off the centre line
+(``G*``) by ``-(dH0/dG) dG grad H0 / |grad H0|^2`` (gradient in ``(l, L)``). At the
+point of phase ``phi1`` of the centre line the slow angle is ``psi = q phi1 - p phi2``
+with ``phi2 = g - rho(phi1)`` and ``g`` the section's (``g*``, or
+``theta2* + l + phi0`` on ``theta2 = theta2*``); the chain's separatrices are there at
+``dG = +- Delta G |sin((psi - psi_u) / 2)|``, ``psi_u`` the unstable equilibrium.
+
+What first order does not give: the ``O(mu)`` shift of the chain's centre (the averaged
+``V_0`` moves the resonant torus and the level), the ``O(mu)`` deformation of the tori
+by the non-resonant harmonics, the width of chains with ``|p| >= 2``, and the chaotic
+layers along the separatrices (exponentially thin in ``1/sqrt(mu)``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from andoyer.analysis.euler_poinsot import euler_poinsot_frequencies, euler_poinsot_momentum
+from andoyer.analysis.resonance.torus import (
+    MAX_FOURIER,
+    Torus,
+    converged_torus,
+    reference_momentum,
+    regimes,
+)
+from andoyer.body import RigidBody, checks_body
+from andoyer.integrate import budget
+from andoyer.integrate.results import describe_variables, provenance
+from andoyer.integrate.section import Section
+from andoyer.validation import finite, integer
+
+__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number", "MAX_ORDER",
+           "N_CURVE"]
+
+#: Largest order ``p + q`` asked for (the chains of higher order crowd the separatrix,
+#: where the tori's spectra need more than :data:`MAX_FOURIER` samples).
+MAX_ORDER = 100
+#: Points of each chain's centre line and separatrices in the section plane.
+N_CURVE = 512
+#: Relative distance to the separatrix ``2h = q G^2`` of the closest scanned torus.
+_SEP_GAP = 1e-12
+#: Refinement of the torus samples where the section points are bracketed.
+_FINE = 16
+
+
+def section_rotation_number(body: RigidBody, h: float, G: float) -> float:
+    """``W = omega_l / omega_g`` of the free top on ``H0 = h``, ``|G| = G`` (R2): the
+    :attr:`~andoyer.analysis.euler_poinsot.EulerPoinsotFrequencies.rotation_number_g_section`
+    of :func:`~andoyer.analysis.euler_poinsot.euler_poinsot_frequencies`.
+
+    >>> from andoyer import RigidBody
+    >>> round(section_rotation_number(RigidBody.paper(), 0.2466, 1.0), 10)
+    0.1282005651
+    """
+    return float(euler_poinsot_frequencies(body, h, G).rotation_number_g_section)
+
+
+def _fractions(lo: float, hi: float, max_order: int) -> list[tuple[int, int]]:
+    out = []
+    for q in range(1, max_order):
+        for p in range(1, max_order - q + 1):
+            if math.gcd(p, q) == 1 and lo < p / q < hi:
+                out.append((p, q))
+    return sorted(out, key=lambda f: f[0] / f[1])
+
+
+def _scan(body: RigidBody, h: float, lo: float, hi: float, g_sep: float
+          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """W on a grid of G over ``(lo, hi)``, dense (geometric) towards the separatrix."""
+    span = hi - lo
+    near = g_sep + np.sign((lo + hi) / 2 - g_sep) * span * np.logspace(
+        math.log10(_SEP_GAP), 0.0, 241)[:-1]
+    grid = np.unique(np.concatenate([near, np.linspace(lo, hi, 201)[1:-1]]))
+    grid = grid[(grid > lo) & (grid < hi)]
+    keep, W = [], []
+    for G in grid:
+        try:
+            W.append(section_rotation_number(body, h, float(G)))
+            keep.append(G)
+        except ValueError:  # at the separatrix to rounding
+            continue
+    return np.array(keep), np.array(W)
+
+
+def _tori(body: RigidBody, h: float, M: float, max_order: int) -> list[dict[str, Any]]:
+    rows: list[dict[str, Any]] = []
+    g_sep = math.sqrt(2.0 * h / body.c)
+    for axis, lo, hi in regimes(body, h, M):
+        Gs, Ws = _scan(body, h, lo, hi, g_sep)
+        if Gs.size < 2:
+            continue
+        for p, q in _fractions(float(Ws.min()), float(Ws.max()), max_order):
+            d = Ws - p / q
+            for i in np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]:
+                G = brentq(lambda x, w=p / q: section_rotation_number(body, h, x) - w,
+                           float(Gs[i]), float(Gs[i + 1]), xtol=1e-15 * float(Gs[i]),
+                           rtol=4 * np.finfo(float).eps)
+                for sign in (1, -1):
+                    rows.append({"p": p, "q": q, "axis": axis, "sign": sign, "G": G,
+                                 "lo": lo, "hi": hi})
+    return rows
+
+
+def _level_checks(body: RigidBody, h: float, M: float, max_order: int
+                  ) -> tuple[float, float, int]:
+    h, M = finite("h", h), finite("M", M)
+    max_order = integer("max_order", max_order, 2, MAX_ORDER)
+    budget.check_level(body, h)
+    body.require_middle_axis("the resonances of the free top")
+    if not h > 0.0:
+        raise ValueError(f"h must be > 0 (the free top's energy is positive), got {h!r}")
+    return h, M, max_order
+
+
+_TORI_META = {
+    "p": ("p", "turns of (l, L) per q returns to the section g = const", "1", "(R4)"),
+    "q": ("q", "returns to the section g = const per period of the chain", "1", "(R4)"),
+    "axis": ("", "body axis of the permanent rotation the torus surrounds", "1", "(9)"),
+    "sign": ("", "sign of the angular momentum on that axis (the two copies of a chain)",
+             "1", ""),
+    "G_action": ("G^*", "G of the resonant torus of the free top (the chain's centre)",
+                 "1", "(R4)"),
+    "rotation_number_g_section": ("W", "omega_l / omega_g of the resonant torus: p/q",
+                                  "1", "(R2)"),
+    "frequency_ratio": ("\\omega_g/\\omega_l", "omega_g / omega_l = q/p (the ratio "
+                        "andoyer.analysis.frequency measures)", "1", ""),
+    "label": ("q:p", "the resonance label of andoyer.analysis.frequency (frequency_ratio "
+              "q/p)", "1", ""),
+    "omega_l": ("\\omega_l", "frequency of the (l, L) motion", "rad/body time unit", "(R1)"),
+    "omega_g": ("\\omega_g", "mean rate of g", "rad/body time unit", "(R1)"),
+}
+
+
+@checks_body
+def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
+                  ) -> xr.Dataset:
+    """The resonant tori of the free top on one energy level: ``W(G*) = p/q``, ``p + q <=
+    max_order``.
+
+    On ``H0 = h`` (``mu`` ignored) the tori are labelled by ``G``; each regime (the
+    momentum about the axis of the largest or of the smallest moment) has the rotation
+    number ``W(G)`` of the section map ``g = const`` (R2) between 0 (at the separatrix)
+    and its value at the permanent rotation. ``W`` is scanned on a grid of ``G``
+    (geometric towards the separatrix, to a relative gap of 1e-12) and each sign change of
+    ``W - p/q`` closed by Brent's method to rounding. Each torus is listed twice, once per
+    sign of the momentum on its axis (two copies of the chain, mirror images).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis of inertia (every Hess body); ``mu`` is not used.
+    h : float
+        The energy level (> 0).
+    M : float
+        The area constant; tori with ``G <= |M|`` are left out (``g`` undefined).
+    max_order : int
+        Largest ``p + q`` (2 to :data:`MAX_ORDER`).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``resonance``, ordered by regime and ``p/q``: ``p``, ``q``, ``axis``,
+        ``sign``, ``G_action`` (``G*``), ``rotation_number_g_section`` (``W(G*)``, equal to
+        ``p/q`` to rounding), ``frequency_ratio`` ``q/p``, ``label`` ``"q:p"`` (as
+        :func:`andoyer.analysis.frequency.resonance_label` names ``frequency_ratio``),
+        ``omega_l``, ``omega_g``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = resonant_tori(RigidBody.paper(), 0.2466, 0.0, max_order=10)
+    >>> sorted(set(ds.label.values.tolist()))
+    ['6:1', '7:1', '8:1', '9:1']
+    >>> bool(abs(ds.rotation_number_g_section - ds.p / ds.q).max() < 1e-14)
+    True
+    """
+    h, M, max_order = _level_checks(body, h, M, max_order)
+    return _tori_dataset(body, h, M, max_order, _tori(body, h, M, max_order))
+
+
+def _tori_dataset(body: RigidBody, h: float, M: float, max_order: int,
+                  rows: list[dict[str, Any]]) -> xr.Dataset:
+    n = len(rows)
+    freq = [euler_poinsot_frequencies(body, h, r["G"]) for r in rows]
+    ds = xr.Dataset(
+        {"p": ("resonance", np.array([r["p"] for r in rows], dtype=np.int64)),
+         "q": ("resonance", np.array([r["q"] for r in rows], dtype=np.int64)),
+         "axis": ("resonance", np.array([r["axis"] for r in rows], dtype=np.int64)),
+         "sign": ("resonance", np.array([r["sign"] for r in rows], dtype=np.int64)),
+         "G_action": ("resonance", np.array([r["G"] for r in rows], dtype=float)),
+         "rotation_number_g_section": ("resonance", np.array(
+             [f.rotation_number_g_section for f in freq], dtype=float)),
+         "frequency_ratio": ("resonance", np.array([f.frequency_ratio for f in freq],
+                                                   dtype=float)),
+         "label": ("resonance", np.array([f"{r['q']}:{r['p']}" for r in rows], dtype=str)),
+         "omega_l": ("resonance", np.array([2 * math.pi / f.period for f in freq],
+                                           dtype=float)),
+         "omega_g": ("resonance", np.array([f.g_rate for f in freq], dtype=float))},
+        coords={"resonance": np.arange(n)},
+        attrs=provenance(body, h=h, M=M, max_order=max_order,
+                         method="W(G) = rotation_number_g_section of "
+                                "euler_poinsot_frequencies on a grid of G, sign changes of "
+                                "W - p/q closed by Brent's method",
+                         derivation="andoyer.analysis.resonance.predict (R1)-(R9)"))
+    return describe_variables(ds, _TORI_META)
+
+
+# ------------------------------------------------------------------------ widths
+def _twist(body: RigidBody, h: float, G: float, lo: float, hi: float) -> float:
+    """``dW/dG`` along ``H0 = h`` by Richardson's 5-point central difference."""
+    d = 1e-4 * min(G - lo, hi - G)
+    w = [section_rotation_number(body, h, G + k * d) for k in (-2, -1, 1, 2)]
+    return (8.0 * (w[2] - w[1]) - (w[3] - w[0])) / (12.0 * d)
+
+
+def _upsample(values: NDArray[np.float64], factor: int) -> NDArray[np.float64]:
+    """The trigonometric interpolant of ``n`` periodic samples on ``factor * n`` points
+    (zero-padded FFT), the first repeated at the end."""
+    n = values.size
+    c = np.fft.rfft(values)
+    if n % 2 == 0:
+        c[-1] *= 0.5
+    fine = np.fft.irfft(c, factor * n) * factor
+    return np.append(fine, fine[0])
+
+
+def _interp(torus: Torus, values: NDArray[np.float64], phi: NDArray[np.float64]
+            ) -> NDArray[np.float64]:
+    """The trigonometric interpolant of periodic samples at phases ``phi``."""
+    n = torus.phi1.size
+    c = np.fft.rfft(values) / n
+    k = np.arange(c.size)
+    if n % 2 == 0:
+        c[-1] *= 0.5
+    e = np.exp(1j * np.outer(np.asarray(phi, dtype=float), k))
+    return np.asarray(2.0 * (e @ c).real - c[0].real)
+
+
+class _Chain:
+    """One resonant torus with its pendulum (R5)-(R8) and its place in a section."""
+
+    def __init__(self, body: RigidBody, h: float, M: float, row: dict[str, Any],
+                 section: Section) -> None:
+        self.body, self.h, self.M, self.row, self.section = body, h, M, row, section
+        p, q = row["p"], row["q"]
+        self.p, self.q = p, q
+        self.torus, Vk = converged_torus(body, h, row["G"], M, row["sign"])
+        n1 = self.torus.phi1.size
+        self.n_fourier = n1
+        T = self.torus
+        self.W = T.omega_l / T.omega_g
+        self.twist = _twist(body, h, row["G"], row["lo"], row["hi"])
+        self.K0pp = -self.W * self.twist                               # (R2)
+        self.beta = q * q * self.K0pp                                  # (R5)
+        self.mu_order = 1 if abs(p) == 1 else 2
+        coeff = complex(Vk[q % n1, (-p) % Vk.shape[1]])
+        self.V_k = coeff if self.mu_order == 1 else complex(0.0)
+        self.A = 2.0 * body.mu * abs(self.V_k) / T.omega_g              # (R5)
+        self.alpha = math.atan2(coeff.imag, coeff.real)
+        if self.mu_order == 1:
+            self.dI1 = 2.0 * math.sqrt(self.A / abs(self.K0pp))          # (R6)
+            self.dG = self.W * self.dI1
+            self.Omega = math.sqrt(abs(self.beta) * self.A)             # (R7)
+        else:
+            self.dI1 = self.dG = self.Omega = math.nan
+        chi_s = 0.0 if self.beta < 0 else math.pi                       # (R7)
+        self.psi_s = chi_s - self.alpha
+        self.psi_u = chi_s + math.pi - self.alpha
+
+    # ------------------------------------------------------------ section geometry
+    def section_g(self, phi1: NDArray[np.float64], l: NDArray[np.float64]
+                  ) -> NDArray[np.float64]:
+        """The value of g on the section at the torus points of phase ``phi1``."""
+        if self.section.coord == "g":
+            return np.full_like(phi1, self.section.value)
+        return self.section.value + l + self.body.phi0                 # theta2 = g - l - phi0
+
+    def states(self, phi1: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Body momentum on the torus at phases ``phi1``, in closed form."""
+        T = self.torus
+        g0, _ = reference_momentum(self.body, self.h, T.G, T.sign)
+        return euler_poinsot_momentum(self.body, g0, np.asarray(phi1) / T.omega_l)
+
+    def plane(self, mom: NDArray[np.float64], G: float | NDArray[np.float64]
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        l = np.arctan2(mom[:, 0], mom[:, 1])
+        L = mom[:, 2]
+        if self.section.coord == "g":
+            return l, L
+        return np.remainder(2.0 * (l + self.body.phi0), 4 * math.pi), (G + L) / 2.0
+
+    def psi(self, phi1: NDArray[np.float64] | None = None
+            ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Slow angle (R4) at the section points of phase ``phi1``, and ``d theta2/dt``
+        (or ``dg/dt``) there, whose sign says the crossing's direction; ``None``: on the
+        grid of :data:`_FINE` times the torus's samples (by FFT)."""
+        T = self.torus
+        l = np.unwrap(T.l)   # l librates on every torus about axis 1 or 2: periodic
+        if phi1 is None:
+            phi1 = np.linspace(0.0, 2 * math.pi, _FINE * T.phi1.size + 1)
+            li, rho = _upsample(l, _FINE), _upsample(T.rho, _FINE)
+            rate = _upsample(T.gdot - (T.ldot if self.section.coord == "theta2" else 0.0),
+                             _FINE)
+        else:
+            li, rho = _interp(T, l, phi1), _interp(T, T.rho, phi1)
+            rate = _interp(T, T.gdot - (T.ldot if self.section.coord == "theta2" else 0.0),
+                           phi1)
+        phi2 = self.section_g(phi1, li) - rho
+        return self.q * phi1 - self.p * phi2, rate
+
+    def points(self, psi0: float) -> NDArray[np.float64]:
+        """Phases ``phi1`` of the section points where ``psi = psi0`` mod 2 pi, in the
+        section's direction."""
+        fine = np.linspace(0.0, 2 * math.pi, _FINE * self.torus.phi1.size + 1)
+        psi, rate = self.psi()
+        turns = (psi - psi0) / (2 * math.pi)
+        k = np.floor(turns)
+        out = []
+        for i in np.nonzero(k[1:] != k[:-1])[0]:
+            level = max(k[i], k[i + 1])
+            f0, f1 = turns[i] - level, turns[i + 1] - level
+            x = fine[i] + (fine[i + 1] - fine[i]) * f0 / (f0 - f1)
+            for _ in range(3):   # secant steps on the interpolant
+                v, _r = self.psi(np.array([x, x + 1e-7]))
+                dv = (v[1] - v[0]) / 1e-7
+                x -= ((v[0] - psi0) / (2 * math.pi) - level) * 2 * math.pi / dv
+            r = float(self.psi(np.array([x]))[1][0])
+            if self.section.direction == 0 or np.sign(r) == self.section.direction:
+                out.append(x % (2 * math.pi))
+        return np.array(sorted(set(np.round(out, 13))))
+
+    def _psi_curve(self, n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        fine = np.linspace(0.0, 2 * math.pi, _FINE * self.torus.phi1.size + 1)
+        psi, rate = self.psi()
+        phi = np.linspace(0.0, 2 * math.pi, n)
+        return np.interp(phi, fine, np.unwrap(psi)), np.interp(phi, fine, rate)
+
+    def normal(self, mom: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(R9): the displacement of the level curve per unit ``dG`` in the plane ``(l, L)``."""
+        b, G = self.body, self.torus.G
+        G1, G2, L = mom[:, 0], mom[:, 1], mom[:, 2]
+        perp = G1**2 + G2**2
+        s2, c2 = G1**2 / perp, G2**2 / perp
+        sc = G1 * G2 / perp
+        S = b.a * s2 + b.b * c2
+        dHdG = S * G
+        dHdl = (b.a - b.b) * sc * (G * G - L * L)
+        dHdL = (b.c - S) * L
+        n2 = dHdl**2 + dHdL**2
+        return -dHdG * dHdl / n2, -dHdG * dHdL / n2
+
+    def curves(self, n: int) -> dict[str, NDArray[np.float64]]:
+        phi = np.linspace(0.0, 2 * math.pi, n)
+        mom = self.states(phi)
+        x, y = self.plane(mom, self.torus.G)
+        out = {"centre_x": x, "centre_y": y}
+        if self.mu_order != 1:
+            nan = np.full(n, np.nan)
+            out.update(upper_x=nan, upper_y=nan, lower_x=nan, lower_y=nan)
+            return out
+        psi, _ = self.psi(phi) if n <= 64 else self._psi_curve(n)
+        dG = self.dG * np.abs(np.sin((psi - self.psi_u) / 2.0))          # (R9)
+        dl, dL = self.normal(mom)
+        for name, s in (("upper", 1.0), ("lower", -1.0)):
+            m2 = mom.copy()
+            l = np.arctan2(mom[:, 0], mom[:, 1]) + s * dG * dl
+            L = mom[:, 2] + s * dG * dL
+            Gn = self.torus.G + s * dG
+            if self.section.coord == "g":
+                out[f"{name}_x"], out[f"{name}_y"] = l, L
+            else:
+                out[f"{name}_x"] = np.remainder(2.0 * (l + self.body.phi0), 4 * math.pi)
+                out[f"{name}_y"] = (Gn + L) / 2.0
+            del m2
+        return out
+
+
+_WIDTH_META = {
+    "twist": ("dW/dG", "derivative of the rotation number along the level H0 = h", "1",
+              "(R2)"),
+    "fourier_amplitude": ("|V_k|", "modulus of the resonant Fourier coefficient of "
+                          "(r, gamma) on the torus, k = (q, -p)", "1", "(R3), (R5)"),
+    "fourier_phase": ("\\arg V_k", "phase of the resonant Fourier coefficient", "rad",
+                      "(R5)"),
+    "mu_order": ("", "lowest order in mu of the chain's width (1: predicted here; 2: the "
+                     "resonant harmonic is absent at first order, width not computed)", "1",
+                 "(R3), (R5)"),
+    "half_width": ("\\Delta G", "half-width of the chain in G on the energy level", "1",
+                   "(R6)"),
+    "half_width_action": ("\\Delta I_1", "half-width of the chain in the action of the "
+                          "(l, L) motion", "1", "(R6)"),
+    "libration_frequency": ("\\Omega", "small-oscillation frequency of the pendulum, per "
+                            "radian of g", "1", "(R7)"),
+    "residue_stable": ("R_s", "Greene's residue of the stable periodic orbit (q returns)",
+                       "1", "(R8)"),
+    "residue_unstable": ("R_u", "Greene's residue of the unstable periodic orbit", "1",
+                         "(R8)"),
+    "n_fourier": ("", "samples of the torus in phi1 (the FFT's length)", "1", ""),
+    "stable_x": ("", "section-plane x of the stable periodic orbit's points", "", "(R7)"),
+    "stable_y": ("", "section-plane y of the stable periodic orbit's points", "", "(R7)"),
+    "unstable_x": ("", "section-plane x of the unstable periodic orbit's points", "",
+                   "(R7)"),
+    "unstable_y": ("", "section-plane y of the unstable periodic orbit's points", "",
+                   "(R7)"),
+    "stable_phase": ("\\varphi_1", "free-top phase phi1 of the stable points", "rad", "(R9)"),
+    "unstable_phase": ("\\varphi_1", "free-top phase phi1 of the unstable points", "rad",
+                       "(R9)"),
+    "centre_x": ("", "section-plane x of the chain's centre line (the resonant torus)", "",
+                 "(R9)"),
+    "centre_y": ("", "section-plane y of the chain's centre line", "", "(R9)"),
+    "upper_x": ("", "section-plane x of the chain's outer separatrix (G* + dG)", "", "(R9)"),
+    "upper_y": ("", "section-plane y of the chain's outer separatrix", "", "(R9)"),
+    "lower_x": ("", "section-plane x of the chain's inner separatrix (G* - dG)", "", "(R9)"),
+    "lower_y": ("", "section-plane y of the chain's inner separatrix", "", "(R9)"),
+}
+
+
+@checks_body
+def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", *,
+                     max_order: int = 12) -> xr.Dataset:
+    """The ``p/q`` island chains of ``body`` on ``H = h``: centre, half-width, periodic
+    orbits and their stability, to first order in ``mu`` (R1)-(R9).
+
+    Each resonant torus of :func:`resonant_tori` is sampled over its angles
+    (:mod:`andoyer.analysis.resonance.torus`), the perturbation ``(r, gamma) = (H - H0)/mu``
+    expanded by FFT (R3), the resonant harmonic ``k = (q, -p)`` kept and the pendulum
+    (R5) solved: half-width in ``G`` and in the action ``I1`` (R6), the stable and
+    unstable periodic orbits (R7) with Greene's residues (R8), and their points, the
+    centre line and the separatrices in the section's plane (R9).
+
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis of inertia; its ``mu`` sets the widths.
+    h : float
+        The energy level (> 0).
+    M : float
+        The area constant.
+    section : str
+        ``"g=VALUE"`` (plane ``(l, L)``) or ``"theta2=VALUE"`` (plane ``(theta1, J1)``,
+        planar centre of mass), with an optional direction ``":+"``, ``":-"``, ``":0"``.
+    max_order : int
+        Largest ``p + q`` (2 to :data:`MAX_ORDER`).
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables of :func:`resonant_tori` and, per resonance, ``twist`` (``dW/dG``),
+        ``fourier_amplitude`` / ``fourier_phase`` (``V_k``), ``mu_order``,
+        ``half_width`` (``Delta G``), ``half_width_action`` (``Delta I1``),
+        ``libration_frequency``, ``residue_stable``, ``residue_unstable``,
+        ``n_fourier``; per island (dim ``island``, NaN-padded) ``stable_x``,
+        ``stable_y``, ``unstable_x``, ``unstable_y`` and their phases; per point of the
+        curves (dim ``point``) ``centre_x``, ``centre_y``, ``upper_x``, ``upper_y``,
+        ``lower_x``, ``lower_y``. Attrs ``plane_x``, ``plane_y`` name the plane.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = resonance_widths(RigidBody.paper(1e-3), 0.2466, 0.0, max_order=9)
+    >>> row = ds.isel(resonance=0)
+    >>> str(row.label.values), int(row.mu_order), int(np.isfinite(row.stable_x).sum())
+    ('8:1', 1, 8)
+    >>> round(float(row.half_width), 6)
+    0.001102
+    """
+    h, M, max_order = _level_checks(body, h, M, max_order)
+    if not isinstance(section, str):
+        raise ValueError(f"section must be a string like 'g=0' or 'theta2=0', got "
+                         f"{section!r}")
+    sec = Section.parse(section)
+    plane = sec.plane
+    if sec.coord == "theta2":
+        body.require_planar("the Hess-chart section 'theta2'")
+    rows = _tori(body, h, M, max_order)
+    budget.check("resonance_widths",
+                 memory=len(rows) * (MAX_FOURIER * 8 * 16 * 8 + N_CURVE * 6 * 8))
+    base = _tori_dataset(body, h, M, max_order, rows)
+    chains = [_Chain(body, h, M, r, sec) for r in rows]
+    n = len(rows)
+    stab = [c.points(c.psi_s) if c.mu_order == 1 else np.empty(0) for c in chains]
+    unst = [c.points(c.psi_u) if c.mu_order == 1 else np.empty(0) for c in chains]
+    n_isl = max([s.size for s in stab] + [s.size for s in unst] + [1])
+    arrs = {k: np.full((n, n_isl), np.nan) for k in
+            ("stable_x", "stable_y", "unstable_x", "unstable_y", "stable_phase",
+             "unstable_phase")}
+    curves = {k: np.full((n, N_CURVE), np.nan) for k in
+              ("centre_x", "centre_y", "upper_x", "upper_y", "lower_x", "lower_y")}
+    for i, c in enumerate(chains):
+        for kind, ph in (("stable", stab[i]), ("unstable", unst[i])):
+            if ph.size:
+                x, y = c.plane(c.states(ph), c.torus.G)
+                arrs[f"{kind}_x"][i, :ph.size] = x
+                arrs[f"{kind}_y"][i, :ph.size] = y
+                arrs[f"{kind}_phase"][i, :ph.size] = ph
+        for k, v in c.curves(N_CURVE).items():
+            curves[k][i] = v
+    ds = base.assign(
+        twist=("resonance", np.array([c.twist for c in chains], dtype=float)),
+        fourier_amplitude=("resonance", np.array([abs(c.V_k) for c in chains], dtype=float)),
+        fourier_phase=("resonance", np.array([c.alpha for c in chains], dtype=float)),
+        mu_order=("resonance", np.array([c.mu_order for c in chains], dtype=np.int64)),
+        half_width=("resonance", np.array([c.dG for c in chains], dtype=float)),
+        half_width_action=("resonance", np.array([c.dI1 for c in chains], dtype=float)),
+        libration_frequency=("resonance", np.array([c.Omega for c in chains], dtype=float)),
+        residue_stable=("resonance", np.array(
+            [math.sin(math.pi * c.q * c.Omega) ** 2 for c in chains], dtype=float)),
+        residue_unstable=("resonance", np.array(
+            [-math.sinh(math.pi * c.q * c.Omega) ** 2 for c in chains], dtype=float)),
+        n_fourier=("resonance", np.array([c.n_fourier for c in chains], dtype=np.int64)),
+        **{k: (("resonance", "island"), v) for k, v in arrs.items()},
+        **{k: (("resonance", "point"), v) for k, v in curves.items()})
+    ds.attrs.update(section=section, **sec.attrs(), plane_x=plane.x, plane_y=plane.y,
+                    order_in_mu=1)
+    describe_variables(ds, _WIDTH_META)
+    for k in ("stable_x", "unstable_x", "centre_x", "upper_x", "lower_x"):
+        ds[k].attrs["units"] = "rad"
+    for k in ("stable_y", "unstable_y", "centre_y", "upper_y", "lower_y"):
+        ds[k].attrs["units"] = "1"
+    return ds
