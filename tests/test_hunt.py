@@ -90,7 +90,7 @@ NOT_HUNTED = {
 RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerPoissonEquilibrium",
            "EulerPoinsotFrequencies", "FixedPoint", "FixedPointSet", "Floquet", "Formula",
            "Lines", "ManifoldBranch", "ManifoldCurve", "Monodromy", "PermanentRotation",
-           "RotationOrbit", "SectionReturn", "Singular", "Stability"}
+           "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus"}
 #: Public names that take no user input worth hunting (documented acceptance).
 NO_INPUT = {"derive_reduced_hamiltonian": "no arguments (a SymPy derivation)",
             "paper_check": "n and seed are hunted in tests/analysis/test_paper_check.py"}
@@ -163,6 +163,13 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "event_projector": {"kind": "psi"}, "flow_to_section": {"kind": "psi"},
     "return_map": {"x": [0.0, 0.0]}, "section_state": {"x": [0.0, 0.0]},
     "poincare": {"section": "G3=0"},
+    "resonance_widths": {"section": "g=0", "max_order": 9},
+    "resonant_tori": {"max_order": 9},
+    "free_top_phase": {"momentum": [0.3, 0.9, 0.1]},
+    "elliptic_f": {"phi": 0.7},
+    "measure_island": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,
+                       "resonance": "3:1", "axis": 1, "n_crossings": 60, "n_seeds": 1,
+                       "n_rounds": 1, "engine": "numba"},
     "splitting_vs_epsilon": {"body": HESS, "n_phase": 8},
     **{f: {"mu": 0.01} for f in ("pendulum_energy", "pendulum_modulus", "pendulum_motion",
                                  "pendulum_period", "pendulum_solution",

@@ -22,6 +22,9 @@ topic, imported on demand (``from andoyer.analysis.chaos.indicators import indic
   :mod:`~andoyer.analysis.splitting.periodic`, :mod:`~andoyer.analysis.splitting.section_map`,
   :mod:`~andoyer.analysis.splitting.manifolds`, :mod:`~andoyer.analysis.splitting.measure`,
   :mod:`~andoyer.analysis.splitting.melnikov`;
+- :mod:`~andoyer.analysis.resonance`, the ``p/q`` island chains predicted at first order
+  in ``mu`` and measured on sections: :mod:`~andoyer.analysis.resonance.torus`,
+  :mod:`~andoyer.analysis.resonance.predict`, :mod:`~andoyer.analysis.resonance.measure`;
 - :mod:`~andoyer.analysis.paper`, the paper itself:
   :mod:`~andoyer.analysis.paper.trajectories` (Fig. 3) and
   :mod:`~andoyer.analysis.paper.paper_check` (every printed formula against the derivation);

@@ -35,7 +35,12 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer.analysis.resonance.predict import _Chain, _interp, _level_checks, _tori
+from andoyer.analysis.resonance.predict import (
+    ResonantChain,
+    check_level_args,
+    resonant_rows,
+    trig_interpolate,
+)
 from andoyer.analysis.resonance.torus import free_top_phase
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
@@ -44,7 +49,7 @@ from andoyer.integrate.api import poincare
 from andoyer.integrate.fill import section_roots
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import Section
-from andoyer.validation import choice, finite, integer, positive
+from andoyer.validation import finite, integer, positive
 
 __all__ = ["measure_island"]
 
@@ -55,7 +60,7 @@ _MAX_LOCATE = 8
 def _parse_resonance(resonance: str) -> tuple[int, int]:
     if not isinstance(resonance, str):
         raise ValueError(f"resonance must be a string 'q:p' (frequency_ratio q/p, as "
-                         f"andoyer.analysis.frequency labels it), got {resonance!r}")
+                         f"andoyer.analysis.chaos.frequency labels it), got {resonance!r}")
     parts = resonance.split(":")
     try:
         q, p = (int(x) for x in parts)
@@ -70,7 +75,7 @@ def _parse_resonance(resonance: str) -> tuple[int, int]:
 class _Probe:
     """Seeds on the line through one stable point; integrates and classifies them."""
 
-    def __init__(self, chain: _Chain, h: float, M: float, g_star: float, n_crossings: int,
+    def __init__(self, chain: ResonantChain, h: float, M: float, g_star: float, n_crossings: int,
                  engine: Any, tol: float) -> None:
         self.c, self.h, self.M, self.g_star = chain, h, M, g_star
         self.n_crossings, self.engine, self.tol = n_crossings, engine, tol
@@ -120,7 +125,7 @@ class _Probe:
             if good.sum() < self.n_crossings:
                 continue   # left the section's reach: not in the chain
             phi1 = free_top_phase(c.body, mom)
-            rho = _interp(T, T.rho, phi1)
+            rho = trig_interpolate(T, T.rho, phi1)
             n = np.arange(phi1.size) + 1.0
             psi = c.q * phi1 - c.p * (self.g_star + 2 * math.pi * n - rho)
             step = np.angle(np.exp(1j * np.diff(psi)))
@@ -184,7 +189,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     >>> ds = measure_island(body, 1.0, 0.0, "2:1", n_crossings=300, n_seeds=3,
     ...                     n_rounds=2)  # doctest: +SKIP
     """
-    h, M, _ = _level_checks(body, h, M, 2)
+    h, M, _ = check_level_args(body, h, M, 2)
     p, q = _parse_resonance(resonance)
     if p != 1:
         raise ValueError(f"resonance {resonance!r}: only the chains of first order in mu "
@@ -199,12 +204,12 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         axis = integer("axis", axis, 1, 3)
     if not body.mu > 0.0:
         raise ValueError("measure_island needs mu > 0: at mu = 0 there is no island")
-    rows = [r for r in _tori(body, h, M, p + q) if r["p"] == p and r["q"] == q
+    rows = [r for r in resonant_rows(body, h, M, p + q) if r["p"] == p and r["q"] == q
             and r["sign"] == 1 and (axis is None or r["axis"] == axis)]
     if not rows:
         raise ValueError(f"no torus with frequency_ratio {q}/{p} on h = {h!r}, M = {M!r}"
                          + (f" about axis {axis}" if axis is not None else ""))
-    chain = _Chain(body, h, M, rows[0], Section("g", g_star, 1))
+    chain = ResonantChain(body, h, M, rows[0], Section("g", g_star, 1))
     if n_crossings is None:
         n_crossings = max(200, math.ceil(12.0 / chain.Omega))
     probe = _Probe(chain, h, M, g_star, n_crossings, engine, tol)

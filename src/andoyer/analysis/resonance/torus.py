@@ -7,14 +7,14 @@ tori labelled, on one energy level, by ``G``. On each torus the canonical angles
 * ``phi1 = omega_l t`` (mod 2 pi), the phase of the ``(l, L)`` motion, ``omega_l = 2 pi / T``;
 * ``phi2 = g - rho(phi1)``, advancing uniformly at ``omega_g = <dg/dt>``: ``rho`` is the
   periodic part of ``g(t)``, ``dg/dt = dH0/dG = G (a G1^2 + b G2^2) / (G1^2 + G2^2)``
-  (:mod:`andoyer.analysis.euler_poinsot`), integrated here spectrally (exact to rounding
+  (:mod:`andoyer.analysis.unperturbed.euler_poinsot`), integrated here spectrally (exact to rounding
   for the analytic, periodic motion).
 
 The origin ``phi1 = 0`` is the state with zero momentum on the middle axis 3 (``L = 0``,
 ``sn = 0``), the other two components positive-signed as :func:`reference_momentum`
 chooses; ``phi2`` is fixed by ``rho(0) = 0``. The phase of any body-frame momentum on
 its own free-top orbit is :func:`free_top_phase` (Jacobi's amplitude, the inverse of
-:func:`~andoyer.analysis.euler_poinsot.euler_poinsot_momentum`).
+:func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_momentum`).
 
 The perturbation is ``V = (H - H0) / mu = (r, gamma)``, taken from the one Hamiltonian
 :func:`andoyer.charts.euler_poisson.hamiltonian_expr` (evaluated at ``mu = 1`` and
@@ -34,13 +34,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipk, elliprf
 
-from andoyer.analysis.euler_poinsot import euler_poinsot_frequencies, euler_poinsot_momentum
-from andoyer.body import RigidBody
+from andoyer.analysis.unperturbed.euler_poinsot import (
+    euler_poinsot_frequencies,
+    euler_poinsot_momentum,
+)
+from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import hamiltonian_expr
+from andoyer.validation import checks_arguments, finite, integer, positive, real_array
 
-__all__ = ["Torus", "sample_torus", "free_top_phase", "reference_momentum", "regimes",
-           "perturbation", "elliptic_f", "MAX_FOURIER"]
+__all__ = ["Torus", "sample_torus", "free_top_phase", "elliptic_f", "MAX_FOURIER"]
 
 #: Largest number of samples of a torus in ``phi1`` (the FFT is refined by doubling
 #: until the last quarter of the spectrum is below 1e-13 of its peak, up to this).
@@ -106,7 +109,7 @@ def reference_momentum(body: RigidBody, h: float, G: float, sign: int = 1
     """The body-frame momentum at ``phi1 = 0`` on ``H0 = h``, ``|G| = G``, and its axis.
 
     ``G3 = 0`` (the middle axis: ``sn = 0``), the component on the axis of the rotation
-    (the ``dn`` one of :func:`~andoyer.analysis.euler_poinsot.euler_poinsot_momentum`)
+    (the ``dn`` one of :func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_momentum`)
     of sign ``sign``, the third (the ``cn`` one) of the sign Euler's equations give
     ``cn = +1``: Jacobi's amplitude is 0 there.
     """
@@ -125,18 +128,45 @@ def reference_momentum(body: RigidBody, h: float, G: float, sign: int = 1
     return g, i_dn + 1
 
 
+@checks_body
 def free_top_phase(body: RigidBody, momentum: ArrayLike) -> NDArray[np.float64]:
     """The phase ``phi1`` in ``(-pi, pi]`` of body-frame momenta on their free-top orbits.
 
     Jacobi's amplitude ``phi`` of the state (``sn = sin phi``, ``cn = cos phi``, the
-    notation of :func:`~andoyer.analysis.euler_poinsot.euler_poinsot_momentum`), its
-    argument ``theta = F(phi | k^2)`` and ``phi1 = pi theta / (2 K)``, minus that of the
-    reference state of the same regime and sign (:func:`reference_momentum`, where
-    ``phi = 0``). Along the
-    free motion ``phi1`` grows as ``2 pi t / T``.
+    notation of :func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_momentum`),
+    its argument ``theta = F(phi | k^2)`` (:func:`elliptic_f`) and
+    ``phi1 = pi theta / (2 K)``; ``phi = 0`` at the reference state of the same regime
+    and sign (:func:`reference_momentum`). Along the free motion ``phi1`` grows as
+    ``2 pi t / T``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Distinct moments; ``mu`` is ignored.
+    momentum : array_like, shape (3,) or (n, 3)
+        Body-frame angular momenta ``(G1, G2, G3)``, finite, off the separatrices
+        ``2 H0 = q |G|^2`` (there the phase is undefined) and off the permanent rotations.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> body = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
+    >>> T = sample_torus(body, 0.2466, 1.0, 0.0, n=64)
+    >>> bool(np.allclose(free_top_phase(body, T.momentum[:5]), T.phi1[:5], atol=1e-13))
+    True
     """
-    g = np.atleast_2d(np.asarray(momentum, dtype=float))
+    g = np.atleast_2d(real_array("momentum", momentum))
+    if g.ndim != 2 or g.shape[1] != 3 or not np.all(np.isfinite(g)):
+        raise ValueError(f"momentum must be finite (G1, G2, G3) rows, shape (n, 3), got "
+                         f"shape {np.shape(momentum)}")
     ip, iq, ir, p, q, r = _sorted_axes(body)
+    if not p > q > r:
+        raise ValueError(f"free_top_phase needs three distinct moments, got A={body.A}, "
+                         f"B={body.B}, C={body.C}")
     inv = np.array([body.a, body.b, body.c])
     Gp, u, Gr = g[:, ip], g[:, iq], g[:, ir]
     A1 = (p - r) * Gp**2 + (q - r) * u**2
@@ -153,11 +183,16 @@ def free_top_phase(body: RigidBody, momentum: ArrayLike) -> NDArray[np.float64]:
     s_cn = sq * np.sign(g_dn)
     phi = np.arctan2(u / U, s_cn * g_cn / amp_cn)   # 0 at the reference state
     K = ellipk(m)
+    bad = ~((m >= 0.0) & (m < 1.0) & (U > 0.0) & (amp_cn > 0.0))
+    if np.any(bad):
+        raise ValueError(f"momentum: {int(bad.sum())} of {bad.size} rows are on a separatrix "
+                         "2 H0 = q |G|^2 or a permanent rotation (no phase there)")
     theta = elliptic_f(phi, m)
     return np.asarray(np.remainder(math.pi * theta / (2.0 * K) + math.pi, 2 * math.pi)
                       - math.pi)
 
 
+@checks_arguments
 def elliptic_f(phi: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
     """Incomplete elliptic integral of the first kind ``F(phi | m)``, any real ``phi``.
 
@@ -170,8 +205,13 @@ def elliptic_f(phi: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
     >>> round(float(elliptic_f(1.0895147838119381, 0.08843945589556104)), 12)
     1.105065497269
     """
-    phi = np.asarray(phi, dtype=float)
-    m = np.asarray(m, dtype=float)
+    phi = real_array("phi", phi)
+    m = real_array("m", m)
+    if not np.all(np.isfinite(phi)) or np.any(np.abs(phi) > 1e15):
+        raise ValueError("phi must be finite, |phi| <= 1e15 (beyond, no digit of its "
+                         "remainder mod pi is left)")
+    if not np.all((m >= 0.0) & (m < 1.0)):
+        raise ValueError(f"m must lie in [0, 1), got {m!r}")
     n = np.round(phi / math.pi)
     x = phi - n * math.pi
     s, c = np.sin(x), np.cos(x)
@@ -182,15 +222,53 @@ def perturbation(body: RigidBody, states: NDArray[np.float64]) -> NDArray[np.flo
     """``V = (H - H0) / mu = (r, gamma)`` at Euler-Poisson states, from
     :func:`andoyer.charts.euler_poisson.hamiltonian_expr` at ``mu = 1`` minus ``mu = 0``."""
     a, b, c, _mu, e1, e2, e3 = body.params
-    cols = np.moveaxis(states, -1, 0)
-    return np.asarray(hamiltonian_expr(*cols, a, b, c, 1.0, e1, e2, e3)
-                      - hamiltonian_expr(*cols, a, b, c, 0.0, e1, e2, e3))
+    G1, G2, G3, g1, g2, g3 = np.moveaxis(states, -1, 0)
+    return np.asarray(hamiltonian_expr(G1, G2, G3, g1, g2, g3, a, b, c, 1.0, e1, e2, e3)
+                      - hamiltonian_expr(G1, G2, G3, g1, g2, g3, a, b, c, 0.0, e1, e2, e3))
 
 
+@checks_body
 def sample_torus(body: RigidBody, h: float, G: float, M: float, sign: int = 1,
                  n: int = 256) -> Torus:
-    """The torus ``(h, G)`` of the regime its energy selects, sampled at ``n`` phases."""
+    """The torus ``(h, G)`` of the free top, sampled at ``n`` phases ``phi1 = 2 pi j/n``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis of inertia; ``mu`` is ignored.
+    h : float
+        Energy ``H0``; ``r G^2 < 2h < p G^2``, ``2h != q G^2`` (the regime follows).
+    G : float
+        ``|G|`` (> 0).
+    M : float
+        The area constant (``|M| < G``): it enters ``gamma`` (Eq. (5)-(6)), not the motion.
+    sign : int
+        Sign (+1, -1) of the momentum on the axis of the rotation.
+    n : int
+        Samples (16 to :data:`MAX_FOURIER`).
+
+    Returns
+    -------
+    Torus
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> T = sample_torus(RigidBody.paper(), 0.2466, 1.0, 0.0, n=256)
+    >>> T.axis, round(T.rotation_number, 10), round(float(T.rho[0]), 12)
+    (2, 0.1281401077, 0.0)
+    """
+    h, G, M = finite("h", h), positive("G", G), finite("M", M)
+    if isinstance(sign, bool) or sign not in (1, -1):
+        raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+    n = integer("n", n, 16, MAX_FOURIER)
+    body.require_middle_axis("sample_torus")
+    if not abs(M) < G:
+        raise ValueError(f"M must satisfy |M| < G (g is undefined at |M| = G), got M = {M!r}, "
+                         f"G = {G!r}")
     f = euler_poinsot_frequencies(body, h, G)
+    if f.modulus == 0.0:
+        raise ValueError(f"h = {h!r}, G = {G!r} is a permanent rotation: no torus")
     g0, axis = reference_momentum(body, h, G, sign)
     omega_l = 2.0 * math.pi / f.period
     phi1 = 2.0 * math.pi * np.arange(n) / n

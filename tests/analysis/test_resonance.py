@@ -1,0 +1,215 @@
+"""Resonances of the heavy top predicted at first order in mu (issue 28, items 1-2).
+
+Independent routes: the free top integrated by an engine (the torus's angles), NAFF on
+the perturbation along a free orbit (its Fourier coefficients), NAFF frequencies of the
+resonant tori (where), Poincare sections of the perturbed flow (how wide; stable and
+unstable periodic orbits), quadrature (the elliptic integral).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from andoyer import RigidBody
+from andoyer.analysis.chaos.frequency import naff, orbit_frequencies, resonance_label
+from andoyer.analysis.resonance import resonance_widths, resonant_tori
+from andoyer.analysis.resonance.measure import measure_island
+from andoyer.analysis.resonance.torus import (
+    converged_torus,
+    elliptic_f,
+    free_top_phase,
+    perturbation,
+    sample_torus,
+)
+from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
+from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.integrate import poincare, propagate
+from andoyer.integrate.fill import section_roots
+
+PAPER = RigidBody.paper()
+H = 0.2466
+WIDE = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3)   # low-order chains, |V_k| ~ 1e-2
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+@pytest.mark.parametrize("phi, m", [(1.0895147838119381, 0.08843945589556104),
+                                    (0.3, 0.5), (2.9, 0.9), (-4.0, 0.2), (7.5, 0.7)])
+def test_elliptic_f_against_quadrature(phi, m):
+    """F(phi | m) by Carlson's form, against the integral itself (the first pair is where
+    scipy.special.ellipkinc of SciPy 1.17.1 is 20 % off)."""
+    exact = quad(lambda t: 1.0 / math.sqrt(1.0 - m * math.sin(t) ** 2), 0.0, phi,
+                 epsabs=1e-15, epsrel=1e-13, limit=200)[0]
+    assert float(elliptic_f(phi, m)) == pytest.approx(exact, rel=1e-13, abs=1e-14)
+
+
+@pytest.mark.parametrize("G, sign", [(1.0, 1), (1.0, -1), (1.08, 1), (1.08, -1)])
+def test_phase_inverts_the_sampled_motion(G, sign):
+    torus = sample_torus(PAPER, H, G, 0.0, sign, n=256)
+    phase = free_top_phase(PAPER, torus.momentum)
+    err = np.angle(np.exp(1j * (phase - torus.phi1)))
+    assert np.max(np.abs(err)) < 1e-12
+    # the sampled mean rate of g is the closed form's
+    f = euler_poinsot_frequencies(PAPER, H, G)
+    assert torus.omega_g == pytest.approx(f.g_rate, rel=1e-12)
+    assert torus.rotation_number == pytest.approx(f.rotation_number_g_section, rel=1e-12)
+
+
+@pytest.mark.parametrize("G", [1.0, 1.08])   # about axis 2, about axis 1
+def test_torus_angles_against_an_integration(G):
+    """l, L and g = phi2 + rho(phi1) of the torus against the free top integrated by an
+    engine from the reference state (g = 0 at t = 0)."""
+    torus = sample_torus(PAPER, H, G, 0.0, 1, n=128)
+    free = PAPER.with_mu(0.0)
+    t = torus.phi1 / torus.omega_l
+    x0 = [torus.l[0], 0.0, torus.L[0], G, 0.3]
+    ds = propagate(free, from_andoyer(x0), t, engine="numba", rtol=1e-13, atol=1e-13)
+    g = np.unwrap(ds.g_angle.values[0])
+    np.testing.assert_allclose(g, torus.omega_g * t + torus.rho, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(ds.L_action.values[0], torus.L, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(np.angle(np.exp(1j * (ds.l_angle.values[0] - torus.l))), 0.0,
+                               atol=1e-9)
+
+
+def test_fourier_coefficients_against_naff():
+    """V_k by FFT on the (phi1, phi2) grid against the spectral lines of V(t) along one
+    free orbit (integrated, then analysed by NAFF): V(t) = sum V_k exp(i k.omega t)."""
+    body = RigidBody(3.0, 1.0, 2.0, 0.0, (0.6, 0.48, 0.64))
+    G, M = 1.75, 0.4
+    torus, Vk = converged_torus(body, 1.0, G, M, 1)
+    free = body.with_mu(0.0)
+    T = 2 * math.pi / torus.omega_l
+    t = np.linspace(0.0, 60 * T, 16385)
+    x0 = [torus.l[0], 0.0, torus.L[0], G, M]
+    ds = propagate(free, from_andoyer(x0), t, engine="numba", rtol=1e-13, atol=1e-13)
+    y = np.stack([ds[c].values[0] for c in ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")],
+                 axis=-1)
+    V = perturbation(body, y)
+    lines = naff(V - V.mean(), t[1] - t[0], n_freq=16)
+    for k1, k2 in ((1, -1), (2, -1), (1, 0), (1, 1)):   # the strongest lines
+        w = k1 * torus.omega_l + k2 * torus.omega_g
+        j = int(np.argmin(np.abs(lines.frequency - w)))
+        assert lines.frequency[j] == pytest.approx(w, rel=1e-6)
+        coeff = Vk[k1, k2]
+        assert abs(lines.amplitude[j] - coeff) < 1e-5 * max(abs(coeff), 1e-3), (k1, k2)
+    assert np.max(np.abs(Vk[:, 2])) < 1e-15 and np.max(np.abs(Vk[:, -2])) < 1e-15
+
+
+def test_resonant_tori_where_and_complete():
+    ds = resonant_tori(PAPER, H, 0.0, max_order=12)
+    np.testing.assert_allclose(ds.rotation_number_g_section, ds.p / ds.q, rtol=1e-14)
+    # every fraction of order <= 12 in each regime's range of W, once per sign
+    for axis in (1, 2):
+        sub = ds.where(ds.axis == axis, drop=True)
+        lo_hi = {1: (1.0413, 1.1103), 2: (0.9932, 1.0415)}[axis]
+        W = [euler_poinsot_frequencies(PAPER, H, G).rotation_number_g_section
+             for G in np.linspace(*lo_hi, 400)[1:-1]]
+        want = {(p, q) for q in range(1, 12) for p in range(1, 13 - q)
+                if math.gcd(p, q) == 1 and min(W) < p / q < max(W)}
+        got = {(int(p), int(q)) for p, q in zip(sub.p.values, sub.q.values, strict=True)}
+        assert got == want
+        assert (sub.sign == 1).sum() == (sub.sign == -1).sum() == len(want)
+
+
+def test_resonant_torus_frequencies_by_naff():
+    """Where, by an independent route: NAFF on a free orbit started on the predicted torus
+    measures frequency_ratio = q/p and labels it q:p."""
+    ds = resonant_tori(PAPER, H, 0.0, max_order=10)
+    row = ds.isel(resonance=int(np.nonzero(ds.label.values == "8:1")[0][0]))
+    torus = sample_torus(PAPER, H, float(row.G_action), 0.0, int(row.sign), n=64)
+    y0 = from_andoyer([torus.l[0], 0.0, torus.L[0], float(row.G_action), 0.0])
+    f = orbit_frequencies(PAPER.with_mu(0.0), y0, 40 * 2 * math.pi / float(row.omega_l),
+                          n_samples=16385, engine="numba")
+    assert float(f.frequency_ratio[0]) == pytest.approx(8.0, rel=1e-9)
+    assert resonance_label(float(f.frequency_ratio[0]), 1e-8, max_order=10) == "8:1"
+
+
+def test_widths_scale_and_second_order_chains():
+    small = resonance_widths(WIDE.with_mu(1e-4), 1.0, 0.0, max_order=5)
+    big = resonance_widths(WIDE.with_mu(4e-4), 1.0, 0.0, max_order=5)
+    first = small.mu_order.values == 1
+    np.testing.assert_allclose(big.half_width[first], 2 * small.half_width[first], rtol=1e-12)
+    np.testing.assert_allclose(big.libration_frequency[first],
+                               2 * small.libration_frequency[first], rtol=1e-12)
+    # (R6): Delta G = W Delta I1
+    np.testing.assert_allclose(small.half_width, small.rotation_number_g_section
+                               * small.half_width_action, rtol=1e-14)
+    # 3/2 is absent at first order (V has no harmonic k2 = -2): width not predicted
+    second = small.where(small.mu_order == 2, drop=True)
+    assert set(second.label.values.tolist()) == {"3:2"}
+    assert np.all(np.isnan(second.half_width))
+    # q stable and q unstable points on g = 0 for each first-order chain
+    for i in np.nonzero(first)[0]:
+        q = int(small.q[i])
+        assert int(np.isfinite(small.stable_x[i]).sum()) == q
+        assert int(np.isfinite(small.unstable_x[i]).sum()) == q
+    assert small.attrs["plane_x"] == "l_angle" and small.half_width.attrs["equation"] == "(R6)"
+
+
+def _psi_span(body, row, torus, l, L, n_crossings):
+    """Range of the unwrapped slow angle of the orbit seeded at (l, L) on g = 0."""
+    roots = section_roots(body, 1.0, 0.0, ("g", 0.0), [l], [L])[0]
+    G = float(roots[np.argmin(np.abs(roots - float(row.G_action)))])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = poincare(body, from_andoyer([l, 0.0, L, G, 0.0]), "g=0", n_crossings,
+                      engine="numba", rtol=1e-11, atol=1e-11)
+    mom = np.stack([ds.G1.values[0], ds.G2.values[0], ds.G3.values[0]], axis=-1)
+    phi1 = free_top_phase(body, mom)
+    rho = np.interp(phi1 % (2 * math.pi), np.append(torus.phi1, 2 * math.pi),
+                    np.append(torus.rho, torus.rho[0]))
+    n = np.arange(phi1.size) + 1.0
+    psi = int(row.q) * phi1 - (2 * math.pi * n - rho)
+    path = np.cumsum(np.angle(np.exp(1j * np.diff(psi))))
+    return float(np.ptp(path))
+
+
+def test_stable_and_unstable_orbits_on_a_section():
+    """The predicted stable point librates with a small slow angle; the predicted unstable
+    point sweeps (nearly) the whole circle: the pendulum's two equilibria, (R7)."""
+    ds = resonance_widths(WIDE, 1.0, 0.0, max_order=4)
+    i = int(np.nonzero((ds.label.values == "3:1") & (ds.axis.values == 1)
+                       & (ds.sign.values == 1))[0][0])
+    row = ds.isel(resonance=i)
+    torus = sample_torus(WIDE, 1.0, float(row.G_action), 0.0, 1)
+    n = int(8.0 / float(row.libration_frequency))
+    stable = _psi_span(WIDE, row, torus, float(row.stable_x[0]), float(row.stable_y[0]), n)
+    unstable = _psi_span(WIDE, row, torus, float(row.unstable_x[0]), float(row.unstable_y[0]),
+                         n)
+    assert stable < 0.5
+    assert unstable > 5.0
+
+
+def test_measured_half_width_cheap():
+    """One chain measured on sections (the slow test measures the convergence in mu):
+    Hess(3, 1, 2), 3:1 about axis 1, mu = 1e-3: 2.5e-3 predicted, 1.9 % off measured."""
+    ds = measure_island(WIDE, 1.0, 0.0, "3:1", axis=1, n_seeds=3, n_rounds=2,
+                        engine="numba")
+    predicted, measured = float(ds.predicted_half_width), float(ds.measured_half_width)
+    assert abs(measured - predicted) < 0.04 * predicted
+    assert float(ds.edge_uncertainty) < 0.1 * predicted
+    assert ds.seed_locked.values.any() and not ds.seed_locked.values.all()
+
+
+@pytest.mark.slow
+def test_half_width_error_falls_like_mu_to_the_three_halves():
+    """The measured error of the first-order half-width, |measured - predicted|, against
+    mu: the fitted slope of log|error| vs log mu is about 1.45 (measured 1.44 at
+    mu = 1e-4, 3e-4, 1e-3): the relative error is O(mu), as for a pendulum whose odd
+    corrections cancel in the half-width."""
+    mus = [1e-4, 3e-4, 1e-3]
+    err, rel = [], []
+    for mu in mus:
+        ds = measure_island(WIDE.with_mu(mu), 1.0, 0.0, "3:1", axis=1, n_seeds=3,
+                            n_rounds=5, engine="numba")
+        e = abs(float(ds.half_width_error))
+        assert float(ds.edge_uncertainty) < 0.5 * e
+        err.append(e)
+        rel.append(e / float(ds.predicted_half_width))
+    slope = np.polyfit(np.log(mus), np.log(err), 1)[0]
+    assert 1.2 < slope < 1.8, slope
+    assert rel[0] < 0.005
