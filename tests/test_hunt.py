@@ -176,11 +176,20 @@ OVERRIDES: dict[str, dict[str, Any]] = {
                                  "predicted_splitting")},
 }
 #: Arguments that are results of the library (built once, on first use).
-LAZY_USERS = {"grow_manifold", "measure_splitting", "splitting_at", "orbits_dataset"}
+LAZY_USERS = {"grow_manifold", "measure_splitting", "splitting_at", "orbits_dataset",
+              "axis_trace", "precession_nutation", "herpolhode"}
 LAZY = {
     "branch": lambda: _manifold()[0], "wu": lambda: _manifold()[1],
     "ws": lambda: _manifold()[2], "orbits": lambda: [_manifold()[0].orbit],
+    "ds": lambda: _attitude_dataset(),
 }
+
+
+@functools.cache
+def _attitude_dataset() -> xr.Dataset:
+    from andoyer.integrate import attitude
+
+    return attitude(FREE, [0.3, 0.8, 0.5, 0.0, 0.6, 0.8], [0.0, 0.5, 1.0], engine="numba")
 
 
 @functools.cache
@@ -224,7 +233,7 @@ TYPE_CLASSES = ("bool", "str", "shape", "none", "nan")
 #: type (``progress=True``, ``name="x"``) or its ``None`` means "the default". An array
 #: argument (``ArrayLike``) may take another shape (functions are elementwise or take
 #: several states); the answer must then be finite.
-ACCEPTED = {("name", "str"), ("what", "str")}
+ACCEPTED = {("name", "str"), ("what", "str"), ("axis", "str")}
 
 
 def _accepts(param: inspect.Parameter, cls: str) -> bool:

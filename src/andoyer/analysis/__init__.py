@@ -29,7 +29,9 @@ topic, imported on demand (``from andoyer.analysis.chaos.indicators import indic
   :mod:`~andoyer.analysis.paper.trajectories` (Fig. 3) and
   :mod:`~andoyer.analysis.paper.paper_check` (every printed formula against the derivation);
 - :mod:`~andoyer.analysis.space`, the body in space:
-  :mod:`~andoyer.analysis.space.lagrange_top` (the Lagrange top in closed form).
+  :mod:`~andoyer.analysis.space.lagrange_top` (the Lagrange top in closed form),
+  :mod:`~andoyer.analysis.space.inertial` (axis traces, precession and nutation, the
+  herpolhode, the Hess heteroclinic cycle in space).
 
 The former flat module paths (``andoyer.analysis.separatrix``, ...) import for one
 release with a ``DeprecationWarning``.

@@ -15,15 +15,15 @@ if TYPE_CHECKING:
     from andoyer.integrate.api import integrate_canonical as integrate_canonical
     from andoyer.integrate.api import poincare as poincare
     from andoyer.integrate.api import propagate as propagate
-    from andoyer.integrate.attitude import attitude as attitude
     from andoyer.integrate.fill import fill_section as fill_section
     from andoyer.integrate.hess_manifold import (
         propagate_hess_manifold as propagate_hess_manifold,
     )
+    from andoyer.integrate.orientation import attitude as attitude
     from andoyer.integrate.section import Section as Section
 
 _LAZY = {
-    "attitude": "andoyer.integrate.attitude",
+    "attitude": "andoyer.integrate.orientation",
     "initial_states": "andoyer.integrate.api",
     "integrate_canonical": "andoyer.integrate.api",
     "poincare": "andoyer.integrate.api",

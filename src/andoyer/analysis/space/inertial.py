@@ -1,0 +1,375 @@
+r"""The body in inertial space: axis traces, precession and nutation, the herpolhode, and
+the heteroclinic cycle of the Hess case.
+
+All of it reads the datasets of :func:`andoyer.integrate.attitude` (conventions of
+:mod:`andoyer.charts.rotation`: ``R`` body -> space, ``Z`` the upward vertical, Euler
+angles ``z-x-z``).
+
+* :func:`axis_trace`: where a body axis points, ``R a / |a|`` on the unit sphere (the
+  loops, cusps and waves of the heavy top's apex), with its colatitude from ``Z`` and
+  its azimuth about ``Z``. For the symmetry axis ``z`` the colatitude is the nutation
+  ``theta`` and the azimuth is ``psi - pi/2``.
+* :func:`precession_nutation`: per orbit, the nutation bounds (sampled) and the mean
+  precession rate ``(psi(t_end) - psi(t_0)) / (t_end - t_0)`` of the unwrapped
+  precession. An orbit through the pole (``sin theta`` below the flag of
+  :func:`andoyer.charts.rotation.euler_angles`) or sampled too sparsely to unwrap
+  ``psi`` (a step above ``pi/2``) has NaN rate and says so in its flags.
+* :func:`herpolhode`: the free top (``mu = 0``): the angular velocity in space,
+  ``R I G``, whose tip moves on the invariable plane ``(omega, L) = 2T`` with ``L = R G``
+  fixed (Poinsot); its coordinates in that plane and its distance ``2T/|L|``.
+* :func:`heteroclinic_cycle`: the Hess case at ``M = 0``. On the Hess relation (3)
+  (``theta1 = 0``) every rotation of ``theta2`` is heteroclinic: ``L/G`` goes from
+  ``+1`` to ``-1`` (:mod:`andoyer.analysis.hess.hess_solution`), from the pendulum-like
+  rotation ``P+`` about ``+z`` to ``P-`` about ``-z``; the other unperturbed separatrix
+  ``theta1 = 4 phi0`` takes ``P-`` back to ``P+`` and splits for ``mu > 0``: its orbit
+  here is the asymptotic motion near the split separatrices. Both are integrated with
+  the attitude from their middle (``L = 0``), backward and forward.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from andoyer.analysis.unperturbed.separatrix import BRANCHES, heteroclinic, heteroclinic_rate
+from andoyer.body import RigidBody, checks_body
+from andoyer.charts.rotation import (
+    BODY_AXES,
+    QUATERNION,
+    SPACE_AXES,
+    quaternion_from_vertical,
+)
+from andoyer.integrate import budget
+from andoyer.integrate.api import check_tolerances
+from andoyer.integrate.engines import EngineLike, resolve_engine
+from andoyer.integrate.engines.base import Capability, Tolerance
+from andoyer.integrate.orientation import CONVENTIONS, attitude_variables
+from andoyer.integrate.results import (
+    VariableMeta,
+    describe_variables,
+    provenance,
+    states_dataset,
+)
+from andoyer.validation import MAX_ACTION, integer
+from andoyer.validation import positive as _positive
+
+__all__ = ["AXES", "axis_trace", "precession_nutation", "herpolhode", "heteroclinic_cycle"]
+
+#: Named body axes of :func:`axis_trace` (``centre_of_mass`` is ``r``, ``momentum`` is
+#: ``G/|G|``, ``angular_velocity`` is ``I G / |I G|``; the last two move in the body).
+AXES = ("x", "y", "z", "centre_of_mass", "momentum", "angular_velocity")
+
+_STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
+_REQUIRED = ("rotation", "precession", "nutation", "euler_singular")
+
+
+def _check_attitude(ds: Any, name: str = "ds") -> xr.Dataset:
+    if not isinstance(ds, xr.Dataset):
+        raise TypeError(f"{name} must be an attitude dataset (andoyer.integrate.attitude), "
+                        f"got {type(ds).__name__}")
+    missing = [v for v in (*_REQUIRED, *_STATE) if v not in ds]
+    if missing:
+        raise ValueError(f"{name} is not an attitude dataset (andoyer.integrate.attitude): "
+                         f"it lacks {', '.join(missing)}")
+    if "time" not in ds.dims or ds.sizes["time"] < 2:
+        raise ValueError(f"{name} must hold at least 2 times")
+    return ds
+
+
+def _body_of(ds: xr.Dataset) -> RigidBody:
+    try:
+        A, B, C, mu = (float(ds.attrs[f"body_{k}"]) for k in ("A", "B", "C", "mu"))
+        e1, e2, e3 = (float(ds.attrs[f"body_e{i}"]) for i in (1, 2, 3))
+    except KeyError as exc:
+        raise ValueError(f"ds does not record its body (attribute {exc.args[0]!r}); pass a "
+                         "dataset of andoyer.integrate.attitude") from None
+    return RigidBody(A, B, C, mu, (e1, e2, e3))
+
+
+def _states(ds: xr.Dataset) -> np.ndarray:
+    return np.stack([ds[v].values for v in _STATE], axis=-1)
+
+
+_TRACE_META: dict[str, VariableMeta] = {
+    "trace": ("R a", "the body axis a in space (unit vector)", "1", ""),
+    "colatitude": ("ϑ_a", "angle of the axis from the vertical Z", "rad", ""),
+    "azimuth": ("λ_a", "azimuth of the axis about Z, from X towards Y", "rad", ""),
+}
+
+
+def axis_trace(ds: xr.Dataset, axis: str = "z") -> xr.Dataset:
+    """The trace of a body axis on the unit sphere of the space frame.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset (:func:`andoyer.integrate.attitude`).
+    axis : {"x", "y", "z", "centre_of_mass", "momentum", "angular_velocity"}
+        The body axis: a principal axis, the direction ``r`` of the centre of mass, or
+        the (moving) directions of ``G`` and of ``omega = I G``.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``trace`` (dims of ``ds`` and ``space`` = X, Y, Z), ``colatitude`` (from ``Z``)
+        and ``azimuth`` (about ``Z``, in (-pi, pi]); attr ``axis``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.paper(), [0.3, 1.0, 0.2, 1.0, 0.0], [0.0, 1.0],
+    ...               chart="andoyer", engine="scipy")
+    >>> tr = axis_trace(ds, "z")
+    >>> bool(np.allclose(tr.colatitude, ds.nutation))
+    True
+    """
+    ds = _check_attitude(ds)
+    if not isinstance(axis, str) or axis not in AXES:
+        raise ValueError(f"axis must be one of {', '.join(AXES)}, got {axis!r}")
+    R = ds.rotation.values
+    Y = _states(ds)
+    if axis in BODY_AXES:
+        a = np.broadcast_to(np.eye(3)[BODY_AXES.index(axis)], Y[..., :3].shape)
+    elif axis == "centre_of_mass":
+        body = _body_of(ds)
+        a = np.broadcast_to(np.array([body.e1, body.e2, body.e3]), Y[..., :3].shape)
+    elif axis == "momentum":
+        a = Y[..., :3]
+    else:
+        body = _body_of(ds)
+        a = Y[..., :3] * np.array([body.a, body.b, body.c])
+    norm = np.linalg.norm(a, axis=-1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.einsum("...ij,...j->...i", R, a / norm)
+    dims = ds.precession.dims
+    out = xr.Dataset(
+        {"trace": ((*dims, "space"), u),
+         "colatitude": (dims, np.arctan2(np.hypot(u[..., 0], u[..., 1]), u[..., 2])),
+         "azimuth": (dims, np.arctan2(u[..., 1], u[..., 0]))},
+        coords={d: ds[d].values for d in dims if d in ds.coords} | {"space": list(SPACE_AXES)},
+        attrs={**{k: v for k, v in ds.attrs.items() if k != "created"}, "axis": axis})
+    return describe_variables(out, _TRACE_META)
+
+
+_PN_META: dict[str, VariableMeta] = {
+    "nutation_min": ("θ_min", "least sampled nutation angle", "rad", ""),
+    "nutation_max": ("θ_max", "largest sampled nutation angle", "rad", ""),
+    "nutation_mean": ("<θ>", "time average of the nutation (trapezoidal)", "rad", ""),
+    "precession_rate": ("<dψ/dt>", "mean precession rate (ψ(t_end) - ψ(t0)) / (t_end - t0)",
+                        "rad/body time unit", ""),
+    "precession_turns": ("Δψ/2π", "turns of the precession over the orbit", "1", ""),
+    "passes_pole": ("", "the orbit comes within the flag of θ = 0 or π (ψ undefined)",
+                    "1", ""),
+    "undersampled": ("", "a sample step of ψ above π/2: too sparse to unwrap", "1", ""),
+}
+
+
+def precession_nutation(ds: xr.Dataset) -> xr.Dataset:
+    """Nutation bounds and mean precession rate of each orbit of an attitude dataset.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset (:func:`andoyer.integrate.attitude`), dims ``(orbit, time)``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per orbit: ``nutation_min``, ``nutation_max``, ``nutation_mean`` (rad),
+        ``precession_rate`` (the mean over the whole time span; over whole nutation
+        periods it is the secular rate), ``precession_turns``, and the flags
+        ``passes_pole`` and ``undersampled`` (the rate is NaN where either is set).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> body = RigidBody.lagrange(1.0, 0.6, 1.0)
+    >>> ds = attitude(body, [0.2, 0.1, 1.5, 0.0, 0.6, 0.8], np.linspace(0, 20, 801),
+    ...               engine="scipy")
+    >>> pn = precession_nutation(ds)
+    >>> bool(pn.nutation_min[0] < pn.nutation_max[0]), bool(pn.passes_pole[0])
+    (True, False)
+    """
+    ds = _check_attitude(ds)
+    if ds.precession.dims != ("orbit", "time"):
+        raise ValueError(f"ds must have dims (orbit, time), got {ds.precession.dims}")
+    t = ds.time.values.astype(float)
+    theta = ds.nutation.values
+    psi = ds.precession.values
+    pole = ds.euler_singular.values.any(axis=1)
+    steps = np.angle(np.exp(1j * np.diff(np.nan_to_num(psi), axis=1)))
+    sparse = np.abs(steps).max(axis=1) > 0.5 * math.pi if psi.shape[1] > 1 else np.zeros(
+        psi.shape[0], bool)
+    advance = np.sum(steps, axis=1)
+    bad = pole | sparse
+    span = t[-1] - t[0]
+    rate = np.where(bad, np.nan, advance / span)
+    mean = np.trapezoid(theta, t, axis=1) / span
+    out = xr.Dataset(
+        {"nutation_min": ("orbit", theta.min(axis=1)),
+         "nutation_max": ("orbit", theta.max(axis=1)),
+         "nutation_mean": ("orbit", mean),
+         "precession_rate": ("orbit", rate),
+         "precession_turns": ("orbit", np.where(bad, np.nan, advance / (2 * math.pi))),
+         "passes_pole": ("orbit", pole), "undersampled": ("orbit", sparse)},
+        coords={"orbit": ds.orbit.values},
+        attrs={**{k: v for k, v in ds.attrs.items() if k != "created"},
+               "duration": float(span)})
+    return describe_variables(out, _PN_META)
+
+
+_HERPOLHODE_META: dict[str, VariableMeta] = {
+    "omega_space": ("R ω", "angular velocity in the space frame", "1/body time unit", ""),
+    "polhode": ("ω", "angular velocity in the body frame (the polhode)",
+                "1/body time unit", ""),
+    "herpolhode": ("", "tip of R ω in the invariable plane (u, v)", "1/body time unit", ""),
+    "plane_distance": ("2T/|L|", "distance of the tip of R ω from the fixed point along "
+                       "L: constant (the invariable plane)", "1/body time unit", ""),
+    "momentum_space": ("L = R G", "angular momentum in space (fixed), time average", "1",
+                       ""),
+}
+
+
+def herpolhode(ds: xr.Dataset) -> xr.Dataset:
+    """The polhode and herpolhode of the free top (Poinsot's construction).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset of a body with ``mu = 0`` (:func:`andoyer.integrate.attitude`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``omega_space`` (``R I G``), ``polhode`` (``I G``, body frame), ``herpolhode``
+        (dim ``plane`` = u, v: the tip of ``R omega`` in the invariable plane, ``u``
+        along ``Z x L`` or ``X`` where ``L`` is vertical, ``v = L x u / |L|``),
+        ``plane_distance`` (``(R omega, L)/|L| = 2T/|L|``, constant) and
+        ``momentum_space`` (``L = R G``, per orbit).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> free = RigidBody.euler_poinsot(2.5, 2.0, 2.2)
+    >>> ds = attitude(free, [0.3, 0.8, 0.5, 0.0, 0.6, 0.8], np.linspace(0, 10, 11),
+    ...               engine="scipy")
+    >>> hp = herpolhode(ds)
+    >>> bool(np.ptp(hp.plane_distance.values) < 1e-12)
+    True
+    """
+    ds = _check_attitude(ds)
+    body = _body_of(ds)
+    if body.mu != 0.0:
+        raise ValueError(f"herpolhode is the free top's (mu = 0); ds holds mu = {body.mu}")
+    Y = _states(ds)
+    R = ds.rotation.values
+    omega = Y[..., :3] * np.array([body.a, body.b, body.c])
+    w = np.einsum("...ij,...j->...i", R, omega)
+    L_t = np.einsum("...ij,...j->...i", R, Y[..., :3])
+    L = L_t.mean(axis=-2, keepdims=True)
+    Ln = np.linalg.norm(L, axis=-1, keepdims=True)
+    n = L / Ln
+    u = np.cross([0.0, 0.0, 1.0], n)
+    un = np.linalg.norm(u, axis=-1, keepdims=True)
+    u = np.where(un > 1e-12, u / np.where(un > 0, un, 1.0), [1.0, 0.0, 0.0])
+    v = np.cross(n, u)
+    dims = ds.precession.dims
+    plane = np.stack([np.sum(w * u, axis=-1), np.sum(w * v, axis=-1)], axis=-1)
+    out = xr.Dataset(
+        {"omega_space": ((*dims, "space"), w), "polhode": ((*dims, "body"), omega),
+         "herpolhode": ((*dims, "plane"), plane),
+         "plane_distance": (dims, np.sum(w * n, axis=-1)),
+         "momentum_space": ((*dims[:-1], "space"), L[..., 0, :])},
+        coords={d: ds[d].values for d in dims if d in ds.coords}
+        | {"space": list(SPACE_AXES), "body": list(BODY_AXES), "plane": ["u", "v"]},
+        attrs={k: v for k, v in ds.attrs.items() if k != "created"})
+    return describe_variables(out, _HERPOLHODE_META)
+
+
+@checks_body
+def heteroclinic_cycle(body: RigidBody, J2: float = 1.0, *, t_half: float | None = None,
+                       n_times: int = 2001, engine: EngineLike = None, rtol: float = 1e-12,
+                       atol: float = 1e-12) -> xr.Dataset:
+    """The heteroclinic cycle ``P+ -> P- -> P+`` of a Hess body at ``M = 0``, in space.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``mu >= 0``).
+    J2 : float
+        ``G``, the length of the angular momentum at the middle of each branch.
+    t_half : float, optional
+        Each branch is integrated over ``[-t_half, t_half]`` about its middle
+        (``L = 0``); default ``12 / lambda`` with ``lambda`` the unperturbed rate
+        (:func:`andoyer.analysis.unperturbed.separatrix.heteroclinic_rate`): ``L/G``
+        reaches ``+-1`` to about ``1e-5``.
+    n_times : int
+        Output times per branch (>= 3).
+    engine : str or Engine, optional
+        An engine with the attitude capability.
+    rtol, atol : float
+        Tolerances.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(branch, time)`` (``branch`` = ``theta1=0``, ``theta1=4phi0``; ``time``
+        from ``-t_half``): the attitude variables of :func:`andoyer.integrate.attitude`
+        (both branches start with the precession ``psi = 0`` at ``t = 0``),
+        ``L_over_G`` (``+1`` at ``P+``, ``-1`` at ``P-``) and the Euler-Poisson state.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> cyc = heteroclinic_cycle(RigidBody.paper(mu=0.0), n_times=5, engine="scipy")
+    >>> [round(float(v), 3) for v in cyc.L_over_G.isel(time=[0, -1]).values.ravel()]
+    [1.0, -1.0, -1.0, 1.0]
+    """
+    body.require_hess("the heteroclinic cycle of the Hess case")
+    G = _positive("J2", J2, maximum=MAX_ACTION)
+    n = integer("n_times", n_times, 3)
+    rtol, atol = check_tolerances(rtol, atol)
+    lam = heteroclinic_rate(body, G)
+    T = 12.0 / lam if t_half is None else _positive("t_half", t_half)
+    y0 = np.stack([heteroclinic(body, G, [0.0], branch)["y"].values[0]
+                   for branch in BRANCHES])
+    budget.check("heteroclinic_cycle",
+                 steps=1.3 * budget.estimate_steps(body, np.repeat(y0, 2, axis=0), T, rtol),
+                 memory=(budget.DATASET_BYTES + 21 * 8) * len(BRANCHES) * n)
+    eng = resolve_engine(engine, Capability.ATTITUDE)
+    q0 = quaternion_from_vertical(y0[:, 3:], 0.0)
+    half = (n + 1) // 2
+    forward = np.linspace(0.0, T, half)
+    tol = Tolerance(rtol, atol)
+    yf, qf = eng.attitude(y0, q0, forward, body.engine_params, tol)
+    yb, qb = eng.attitude(y0, q0, -forward, body.engine_params, tol)
+    times = np.concatenate([-forward[::-1], forward[1:]])
+    Y = np.concatenate([yb[:, ::-1], yf[:, 1:]], axis=1)
+    Q = np.concatenate([qb[:, ::-1], qf[:, 1:]], axis=1)
+    if times.size != n:  # an even n_times: drop the last point
+        times, Y, Q = times[:n], Y[:, :n], Q[:, :n]
+    dims = ("branch", "time")
+    extra = attitude_variables(Q, Y[..., :3], dims)
+    Gn = np.linalg.norm(Y[..., :3], axis=-1)
+    extra["L_over_G"] = (dims, Y[..., 2] / Gn)
+    ds = states_dataset(
+        body, Y, dims, {"branch": list(BRANCHES), "time": times,
+                        "component": list(QUATERNION), "space": list(SPACE_AXES),
+                        "body": list(BODY_AXES)},
+        provenance(body, engine=eng.name, rtol=rtol, atol=atol, J2=G, t_half=T,
+                   lambda_rate=lam,
+                   equations="Euler-Poisson equations (1) with the attitude quaternion, "
+                             "from the middle (L = 0) of the unperturbed separatrices",
+                   **CONVENTIONS),
+        extra)
+    ds.variables["time"].attrs.update(units="body time units",
+                                      long_name="time from the middle of the branch")
+    return describe_variables(ds, {
+        "L_over_G": ("L/G", "cosine of the angle of G from the body axis z: +1 at P+, "
+                     "-1 at P-", "1", "")})
