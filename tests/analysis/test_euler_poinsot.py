@@ -134,3 +134,15 @@ def test_momentum_on_the_permanent_rotations_and_bad_times():
                       ([0.0, 1e300], "periods")):
         with pytest.raises(ValueError, match=what):
             euler_poinsot_momentum(body, [0.3, 0.8, 0.5], bad)
+
+
+def test_momentum_starts_where_scipy_ellipkinc_is_wrong():
+    """SciPy 1.17.1's ellipkinc(1.0895147838119381, 0.08843945589556104) is 20 % off; the
+    motion from this state (amplitude 1.0895..., k^2 = 0.0884...) started 0.05 away from
+    it before theta0 came from Carlson's form (elliptic_f)."""
+    from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_momentum
+
+    body = _free(2.5, 2.0, 2.2)
+    g0 = np.array([0.12128099822752322, 0.9309356785325529, 0.34445563125614825])
+    G = euler_poinsot_momentum(body, g0, [0.0, 1.0])
+    np.testing.assert_allclose(G[0], g0, rtol=0, atol=1e-12)

@@ -21,12 +21,11 @@ from andoyer.analysis.resonance import resonance_widths, resonant_tori
 from andoyer.analysis.resonance.measure import measure_island
 from andoyer.analysis.resonance.torus import (
     converged_torus,
-    elliptic_f,
     free_top_phase,
     perturbation,
     sample_torus,
 )
-from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
+from andoyer.analysis.unperturbed.euler_poinsot import elliptic_f, euler_poinsot_frequencies
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.integrate import poincare, propagate
 from andoyer.integrate.fill import section_roots

@@ -32,18 +32,19 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ellipk, elliprf
+from scipy.special import ellipk
 
 from andoyer.analysis.unperturbed.euler_poinsot import (
+    elliptic_f,
     euler_poinsot_frequencies,
     euler_poinsot_momentum,
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import hamiltonian_expr
-from andoyer.validation import checks_arguments, finite, integer, positive, real_array
+from andoyer.validation import finite, integer, positive, real_array
 
-__all__ = ["Torus", "sample_torus", "free_top_phase", "elliptic_f", "MAX_FOURIER"]
+__all__ = ["Torus", "sample_torus", "free_top_phase", "MAX_FOURIER"]
 
 #: Largest number of samples of a torus in ``phi1`` (the FFT is refined by doubling
 #: until the last quarter of the spectrum is below 1e-13 of its peak, up to this).
@@ -190,32 +191,6 @@ def free_top_phase(body: RigidBody, momentum: ArrayLike) -> NDArray[np.float64]:
     theta = elliptic_f(phi, m)
     return np.asarray(np.remainder(math.pi * theta / (2.0 * K) + math.pi, 2 * math.pi)
                       - math.pi)
-
-
-@checks_arguments
-def elliptic_f(phi: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
-    """Incomplete elliptic integral of the first kind ``F(phi | m)``, any real ``phi``.
-
-    Carlson's form ``F = sin(phi) R_F(cos^2 phi, 1 - m sin^2 phi, 1)`` on
-    ``|phi| <= pi/2``, extended by ``F(phi + n pi) = F(phi) + 2 n K(m)``. Not
-    ``scipy.special.ellipkinc``: SciPy 1.17.1 returns ``F(1.0895147838119381 |
-    0.08843945589556104) = 1.30599`` where the value is 1.10507 (mpmath; its neighbours
-    in ``phi`` are right), a 20 % error at isolated points.
-
-    >>> round(float(elliptic_f(1.0895147838119381, 0.08843945589556104)), 12)
-    1.105065497269
-    """
-    phi = real_array("phi", phi)
-    m = real_array("m", m)
-    if not np.all(np.isfinite(phi)) or np.any(np.abs(phi) > 1e15):
-        raise ValueError("phi must be finite, |phi| <= 1e15 (beyond, no digit of its "
-                         "remainder mod pi is left)")
-    if not np.all((m >= 0.0) & (m < 1.0)):
-        raise ValueError(f"m must lie in [0, 1), got {m!r}")
-    n = np.round(phi / math.pi)
-    x = phi - n * math.pi
-    s, c = np.sin(x), np.cos(x)
-    return np.asarray(s * elliprf(c * c, 1.0 - m * s * s, 1.0) + 2.0 * n * ellipk(m))
 
 
 def perturbation(body: RigidBody, states: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -48,12 +48,12 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ellipj, ellipk, ellipkinc, elliprf, elliprj
+from scipy.special import ellipj, ellipk, elliprf, elliprj
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.validation import checks_arguments, finite, positive, real_array
 
-__all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi",
+__all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi", "elliptic_f",
            "euler_poinsot_momentum", "MAX_PERIODS"]
 
 #: Most periods :func:`euler_poinsot_momentum` follows: beyond, the phase ``lambda t`` has
@@ -77,6 +77,48 @@ def elliptic_pi(n: float, m: float) -> float:
     if not math.isfinite(value):
         raise ValueError(f"elliptic_pi(n = {n!r}, m = {m!r}) is beyond the float range")
     return value
+
+
+@checks_arguments
+def elliptic_f(phi: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
+    """Incomplete elliptic integral of the first kind ``F(phi | m)``, any real ``phi``.
+
+    Parameters
+    ----------
+    phi : array_like
+        Amplitude (finite, ``|phi| <= 1e15``).
+    m : array_like
+        Parameter ``k^2`` in ``[0, 1)``.
+
+    Returns
+    -------
+    ndarray
+        ``F(phi | m)``, broadcast.
+
+    Notes
+    -----
+    Carlson's form ``F = sin(phi) R_F(cos^2 phi, 1 - m sin^2 phi, 1)`` on
+    ``|phi| <= pi/2``, extended by ``F(phi + n pi) = F(phi) + 2 n K(m)``. Not
+    ``scipy.special.ellipkinc``: SciPy 1.17.1 returns ``F(1.0895147838119381 |
+    0.08843945589556104) = 1.30599`` where the value is 1.10507 (mpmath; its neighbours
+    in ``phi`` are right), a 20 % error at isolated points.
+
+    Examples
+    --------
+    >>> round(float(elliptic_f(1.0895147838119381, 0.08843945589556104)), 12)
+    1.105065497269
+    """
+    phi = real_array("phi", phi)
+    m = real_array("m", m)
+    if not np.all(np.isfinite(phi)) or np.any(np.abs(phi) > 1e15):
+        raise ValueError("phi must be finite, |phi| <= 1e15 (beyond, no digit of its "
+                         "remainder mod pi is left)")
+    if not np.all((m >= 0.0) & (m < 1.0)):
+        raise ValueError(f"m must lie in [0, 1), got {m!r}")
+    n = np.round(phi / math.pi)
+    x = phi - n * math.pi
+    s, c = np.sin(x), np.cos(x)
+    return np.asarray(s * elliprf(c * c, 1.0 - m * s * s, 1.0) + 2.0 * n * ellipk(m))
 
 
 class EulerPoinsotFrequencies(NamedTuple):
@@ -195,7 +237,9 @@ def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDAr
     that Euler's equations ``dG_i/dt = (a_k - a_j) G_j G_k`` ((i, j, k) cyclic) require:
     the ``dn`` component keeps the sign it starts with, and the ``cn`` one has the sign
     making ``du/dt = U lambda cn dn``. ``theta0`` is ``F(phi0 | k^2)`` with ``phi0`` the
-    amplitude of the initial state (``sn = u0/U``, ``cn`` from the ``cn`` component).
+    amplitude of the initial state (``sn = u0/U``, ``cn`` from the ``cn`` component), by
+    :func:`elliptic_f` (SciPy's ``ellipkinc`` is wrong at isolated points: the motion
+    then did not start at ``G0``).
 
     Parameters
     ----------
@@ -268,7 +312,7 @@ def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDAr
     s_cn = sq * s_dn
     phi0 = math.atan2(g0n[iq] / U, s_cn * g0n[i_cn] / amp_cn)
     with np.errstate(over="ignore"):
-        theta = (lam * scale) * times + float(ellipkinc(phi0, m))
+        theta = (lam * scale) * times + float(elliptic_f(phi0, m))
     turns = float(np.max(np.abs(theta), initial=0.0)) / (4.0 * float(ellipk(m)))
     if not turns <= MAX_PERIODS:
         raise ValueError(f"t reaches {turns:.3g} periods of the motion (|t| up to "
