@@ -223,7 +223,7 @@ def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
 def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     case = f"FLI map {sizes.w3_grid} x {sizes.w3_grid}, t = {sizes.w3_t_end:g}"
     try:
-        from andoyer.analysis.chaos.indicators import chaos_map
+        from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
     except ImportError as exc:
         return [Row("W3", case, DEFAULT, math.nan, math.nan, [],
                     note=f"not available: andoyer.analysis.chaos.indicators.chaos_map ({exc})")]
@@ -234,8 +234,8 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     grid = (sizes.w3_grid, sizes.w3_grid)
 
     def andoyer(tol: float = sizes.tol) -> Any:
-        return chaos_map(b, h, 0.0, ("theta2", 0.0), n=grid, t_end=sizes.w3_t_end,
-                         indicator="fli", tol=tol, progress=False)
+        return chaos_map(b, h, 0.0, ("theta2", 0.0), grid,
+                         IndicatorRun("fli", t_end=sizes.w3_t_end, tol=tol), progress=False)
 
     _say("W3 andoyer heyoka ...")
     wall, cpu, walls, ds = timed(andoyer, max(1, sizes.repeat // 2 + 1))
@@ -274,7 +274,7 @@ def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     """The large map, timed once each (compiled integrators are warm from W3's runs):
     andoyer against the hand-written heyoka ensemble of the variational system, their
     FLI compared point by point (no extended-precision reference at this size)."""
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
     from benchmarks.peers import fli_heyoka
 
     b = W.body()
@@ -282,8 +282,8 @@ def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     case = f"FLI map {n} x {n}, t = {sizes.w3_t_end:g}"
     _say(f"W3 {n} x {n} andoyer heyoka (once) ...")
     wall, cpu, walls, ds = timed(
-        lambda: chaos_map(b, W.energy_level(b), 0.0, ("theta2", 0.0), n=(n, n),
-                          t_end=sizes.w3_t_end, indicator="fli", tol=sizes.tol,
+        lambda: chaos_map(b, W.energy_level(b), 0.0, ("theta2", 0.0), (n, n),
+                          IndicatorRun("fli", t_end=sizes.w3_t_end, tol=sizes.tol),
                           progress=False), 1, warm_up=False)
     rows = [Row("W3", case, DEFAULT, wall, cpu, walls,
                 note="timed once", extra={"points": int(ds.accessible.values.sum())})]

@@ -43,15 +43,15 @@ CROSSINGS_PER_ORBIT, ORBITS = 100, 50
 
 def _call(series: str, engine: str, size: int) -> Any:
     """The workload of one point: a function returning the dataset."""
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
     from andoyer.integrate import Section, poincare
     from benchmarks import workloads as W
 
     b = W.body()
     if series == "map":
         h = W.energy_level(b)
-        return lambda: chaos_map(b, h, 0.0, ("theta2", 0.0), n=(size, size),
-                                 t_end=MAP_T_END, indicator="fli", engine=engine,
+        return lambda: chaos_map(b, h, 0.0, ("theta2", 0.0), (size, size),
+                                 IndicatorRun("fli", t_end=MAP_T_END), engine=engine,
                                  progress=False)
     n, N = (size, CROSSINGS_PER_ORBIT) if series == "orbits" else (ORBITS, size)
     y0 = W.initial_states(n)

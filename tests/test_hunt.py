@@ -22,6 +22,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from andoyer import RigidBody
+from andoyer.analysis.chaos.specs import IndicatorRun
 from andoyer.cli import EXIT_CODES, main
 from andoyer.errors import CostLimitError
 
@@ -143,7 +144,7 @@ GOOD: dict[str, Any] = {
 }
 #: Where a function needs other values than the shared ones (and small sizes: cost guard).
 OVERRIDES: dict[str, dict[str, Any]] = {
-    "chaos_map": {"n": 4, "t_end": 5.0, "engine": "numba"},
+    "chaos_map": {"grid": 4, "run": IndicatorRun(t_end=5.0), "engine": "numba"},
     "chaos_border": {"body": HESS, "h": 0.3125, "n": 4, "t_end": 5.0, "engine": "numba"},
     "regular_reference": {"body": HESS, "h": 0.3125, "n": 4, "t_end": 5.0,
                           "engine": "numba"},

@@ -9,7 +9,7 @@ import pytest
 
 from andoyer import RigidBody, from_hess, to_andoyer
 from andoyer.analysis.chaos.frequency import naff
-from andoyer.analysis.chaos.indicators import chaos_map, indicators
+from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map, indicators
 from andoyer.analysis.paper.paper_check import paper_check
 from andoyer.analysis.splitting.melnikov import melnikov_function, melnikov_rho
 from andoyer.analysis.unperturbed.portraits import portrait_andoyer
@@ -80,7 +80,7 @@ def test_a_whole_float_is_a_count():
 REALS = [
     ("mu", lambda v: RigidBody(2.5, 2.0, 2.2, v, (1.0, 0.0, 0.0))),
     ("t_max", lambda v: poincare(B, Y0, "G3=0", 2, t_max=v, engine="numba")),
-    ("t_end", lambda v: chaos_map(B, 0.2466, 0.0, "theta2=0", n=3, t_end=v)),
+    ("t_end", lambda v: chaos_map(B, 0.2466, 0.0, "theta2=0", 3, IndicatorRun(t_end=v))),
     ("J2", lambda v: melnikov_rho(B, J2=v)),
     ("J2", lambda v: melnikov_function(B, n=4, J2=v, quadrature=False)),
     ("h", lambda v: separatrix_on_level(B, v, "andoyer")),

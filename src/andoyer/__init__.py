@@ -47,6 +47,8 @@ _LAZY = {
     "propagate_hess_manifold": "andoyer.integrate.hess_manifold",
     "chaos_map": "andoyer.analysis.chaos.indicators",
     "indicators": "andoyer.analysis.chaos.indicators",
+    "MapGrid": "andoyer.analysis.chaos.specs",
+    "IndicatorRun": "andoyer.analysis.chaos.specs",
 }
 __all__ += sorted(_LAZY)
 

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = ["MAX_ACTION", "finite", "positive", "integer", "real_array", "finite_array",
-           "floats", "choice", "grid", "flag", "checks_arguments"]
+           "floats", "choice", "grid", "box", "flag", "checks_arguments"]
 
 
 def _real(name: str, value: Any) -> float:
@@ -192,6 +192,28 @@ def grid(name: str, value: Any, minimum: int = 2) -> tuple[int, int]:
         raise ValueError(f"{name} must be an integer or a pair (nx, ny), got {value!r}")
     nx, ny = value
     return integer(f"{name}[0] (nx)", nx, minimum), integer(f"{name}[1] (ny)", ny, minimum)
+
+
+def box(name: str, value: Any) -> tuple[tuple[float, float], tuple[float, float]]:
+    """A rectangle ``((x_min, x_max), (y_min, y_max))`` of finite numbers with
+    ``min < max`` on both axes, or ``ValueError`` naming ``name``.
+
+    >>> box("plane_bounds", [(0, 6.5), (0.1, 0.9)])
+    ((0.0, 6.5), (0.1, 0.9))
+    >>> box("plane_bounds", ((0, 1), (2, 1)))
+    Traceback (most recent call last):
+    ...
+    ValueError: plane_bounds must have min < max on both axes, got ((0, 1), (2, 1))
+    """
+    try:
+        (x0, x1), (y0, y1) = value
+        x0, x1, y0, y1 = (finite(name, v) for v in (x0, x1, y0, y1))
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be ((x_min, x_max), (y_min, y_max)) of finite "
+                         f"numbers, got {value!r} ({err})") from None
+    if not (x0 < x1 and y0 < y1):
+        raise ValueError(f"{name} must have min < max on both axes, got {value!r}")
+    return (x0, x1), (y0, y1)
 
 
 def flag(name: str, value: Any, *, optional: bool = True) -> bool | None:

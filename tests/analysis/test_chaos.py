@@ -29,7 +29,13 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody, from_andoyer
-from andoyer.analysis.chaos.indicators import chaos_map, indicators, initial_tangent
+from andoyer.analysis.chaos.indicators import (
+    IndicatorRun,
+    MapGrid,
+    chaos_map,
+    indicators,
+    initial_tangent,
+)
 from andoyer.charts.euler_poisson import (
     STATE,
     area_integral,
@@ -38,6 +44,8 @@ from andoyer.charts.euler_poisson import (
 )
 from andoyer.integrate import propagate
 from andoyer.integrate import variational as V
+from andoyer.integrate.engines import resolve_engine
+from andoyer.integrate.engines.base import Capability
 from andoyer.integrate.fill import section_roots
 
 PAPER = RigidBody.paper()
@@ -127,8 +135,8 @@ def test_megno_tends_to_zero_on_a_stable_periodic_orbit(axis: int) -> None:
 
 def test_euler_poinsot_is_regular_over_a_grid() -> None:
     h = float(energy(FREE, from_andoyer([0.3, 0.0, 0.3, 1.0, 0.2])))
-    a = chaos_map(FREE, h, 0.2, "g=0", n=6, t_end=300.0, indicator="both")
-    b = chaos_map(FREE, h, 0.2, "g=0", n=6, t_end=600.0, indicator="both")
+    a = chaos_map(FREE, h, 0.2, "g=0", 6, IndicatorRun("both", t_end=300.0))
+    b = chaos_map(FREE, h, 0.2, "g=0", 6, IndicatorRun("both", t_end=600.0))
     assert int(a.accessible.sum()) == 36
     gain = (b.fli - a.fli).values
     assert np.all(np.abs(gain - math.log(2.0)) < 0.15)  # measured: 0.67 .. 0.73
@@ -246,9 +254,10 @@ def test_megno_limit_does_not_depend_on_the_tangent_direction() -> None:
 
 def test_chaos_map_dataset_is_self_describing_and_deterministic() -> None:
     body, h = RigidBody.paper(0.5), 0.3733  # the level has two sheets over some points
-    kw = {"n": (5, 9), "t_end": 20.0, "indicator": "both"}
-    a = chaos_map(body, h, 0.0, "theta2=0", **kw)
-    b = chaos_map(body, h, 0.0, ("theta2", 0.0), chunk=3, n_threads=1, **kw)
+    grid, run = MapGrid((5, 9)), IndicatorRun("both", t_end=20.0)
+    a = chaos_map(body, h, 0.0, "theta2=0", grid, run)
+    b = chaos_map(body, h, 0.0, ("theta2", 0.0), grid, run, chunk=3,
+                  engine=resolve_engine(None, Capability.TANGENT, n_threads=1))
     assert a.fli.dims == ("J1", "theta1")
     assert (a.sizes["J1"], a.sizes["theta1"]) == (9, 5)
     for v in ("fli", "megno", "mle", "J2", "H_error"):
@@ -284,15 +293,16 @@ def test_chaos_map_dataset_is_self_describing_and_deterministic() -> None:
 
 def test_chaos_map_validates_its_inputs() -> None:
     with pytest.raises(ValueError, match="indicator"):
-        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=10.0, indicator="lyapunov")
+        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", 4,
+                  IndicatorRun("lyapunov", t_end=10.0))  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="n must be"):
-        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=(4,), t_end=10.0)
+        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", (4,), IndicatorRun(t_end=10.0))  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="engine 'euler'"):
-        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=10.0, engine="euler")
+        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", 4, IndicatorRun(t_end=10.0), engine="euler")
     with pytest.raises(ValueError, match="t_end"):
-        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=-1.0)
+        chaos_map(PAPER, 0.2466, 0.0, "theta2=0", 4, IndicatorRun(t_end=-1.0))
     with pytest.raises(ValueError, match="does not intersect"):
-        chaos_map(PAPER, -1.0, 0.0, "theta2=0", n=4, t_end=10.0)
+        chaos_map(PAPER, -1.0, 0.0, "theta2=0", 4, IndicatorRun(t_end=10.0))
     with pytest.raises(ValueError, match="increasing"):
         indicators(PAPER, TORUS, chart="andoyer", t=[1.0, 2.0])
     with pytest.raises(ValueError, match="tangent space"):

@@ -19,19 +19,19 @@ import pytest
 
 from andoyer import RigidBody
 from andoyer.analysis.chaos import indicators as chaos
-from andoyer.analysis.chaos.indicators import chaos_map, initial_tangent
+from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map, initial_tangent
 from andoyer.charts.hess import from_hess
 from andoyer.integrate.engines import resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 
 #: The Hess body of test_chaos.py with a wide chaotic layer at h = mu.
 CHAOTIC_BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
-MAP = {"n": (6, 6), "t_end": 300.0}
+MAP = MapGrid((6, 6))
 
 
 def _map(indicator: str, **kw: object) -> object:
-    return chaos_map(CHAOTIC_BODY, 1.0, 0.0, "theta2=0", indicator=indicator,  # type: ignore[arg-type]
-                     **MAP, **kw)  # type: ignore[arg-type]
+    return chaos_map(CHAOTIC_BODY, 1.0, 0.0, "theta2=0", MAP,
+                     IndicatorRun(indicator, t_end=300.0), **kw)  # type: ignore[arg-type]
 
 
 def test_fli_only_map_agrees_with_the_renormalised_system() -> None:

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos.indicators import chaos_map, indicators
+from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map, indicators
 from andoyer.integrate import engines
 
 PAPER = RigidBody.paper()
@@ -86,7 +86,7 @@ def test_numba_is_the_default_without_heyoka(monkeypatch: pytest.MonkeyPatch) ->
 
 
 def test_chaos_map_runs_on_numba() -> None:
-    ds = chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=50.0, indicator="both",
+    ds = chaos_map(PAPER, 0.2466, 0.0, "theta2=0", 4, IndicatorRun("both", t_end=50.0),
                    engine="numba")
     assert ds.attrs["engine"] == "numba" and int(ds.accessible.sum()) > 0
     acc = ds.accessible.values
@@ -96,7 +96,7 @@ def test_chaos_map_runs_on_numba() -> None:
         import heyoka  # noqa: F401
     except ImportError:
         return
-    ref = chaos_map(PAPER, 0.2466, 0.0, "theta2=0", n=4, t_end=50.0, indicator="both",
+    ref = chaos_map(PAPER, 0.2466, 0.0, "theta2=0", 4, IndicatorRun("both", t_end=50.0),
                     engine="heyoka")
     np.testing.assert_allclose(ds.fli.values[acc], ref.fli.values[acc], atol=1e-8)
     np.testing.assert_allclose(ds.megno.values[acc], ref.megno.values[acc], atol=1e-6)

@@ -406,11 +406,11 @@ def chaos_store(tmp_path_factory) -> Path:
 
 @pytest.mark.parametrize("i", [0, 1])
 def test_chaos_map_points_are_the_public_api_result(chaos_store, i):
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
 
     ds = xr.open_zarr(chaos_store).isel(mu=i).load()
-    direct = chaos_map(RigidBody.paper(float(ds.mu)), 0.5, 0.0, "theta2=0", n=(4, 3),
-                       t_end=20.0)  # the default threads: results do not depend on them
+    direct = chaos_map(RigidBody.paper(float(ds.mu)), 0.5, 0.0, "theta2=0", (4, 3),
+                       IndicatorRun(t_end=20.0))  # default threads: results do not depend on them
     assert ds.fli.dims == ("J1", "theta1")
     for name in ("fli", "mle", "J2", "accessible"):
         assert np.array_equal(ds[name].values, direct[name].values, equal_nan=True), name

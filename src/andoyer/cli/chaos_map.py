@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     matplotlib.use("Agg")
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
     from andoyer.integrate.variational import warm_up
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_chaos_map
@@ -52,10 +52,10 @@ def run(args: argparse.Namespace) -> int:
     if source != "ready":  # an engine that compiles per setting (heyoka)
         print(f"variational integrator: {source} in {seconds:.2f} s")
     t0 = time.perf_counter()
-    ds = chaos_map(body, h, args.M, args.section, n=grid,
-                   t_end=args.t_end, indicator=args.indicator, engine=args.engine,
-                   chunk=args.chunk, progress=True, tol=args.tol, root=args.root,
-                   tangent=args.tangent)
+    ds = chaos_map(body, h, args.M, args.section, MapGrid(grid, root=args.root),
+                   IndicatorRun(args.indicator, t_end=args.t_end, tangent=args.tangent,
+                                tol=args.tol),
+                   engine=args.engine, chunk=args.chunk, progress=True)
     elapsed = time.perf_counter() - t0
     ds.attrs["elapsed_seconds"] = round(elapsed, 3)
     write_netcdf(ds, out)

@@ -550,14 +550,15 @@ def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
                    t_end: float = UNDERLAY_T_END) -> xr.Dataset:
     """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.indicators.chaos_map`), on the
     same box, for the underlay of the section plane."""
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
 
     sec = settings.section
-    return chaos_map(settings.body, settings.h, settings.M, (sec.coord, sec.value), n=n,
-                     t_end=t_end, indicator="fli", progress=False,
-                     tol=min(settings.rtol, settings.atol), root="smallest"
-                     if settings.root == "smallest" else "largest",
-                     plane_bounds=(view.x_range, view.y_range))
+    root: Literal["largest", "smallest"] = ("smallest" if settings.root == "smallest"
+                                            else "largest")
+    return chaos_map(settings.body, settings.h, settings.M, (sec.coord, sec.value),
+                     MapGrid(n, plane_bounds=(view.x_range, view.y_range), root=root),
+                     IndicatorRun("fli", t_end=t_end, tol=min(settings.rtol, settings.atol)),
+                     progress=False)
 
 
 @dataclass

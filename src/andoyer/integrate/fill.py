@@ -45,8 +45,8 @@ from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
 from andoyer.notation import renamed
+from andoyer.validation import box, integer
 from andoyer.validation import finite as _finite
-from andoyer.validation import integer
 from andoyer.validation import positive as _positive
 
 #: Longer names of arguments in messages (andoyer.validation.checks_arguments).
@@ -283,14 +283,7 @@ def _parse_section(section: Any) -> tuple[SectionPlane, float]:
 
 def _check_bounds(bounds: Any, plane: SectionPlane
                   ) -> tuple[tuple[float, float], tuple[float, float]]:
-    try:
-        (x0, x1), (y0, y1) = bounds
-        x0, x1, y0, y1 = (_finite("plane_bounds", v) for v in (x0, x1, y0, y1))
-    except (TypeError, ValueError) as err:
-        raise ValueError(f"plane_bounds must be ((x_min, x_max), (y_min, y_max)) of finite "
-                         f"numbers, got {bounds!r} ({err})") from None
-    if not (x0 < x1 and y0 < y1):
-        raise ValueError(f"plane_bounds must have min < max on both axes, got {bounds!r}")
+    (x0, x1), (y0, y1) = box("plane_bounds", bounds)
     if plane.chart == "hess" and y0 < 0.0:
         raise ValueError(f"plane_bounds: J1 = (G + L)/2 >= 0, got J1 range ({y0}, {y1})")
     return (x0, x1), (y0, y1)

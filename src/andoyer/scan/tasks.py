@@ -289,10 +289,11 @@ def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any]
     from andoyer.integrate.section import Section
     sec = Section.parse(options["section"])
     try:
-        ds = chaos.chaos_map(body, h, M, (sec.coord, sec.value), n=tuple(options["n"]),
-                             t_end=options["t_end"], indicator=options["indicator"],
-                             engine=integ.engine, tol=min(integ.rtol, integ.atol),
-                             n_threads=1, progress=False)
+        ds = chaos.chaos_map(
+            body, h, M, (sec.coord, sec.value), chaos.MapGrid(tuple(options["n"])),
+            chaos.IndicatorRun(options["indicator"], t_end=options["t_end"],
+                               tol=min(integ.rtol, integ.atol)),
+            engine=_engine(integ.engine), progress=False)
     except ValueError as exc:  # the level misses the section (arguments were validated)
         return Empty(str(exc))
     # The boundary polyline has a different length at every point: not stored (the

@@ -56,8 +56,10 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer.analysis.chaos.indicators import chaos_map
+from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
 from andoyer.body import RigidBody, checks_body
+from andoyer.integrate.engines import resolve_engine
+from andoyer.integrate.engines.base import Capability
 from andoyer.integrate.results import describe_variables
 from andoyer.integrate.section import Section
 from andoyer.validation import checks_arguments, finite, finite_array, flag, grid, integer, positive
@@ -90,8 +92,10 @@ def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, val
                n: tuple[int, int], t_end: float, engine: str | None, tol: float,
                n_threads: int | None) -> float:
     free = RigidBody(A, B, C, 0.0, (1.0, 0.0, 0.0), "Euler-Poinsot reference")
-    ds = chaos_map(free, h, M, (coord, value), n=n, t_end=t_end, indicator="megno",
-                   engine=engine, tol=tol, n_threads=n_threads, progress=False)
+    ds = chaos_map(free, h, M, (coord, value), MapGrid(n),
+                   IndicatorRun("megno", t_end=t_end, tol=tol),
+                   engine=resolve_engine(engine, Capability.TANGENT, n_threads=n_threads),
+                   progress=False)
     Y = ds.megno.values
     if not np.any(np.isfinite(Y)):
         raise ValueError(f"the level h = {h:g}, M = {M:g} of the free top does not meet the "
@@ -240,8 +244,9 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
     flag("progress", progress)
     ref = regular_reference(body, h, M, sec, n=n, t_end=t_end, engine=engine, tol=tol,
                             n_threads=n_threads)
-    ds = chaos_map(body, float(h), float(M), (sec.coord, sec.value), n=n, t_end=t_end,
-                   indicator="megno", engine=engine, tol=tol, n_threads=n_threads,
+    ds = chaos_map(body, float(h), float(M), (sec.coord, sec.value), MapGrid(n),
+                   IndicatorRun("megno", t_end=t_end, tol=tol),
+                   engine=resolve_engine(engine, Capability.TANGENT, n_threads=n_threads),
                    progress=progress)
     Y = ds.megno.values
     acc = ds.accessible.values.astype(bool) & np.isfinite(Y)

@@ -24,7 +24,7 @@ the Numba DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:
   The tangent vector is renormalised continuously (the system integrates ``w/|w|`` and
   ``ln |w|``), so nothing overflows. ``2 <Y>/t`` is the MEGNO-slope estimate of it.
 
-A chaos map of the FLI alone (``chaos_map(indicator="fli")``, the default) integrates
+A chaos map of the FLI alone (``IndicatorRun("fli")``, the default) integrates
 only the state and ``w' = J w`` itself, without renormalisation or MEGNO quadratures
 (on heyoka 12 variables instead of 17, no division per step); the few orbits whose
 ``ln|w|`` nears overflow (> 600, a double overflows at 709) are integrated again
@@ -61,12 +61,19 @@ References
 from __future__ import annotations
 
 import math
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.analysis.chaos.specs import (
+    TANGENT_SPACES,
+    IndicatorRun,
+    MapGrid,
+    Tangent,
+    regroup,
+)
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
@@ -86,21 +93,19 @@ from andoyer.integrate.results import (
 from andoyer.integrate.variational import MEGNO_DELTA
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
-from andoyer.validation import checks_arguments, finite, grid, integer, positive, real_array
+from andoyer.validation import checks_arguments, finite, integer, positive, real_array
 
 #: Longer names of arguments in messages (andoyer.validation.checks_arguments).
 ARGUMENT_NAMES = {"w0": "w0 (initial tangent direction)"}
 
-__all__ = ["indicators", "chaos_map", "initial_tangent", "output_times", "INDICATORS",
-           "TANGENT_SPACES"]
+__all__ = ["indicators", "chaos_map", "MapGrid", "IndicatorRun", "initial_tangent",
+           "output_times", "INDICATORS", "TANGENT_SPACES"]
 
 #: Indicators a chaos map can hold.
 INDICATORS = ("fli", "megno")
-#: Admissible initial tangent spaces.
-TANGENT_SPACES = ("energy", "leaf")
-
-Indicator = Literal["fli", "megno", "both"]
-Tangent = Literal["energy", "leaf"]
+#: chaos_map's default grid and run (frozen: one object shared by every call).
+DEFAULT_GRID = MapGrid()
+DEFAULT_RUN = IndicatorRun()
 
 # The fixed generic vectors whose projections are the initial tangent vectors (the second
 # is used where the first is nearly normal to the tangent space).
@@ -431,18 +436,18 @@ def _describe(ds: xr.Dataset) -> None:
 
 
 @checks_body
-def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
-              t_end: float = 1000.0, indicator: Indicator = "fli", *,
-              engine: str | None = None, chunk: int = 1024, progress: bool | None = None,
-              tol: float = 1e-12, n_samples: int = 64, root: str = "largest",
-              plane_bounds: Any = None, tangent: Tangent = "leaf",
-              batch_size: int | None = None, n_threads: int | None = None) -> xr.Dataset:
+def chaos_map(body: RigidBody, h: float, M: float, section: Any,
+              grid: MapGrid | int | tuple[int, int] = DEFAULT_GRID,
+              run: IndicatorRun = DEFAULT_RUN, *, engine: EngineLike = None,
+              chunk: int = 1024, progress: bool | None = None, **former: Any) -> xr.Dataset:
     """FLI and/or MEGNO over a grid of a section's plane, on the energy level ``H = h``.
 
     Every grid point of the plane -- ``(l, L)`` of a ``g = const`` section or
     ``(theta1, J1)`` of a ``theta2 = const`` section -- with the remaining action
     solved from ``H = h`` (:func:`andoyer.integrate.fill.section_roots`) is an initial
-    state; its orbit is integrated with the variational equations to ``t_end``.
+    state (:class:`~andoyer.analysis.chaos.specs.MapGrid`); its orbit is integrated with
+    the variational equations to ``t_end``
+    (:class:`~andoyer.analysis.chaos.specs.IndicatorRun`).
 
     Parameters
     ----------
@@ -455,36 +460,30 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
     section : (coord, value), str or object with ``.coord``, ``.value``
         ``("g", g*)`` or ``"g=0"`` (plane ``(l, L)``, ``G`` solved), ``("theta2",
         theta2*)`` (plane ``(theta1, J1)``, ``J2`` solved).
-    n : int or (nx, ny), default 64
-        Grid points along the plane's axes (cell centres of the plane's box).
-    t_end : float, default 1000
-        Integration time of every orbit.
-    indicator : {"fli", "megno", "both"}
-        Which indicator(s) the dataset holds (one integration gives both; ``"fli"``
-        alone integrates only the state and one tangent vector, see the module notes).
+    grid : MapGrid, int or (nx, ny), default MapGrid()
+        The starts: ``n`` (an integer or ``(nx, ny)`` alone is ``MapGrid(n)``), the
+        plane's box ``plane_bounds`` and the ``root`` where the level has several sheets.
+    run : IndicatorRun, default IndicatorRun()
+        What is integrated from each start: ``indicator`` (``"fli"``, ``"megno"`` or
+        ``"both"``; one integration gives both, ``"fli"`` alone integrates only the state
+        and one tangent vector, see the module notes), ``t_end``, ``n_samples`` (output
+        times over which the FLI's supremum is taken), ``tangent`` (space of the initial
+        tangent vector), ``tol``.
     engine : str or Engine, optional
         Any engine with the ``tangent`` capability. Default: heyoka (batch mode and
         threads) where installed, else numba (orbits in parallel); scipy is one orbit
-        at a time, for checks.
+        at a time, for checks. heyoka's SIMD batch size and threads are options of the
+        engine: ``resolve_engine("heyoka", batch_size=4, n_threads=1)``.
     chunk : int, default 1024
         Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
         doubles; the progress line advances per chunk.
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
-    tol : float, default 1e-12
-        Tolerance of the Taylor integrator.
-    n_samples : int, default 64
-        Output times ``t_end k / n_samples`` over which the FLI's supremum is taken.
-    root : {"largest", "smallest"}
-        Where the level has several sheets above a point, which action to take.
-    plane_bounds : ((x_min, x_max), (y_min, y_max)), optional
-        The plane's box. Default: the angle's full range (as in
-        :func:`~andoyer.integrate.fill.fill_section`) and the action's range where the
-        level meets the plane.
-    tangent : {"leaf", "energy"}
-        Space of the initial tangent vectors (see the module docstring).
-    batch_size, n_threads : int, optional
-        heyoka's SIMD batch size and the number of threads.
+    **former
+        The keywords of the previous release (``n``, ``plane_bounds``, ``root``,
+        ``indicator``, ``t_end``, ``n_samples``, ``tangent``, ``tol``, ``batch_size``,
+        ``n_threads``), accepted for one release with a ``DeprecationWarning``
+        (:data:`~andoyer.analysis.chaos.specs.FORMER_KEYWORDS`).
 
     Returns
     -------
@@ -507,24 +506,22 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
 
     Examples
     --------
-    >>> ds = chaos_map(RigidBody.paper(), 0.2466, 0.0, "theta2=0", n=4, t_end=50.0)
+    >>> ds = chaos_map(RigidBody.paper(), 0.2466, 0.0, "theta2=0", grid=4,
+    ...                run=IndicatorRun(t_end=50.0))
     >>> ds.fli.dims, int(ds.accessible.sum()) > 0
     (('J1', 'theta1'), True)
     """
-    eng = _engine(engine, batch_size=batch_size, n_threads=n_threads)
+    spec, job, options = regroup("chaos_map", grid, run, former, stacklevel=5)
+    eng = _engine(engine, **options)
     h = finite("h", h)
     M = finite("M", M)
-    nx, ny = grid("n", n)
+    nx, ny = spec.n  # type: ignore[misc]
     # Grid, roots and result arrays: about 400 bytes per grid point; checked before any.
     budget.check("chaos_map", memory=400.0 * nx * ny)
-    T = positive("t_end", t_end)
-    if indicator not in ("fli", "megno", "both"):
-        raise ValueError(f"unknown indicator {indicator!r}; choose 'fli', 'megno' or 'both'")
-    if root not in ("largest", "smallest"):
-        raise ValueError(f"unknown root choice {root!r}; choose 'largest' or 'smallest'")
+    T, indicator, n_samples, tangent, tol = (job.t_end, job.indicator, job.n_samples,
+                                             job.tangent, job.tol)
+    root, plane_bounds = spec.root, spec.plane_bounds
     chunk = integer("chunk", chunk, 1)
-    n_samples = integer("n_samples", n_samples, 1)
-    tol = Tolerance.single(tol).tol
     # The plane, its box and the accessible boundary; raises if h misses the section.
     fill = fill_section(body, h, M, section, n_orbits=1, plane_bounds=plane_bounds,
                         boundary_grid=min(200, max(64, 2 * max(nx, ny))))
@@ -566,7 +563,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any, n: Any = 64,
 
     out = {k: np.full(ny * nx, np.nan) for k in ("fli", "megno", "mle", "H_error")}
     n_failed = 0
-    renormalised = indicator != "fli"
+    renormalised = job.renormalised
     bar = Progress(idx.size, f"chaos map ({name}, {nx}x{ny}, t = {T:g})", progress)
     for s in range(0, idx.size, chunk):
         sel = idx[s:s + chunk]

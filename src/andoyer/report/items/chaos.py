@@ -50,7 +50,7 @@ def chaos(ctx: Context) -> Result:
     """FLI maps of the section theta2 = 0: the paper's body and a Hess body with chaos."""
     import numpy as np
 
-    from andoyer.analysis.chaos.indicators import chaos_map
+    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
     from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.style import new_figure, paper_style
@@ -59,10 +59,12 @@ def chaos(ctx: Context) -> Result:
     other = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
     maps = [
         chaos_map(body, separatrix_energy(body), 0.0, "theta2=0",
-                  n=(64, 16) if ctx.quick else (128, 32),
-                  t_end=300.0 if ctx.quick else 1000.0, progress=False, engine=ctx.engine),
-        chaos_map(other, 1.0, 0.0, "theta2=0", n=24 if ctx.quick else 64,
-                  t_end=200.0 if ctx.quick else 500.0, progress=False, engine=ctx.engine),
+                  (64, 16) if ctx.quick else (128, 32),
+                  IndicatorRun(t_end=300.0 if ctx.quick else 1000.0), progress=False,
+                  engine=ctx.engine),
+        chaos_map(other, 1.0, 0.0, "theta2=0", 24 if ctx.quick else 64,
+                  IndicatorRun(t_end=200.0 if ctx.quick else 500.0), progress=False,
+                  engine=ctx.engine),
     ]
     with paper_style():
         fig = new_figure(1, 2, width=9.0, aspect=0.85)
