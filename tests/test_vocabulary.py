@@ -29,13 +29,15 @@ CLI_ONLY = {
     "--progress": "progress line", "--no-progress": "progress line",
     "--points": "paper-check sampling", "--format": "output format", "--jobs": "report",
     "--quick": "report", "--only": "report", "--engines": "report", "--version": "",
-    "--no-limits": "cost guards", "--debug": "traceback", "--help": "",
+    "--no-limits": "cost guards", "--frames": "animation frames (API t)",
+    "--fps": "animation frame rate", "--debug": "traceback", "--help": "",
 }
 
 #: The API functions each command calls: its flags must be their parameters.
 COMMAND_API = {
     "section": ("andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare"),
     "orbit": ("andoyer.integrate.api:propagate",),
+    "animate": ("andoyer.integrate.orientation:attitude",),
     "explore": ("andoyer.explore.state:make_settings",),
     "chaos-map": ("andoyer.analysis.chaos.indicators:chaos_map",),
     "manifolds": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
@@ -45,7 +47,8 @@ COMMAND_API = {
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.
-COMPOSED = {("orbit", "t_end"): "t = linspace(0, t_end, n_out)"}
+COMPOSED = {("orbit", "t_end"): "t = linspace(0, t_end, n_out)",
+            ("animate", "t_end"): "t = linspace(0, t_end, frames)"}
 
 
 def _function(path):

@@ -205,6 +205,8 @@ TERMS: tuple[Term, ...] = (
     Term("boundary_grid", "grid of the accessible-region search", "boundary_grid"),
     Term("t_max", "integrate at most to this time", "t_max"),
     Term("t_end", "integration time of every orbit", "t_end"),
+    Term("precession0", "initial precession angle about the vertical (rad): the attitude "
+         "about the vertical that the state (G, gamma) leaves free"),
     Term("n", "grid of the section plane: N (N x N) or (NX, NY)", "n"),
     Term("indicator", "chaos indicator: fli, megno", "indicator"),
     Term("tangent", "space of the initial tangent vectors: leaf or energy", "tangent"),

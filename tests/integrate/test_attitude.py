@@ -66,7 +66,7 @@ def heavy():
 @pytest.mark.parametrize("engine", ENGINES)
 def test_rotation_stays_orthogonal_and_consistent_with_gamma(engine, heavy):
     body, t = heavy
-    ds = attitude(body, X0, t, chart="andoyer", engine=engine, psi0=0.3)
+    ds = attitude(body, X0, t, chart="andoyer", engine=engine, precession0=0.3)
     R = ds.rotation.values[0]
     assert np.abs(np.einsum("tki,tkj->tij", R, R) - np.eye(3)).max() <= 1e-13
     assert np.abs(ds.quaternion_drift.values).max() <= 1e-12
@@ -86,7 +86,7 @@ def test_quaternion_agrees_with_the_precession_quadrature(engine, heavy):
     """Route A: ``psi`` by quadrature along (1) (no quaternion anywhere), ``R`` rebuilt
     from ``(gamma, psi)`` by the z-x-z convention."""
     body, t = heavy
-    ds = attitude(body, X0, t, chart="andoyer", engine=engine, psi0=0.3)
+    ds = attitude(body, X0, t, chart="andoyer", engine=engine, precession0=0.3)
     a, b = body.a, body.b
     p = body.params
 
@@ -106,7 +106,7 @@ def test_quaternion_agrees_with_the_andoyer_deprit_node(engine, heavy):
     rotation chain ``R = Rz(m) Rx(I) Rz(g) Rx(J) Rz(l)``; ``psi = m + psi(chain at m=0)``."""
     body, t = heavy
     m0 = 0.3 - float(euler_angles(andoyer_rotation(X0, 0.0)).psi)
-    ds = attitude(body, X0, t, chart="andoyer", engine=engine, psi0=0.3)
+    ds = attitude(body, X0, t, chart="andoyer", engine=engine, precession0=0.3)
     can = integrate_canonical(body, X0, t, chart="andoyer", rtol=1e-13, atol=1e-13)
     X = np.stack([can[v].values for v in ("l_angle", "g_angle", "L_action", "G_action",
                                           "M_action")], axis=-1)

@@ -99,13 +99,13 @@ def attitude_variables(q: ArrayLike, G: ArrayLike, dims: tuple[str, ...]
 
 
 @checks_body
-def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, psi0: ArrayLike = 0.0,
+def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: ArrayLike = 0.0,
              engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,
              chart: str = "euler_poisson", progress: bool | None = None) -> xr.Dataset:
     """Orbits of (1) with the orientation of the body in space.
 
     The state ``(G, gamma)`` fixes the attitude up to a rotation about the vertical;
-    the initial one is ``R(0) = Rz(psi0) Rx(theta0) Rz(phi0)`` with ``theta0, phi0`` of
+    the initial one is ``R(0) = Rz(precession0) Rx(theta0) Rz(phi0)`` with ``theta0, phi0`` of
     ``gamma(0)`` (:func:`andoyer.charts.rotation.quaternion_from_vertical`). The
     quaternion is integrated with the state, ``dq/dt = q (x) (0, omega) / 2``,
     ``omega = I G`` (:mod:`andoyer.symbolic.attitude`), regular everywhere; the Euler
@@ -121,7 +121,7 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, psi0: ArrayLike = 
         Initial states in ``chart`` coordinates.
     t : array_like, shape (k,)
         Output times, strictly increasing; ``t[0]`` is the initial time.
-    psi0 : float or array_like, shape (n,)
+    precession0 : float or array_like, shape (n,)
         Initial precession angle(s) (rad): the orientation about the vertical.
     engine : str or Engine, optional
         An engine with the attitude capability (default heyoka where installed, else
@@ -160,9 +160,9 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, psi0: ArrayLike = 
     times = check_times(t)
     y = initial_states(body, y0, chart)
     n = y.shape[0]
-    psi = finite_array("psi0", psi0)
+    psi = finite_array("precession0", precession0)
     if psi.ndim > 1 or (psi.ndim == 1 and psi.shape[0] not in (1, n)):
-        raise ValueError(f"psi0 must be one angle or one per orbit ({n}), got shape "
+        raise ValueError(f"precession0 must be one angle or one per orbit ({n}), got shape "
                          f"{psi.shape}")
     psi = np.broadcast_to(psi, (n,))
     budget.check("attitude", steps=1.3 * budget.estimate_steps(body, y, times[-1] - times[0],
@@ -186,6 +186,7 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, psi0: ArrayLike = 
                              "dq/dt = q (x) (0, I G)/2", **CONVENTIONS),
         extra, drifts=True)
     ds.variables["time"].attrs.update(units="body time units", long_name="time")
-    ds["psi0"] = ("orbit", np.array(psi, dtype=float))
-    describe_variables(ds, {**_META, "psi0": ("ψ0", "initial precession angle", "rad", "")})
+    ds["precession0"] = ("orbit", np.array(psi, dtype=float))
+    describe_variables(ds, {**_META, "precession0": ("ψ0", "initial precession angle", "rad",
+                                                     "")})
     return ds

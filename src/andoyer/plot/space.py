@@ -1,0 +1,293 @@
+"""The body in space: the trace of an axis on a shaded sphere, precession and nutation
+against time, and the gyroscope drawn moving (a Matplotlib animation).
+
+Datasets in (:func:`andoyer.integrate.attitude`,
+:func:`andoyer.analysis.space.inertial.axis_trace`,
+:func:`andoyer.analysis.space.inertial.heteroclinic_cycle`), figures out; nothing
+computed here but the drawing (the sphere's shading, the wheel's rim).
+"""
+
+from __future__ import annotations
+
+import os
+from io import BytesIO
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from matplotlib.animation import AbstractMovieWriter, FFMpegWriter, FuncAnimation, writers
+from matplotlib.figure import Figure
+
+from andoyer.atomic import atomic_path
+from andoyer.plot.style import COLOURS, new_figure, paper_style
+
+__all__ = ["plot_axis_trace", "plot_precession_nutation", "plot_heteroclinic_cycle",
+           "gyroscope_animation", "save_animation", "ANIMATION_FORMATS",
+           "animation_writer_available"]
+
+#: File suffix -> the encoder that writes it (Pillow ships with Matplotlib; MP4 needs
+#: the ffmpeg program).
+ANIMATION_FORMATS = {".gif": "pillow", ".mp4": "ffmpeg"}
+
+#: Direction of the light shading the sphere (space frame).
+_LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
+
+
+def _sphere(ax: Any, n: int = 48) -> None:
+    """A unit sphere shaded by :data:`_LIGHT` (Lambert), with the equator and Z axis."""
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, n), np.linspace(0, np.pi, n // 2))
+    x, y, z = np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)
+    shade = np.clip(x * _LIGHT[0] + y * _LIGHT[1] + z * _LIGHT[2], 0.0, 1.0)
+    colours = np.empty((*x.shape, 4))
+    colours[..., :3] = (0.55 + 0.4 * shade)[..., None] * np.array([0.86, 0.9, 0.97])
+    colours[..., 3] = 0.35
+    ax.plot_surface(x, y, z, facecolors=colours, linewidth=0, antialiased=False,
+                    shade=False, rstride=1, cstride=1)
+    t = np.linspace(0, 2 * np.pi, 181)
+    ax.plot(np.cos(t), np.sin(t), 0 * t, color="0.6", lw=0.5)
+    ax.plot([0, 0], [0, 0], [-1.15, 1.15], color="0.4", lw=0.6)
+    ax.text(0, 0, 1.2, "Z", fontsize=8, ha="center")
+    ax.set_box_aspect((1, 1, 1))
+    for setter in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
+        setter(-1.05, 1.05)
+    ax.set_axis_off()
+
+
+def plot_axis_trace(trace: xr.Dataset, *, orbits: Any = None, ax: Any = None) -> Figure:
+    """The trace of a body axis on the unit sphere of the space frame (shaded).
+
+    Parameters
+    ----------
+    trace : xarray.Dataset
+        :func:`andoyer.analysis.space.inertial.axis_trace` output (``trace`` with a
+        ``space`` dimension; a leading ``orbit`` or ``branch`` dimension is drawn one
+        line per entry).
+    orbits : sequence, optional
+        The entries of the leading dimension to draw (default all).
+    ax : Axes3D, optional
+        Axes to draw into (default a new figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    with paper_style():
+        if ax is None:
+            fig = new_figure(1, 1, width=3.6, aspect=1.0, projection="3d")
+            ax = fig.axes[0]
+        else:
+            fig = ax.get_figure(root=True)
+        _sphere(ax)
+        u = trace.trace
+        lead = [d for d in u.dims if d not in ("time", "space")]
+        lines = [u] if not lead else [u.isel({lead[0]: i}) for i in range(u.sizes[lead[0]])]
+        labels: list[str | None] = ([None] if not lead
+                                    else [str(v) for v in u[lead[0]].values])
+        if orbits is not None and lead:
+            keep = set(np.atleast_1d(orbits).tolist())
+            pairs = [(line, lab) for line, lab in zip(lines, labels, strict=True)
+                     if line[lead[0]].item() in keep]
+            lines, labels = [p[0] for p in pairs], [p[1] for p in pairs]
+        for line, label in zip(lines, labels, strict=True):
+            xyz = line.transpose("time", "space").values
+            p, = ax.plot(*xyz.T, lw=0.9, label=label)
+            ax.scatter(*xyz[0], s=10, color=p.get_color(), depthshade=False)
+        ax.view_init(elev=22, azim=-60)
+        ax.set_title(f"trace of the axis {trace.attrs.get('axis', '')} in space")
+        if lead and len(lines) > 1:
+            ax.legend(loc="upper left", fontsize=6.5, title=lead[0])
+    return fig
+
+
+def plot_precession_nutation(ds: xr.Dataset, orbit: int = 0) -> Figure:
+    """Precession ``psi`` (unwrapped) and nutation ``theta`` of one orbit against time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset (:func:`andoyer.integrate.attitude`).
+    orbit : int
+        Which orbit (position along ``orbit``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels; gaps where the Euler angles are undefined (``euler_singular``).
+    """
+    one = ds.isel(orbit=orbit)
+    t = one.time.values
+    psi = one.precession.values
+    finite = np.isfinite(psi)
+    unwrapped = np.full_like(psi, np.nan)
+    if finite.any():
+        unwrapped[finite] = np.unwrap(psi[finite])
+    with paper_style():
+        fig = new_figure(2, 1, width=5.0, aspect=0.32, sharex=True)
+        ax_p, ax_n = fig.axes
+        ax_p.plot(t, unwrapped, color=COLOURS["centre"])
+        ax_p.set_ylabel(r"precession $\psi$ (rad)")
+        ax_n.plot(t, np.degrees(one.nutation.values), color=COLOURS["separatrix"])
+        ax_n.set_ylabel(r"nutation $\theta$ (deg)")
+        ax_n.set_xlabel("time")
+        if bool(one.euler_singular.any()):
+            ax_p.text(0.01, 0.9, "gaps: theta = 0 or pi, psi undefined", fontsize=7,
+                      transform=ax_p.transAxes, color=COLOURS["singular"])
+    return fig
+
+
+def plot_heteroclinic_cycle(cycle: xr.Dataset, trace: xr.Dataset) -> Figure:
+    """(a) ``L/G`` along the two branches of the cycle; (b) the trace of the symmetry axis.
+
+    Parameters
+    ----------
+    cycle : xarray.Dataset
+        :func:`andoyer.analysis.space.inertial.heteroclinic_cycle` output.
+    trace : xarray.Dataset
+        ``axis_trace(cycle, "z")``.
+    """
+    with paper_style():
+        fig = Figure(figsize=(6.6, 3.0), layout="constrained")
+        ax_a = fig.add_subplot(1, 2, 1)
+        ax_b = fig.add_subplot(1, 2, 2, projection="3d")
+        for b in cycle.branch.values:
+            ax_a.plot(cycle.time, cycle.L_over_G.sel(branch=b), label=str(b))
+        ax_a.axhline(1.0, color="0.7", lw=0.5)
+        ax_a.axhline(-1.0, color="0.7", lw=0.5)
+        ax_a.text(0.02, 0.93, "P+ (L = G)", transform=ax_a.transAxes, fontsize=7)
+        ax_a.text(0.02, 0.03, "P- (L = -G)", transform=ax_a.transAxes, fontsize=7)
+        ax_a.set_xlabel("time from the middle of the branch")
+        ax_a.set_ylabel("$L/G$")
+        ax_a.set_title(rf"(a) $\mu = {float(cycle.attrs['body_mu']):g}$")
+        ax_a.legend(loc="center right", fontsize=6.5)
+        plot_axis_trace(trace, ax=ax_b)
+        ax_b.set_title("(b) the axis z in space")
+    return fig
+
+
+def _wheel(n: int = 48) -> np.ndarray:
+    """The gyroscope in the body frame: rim of the wheel at ``z = 0.75`` and its axle."""
+    t = np.linspace(0, 2 * np.pi, n)
+    rim = np.stack([0.45 * np.cos(t), 0.45 * np.sin(t), np.full(n, 0.75)], axis=-1)
+    spoke = np.array([[0.45, 0.0, 0.75], [-0.45, 0.0, 0.75]])
+    return np.concatenate([rim, [[np.nan] * 3], spoke])
+
+
+def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
+                        tail: int | None = None) -> FuncAnimation:
+    """The gyroscope moving: its axle (body axis ``z``), its wheel, and the trace of the
+    axle's tip on the sphere, one frame per time of ``ds``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset (:func:`andoyer.integrate.attitude`).
+    orbit : int
+        Which orbit.
+    fps : int
+        Frames per second of the animation's clock.
+    tail : int, optional
+        Frames of trace kept behind the tip (default: all).
+
+    Returns
+    -------
+    matplotlib.animation.FuncAnimation
+        Write it with :func:`save_animation` (GIF or MP4, atomically).
+    """
+    one = ds.isel(orbit=orbit)
+    R = one.rotation.transpose("time", "space", "body").values
+    tip = R[:, :, 2]
+    body = _wheel()
+    t = one.time.values
+    with paper_style():
+        fig = new_figure(1, 1, width=3.4, aspect=1.0, projection="3d")
+        ax: Any = fig.axes[0]  # Axes3D
+        _sphere(ax, n=32)
+        ax.view_init(elev=18, azim=-60)
+        axle, = ax.plot([], [], [], color="0.15", lw=2.0)
+        wheel, = ax.plot([], [], [], color=COLOURS["separatrix"], lw=1.4)
+        trail, = ax.plot([], [], [], color=COLOURS["centre"], lw=0.9)
+        label = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=7)
+
+    def draw(k: int) -> tuple[Any, ...]:  # the lines are Line3D
+        a = tip[k]
+        axle.set_data_3d([0.0, a[0]], [0.0, a[1]], [0.0, a[2]])
+        w = body @ R[k].T
+        wheel.set_data_3d(w[:, 0], w[:, 1], w[:, 2])
+        lo = 0 if tail is None else max(0, k - tail)
+        trail.set_data_3d(tip[lo:k + 1, 0], tip[lo:k + 1, 1], tip[lo:k + 1, 2])
+        label.set_text(f"t = {t[k]:.2f}")
+        return axle, wheel, trail, label
+
+    return FuncAnimation(fig, draw, frames=len(t), interval=1000.0 / max(int(fps), 1),
+                         blit=False)
+
+
+class _GifWriter(AbstractMovieWriter):
+    """Matplotlib's movie-writer protocol (setup, grab_frame, finish) writing an animated
+    GIF with Pillow in an explicit format, so that it can write a temporary file of any
+    name (:func:`andoyer.atomic.atomic_path`)."""
+
+    def setup(self, fig: Any, outfile: Any, dpi: float | None = None) -> None:
+        super().setup(fig, outfile, dpi=dpi)
+        self.images: list[Any] = []
+
+    def grab_frame(self, **savefig_kwargs: Any) -> None:
+        from PIL import Image
+
+        buf = BytesIO()
+        self.fig.savefig(buf, **{**savefig_kwargs, "format": "rgba", "dpi": self.dpi})
+        im = Image.frombuffer("RGBA", self.frame_size, buf.getvalue(), "raw", "RGBA", 0, 1)
+        self.images.append(im.convert("RGB"))
+
+    def finish(self) -> None:
+        self.images[0].save(self.outfile, format="GIF", save_all=True,
+                            append_images=self.images[1:],
+                            duration=int(1000 / self.fps), loop=0)
+
+
+def animation_writer_available(suffix: str) -> bool:
+    """Whether an animation of file suffix ``suffix`` (``.gif``, ``.mp4``) can be written
+    here (``.mp4`` needs the ffmpeg program).
+
+    >>> animation_writer_available(".gif")
+    True
+    """
+    if suffix not in ANIMATION_FORMATS:
+        raise ValueError(f"animations are written as {', '.join(ANIMATION_FORMATS)}, got "
+                         f"{suffix!r}")
+    return suffix == ".gif" or bool(writers.is_available("ffmpeg"))
+
+
+def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: int = 20,
+                   dpi: int = 100) -> Path:
+    """Write ``anim`` as GIF (Pillow) or MP4 (ffmpeg, H.264) atomically: a temporary file
+    in the same folder, renamed when complete (nothing left behind if interrupted).
+
+    Parameters
+    ----------
+    anim : matplotlib.animation.FuncAnimation
+        E.g. :func:`gyroscope_animation`.
+    path : path-like
+        Ends in ``.gif`` or ``.mp4``.
+    fps : int
+        Frames per second of the file.
+    dpi : int
+        Resolution of the frames.
+
+    Returns
+    -------
+    Path
+    """
+    final = Path(path)
+    suffix = final.suffix.lower()
+    if not animation_writer_available(suffix):
+        raise ValueError(f"no MP4 encoder here (the ffmpeg program is not installed); write "
+                         f"a .gif instead of {str(final)!r}")
+    with atomic_path(final) as tmp:
+        if suffix == ".gif":
+            writer: AbstractMovieWriter = _GifWriter(fps=fps)
+        else:
+            writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-f", "mp4"])
+        anim.save(str(tmp), writer=writer, dpi=dpi)
+    return final

@@ -1,0 +1,60 @@
+"""``andoyer animate`` (issue 27, item 4): an animated GIF through Pillow, written
+atomically through ``cli._common.output_file``; bad outputs refused before any work;
+an interrupted write leaves nothing behind."""
+
+from __future__ import annotations
+
+import pytest
+from PIL import Image
+
+from andoyer.cli import EXIT_CODES, main
+from andoyer.plot import space
+
+STATE = ["--andoyer", "0.3,1.1,0.2,1.0,-0.4", "--mu", "0.5", "--engine", "numba"]
+
+
+def run(argv, capsys):
+    try:
+        code = main(argv)
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    return code or 0, err
+
+
+def test_animate_writes_a_gif_with_one_frame_per_time(tmp_path, capsys):
+    out = tmp_path / "top.gif"
+    code, _ = run(["animate", *STATE, "--frames", "12", "--t-end", "3", "--out", str(out)],
+                  capsys)
+    assert code == 0
+    with Image.open(out) as im:
+        assert im.format == "GIF" and im.n_frames == 12
+    assert [p.name for p in tmp_path.iterdir() if not p.name.endswith(".lock")] == ["top.gif"]
+
+
+@pytest.mark.parametrize("name, message", [("top.png", "must name a .gif or .mp4"),
+                                           ("missing/top.gif", "does not exist")])
+def test_bad_outputs_are_refused_before_any_work(tmp_path, capsys, name, message):
+    code, err = run(["animate", *STATE, "--out", str(tmp_path / name)], capsys)
+    assert code == EXIT_CODES["bad input"] and message in err
+
+
+def test_mp4_without_ffmpeg_is_refused_naming_the_flag(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(space.writers, "is_available", lambda name: False)
+    code, err = run(["animate", *STATE, "--out", str(tmp_path / "top.mp4")], capsys)
+    assert code == EXIT_CODES["bad input"] and "--out" in err and "ffmpeg" in err
+
+
+def test_an_interrupted_write_leaves_nothing_behind(tmp_path, capsys, monkeypatch):
+    def interrupted(self):  # half the file written, then Ctrl-C
+        with open(self.outfile, "wb") as f:
+            f.write(b"GIF89a")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(space._GifWriter, "finish", interrupted)
+    out = tmp_path / "top.gif"
+    code, _ = run(["animate", *STATE, "--frames", "6", "--t-end", "1", "--out", str(out)],
+                  capsys)
+    assert code == EXIT_CODES["interrupted"]
+    assert [p for p in tmp_path.iterdir() if not p.name.endswith(".lock")] == []

@@ -1,0 +1,61 @@
+"""Figures of the body in space (issue 27, item 4): the axis trace on the shaded sphere,
+precession and nutation against time (gaps where undefined), the heteroclinic cycle,
+and the gyroscope's animation (one frame per time; the axle follows the symmetry axis)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from andoyer import RigidBody
+from andoyer.analysis.space.inertial import axis_trace, heteroclinic_cycle
+from andoyer.integrate import attitude
+from andoyer.plot.space import (
+    gyroscope_animation,
+    plot_axis_trace,
+    plot_heteroclinic_cycle,
+    plot_precession_nutation,
+)
+
+LAGRANGE = RigidBody.lagrange(1.0, 0.6, 1.0)
+
+
+@pytest.fixture(scope="module")
+def ds():
+    y0 = [[0.2, 0.1, 1.5, 0.0, math.sin(0.8), math.cos(0.8)], [0.3, 0.0, 1.5, 0.0, 0.0, 1.0]]
+    return attitude(LAGRANGE, y0, np.linspace(0, 5, 101), engine="numba")
+
+
+def test_axis_trace_draws_one_line_per_orbit_on_the_sphere(ds):
+    fig = plot_axis_trace(axis_trace(ds, "z"))
+    ax = fig.axes[0]
+    lines = [ln for ln in ax.get_lines() if len(ln.get_xdata()) == ds.sizes["time"]]
+    assert len(lines) == 2
+    x, y = lines[0].get_data_3d()[:2]
+    assert np.allclose(x, ds.rotation.values[0, :, 0, 2])
+
+
+def test_precession_nutation_leaves_gaps_where_undefined(ds):
+    fig = plot_precession_nutation(ds, orbit=1)  # starts at theta = 0
+    psi = fig.axes[0].get_lines()[0].get_ydata()
+    assert np.isnan(psi[0]) and np.isfinite(psi[1:]).all()
+    assert any("undefined" in t.get_text() for t in fig.axes[0].texts)
+    theta = fig.axes[1].get_lines()[0].get_ydata()
+    assert np.allclose(theta, np.degrees(ds.nutation.values[1]))
+
+
+def test_heteroclinic_cycle_figure():
+    cyc = heteroclinic_cycle(RigidBody.paper(mu=0.01), engine="numba", n_times=201)
+    fig = plot_heteroclinic_cycle(cyc, axis_trace(cyc, "z"))
+    assert len(fig.axes[0].get_lines()) >= 2
+
+
+def test_animation_has_one_frame_per_time_and_the_axle_follows_z(ds):
+    anim = gyroscope_animation(ds.isel(time=slice(0, 10)))
+    axle = anim._fig.axes[0].get_lines()[-3]
+    anim._func(7)
+    x, y, z = (np.asarray(v) for v in axle.get_data_3d())
+    assert np.allclose([x[1], y[1], z[1]], ds.rotation.values[0, 7, :, 2])
+    assert len(list(anim.new_frame_seq())) == 10
