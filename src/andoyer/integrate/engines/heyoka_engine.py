@@ -552,6 +552,8 @@ class HeyokaEngine(EngineBase):
     """
 
     name = "heyoka"
+    n_threads: int  # always a count here (default: every core), never None
+    repr_options = ("batch_size", "n_threads")
     tangent_method = "heyoka var_ode_sys"
     capabilities = frozenset(Capability)  # everything, extended precision included
     native_backward = frozenset({"tangent_crossings"})
@@ -566,9 +568,6 @@ class HeyokaEngine(EngineBase):
 
     def clear_memory_cache(self) -> None:
         heyoka_tangent.clear_memory_cache()
-
-    def __repr__(self) -> str:
-        return f"HeyokaEngine(batch_size={self.batch_size}, n_threads={self.n_threads})"
 
     def _batch(self, n: int) -> int:
         if self.batch_size is not None:

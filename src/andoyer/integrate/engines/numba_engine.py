@@ -28,7 +28,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import (
     TOLERANCE_FACTOR,
     Capability,
@@ -40,16 +39,10 @@ from andoyer.integrate.engines.base import (
     check_tolerance_factor,
 )
 from andoyer.kernels import dop853
-from andoyer.validation import integer
 
 __all__ = ["NumbaEngine"]
 
 _N = 6
-
-
-def _kernel_params(par: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The kernels' 8 parameters :data:`andoyer.kernels.dop853.PARAMS` of ``par``."""
-    return np.ascontiguousarray(par[:len(dop853.PARAMS)])
 
 
 def _tangent_kernels() -> Any:
@@ -62,17 +55,6 @@ def _attitude_kernels() -> Any:
     from andoyer.kernels import attitude  # its machine code loads here, not at import
 
     return attitude
-
-
-def _raise_on_failure(info: NDArray[np.int64], what: str) -> None:
-    status = info[:, dop853.INFO.index("status")]
-    bad = np.flatnonzero(status != dop853.SUCCESS)
-    if bad.size:
-        i = int(bad[0])
-        raise IntegrationError(
-            f"numba DOP853 failed {what} for {bad.size} orbit(s), first orbit {i}: "
-            f"{dop853.STATUS_MESSAGES[int(status[i])]} after "
-            f"{int(info[i, dop853.INFO.index('accepted')])} steps")
 
 
 def _packed(y0: NDArray[np.float64], w0: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -134,6 +116,8 @@ class NumbaEngine(EngineBase):
     """
 
     name = "numba"
+    method = "numba DOP853"
+    repr_options = ("max_steps", "chunksize", "tolerance_factor", "n_threads")
     tangent_method = "the Jacobian of (1) derived by SymPy, Numba DOP853"
     #: Measured against heyoka at tol = 1e-15 on the paper body's pendulum orbits (h/mu =
     #: 0.5, 5, 20): monodromy matrices agree to 8e-13 (entries up to 54), 6e-14, 8e-15.
@@ -145,29 +129,23 @@ class NumbaEngine(EngineBase):
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  tolerance_factor: float = TOLERANCE_FACTOR,
                  n_threads: int | None = None) -> None:
-        self.max_steps = integer("max_steps", max_steps, 1)
-        self.chunksize = integer("chunksize", chunksize, 0)
+        self._ensemble_options(max_steps, chunksize, n_threads)
         self.tolerance_factor = check_tolerance_factor(tolerance_factor)
-        self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1)
 
     def versions(self) -> dict[str, str]:
         import numba
 
         return {"numba_version": str(numba.__version__)}
 
-    def __repr__(self) -> str:
-        return (f"NumbaEngine(max_steps={self.max_steps}, chunksize={self.chunksize}, "
-                f"tolerance_factor={self.tolerance_factor}, n_threads={self.n_threads})")
-
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
                    par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """States at times ``t`` (non-decreasing) read off the dense output (no step is
         shortened to hit an output time, except the last one)."""
         rtol, atol = tolerance.scaled(self.tolerance_factor)
-        out, info = dop853.propagate(y0, t, _kernel_params(par), rtol, atol,
+        out, info = dop853.propagate(y0, t, self._kernel_params(par), rtol, atol,
                                      self.max_steps, block=self.chunksize,
                                      threads=self.n_threads)
-        _raise_on_failure(info, "in propagate")
+        self._raise_on_failure(info, dop853, "in propagate")
         return out
 
     def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
@@ -175,10 +153,10 @@ class NumbaEngine(EngineBase):
         """(1) with the quaternion (:mod:`andoyer.kernels.attitude`), read off the dense
         output as :meth:`_propagate`."""
         rtol, atol = tolerance.scaled(self.tolerance_factor)
-        out, info = _attitude_kernels().propagate(z0, t, _kernel_params(par), rtol, atol,
+        out, info = _attitude_kernels().propagate(z0, t, self._kernel_params(par), rtol, atol,
                                                   self.max_steps, block=self.chunksize,
                                                   threads=self.n_threads)
-        _raise_on_failure(info, "integrating the attitude")
+        self._raise_on_failure(info, dop853, "integrating the attitude")
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
@@ -186,10 +164,10 @@ class NumbaEngine(EngineBase):
                    tolerance: Tolerance) -> Crossings:
         rtol, atol = tolerance.scaled(self.tolerance_factor)
         tc, yc, count, info = dop853.locate_crossings(
-            y0, _kernel_params(par), event.kind, event.value, event.direction,
+            y0, self._kernel_params(par), event.kind, event.value, event.direction,
             n_crossings, t_max, rtol, atol, self.max_steps, block=self.chunksize,
             threads=self.n_threads)
-        _raise_on_failure(info, "while locating crossings")
+        self._raise_on_failure(info, dop853, "while locating crossings")
         return Crossings(tc, yc, count)
 
     def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
@@ -199,7 +177,7 @@ class NumbaEngine(EngineBase):
         each component on its own scale), so ``scale`` is not used."""
         n, k = w0.shape[:2]
         rtol, atol = tolerance.scaled(self.tolerance_factor)
-        out, info = _tangent_kernels().propagate(_packed(y0, w0), t, _kernel_params(par),
+        out, info = _tangent_kernels().propagate(_packed(y0, w0), t, self._kernel_params(par),
                                                  rtol, atol, self.max_steps,
                                                  threads=self.n_threads)
         ok = (info[:, 0] == dop853.SUCCESS) & np.all(np.isfinite(out), axis=(1, 2))
@@ -216,7 +194,7 @@ class NumbaEngine(EngineBase):
         n, k = w0.shape[:2]
         rtol, atol = tolerance.scaled(self.tolerance_factor)
         tc, zc, count, info = _tangent_kernels().locate_crossings(
-            _packed(y0, w0), _kernel_params(par), event.kind, event.value, event.direction,
+            _packed(y0, w0), self._kernel_params(par), event.kind, event.value, event.direction,
             n_crossings, t_max, rtol, atol, self.max_steps, threads=self.n_threads)
         ok = info[:, 0] == dop853.SUCCESS
         parts = _unpacked(zc, k)

@@ -144,6 +144,7 @@ class ScipyEngine(EngineBase):
     """
 
     name = "scipy"
+    repr_options = ("tolerance_factor",)
     tangent_method = "the Jacobian of (1) derived by SymPy, SciPy's DOP853"
     #: Measured against heyoka at tol = 1e-15 on the paper body's pendulum orbits (h/mu =
     #: 0.5, 5, 20): monodromy matrices agree to 8e-13 (entries up to 54), 6e-14, 8e-15.
@@ -158,9 +159,6 @@ class ScipyEngine(EngineBase):
         import scipy
 
         return {"scipy_version": str(scipy.__version__)}
-
-    def __repr__(self) -> str:
-        return f"ScipyEngine(tolerance_factor={self.tolerance_factor})"
 
     def _tolerances(self, tolerance: Tolerance) -> dict[str, float]:
         rtol, atol = tolerance.scaled(self.tolerance_factor)

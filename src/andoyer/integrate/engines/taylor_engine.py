@@ -25,7 +25,6 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
@@ -36,28 +35,10 @@ from andoyer.integrate.engines.base import (
     unit_vectors,
 )
 from andoyer.kernels import taylor
-from andoyer.validation import integer
 
 __all__ = ["TaylorEngine"]
 
 _N = 6
-#: The kernels' parameters ``(a, b, c, mu, e1, e2, e3, phi0)``: the first 8 of ``par``.
-_N_PARAMS = 8
-
-
-def _kernel_params(par: NDArray[np.float64]) -> NDArray[np.float64]:
-    return np.ascontiguousarray(par[:_N_PARAMS])
-
-
-def _raise_on_failure(info: NDArray[np.int64], what: str) -> None:
-    status = info[:, taylor.INFO.index("status")]
-    bad = np.flatnonzero(status != taylor.SUCCESS)
-    if bad.size:
-        i = int(bad[0])
-        raise IntegrationError(
-            f"Taylor integration failed {what} for {bad.size} orbit(s), first orbit {i}: "
-            f"{taylor.STATUS_MESSAGES[int(status[i])]} after "
-            f"{int(info[i, taylor.INFO.index('accepted')])} steps")
 
 
 class TaylorEngine(EngineBase):
@@ -91,36 +72,32 @@ class TaylorEngine(EngineBase):
     """
 
     name = "taylor"
+    method = "Taylor integration"
+    repr_options = ("max_steps", "chunksize", "n_threads")
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
                               Capability.BACKWARD, Capability.TANGENT_CROSSINGS})
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  n_threads: int | None = None) -> None:
-        self.max_steps = integer("max_steps", max_steps, 1)
-        self.chunksize = integer("chunksize", chunksize, 0)
-        self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1)
-
-    def __repr__(self) -> str:
-        return (f"TaylorEngine(max_steps={self.max_steps}, chunksize={self.chunksize}, "
-                f"n_threads={self.n_threads})")
+        self._ensemble_options(max_steps, chunksize, n_threads)
 
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
                    par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """States at times ``t`` (non-decreasing): each step's Taylor polynomial there."""
-        out, info = taylor.propagate(y0, t, _kernel_params(par), tolerance.tol,
+        out, info = taylor.propagate(y0, t, self._kernel_params(par), tolerance.tol,
                                      self.max_steps, block=self.chunksize,
                                      threads=self.n_threads)
-        _raise_on_failure(info, "in propagate")
+        self._raise_on_failure(info, taylor, "in propagate")
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
                    event: SectionEvent, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         tc, yc, count, info = taylor.locate_crossings(
-            y0, _kernel_params(par), event.kind, event.value, event.direction,
+            y0, self._kernel_params(par), event.kind, event.value, event.direction,
             n_crossings, t_max, tolerance.tol, self.max_steps, block=self.chunksize,
             threads=self.n_threads)
-        _raise_on_failure(info, "while locating crossings")
+        self._raise_on_failure(info, taylor, "while locating crossings")
         return Crossings(tc, yc, count)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
@@ -130,7 +107,7 @@ class TaylorEngine(EngineBase):
         n, k = w0.shape[:2]
         z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
         tc, zc, count, info = taylor.locate_crossings(
-            z0, _kernel_params(par), event.kind, event.value, event.direction,
+            z0, self._kernel_params(par), event.kind, event.value, event.direction,
             n_crossings, t_max, tolerance.tol, self.max_steps, block=self.chunksize,
             threads=self.n_threads)
         ok = info[:, 0] == taylor.SUCCESS

@@ -1,0 +1,56 @@
+"""What EngineBase provides the engines of compiled ensemble kernels (numba, taylor): one
+check of their options, one slice of the kernels' parameters, one failure message, one
+repr (these were written out in each engine)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from andoyer import RigidBody, from_andoyer
+from andoyer.errors import IntegrationError
+from andoyer.integrate.engines import ENGINES, engine_class
+from andoyer.integrate.engines.base import PAR, EngineBase, Tolerance, runtime_parameters
+from andoyer.integrate.engines.values import Tolerance as ValuesTolerance
+
+ENSEMBLE = {"numba": "numba DOP853", "taylor": "Taylor integration"}
+Y0 = from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4], [0.1, 0.4, 0.3, 1.0, 0.2]])
+
+
+def test_the_seam_reexports_its_values() -> None:
+    assert Tolerance is ValuesTolerance
+
+
+@pytest.mark.parametrize("name", sorted(ENSEMBLE))
+@pytest.mark.parametrize(("option", "bad"), [("max_steps", 0), ("chunksize", -1),
+                                             ("n_threads", 0), ("n_threads", True),
+                                             ("max_steps", 2.5)])
+def test_ensemble_options_are_checked_naming_them(name, option, bad) -> None:
+    with pytest.raises(ValueError, match=option):
+        engine_class(name)(**{option: bad})
+
+
+@pytest.mark.parametrize("name", sorted(ENSEMBLE))
+def test_a_failed_orbit_is_named_with_its_reason(name) -> None:
+    eng = engine_class(name)(max_steps=3, n_threads=1)
+    assert repr(eng) == (f"{type(eng).__name__}(max_steps=3, chunksize=1, "
+                         + ("tolerance_factor=0.025, " if name == "numba" else "")
+                         + "n_threads=1)")
+    with pytest.raises(IntegrationError, match=rf"^{ENSEMBLE[name]} failed in propagate "
+                                               r"for 2 orbit\(s\), first orbit 0: .* after "
+                                               r"3 steps$"):
+        eng.propagate(Y0, np.array([0.0, 100.0]), RigidBody.paper().engine_params,
+                      Tolerance(1e-12, 1e-12))
+
+
+def test_kernel_params_are_the_bodys_part_of_par() -> None:
+    par = runtime_parameters(RigidBody.paper().engine_params, None, 2.0)
+    k = EngineBase._kernel_params(par)
+    assert k.flags.c_contiguous and k.size == PAR["phi0"] + 1 == 8
+    np.testing.assert_array_equal(k, RigidBody.paper().engine_params)
+
+
+def test_every_engine_has_a_repr_of_its_options() -> None:
+    for name in ENGINES:
+        cls = engine_class(name)
+        assert set(cls.repr_options) <= set(cls.__init__.__code__.co_varnames), name
