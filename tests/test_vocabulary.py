@@ -44,6 +44,8 @@ COMMAND_API = {
     "frequencies": ("andoyer.analysis.chaos.frequency:orbit_frequencies",
                     "andoyer.analysis.chaos.frequency:frequency_map"),
     "indicators": ("andoyer.analysis.chaos.indicators:indicators",),
+    "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
+                   "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare"),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.
@@ -246,6 +248,8 @@ def test_guide_shows_the_vocabulary():
 DEFAULTS_ON_PURPOSE = {
     ("chaos-map", "n"): "the shell's map is a picture, 128 x 128; the API's 64 suits scripts",
     ("explore", "body"): "the same body: the CLI names the paper's preset",
+    ("resonances", "n_orbits"): "0: no section drawn under the chains unless asked (the "
+                                "prediction itself integrates nothing)",
     ("scan:section", "n_orbits"): "a grid of points: fewer orbits per point (cost)",
     ("scan:section", "sampling"): "sobol: a prefix of the sequence is spread over the plane",
     ("scan:section", "boundary_grid"): "a grid of points: a coarser boundary search (cost)",

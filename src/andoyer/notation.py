@@ -228,6 +228,7 @@ TERMS: tuple[Term, ...] = (
     Term("delta", "distance of the fundamental domains from the periodic orbits", "delta"),
     Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),
     Term("long_double", "integrate in 80-bit extended precision"),
+    Term("max_order", "largest order p + q of the p/q resonances (island chains) listed"),
 )
 
 #: API name -> its term.

@@ -343,7 +343,7 @@ class ResonantChain:
         l = np.arctan2(mom[:, 0], mom[:, 1])
         L = mom[:, 2]
         if self.section.coord == "g":
-            return l, L
+            return np.remainder(l, 2 * math.pi), L     # the fill plane's l in [0, 2 pi)
         return np.remainder(2.0 * (l + self.body.phi0), 4 * math.pi), (G + L) / 2.0
 
     def psi(self, phi1: NDArray[np.float64] | None = None
@@ -424,7 +424,7 @@ class ResonantChain:
             L = mom[:, 2] + s * dG * dL
             Gn = self.torus.G + s * dG
             if self.section.coord == "g":
-                out[f"{name}_x"], out[f"{name}_y"] = l, L
+                out[f"{name}_x"], out[f"{name}_y"] = np.remainder(l, 2 * math.pi), L
             else:
                 out[f"{name}_x"] = np.remainder(2.0 * (l + self.body.phi0), 4 * math.pi)
                 out[f"{name}_y"] = (Gn + L) / 2.0
