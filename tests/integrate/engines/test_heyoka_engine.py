@@ -29,6 +29,7 @@ from andoyer import (  # noqa: E402
     to_hess,
 )
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
+from andoyer.integrate.engines import heyoka_integrators as hi  # noqa: E402
 from andoyer.integrate.engines.base import ALL_KINDS, SectionEvent, Tolerance  # noqa: E402
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine  # noqa: E402
 from andoyer.kernels.generated import SECTION_KINDS, ep_field, section  # noqa: E402
@@ -131,10 +132,10 @@ def test_first_output_is_the_initial_state(batch_size: int) -> None:
 def test_compiled_integrators_are_reused(engine: HeyokaEngine) -> None:
     t = np.linspace(0.0, 1.0, 3)
     engine.propagate(Y0[:1], t, params(BODIES["paper"]), TOL12)
-    key = he._Key(1, he._NO_SECTION, 0, 1e-12)
-    slots = list(he._POOL[key])
+    key = hi.IntegratorKey(1, hi.NO_SECTION, 0, 1e-12)
+    slots = list(hi._POOL[key])
     engine.propagate(Y0[:1], t, params(BODIES["general"]), TOL12)
-    assert he._POOL[key] == slots  # same compiled integrator, new body parameters
+    assert hi._POOL[key] == slots  # same compiled integrator, new body parameters
 
 
 def test_tolerance_mapping() -> None:

@@ -83,16 +83,14 @@ from __future__ import annotations
 import math
 import os
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import contextmanager
 from functools import partial
-from typing import Any, NamedTuple, TypeVar
+from typing import NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-from andoyer.errors import IntegrationError
 from andoyer.integrate.engines import heyoka_tangent
 from andoyer.integrate.engines.base import (
     Capability,
@@ -102,13 +100,20 @@ from andoyer.integrate.engines.base import (
     TangentFlow,
     Tolerance,
 )
+from andoyer.integrate.engines.heyoka_integrators import (
+    ATTITUDE,
+    NO_SECTION,
+    BatchRecorder,
+    IntegratorKey,
+    Recorder,
+    borrow,
+    check_outcome,
+    warm_up,
+)
 from andoyer.integrate.engines.heyoka_symbolic import (
-    attitude_system,
     field_at,
     field_cfunc,
-    heyoka_system,
     section_cfunc,
-    section_exprs,
 )
 from andoyer.integrate.engines.lazy import heyoka as hy
 from andoyer.kernels.constants import T_START
@@ -118,12 +123,6 @@ from andoyer.validation import integer
 # andoyer.integrate.engines.heyoka_symbolic, the one SymPy -> heyoka builder.
 __all__ = ["HeyokaEngine", "T_START", "tolerance", "warm_up"]
 
-#: Crossing direction -> name of heyoka's event_direction (looked up at use: heyoka is
-#: imported lazily).
-_DIRECTIONS = {1: "positive", -1: "negative", 0: "any"}
-
-_NO_SECTION = -1
-_ATTITUDE = -2  # the attitude integrator (10 variables), scalar
 _T = TypeVar("_T")
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
 
@@ -136,152 +135,34 @@ def tolerance(rtol: float, atol: float) -> float:
 
 
 
-# ----------------------------------------------------------------------------- integrators
-
-
-class _Recorder:
-    """Non-terminal event callback: records (time, dense-output state) at each root."""
-
-    def __init__(self) -> None:
-        self.t: list[float] = []
-        self.y: list[NDArray[np.float64]] = []
-
-    def __call__(self, ta: Any, time: float, d_sgn: int) -> None:
-        self.t.append(time)
-        self.y.append(ta.update_d_output(time).copy())
-
-    def clear(self) -> None:
-        self.t.clear()
-        self.y.clear()
-
-
-class _BatchRecorder:
-    """Batch version: records ``(lane, time, dense-output state)`` at each root.
-
-    One list append per root: this runs once per crossing under the GIL, so it does
-    as little as possible (the polish and the bookkeeping are done per chunk).
-    """
-
-    def __init__(self, batch_size: int) -> None:
-        self.batch_size = batch_size
-        self.rows: list[tuple[int, float, NDArray[np.float64]]] = []
-
-    def __call__(self, ta: Any, time: float, d_sgn: int, lane: int) -> None:
-        # Dense output is evaluated for all lanes at once; only ``lane`` is meaningful.
-        # (A tuple argument is converted faster than an array.)
-        d = ta.update_d_output((time,) * self.batch_size)
-        self.rows.append((lane, time, d[:, lane].copy()))
-
-    def clear(self) -> None:
-        self.rows.clear()
-
-
-class _Key(NamedTuple):
-    batch_size: int
-    kind: int  # _NO_SECTION for plain propagation
-    direction: int
-    tol: float
-
-
-class _Slot(NamedTuple):
-    ta: Any
-    recorder: _Recorder | _BatchRecorder | None
-    n_pars: int
-
-
-def _build(key: _Key) -> _Slot:
-    common: dict[str, Any] = {"tol": key.tol, "compact_mode": False}
-    if key.kind == _ATTITUDE:
-        ta = hy.taylor_adaptive(list(attitude_system()), [0.0] * 10, **common)
-        return _Slot(ta, None, int(np.shape(ta.pars)[0]))
-    system = list(heyoka_system(scalar=key.batch_size == 1))
-    if key.kind == _NO_SECTION:
-        if key.batch_size == 1:
-            ta = hy.taylor_adaptive(system, [0.0] * 6, **common)
-        else:
-            ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)), **common)
-        return _Slot(ta, None, int(np.shape(ta.pars)[0]))
-    f = section_exprs(key.kind)[0]
-    direction = getattr(hy.event_direction, _DIRECTIONS[key.direction])
-    if key.batch_size == 1:
-        ev = hy.nt_event(f, _Recorder(), direction=direction)
-        ta = hy.taylor_adaptive(system, [0.0] * 6, nt_events=[ev], **common)
-    else:
-        ev = hy.nt_event_batch(f, _BatchRecorder(key.batch_size), direction=direction)
-        ta = hy.taylor_adaptive_batch(system, np.zeros((6, key.batch_size)),
-                                      nt_events=[ev], **common)
-    # Events deep-copy their callback: the integrator's own copy records.
-    return _Slot(ta, ta.nt_events[0].callback, int(np.shape(ta.pars)[0]))
-
-
-_POOL: dict[_Key, list[_Slot]] = {}
-_POOL_LOCK = threading.Lock()
-
-
-@contextmanager
-def _integrator(key: _Key) -> Iterator[_Slot]:
-    """Borrow a compiled integrator for ``key`` from the process-wide pool."""
-    with _POOL_LOCK:
-        free = _POOL.setdefault(key, [])
-        slot = free.pop() if free else None
-    if slot is None:
-        slot = _build(key)
-    try:
-        yield slot
-    finally:
-        with _POOL_LOCK:
-            _POOL[key].append(slot)
-
-
-def warm_up(*, batch_size: int = 1, kind: int = _NO_SECTION, direction: int = 1,
-            tol: float = 1e-12) -> None:
-    """Build (or load from heyoka's caches) the integrator for these settings now.
-
-    ``kind = -1`` is the plain propagation integrator; a section kind also compiles
-    the functions used to polish crossings. Useful before timing, or before a
-    progress bar starts.
-    """
-    with _integrator(_Key(batch_size, kind, direction, tol)):
-        pass
-    if kind != _NO_SECTION:
-        section_cfunc(kind)
-
-
-def _check(outcome: Any, what: str) -> None:
-    if outcome in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):
-        return
-    raise IntegrationError(
-        f"heyoka stopped {what} with outcome {outcome!r} (non-finite state or step)")
-
-
 # ----------------------------------------------------------------------------- propagate
 
 
-def _propagate_scalar(key: _Key, y0: NDArray[np.float64], t: NDArray[np.float64],
+def _propagate_scalar(key: IntegratorKey, y0: NDArray[np.float64], t: NDArray[np.float64],
                       pars: NDArray[np.float64]) -> NDArray[np.float64]:
-    with _integrator(key) as slot:
+    with borrow(key) as slot:
         ta = slot.ta
         ta.time = float(t[0])
         ta.state[:] = y0
         ta.pars[:] = pars[:slot.n_pars]
         res = ta.propagate_grid(t)
-        _check(res[0], "propagate_grid")
+        check_outcome(res[0], "propagate_grid")
         return np.array(res[-1])
 
 
-def _propagate_batch(key: _Key, y0: NDArray[np.float64], t: NDArray[np.float64],
+def _propagate_batch(key: IntegratorKey, y0: NDArray[np.float64], t: NDArray[np.float64],
                      pars: NDArray[np.float64]) -> NDArray[np.float64]:
     m = key.batch_size
     k = y0.shape[0]
     lanes = np.concatenate([y0, np.repeat(y0[-1:], m - k, axis=0)]) if k < m else y0
-    with _integrator(key) as slot:
+    with borrow(key) as slot:
         ta = slot.ta
         ta.set_time(np.full(m, t[0]))
         ta.state[:] = lanes.T
         ta.pars[:] = pars[:slot.n_pars, None]
         out = ta.propagate_grid(np.repeat(t, m).reshape(-1, m))[-1]
         for r in ta.propagate_res:
-            _check(r[0], "propagate_grid")
+            check_outcome(r[0], "propagate_grid")
         return np.transpose(out, (2, 0, 1))[:k]
 
 
@@ -324,11 +205,11 @@ def _chunk_steps(n_missing: int, steps: int, found: int) -> int:
     return max(8, math.ceil(n_missing * steps / found) + 2)
 
 
-def _crossings_scalar(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float64],
+def _crossings_scalar(key: IntegratorKey, y0: NDArray[np.float64], pars: NDArray[np.float64],
                       n_crossings: int, t_max: float) -> _Found:
-    with _integrator(key) as slot:
+    with borrow(key) as slot:
         ta, rec = slot.ta, slot.recorder
-        assert isinstance(rec, _Recorder)
+        assert isinstance(rec, Recorder)
         rec.clear()
         ta.time = 0.0
         ta.state[:] = y0
@@ -338,7 +219,7 @@ def _crossings_scalar(key: _Key, y0: NDArray[np.float64], pars: NDArray[np.float
         chunk = 64
         while True:
             outcome, _, _, nsteps, _, _ = ta.propagate_until(t_max, max_steps=chunk)
-            _check(outcome, "looking for crossings")
+            check_outcome(outcome, "looking for crossings")
             steps += nsteps
             new = _accept(key.kind, rec.t, rec.y, pars)
             rec.clear()
@@ -433,7 +314,7 @@ def _split_by_lane(kind: int, rows: list[tuple[int, float, NDArray[np.float64]]]
             for j in range(m)]
 
 
-def _crossings_batch_worker(key: _Key, pars: NDArray[np.float64], n_crossings: int,
+def _crossings_batch_worker(key: IntegratorKey, pars: NDArray[np.float64], n_crossings: int,
                             t_max: float, queue: _Queue, budget: int | None) -> None:
     """Run the orbits of ``queue`` through the lanes of one batch integrator.
 
@@ -445,9 +326,9 @@ def _crossings_batch_worker(key: _Key, pars: NDArray[np.float64], n_crossings: i
     orbit leaves its lane after that many steps (the pilot), keeping its state.
     """
     m = key.batch_size
-    with _integrator(key) as slot:
+    with borrow(key) as slot:
         ta, rec = slot.ta, slot.recorder
-        assert isinstance(rec, _BatchRecorder)
+        assert isinstance(rec, BatchRecorder)
         rec.clear()
         ta.pars[:] = pars[:slot.n_pars, None]
         lanes: list[_Orbit | None] = [None] * m
@@ -493,7 +374,7 @@ def _crossings_batch_worker(key: _Key, pars: NDArray[np.float64], n_crossings: i
             for j, orbit in enumerate(lanes):
                 if orbit is None:
                     continue
-                _check(res[j][0], "looking for crossings")
+                check_outcome(res[j][0], "looking for crossings")
                 orbit.steps += res[j][3]
                 taken[j] += res[j][3]
                 if found is not None:
@@ -619,7 +500,7 @@ class HeyokaEngine(EngineBase):
         tol = tolerance.tol
         n = y0.shape[0]
         m = self._batch(n)
-        key = _Key(m, _NO_SECTION, 0, tol)
+        key = IntegratorKey(m, NO_SECTION, 0, tol)
         if m == 1:
             rows = _run([partial(_propagate_scalar, key, y0[i], t, pars) for i in range(n)],
                         self.n_threads)
@@ -633,7 +514,7 @@ class HeyokaEngine(EngineBase):
         """A scalar integrator of (1) with the quaternion
         (:func:`~andoyer.integrate.engines.heyoka_symbolic.attitude_system`) per orbit,
         orbits in threads."""
-        key = _Key(1, _ATTITUDE, 0, tolerance.tol)
+        key = IntegratorKey(1, ATTITUDE, 0, tolerance.tol)
         rows = _run([partial(_propagate_scalar, key, z0[i], t, pars)
                      for i in range(z0.shape[0])], self.n_threads)
         return np.stack(rows)
@@ -649,7 +530,7 @@ class HeyokaEngine(EngineBase):
         m = self._batch(n)
         section_cfunc(kind)  # compile once, outside the threads
         field_cfunc()
-        key = _Key(m, kind, direction, tol)
+        key = IntegratorKey(m, kind, direction, tol)
         results: list[_Found | None]
         if m == 1:
             results = list(_run([partial(_crossings_scalar, key, y0[i], pars, n_crossings,
