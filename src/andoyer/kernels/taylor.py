@@ -66,14 +66,25 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
-import numba
 import numpy as np
 
-from andoyer.kernels import taylor_generated
+from andoyer.kernels import taylor_generated, taylor_sections
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.constants import T_START
 from andoyer.kernels.dop853 import source_stamp
 from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
+from andoyer.kernels.taylor_sections import (
+    bernstein,
+    casteljau,
+    fast_jit,
+    poly_d,
+    section_jet,
+    section_tape,
+    sign_changes,
+    solve_root,
+    tape_jet,
+    tape_value,
+)
 from andoyer.kernels.threads import over_orbits
 
 __all__ = [
@@ -108,12 +119,11 @@ MIN_ORDER = 4
 _N = 6  # the Euler-Poisson state
 _MAX_DEPTH = 60  # bisections of a step in the root isolation
 _MIN_WIDTH = 1e-13  # narrowest isolating interval (fraction of the step)
-_ROOT_MAXITER = 200
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka's engine)
-_VAR, _LIN, _MUL = 0, 1, 2  # ops of a section tape (SQRT = 3), see taylor_codegen
 
 #: Hash of every source the compiled entry points depend on (their cache key).
-TAYLOR_STAMP = source_stamp(taylor_generated.__file__ or "", __file__)
+TAYLOR_STAMP = source_stamp(taylor_generated.__file__ or "", __file__,
+                            taylor_sections.__file__ or "")
 
 
 def order_for(tol: float) -> int:
@@ -140,61 +150,12 @@ def n_vectors(width: int) -> int:
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
 # see andoyer.kernels.dop853's notes on the cache key).
-#: LLVM fast-math flags of the helpers: contraction (FMA), reassociation and reciprocals
-#: (not nnan/ninf: non-finite states are caught by comparisons). Measured on the W1/W2
-#: benchmarks: 10-15 % less CPU per step, the same errors against the extended-precision
-#: reference (theta2 sections, 50 orbits x 1000 crossings: median 2.01e-11 with,
-#: 2.03e-11 without; W1 2.1e-10 both).
-_FASTMATH = {"reassoc", "contract", "arcp"}
-_jit = numba.njit(nogil=True, fastmath=_FASTMATH)
-_constants = _jit(taylor_generated.ep_taylor_constants)
-_jet = _jit(taylor_generated.ep_taylor_jet)
-_tangent_jet = _jit(taylor_generated.ep_taylor_tangent_jet)
+_constants = fast_jit(taylor_generated.ep_taylor_constants)
+_jet = fast_jit(taylor_generated.ep_taylor_jet)
+_tangent_jet = fast_jit(taylor_generated.ep_taylor_tangent_jet)
 
 
-@_jit
-def _tape_jet(tape, C, x, order, u):
-    """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
-    state's jet ``x`` (the last node is the function): the tape interpreter (rows
-    ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.taylor_generated.SECTION_TAPES`,
-    constants ``C``)."""
-    # Node by node (each node reads earlier nodes only, and the state's jet is known to
-    # the full order): one dispatch per node, not per node and order.
-    for n in range(tape.shape[0]):
-        op = tape[n, 0]
-        a = tape[n, 1]
-        b = tape[n, 2]
-        if op == _VAR:
-            for k in range(order + 1):
-                u[n, k] = x[k, a]
-        elif op == _LIN:
-            ca = C[tape[n, 3]]
-            if b >= 0:
-                cb = C[tape[n, 4]]
-                for k in range(order + 1):
-                    u[n, k] = ca * u[a, k] + cb * u[b, k]
-            else:
-                for k in range(order + 1):
-                    u[n, k] = ca * u[a, k]
-            if tape[n, 5] >= 0:
-                u[n, 0] += C[tape[n, 5]]
-        elif op == _MUL:
-            for k in range(order + 1):
-                v = 0.0
-                for j in range(k + 1):
-                    v += u[a, j] * u[b, k - j]
-                u[n, k] = v
-        else:  # _SQRT
-            r = math.sqrt(u[a, 0])
-            u[n, 0] = r
-            for k in range(1, order + 1):
-                v = 0.0
-                for j in range(1, k):
-                    v += u[n, j] * u[n, k - j]
-                u[n, k] = (u[a, k] - v) / (2.0 * r)
-
-
-@_jit
+@fast_jit
 def _fill_constants(p, q):
     """``q`` = the folded body coefficients of the jets, from the kernel parameters."""
     c = _constants(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
@@ -202,13 +163,13 @@ def _fill_constants(p, q):
         q[i] = c[i]
 
 
-@_jit
+@fast_jit
 def _state_jets(X, order, q):
     """Jet of the state ``X[0]`` (row 0 is the current value) to ``order``."""
     _jet(X[0], order, q)
 
 
-@_jit
+@fast_jit
 def _tangent_jets(X, order, q):
     """Jets of the state ``X[0]`` and of the tangent vectors ``X[1:]`` (rows 0 of each
     are the current values), to ``order``."""
@@ -217,7 +178,7 @@ def _tangent_jets(X, order, q):
         _tangent_jet(X[0], X[i], order, q)
 
 
-@_jit
+@fast_jit
 def _radius(x, order):
     """rho of the module notes for one block of jets ``x`` (order + 1, 6)."""
     m = 0.0
@@ -240,7 +201,7 @@ def _radius(x, order):
     return rho
 
 
-@_jit
+@fast_jit
 def _step_size(X, order):
     """Jorba-Zou step of the module notes (least over the state and tangent vectors)."""
     rho = _radius(X[0], order)
@@ -251,7 +212,7 @@ def _step_size(X, order):
     return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
 
 
-@_jit
+@fast_jit
 def _horner(X, order, tau, out):
     """``out[6 b + i]`` = block ``b`` (state, then vectors) at ``t0 + tau``."""
     for b in range(X.shape[0]):
@@ -262,7 +223,7 @@ def _horner(X, order, tau, out):
             out[_N * b + i] = v
 
 
-@_jit
+@fast_jit
 def _advance(X, order, h):
     """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
     for b in range(X.shape[0]):
@@ -273,96 +234,11 @@ def _advance(X, order, h):
             X[b, 0, i] = v
 
 
-@_jit
+@fast_jit
 def _load(X, z):
     for b in range(X.shape[0]):
         for i in range(_N):
             X[b, 0, i] = z[_N * b + i]
-
-
-@_jit
-def _bernstein(a, order, W, B):
-    """Bernstein coefficients on [0, 1] of ``sum_k a[k] s^k``: ``B[i] = sum_{k<=i}
-    W[i, k] a[k]`` with ``W[i, k] = C(i, k) / C(p, k)``."""
-    for i in range(order + 1):
-        acc = 0.0
-        for k in range(i + 1):
-            acc += W[i, k] * a[k]
-        B[i] = acc
-
-
-@_jit
-def _sign_changes(B, n):
-    count = 0
-    last = 0.0
-    for i in range(n):
-        if B[i] != 0.0:
-            if last != 0.0 and (B[i] > 0.0) != (last > 0.0):
-                count += 1
-            last = B[i]
-    return count
-
-
-@_jit
-def _poly(a, order, s):
-    v = a[order]
-    for k in range(order - 1, -1, -1):
-        v = v * s + a[k]
-    return v
-
-
-@_jit
-def _poly_d(a, order, s):
-    v = a[order]
-    d = 0.0
-    for k in range(order - 1, -1, -1):
-        d = d * s + v
-        v = v * s + a[k]
-    return v, d
-
-
-@_jit
-def _solve(a, order, lo, hi, flo):
-    """The root of ``P = sum a[k] s^k`` in ``[lo, hi]`` where ``P`` changes sign once
-    (``flo`` its sign at ``lo``): Newton steps kept inside the bracket, else bisection."""
-    s = 0.5 * (lo + hi)
-    up = flo < 0.0
-    for _ in range(_ROOT_MAXITER):
-        v, d = _poly_d(a, order, s)
-        if v == 0.0:
-            return s
-        if (v < 0.0) == up:
-            lo = s
-        else:
-            hi = s
-        if hi - lo <= 4.0 * np.finfo(np.float64).eps * max(1.0, abs(s)):
-            break
-        nxt = s - v / d if d != 0.0 else 0.5 * (lo + hi)
-        if not (lo < nxt < hi):
-            nxt = 0.5 * (lo + hi)
-        if nxt == s:
-            break
-        s = nxt
-    return s
-
-
-@_jit
-def _casteljau(B, n, left, right):
-    """Split Bernstein coefficients ``B[:n]`` of [0, 1] at 1/2 into those of the halves."""
-    for i in range(n):
-        right[i] = B[i]
-    for r in range(1, n):
-        left[r - 1] = right[0]
-        for i in range(n - r):
-            right[i] = 0.5 * (right[i] + right[i + 1])
-    left[n - 1] = right[0]
-
-
-@_jit
-def _tape_value(tape, C, Y, u):
-    """A section tape's function at the state ``Y[0]`` (a jet of order 0)."""
-    _tape_jet(tape, C, Y, 0, u)
-    return u[tape.shape[0] - 1, 0]
 
 
 class Orbits(NamedTuple):
@@ -380,7 +256,7 @@ def make_orbits(jets: Any) -> Orbits:
     jets it needs (see :mod:`andoyer.kernels.stepper` on closures and the cache).
     """
 
-    @_jit
+    @fast_jit
     def take_step(t, t_end, X, order, q, info):
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
@@ -395,7 +271,7 @@ def make_orbits(jets: Any) -> Orbits:
         return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
 
 
-    @_jit
+    @fast_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
         """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
         k = t_out.shape[0]
@@ -427,7 +303,7 @@ def make_orbits(jets: Any) -> Orbits:
             t = t1
 
 
-    @_jit
+    @fast_jit
     def record(X, order, q, t, h, s_root, ftape, fC, wtape, wC, a, tc, zc, count, ytmp, P, Y,
                 u):
         """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
@@ -435,8 +311,8 @@ def make_orbits(jets: Any) -> Orbits:
         _horner(X, order, s_root * h, ytmp)
         for i in range(_N):
             Y[0, i] = ytmp[i]
-        f = _tape_value(ftape, fC, Y, u)
-        _, fdot = _poly_d(a, order, s_root)
+        f = tape_value(ftape, fC, Y, u)
+        _, fdot = poly_d(a, order, s_root)
         fdot = fdot / h
         dt = -f / fdot if fdot != 0.0 else 0.0
         if not abs(dt) <= _MAX_POLISH:
@@ -450,7 +326,7 @@ def make_orbits(jets: Any) -> Orbits:
                     if b == 0:
                         Y[0, i] = ytmp[i]
         tr = t + s_root * h + dt
-        if _tape_value(wtape, wC, Y, u) > 0.0 and tr > T_START:
+        if tape_value(wtape, wC, Y, u) > 0.0 and tr > T_START:
             tc[count] = tr
             for i in range(ytmp.shape[0]):
                 zc[count, i] = ytmp[i]
@@ -458,7 +334,7 @@ def make_orbits(jets: Any) -> Orbits:
         return count
 
 
-    @_jit
+    @fast_jit
     def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
                         zc, info):
         """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
@@ -492,7 +368,7 @@ def make_orbits(jets: Any) -> Orbits:
         _load(X, z0)
         for i in range(_N):
             Y[0, i] = z0[i]
-        fa = _tape_value(ftape, fC, Y, u)
+        fa = tape_value(ftape, fC, Y, u)
         t = 0.0
         count = 0
         while count < n_crossings and t < t_max:
@@ -509,8 +385,8 @@ def make_orbits(jets: Any) -> Orbits:
                 for k in range(order - 1, -1, -1):
                     v = v * h + X[0, k, i]
                 Y[0, i] = v
-            fb = _tape_value(ftape, fC, Y, u)
-            _tape_jet(ftape, fC, X[0], order, u)
+            fb = tape_value(ftape, fC, Y, u)
+            tape_jet(ftape, fC, X[0], order, u)
             hk = 1.0
             bound = 0.0
             for k in range(n):
@@ -521,7 +397,7 @@ def make_orbits(jets: Any) -> Orbits:
             maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
                 abs(a[0]) > 1.000001 * bound and (a[0] > 0.0) == (fa > 0.0))
             if maybe:
-                _bernstein(a, order, W, stack[0])
+                bernstein(a, order, W, stack[0])
                 stack[0, 0] = fa
                 stack[0, order] = fb
                 if fa == 0.0:  # a root at the start belongs to the previous step
@@ -542,13 +418,13 @@ def make_orbits(jets: Any) -> Orbits:
                     B = stack[top]
                     lo = lo_s[top]
                     hi = hi_s[top]
-                    v = _sign_changes(B, n)
+                    v = sign_changes(B, n)
                     if v == 0:
                         continue
                     if v >= 2 and hi - lo > _MIN_WIDTH and top + 2 <= _MAX_DEPTH:
                         # Split: right half pushed first, so the left one (earlier) comes out
                         # first and crossings are found in time order.
-                        _casteljau(B, n, left, stack[top + 1])
+                        casteljau(B, n, left, stack[top + 1])
                         for i in range(n):
                             B[i] = stack[top + 1, i]  # right half, in place
                         for i in range(n):
@@ -567,7 +443,7 @@ def make_orbits(jets: Any) -> Orbits:
                     up = flo < 0.0
                     if (up and direction < 0) or (not up and direction > 0):
                         continue
-                    sr = _solve(a, order, lo, hi, flo)
+                    sr = solve_root(a, order, lo, hi, flo)
                     count = record(X, order, q, t, h, sr, ftape, fC, wtape, wC, a, tc, zc,
                                     count, ytmp, P, Y, u)
             _advance(X, order, h)
@@ -655,30 +531,6 @@ def jet(z0, p, order):
     _load(X, z0)
     _tangent_jets(X, order, q)
     return X
-
-
-@cached_njit(nogil=True, fastmath=False)
-def section_jet(tape, C, x, order):
-    """The jet of a section function or margin (:func:`section_tape`) along a state's
-    jet ``x`` (order + 1, 6): shape (order + 1,)."""
-    u = np.empty((tape.shape[0], order + 1))
-    _tape_jet(tape, C, x, order, u)
-    return u[tape.shape[0] - 1].copy()
-
-
-def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
-    (its margin ``w`` if ``margin``): the generated
-    :data:`~andoyer.kernels.taylor_generated.SECTION_TAPES` and ``section_constants``
-    (``MARGIN_TAPES``, ``margin_constants``)."""
-    g = taylor_generated
-    tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
-                        else (g.SECTION_TAPES, g.section_constants))
-    tape = np.array(tapes[kind], dtype=np.int64)
-    C = np.array(constants(kind, phi0, value, math.cos(value), math.sin(value)),
-                 dtype=np.float64)
-    return tape, C
 
 
 def _order(tol: float) -> int:
