@@ -178,10 +178,11 @@ OVERRIDES: dict[str, dict[str, Any]] = {
 }
 #: Arguments that are results of the library (built once, on first use).
 LAZY_USERS = {"grow_manifold", "measure_splitting", "splitting_at", "orbits_dataset",
-              "axis_trace", "precession_nutation", "herpolhode"}
+              "axis_trace", "precession_nutation", "herpolhode", "normal_form_frequency"}
 LAZY = {
     "branch": lambda: _manifold()[0], "wu": lambda: _manifold()[1],
     "ws": lambda: _manifold()[2], "orbits": lambda: [_manifold()[0].orbit],
+    "nf": lambda: _normal_form(), "I": lambda: [0.01],
     "ds": lambda: _attitude_dataset(),
 }
 
@@ -191,6 +192,13 @@ def _attitude_dataset() -> xr.Dataset:
     from andoyer.integrate import attitude
 
     return attitude(FREE, [0.3, 0.8, 0.5, 0.0, 0.6, 0.8], [0.0, 0.5, 1.0], engine="numba")
+
+
+@functools.cache
+def _normal_form() -> Any:
+    from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form
+
+    return birkhoff_normal_form(B, 1.0, order=4)
 
 
 @functools.cache

@@ -6,13 +6,17 @@
 - :mod:`~andoyer.analysis.resonance.predict`: where (the resonant tori ``W = p/q``) and
   how wide (the first-order pendulum: half-widths, periodic orbits, their stability);
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
-  Poincare sections of the perturbed flow.
+  Poincare sections of the perturbed flow;
+- :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
+  at its centres (Lie series), the frequencies as functions of the action.
 """
 
+from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form, normal_form_frequency
 from andoyer.analysis.resonance.predict import (
     resonance_widths,
     resonant_tori,
     section_rotation_number,
 )
 
-__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number"]
+__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number",
+           "birkhoff_normal_form", "normal_form_frequency"]

@@ -1,0 +1,86 @@
+"""Birkhoff normal forms of the free top at its centres (issue 28, item 3), against the
+period in elliptic integrals (closed form) and NAFF on integrated orbits."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from andoyer import RigidBody
+from andoyer.analysis.chaos.frequency import orbit_frequencies
+from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form, normal_form_frequency
+from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
+from andoyer.charts.andoyer_deprit import from_andoyer
+
+PAPER = RigidBody.paper()
+
+
+def _predicted(nf, h):
+    """omega_l, omega_g of the normal form on the orbit of energy h."""
+    I = brentq(lambda a: float(normal_form_frequency(nf, [a]).energy[0]) - h, 0.0, 1.0)
+    f = normal_form_frequency(nf, [I])
+    return abs(float(f.omega_l[0])), float(f.omega_g[0])
+
+
+def _level(body, lstar, amp, G=1.0):
+    l = lstar + amp
+    return 0.5 * (body.a * math.sin(l) ** 2 + body.b * math.cos(l) ** 2) * G * G
+
+
+@pytest.mark.parametrize("lstar", [0.0, math.pi / 2])
+@pytest.mark.parametrize("order", [4, 6, 8])
+def test_frequency_error_falls_like_amplitude_to_the_order(lstar, order):
+    """(B4): truncated at degree N, omega_l errs by O(amplitude^N): the measured slope of
+    log(error) against log(amplitude) (0.025 .. 0.1 rad) is N within 0.3."""
+    nf = birkhoff_normal_form(PAPER, 1.0, order=order, lstar=lstar)
+    amps = np.array([0.025, 0.05, 0.1])
+    err = []
+    for amp in amps:
+        h = _level(PAPER, lstar, amp)
+        f = euler_poinsot_frequencies(PAPER, h, 1.0)
+        w_l, w_g = _predicted(nf, h)
+        err.append(abs(w_l - 2 * math.pi / f.period) / (2 * math.pi / f.period))
+        assert w_g == pytest.approx(f.g_rate, rel=1e-8)
+    slope = np.polyfit(np.log(amps), np.log(err), 1)[0]
+    assert abs(slope - order) < 0.3, (slope, err)
+
+
+def test_small_oscillations_and_symmetric_centres():
+    nf = birkhoff_normal_form(PAPER, 1.0, order=6, lstar=0.0)
+    a, b, c = PAPER.a, PAPER.b, PAPER.c
+    assert abs(float(nf.omega0)) == pytest.approx(math.sqrt((b - a) * (b - c)), rel=1e-14)
+    twin = birkhoff_normal_form(PAPER, 1.0, order=6, lstar=math.pi)
+    np.testing.assert_allclose(twin.coefficient, nf.coefficient, rtol=1e-12)
+    # homogeneity: omega0 ~ G, c_k ~ G^(2 - k)
+    big = birkhoff_normal_form(PAPER, 2.0, order=6, lstar=0.0)
+    k = nf.power.values
+    np.testing.assert_allclose(big.coefficient, nf.coefficient * 2.0 ** (2 - k), rtol=1e-10)
+
+
+def test_normal_form_against_naff():
+    """An orbit at 0.15 rad from the rotation about x, integrated (mu = 0) and analysed by
+    NAFF: omega_l and omega_g of the order-10 normal form within 1e-7."""
+    nf = birkhoff_normal_form(PAPER, 1.0, order=10, lstar=math.pi / 2)
+    amp = 0.15
+    h = _level(PAPER, math.pi / 2, amp)
+    w_l, w_g = _predicted(nf, h)
+    y0 = from_andoyer([math.pi / 2 + amp, 0.0, 0.0, 1.0, 0.0])
+    ds = orbit_frequencies(PAPER.with_mu(0.0), y0, 60 * 2 * math.pi / w_l, n_samples=16385,
+                           engine="numba")
+    assert float(ds.omega_l[0]) == pytest.approx(w_l, rel=1e-7)
+    assert float(ds.omega_g[0]) == pytest.approx(w_g, rel=1e-7)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"order": 5}, "even"), ({"order": 30}, "order"), ({"lstar": 0.3}, "lstar"),
+    ({"G": -1.0}, "G")])
+def test_bad_input(kwargs, match):
+    args = {"G": 1.0, **kwargs}
+    G = args.pop("G")
+    with pytest.raises(ValueError, match=match):
+        birkhoff_normal_form(PAPER, G, **args)
+    with pytest.raises(ValueError, match="middle axis"):
+        birkhoff_normal_form(RigidBody.lagrange(2.0, 1.0, 1.0), 1.0)
