@@ -99,8 +99,10 @@ __all__ = [
     "order_for",
     "n_vectors",
     "propagate",
+    "propagate_attitude",
     "locate_crossings",
     "propagate_block",
+    "attitude_propagate_block",
     "locate_crossings_block",
     "tangent_propagate_block",
     "tangent_crossings_block",
@@ -108,6 +110,7 @@ __all__ = [
     "Orbits",
     "STATE",
     "TANGENT",
+    "ATTITUDE",
     "jet",
     "section_tape",
     "section_jet",
@@ -153,6 +156,7 @@ def n_vectors(width: int) -> int:
 _constants = fast_jit(taylor_generated.ep_taylor_constants)
 _jet = fast_jit(taylor_generated.ep_taylor_jet)
 _tangent_jet = fast_jit(taylor_generated.ep_taylor_tangent_jet)
+_attitude_jet = fast_jit(taylor_generated.ep_taylor_attitude_jet)
 
 
 @fast_jit
@@ -176,6 +180,17 @@ def _tangent_jets(X, order, q):
     _jet(X[0], order, q)
     for i in range(1, X.shape[0]):
         _tangent_jet(X[0], X[i], order, q)
+
+
+@fast_jit
+def _attitude_jets(X, order, q):
+    """Jets of the state ``X[0]`` and of the attitude quaternion ``X[1, :, 0:4]`` (its
+    block padded with two zero components, whose jets stay zero)."""
+    _jet(X[0], order, q)
+    _attitude_jet(X[0], X[1], order, q)
+    for k in range(1, order + 1):
+        X[1, k, 4] = 0.0
+        X[1, k, 5] = 0.0
 
 
 @fast_jit
@@ -458,13 +473,16 @@ def make_orbits(jets: Any) -> Orbits:
 #: Orbits of the state alone, and of the state with tangent vectors.
 STATE = make_orbits(_state_jets)
 TANGENT = make_orbits(_tangent_jets)
+#: Orbits of the state with the attitude quaternion (blocks (y), (q, 0, 0)).
+ATTITUDE = make_orbits(_attitude_jets)
+_attitude_propagate = ATTITUDE.propagate_orbit
 _state_propagate = STATE.propagate_orbit
 _state_crossings = STATE.crossings_orbit
 _tangent_propagate = TANGENT.propagate_orbit
 _tangent_crossings = TANGENT.crossings_orbit
 
 
-def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
+def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
     """The cached entry points (the closure over ``stamp`` keys the cache, as in
     :mod:`andoyer.kernels.dop853`). They call the orbit loops as module globals: a
     compiled function in a closure cell would change the cache key in every process."""
@@ -513,12 +531,22 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
                                           t_max, max_steps, X, tc[i], zc[i], info[i])
 
+    @cached_njit(nogil=True, fastmath=False)
+    def attitude_propagate_block(z0, t, p, order, max_steps, out, info):
+        """:func:`propagate_attitude` of a block of orbits on the calling thread."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        _fill_constants(p, q)
+        X = np.empty((2, order + 1, _N))
+        for i in range(z0.shape[0]):
+            _attitude_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
+
     return (propagate_block, tangent_propagate_block, locate_crossings_block,
-            tangent_crossings_block)
+            tangent_crossings_block, attitude_propagate_block)
 
 
 (propagate_block, tangent_propagate_block, locate_crossings_block,
- tangent_crossings_block) = _build(TAYLOR_STAMP)
+ tangent_crossings_block, attitude_propagate_block) = _build(TAYLOR_STAMP)
 
 
 @cached_njit(nogil=True, fastmath=False)
@@ -570,6 +598,21 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_step
     over_orbits(kernel, n, (z0,), (out, info),
                 (t, p, _order(tol), int(max_steps)), block=block, threads=threads)
     return out, info
+
+
+def propagate_attitude(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float,
+                       max_steps: int, *, block: int = 1, threads: int | None = None
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`propagate` of states ``(G, gamma, q)`` (n, 10) with the attitude quaternion
+    (its jet ``ep_taylor_attitude_jet``, a second block of 6): ``z`` (n, m, 10), ``info``."""
+    n = z0.shape[0]
+    z = np.zeros((n, 2 * _N))
+    z[:, :10] = z0
+    out = np.full((n, t.shape[0], 2 * _N), np.nan)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    over_orbits(attitude_propagate_block, n, (z,), (out, info),
+                (t, p, _order(tol), int(max_steps)), block=block, threads=threads)
+    return np.ascontiguousarray(out[..., :10]), info
 
 
 def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, direction: int,

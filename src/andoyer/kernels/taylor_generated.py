@@ -9,7 +9,7 @@ from math import cos, sin
 
 SYMPY_VERSION = '1.14.0'
 #: Number of body-dependent coefficients returned by ep_taylor_constants.
-N_CONSTANTS = 9
+N_CONSTANTS = 12
 #: Most nodes and constants of a section tape.
 TAPE_NODES = 33
 TAPE_CONSTANTS = 9
@@ -18,7 +18,7 @@ def ep_taylor_constants(a, b, c, mu, e1, e2, e3):
     """The body-dependent coefficients ``q`` of the jets (folded constants)."""
     c0 = -c
     c1 = -b
-    return (-e2*mu, e3*mu, -b - c0, e1*mu, a + c0, -a - c1, c, c1, a, )
+    return (-e2*mu, e3*mu, -b - c0, e1*mu, a + c0, -a - c1, c, c1, a, -1/2*c, -1/2*b, -1/2*a, )
 
 
 def ep_taylor_jet(x, order, q):
@@ -32,6 +32,9 @@ def ep_taylor_jet(x, order, q):
     q6 = q[6]
     q7 = q[7]
     q8 = q[8]
+    q9 = q[9]
+    q10 = q[10]
+    q11 = q[11]
     for k in range(order):
         m0 = 0.0
         m1 = 0.0
@@ -71,6 +74,9 @@ def ep_taylor_tangent_jet(x, w, order, q):
     q6 = q[6]
     q7 = q[7]
     q8 = q[8]
+    q9 = q[9]
+    q10 = q[10]
+    q11 = q[11]
     for k in range(order):
         m0 = 0.0
         m1 = 0.0
@@ -115,6 +121,52 @@ def ep_taylor_tangent_jet(x, w, order, q):
         w[k + 1, 3] = (q7 * m6 + q6 * m7 + q6 * m8 + q7 * m9) / (k + 1)
         w[k + 1, 4] = (q8 * m10 - q6 * m11 - q6 * m12 + q8 * m13) / (k + 1)
         w[k + 1, 5] = (-q8 * m14 - q7 * m15 - q7 * m16 - q8 * m17) / (k + 1)
+
+
+def ep_taylor_attitude_jet(x, w, order, q):
+    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I G)/2, scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet ``x``."""
+    q0 = q[0]
+    q1 = q[1]
+    q2 = q[2]
+    q3 = q[3]
+    q4 = q[4]
+    q5 = q[5]
+    q6 = q[6]
+    q7 = q[7]
+    q8 = q[8]
+    q9 = q[9]
+    q10 = q[10]
+    q11 = q[11]
+    for k in range(order):
+        m0 = 0.0
+        m1 = 0.0
+        m2 = 0.0
+        m3 = 0.0
+        m4 = 0.0
+        m5 = 0.0
+        m6 = 0.0
+        m7 = 0.0
+        m8 = 0.0
+        m9 = 0.0
+        m10 = 0.0
+        m11 = 0.0
+        for j in range(k + 1):
+            m0 += x[j, 2] * w[k - j, 3]
+            m1 += x[j, 1] * w[k - j, 2]
+            m2 += x[j, 0] * w[k - j, 1]
+            m3 += x[j, 2] * w[k - j, 2]
+            m4 += x[j, 1] * w[k - j, 3]
+            m5 += x[j, 0] * w[k - j, 0]
+            m6 += x[j, 2] * w[k - j, 1]
+            m7 += x[j, 1] * w[k - j, 0]
+            m8 += x[j, 0] * w[k - j, 3]
+            m9 += x[j, 2] * w[k - j, 0]
+            m10 += x[j, 1] * w[k - j, 1]
+            m11 += x[j, 0] * w[k - j, 2]
+        w[k + 1, 0] = (q9 * m0 + q10 * m1 + q11 * m2) / (k + 1)
+        w[k + 1, 1] = (-q9 * m3 + q10 * m4 - q11 * m5) / (k + 1)
+        w[k + 1, 2] = (q9 * m6 - q10 * m7 - q11 * m8) / (k + 1)
+        w[k + 1, 3] = (-q9 * m9 - q10 * m10 + q11 * m11) / (k + 1)
 
 
 #: Section functions f, one tape per section kind: rows (op, a, b, ca, cb, cc), ops

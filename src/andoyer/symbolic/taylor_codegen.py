@@ -44,12 +44,13 @@ from pathlib import Path
 import sympy as sp
 
 from andoyer.atomic import atomic_path
+from andoyer.symbolic import attitude as att
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 from andoyer.symbolic.codegen import NumbaPrinter
 
 __all__ = ["TAYLOR_PATH", "generate_taylor_source", "write_taylor", "field_terms",
-           "tangent_terms"]
+           "tangent_terms", "attitude_terms"]
 
 TAYLOR_PATH = Path(__file__).resolve().parent.parent / "kernels" / "taylor_generated.py"
 
@@ -69,6 +70,14 @@ def tangent_terms() -> list[list[tuple[tuple[int, ...], sp.Expr]]]:
     n = len(S.y)
     rows = [sp.expand(sum(J[n * i + j] * _W[j] for j in range(n))) for i in range(n)]
     return [sorted(sp.Poly(r, *S.y, *_W).terms()) for r in rows]
+
+
+def attitude_terms() -> list[list[tuple[tuple[int, ...], sp.Expr]]]:
+    """For each component of ``dq/dt = q (x) (0, I G) / 2``
+    (:func:`andoyer.symbolic.attitude.attitude_field`): terms as :func:`field_terms`,
+    exponents over ``(*S.y, *Q)`` (bilinear in ``(G, q)``)."""
+    rows = att.attitude_field()[len(S.y):]
+    return [sorted(sp.Poly(r, *S.y, *att.Q).terms()) for r in rows]
 
 
 class _Constants:
@@ -283,8 +292,15 @@ def generate_taylor_source() -> str:
                '    """Jet of a tangent vector ``w`` (dw/dt = J(x) w, J of (1)): '
                '``w[1 .. order]`` from ``w[0]``, along the full jet ``x``."""']
     tangent_loop = _poly_jet_body(tangent_terms(), w_access, "w[k + 1, {i}]", q)
+    q_access = [*y_access, *(f"w[{{j}}, {i}]" for i in range(len(att.Q)))]
+    attitude = ["def ep_taylor_attitude_jet(x, w, order, q):",
+                '    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I G)/2, '
+                'scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet '
+                '``x``."""']
+    attitude_loop = _poly_jet_body(attitude_terms(), q_access, "w[k + 1, {i}]", q)
     field += _unpack(q) + field_loop
     tangent += _unpack(q) + tangent_loop
+    attitude += _unpack(q) + attitude_loop
     section, nodes, n_consts = _tapes_source("section", "Section functions f", 0)
     margin, m_nodes, m_consts = _tapes_source("margin", "Margins w of the sections", 1)
     head = [
@@ -307,7 +323,7 @@ def generate_taylor_source() -> str:
         "",
     ]
     body = [_constants_source(q), "\n".join(field) + "\n", "\n".join(tangent) + "\n",
-            section, margin]
+            "\n".join(attitude) + "\n", section, margin]
     text = "\n\n".join(body)
     used = [f for f in ("cos", "sin", "sqrt") if f"{f}(" in text]
     imports = f"from math import {', '.join(used)}" if used else ""

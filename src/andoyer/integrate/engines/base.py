@@ -61,7 +61,8 @@ and knows nothing of datasets, charts or bodies.
     (scalar first, body -> space, :mod:`andoyer.charts.rotation`); integrates (1) with
     ``dq/dt = q (x) (0, omega) / 2``, ``omega = I G`` (the SymPy field
     :func:`andoyer.symbolic.attitude.attitude_field`, generated as
-    :func:`andoyer.kernels.generated.attitude_field`), ``t`` as for ``_propagate``.
+    :func:`andoyer.kernels.generated.attitude_field`; for Taylor methods its jet,
+    ``ep_taylor_attitude_jet``), ``t`` as for ``_propagate``.
     Returns (n, m, 10) with ``[:, 0]`` equal to ``z0``; the quaternion's length is an
     integral of the flow and is not renormalised by the engine.
 

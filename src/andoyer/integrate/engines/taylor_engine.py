@@ -75,7 +75,8 @@ class TaylorEngine(EngineBase):
     method = "Taylor integration"
     repr_options = ("max_steps", "chunksize", "n_threads")
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
-                              Capability.BACKWARD, Capability.TANGENT_CROSSINGS})
+                              Capability.BACKWARD, Capability.TANGENT_CROSSINGS,
+                              Capability.ATTITUDE})
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  n_threads: int | None = None) -> None:
@@ -88,6 +89,16 @@ class TaylorEngine(EngineBase):
                                      self.max_steps, block=self.chunksize,
                                      threads=self.n_threads)
         self._raise_on_failure(info, taylor, "in propagate")
+        return out
+
+    def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
+                  par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+        """(1) with the quaternion: its jet by the generated bilinear recurrence
+        (:func:`andoyer.kernels.taylor.propagate_attitude`), one step size for both."""
+        out, info = taylor.propagate_attitude(z0, t, self._kernel_params(par), tolerance.tol,
+                                              self.max_steps, block=self.chunksize,
+                                              threads=self.n_threads)
+        self._raise_on_failure(info, taylor, "integrating the attitude")
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
