@@ -30,7 +30,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-import contourpy
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
@@ -41,6 +40,12 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate import budget
+from andoyer.integrate.plane_sampling import (
+    accessible_box,
+    grid_points,
+    polylines,
+    qmc_points,
+)
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels import generated as K
@@ -326,89 +331,6 @@ def _no_intersection(body: RigidBody, plane: SectionPlane, value: float, M: floa
     return ValueError(msg)
 
 
-# ----------------------------------------------------------------------- sampling
-def _bbox(acc: NDArray[np.bool_], xs: NDArray[np.float64], ys: NDArray[np.float64]
-          ) -> tuple[float, float, float, float, float]:
-    """Bounding box of the accessible grid cells (one cell of margin) and its fill ratio."""
-    i = np.flatnonzero(acc.any(axis=1))
-    j = np.flatnonzero(acc.any(axis=0))
-    i0, i1 = max(i[0] - 1, 0), min(i[-1] + 1, xs.size - 1)
-    j0, j1 = max(j[0] - 1, 0), min(j[-1] + 1, ys.size - 1)
-    frac = float(acc[i0:i1 + 1, j0:j1 + 1].mean())
-    return float(xs[i0]), float(xs[i1]), float(ys[j0]), float(ys[j1]), frac
-
-
-def _has_root(eq: _Equation, p: NDArray[np.float64], q: NDArray[np.float64]
-              ) -> NDArray[np.bool_]:
-    pts, _, _, zpts, _ = eq.brackets(p, q)
-    out = np.zeros(p.size, dtype=bool)
-    out[pts] = True
-    out[zpts] = True
-    return out
-
-
-def _grid_points(eq: _Equation, box: tuple[float, float, float, float, float], n: int
-                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Cell-centred k x k grid over the box, k chosen so that about n points are accessible."""
-    x0, x1, y0, y1, frac = box
-    k = max(1, math.ceil(math.sqrt(n / max(frac, 1e-6))))
-    best: tuple[int, NDArray[np.float64], NDArray[np.float64]] | None = None
-    tried: set[int] = set()
-    for _ in range(8):
-        if k in tried:
-            break
-        tried.add(k)
-        gx = x0 + (np.arange(k) + 0.5) * (x1 - x0) / k
-        gy = y0 + (np.arange(k) + 0.5) * (y1 - y0) / k
-        X, Y = (a.ravel() for a in np.meshgrid(gx, gy, indexing="ij"))
-        keep = _has_root(eq, X, Y)
-        count = int(keep.sum())
-        if best is None or abs(count - n) < abs(best[0] - n) or best[0] == 0:
-            best = (count, X[keep], Y[keep])
-        if count == n:
-            break
-        k = 2 * k if count == 0 else max(1, round(k * math.sqrt(n / count)))
-    assert best is not None
-    return best[1], best[2]
-
-
-def _qmc_points(eq: _Equation, box: tuple[float, float, float, float, float], n: int,
-                method: str, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The first n accessible points of a scrambled Sobol or Halton sequence in the box."""
-    x0, x1, y0, y1, frac = box
-    from scipy.stats import qmc
-
-    engine = (qmc.Sobol if method == "sobol" else qmc.Halton)(d=2, scramble=True, rng=seed)
-    # Sobol points keep their balance in blocks of a power of 2.
-    m = 2 ** max(1, math.ceil(math.log2(1.25 * n / max(frac, 1e-6))))
-    xs: list[NDArray[np.float64]] = []
-    ys: list[NDArray[np.float64]] = []
-    got = 0
-    for _ in range(64):
-        u = engine.random(m)
-        X, Y = x0 + (x1 - x0) * u[:, 0], y0 + (y1 - y0) * u[:, 1]
-        keep = _has_root(eq, X, Y)
-        xs.append(X[keep])
-        ys.append(Y[keep])
-        got += int(keep.sum())
-        if got >= n:
-            break
-    return np.concatenate(xs)[:n], np.concatenate(ys)[:n]
-
-
-def _polylines(xs: NDArray[np.float64], ys: NDArray[np.float64], F: NDArray[np.float64]
-               ) -> NDArray[np.float64]:
-    """Contour ``F = 0`` as NaN-separated vertices, shape ``(V, 2)``."""
-    gen = contourpy.contour_generator(xs, ys, F.T, line_type="Separate")
-    lines = gen.lines(0.0)
-    parts: list[NDArray[np.float64]] = []
-    for line in lines:
-        if parts:
-            parts.append(np.full((1, 2), np.nan))
-        parts.append(np.asarray(line, dtype=float))
-    return np.concatenate(parts) if parts else np.empty((0, 2))
-
-
 # ----------------------------------------------------------------------- public API
 @checks_body
 def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: Any
@@ -601,11 +523,11 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
             body, plane, value, M, h, bounds,
             "or the accessible region is smaller than the boundary grid: raise "
             "boundary_grid or narrow plane_bounds")
-    box = _bbox(acc, xs, ys)
+    box = accessible_box(acc, xs, ys)
     if sampling == "grid":
-        P, Q = _grid_points(eq, box, int(n))
+        P, Q = grid_points(eq, box, int(n))
     else:
-        P, Q = _qmc_points(eq, box, int(n), sampling, int(seed))
+        P, Q = qmc_points(eq, box, int(n), sampling, int(seed))
     roots = eq.roots(P, Q) if P.size else []
     rows: list[tuple[int, float, int, int]] = []
     for i, r in enumerate(roots):
@@ -630,7 +552,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
                          "1e-15 relative, less near a tangency of the level (a fold of the "
                          "accessible region); raise tol")
     rate = vector_field(body, x, plane.chart)[:, 1]
-    lines = _polylines(xs, ys, F)
+    lines = polylines(xs, ys, F)
 
     data: dict[str, Any] = {name: (("orbit",), y[:, k]) for k, name in enumerate(STATE)}
     data["y0"] = (("orbit", "component"), y)
