@@ -15,6 +15,7 @@ from andoyer.cli import EXIT_CODES, main
 from andoyer.integrate import budget, fill_section
 from andoyer.scan import config as scan_config
 from andoyer.scan import load_config
+from andoyer.scan.cost import estimate_cost
 
 BODY = RigidBody.paper()
 
@@ -94,7 +95,7 @@ def test_a_large_grid_loads_without_a_body_per_point(monkeypatch):
                        "task": {"kind": "section"}})
     assert cfg.n_points == 810_000
     assert len(built) <= 900 + 900
-    assert scan_config.estimate_cost(cfg).tasks == 810_000
+    assert estimate_cost(cfg).tasks == 810_000
 
 
 def test_levels_out_of_reach_still_name_the_point():

@@ -28,7 +28,7 @@ from andoyer.integrate import fill_section, poincare
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.base import Capability
 from andoyer.scan import estimate_cost, load_config, scan
-from andoyer.scan.config import check_size
+from andoyer.scan.cost import check_size
 from andoyer.scan.store import Schema, Variable, _check_names
 
 # 2 x 2 grid; 5 orbits (one SIMD batch of 4 plus a refilled lane) x 20 crossings.

@@ -14,7 +14,8 @@ ORDER = 60
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from andoyer.scan.config import STORAGE_NAMES, check_size, load_config
+    from andoyer.scan.config import STORAGE_NAMES, load_config
+    from andoyer.scan.cost import check_size
     from andoyer.scan.run import scan, summary
 
     cfg = load_config(args.config)

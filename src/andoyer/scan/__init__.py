@@ -7,8 +7,8 @@ xarray and Dask), not by ``import andoyer``.
 """
 
 from andoyer.scan.config import ScanConfig as ScanConfig
-from andoyer.scan.config import estimate_cost as estimate_cost
 from andoyer.scan.config import load_config as load_config
+from andoyer.scan.cost import estimate_cost as estimate_cost
 from andoyer.scan.run import ScanReport as ScanReport
 from andoyer.scan.run import scan as scan
 from andoyer.scan.tasks import TASKS as TASKS

@@ -29,7 +29,8 @@ import xarray as xr
 from andoyer.outputs import OutputLock
 from andoyer.processes import children_ignore_interrupts
 from andoyer.progress import Progress
-from andoyer.scan.config import ScanConfig, check_size, load_config
+from andoyer.scan.config import ScanConfig, load_config
+from andoyer.scan.cost import check_size
 from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
 from andoyer.scan.tasks import TASKS, Empty
 from andoyer.validation import integer
@@ -40,7 +41,7 @@ __all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_M
 #: The only interface the servers of a local cluster listen on.
 LOOPBACK = "127.0.0.1"
 
-#: Limits of the size check (see :func:`andoyer.scan.config.check_size`).
+#: Limits of the size check (see :func:`andoyer.scan.cost.check_size`).
 DEFAULT_MAX_CORE_HOURS = 100.0
 DEFAULT_MAX_STORE_GB = 50.0
 
@@ -208,7 +209,7 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
     max_core_hours, max_store_gb : float
-        A scan estimated to need more is refused (:func:`~andoyer.scan.config.check_size`).
+        A scan estimated to need more is refused (:func:`~andoyer.scan.cost.check_size`).
 
     Returns
     -------
