@@ -143,6 +143,13 @@ HOW: dict[str, Way] = {
         "cli", ("frequencies", "--n-orbits", "4", "--epsilon", "0.1", "--t-end", "500",
                 "--n-samples", "1025"), "4 orbits to t = 500",
         expect=("frequencies.nc", "frequencies.png")),
+    "andoyer resonances --body hess --A 3 --B 1 --C 2 --mu 0.001 --energy 1 --max-order 5":
+        Way("cli", ("resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
+                    "0.001", "--energy", "1", "--max-order", "5"), "as written",
+            expect=("resonances.nc", "resonances.png")),
+    "andoyer resonances --max-order 10": Way(
+        "cli", ("resonances", "--max-order", "10"), "as written",
+        expect=("resonances.nc", "resonances.png")),
     "andoyer indicators --andoyer 0.3,0,0.3,1,0 --t-end 1000": Way(
         "cli", ("indicators", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "1000"), "as written",
         expect=("indicators.nc", "indicators.png")),

@@ -12,7 +12,7 @@ Examples
 from __future__ import annotations
 
 from andoyer.report.base import Item
-from andoyer.report.items import chaos, hess, unperturbed
+from andoyer.report.items import chaos, hess, resonance, unperturbed
 
 __all__ = ["ITEMS"]
 
@@ -29,6 +29,8 @@ ITEMS: list[Item] = [
     Item("chaos", "Beyond the paper: chaos maps (FLI)", chaos.chaos, 6.2),
     Item("border", "Beyond the paper: the border of chaos near the Hess case", chaos.border,
          4.6),
+    Item("resonances", "Beyond the paper: resonances predicted, then measured",
+         resonance.resonances, 12.0),
     Item("paper-check", "Every printed formula against the derivation",
          unperturbed.paper_check, 0.0),
 ]

@@ -1,0 +1,124 @@
+"""Items beyond the paper: the p/q island chains predicted at first order in mu and
+measured on sections; the Birkhoff normal form at the centres against the closed form.
+
+The builder computes with :mod:`andoyer.analysis.resonance`, draws with
+:mod:`andoyer.plot` and returns a :class:`~andoyer.report.base.Result`; its prose is
+``templates/items/resonances.html.j2``.
+"""
+
+from __future__ import annotations
+
+from andoyer.body import RigidBody
+from andoyer.report.base import Context, Result, Table
+
+__all__ = ["resonances"]
+
+#: The body of the comparison: low-order chains (|V_k| ~ 1e-2), a level h = 1, M = 0.
+BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3, name="hess(3, 1, 2)")
+
+
+def resonances(ctx: Context) -> Result:
+    """Predicted chains over a section; predicted vs measured half-widths; the normal form."""
+    import math
+    import warnings
+
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from andoyer.analysis.resonance import (
+        birkhoff_normal_form,
+        normal_form_frequency,
+        resonance_widths,
+    )
+    from andoyer.analysis.resonance.measure import measure_island
+    from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
+    from andoyer.charts.andoyer_deprit import from_andoyer
+    from andoyer.errors import SingularPassageWarning
+    from andoyer.integrate.api import poincare
+    from andoyer.integrate.engines.base import Capability
+    from andoyer.integrate.fill import fill_section, section_roots
+    from andoyer.plot.resonance import plot_resonances
+    from andoyer.plot.section import plot_section
+
+    engine = ctx.engine_name(Capability.CROSSINGS)
+    body = BODY
+    pred = resonance_widths(body, 1.0, 0.0, "g=0", max_order=5)
+    fill = fill_section(body, 1.0, 0.0, ("g", 0.0), n_orbits=4, root="smallest")
+    # Orbits seeded across each first-order chain, at its first stable point: between the
+    # centre line and the predicted separatrix (f < 1: inside) and beyond it.
+    seeds = []
+    for i in range(pred.sizes["resonance"]):
+        r = pred.isel(resonance=i)
+        if int(r.mu_order) != 1 or int(r.sign) != 1:
+            continue
+        sx, sy = float(r.stable_x[0]), float(r.stable_y[0])
+        j = int(np.argmin(np.hypot(r.centre_x.values - sx, r.centre_y.values - sy)))
+        ux, uy = float(r.upper_x[j]), float(r.upper_y[j])
+        for f in ((0.5, 1.5) if ctx.quick else (0.3, 0.7, 1.3, 2.0)):
+            x, y = sx + f * (ux - sx), sy + f * (uy - sy)
+            roots = section_roots(body, 1.0, 0.0, ("g", 0.0), [x], [y])[0]
+            if roots.size:
+                G = float(roots[np.argmin(np.abs(roots - float(r.G_action)))])
+                seeds.append(from_andoyer([x, 0.0, y, G, 0.0]))
+    y0 = np.concatenate([np.array(seeds).reshape(-1, 6), fill.y0.values])
+    with warnings.catch_warnings():   # orbits of the fill passing L = +-G: not crossings
+        warnings.simplefilter("ignore", SingularPassageWarning)
+        pts = poincare(body, y0, "g=0", 400 if ctx.quick else 1200,
+                       engine=engine, rtol=1e-10, atol=1e-10)
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10.0, 4.5), layout="constrained")
+    whole, zoom = fig.subplots(1, 2)
+    for ax in (whole, zoom):
+        plot_section(pts, ax=ax, boundary=fill)
+        plot_resonances(pred, ax=ax, labels=False)
+    whole.set_title("predicted chains over the section", fontsize=8)
+    handles, names = whole.get_legend_handles_labels()
+    keep = [i for i, n in enumerate(names) if not n.startswith("_")]
+    fig.legend([handles[i] for i in keep], [names[i] for i in keep], fontsize=6,
+               loc="outside right upper", title="chain (q:p)", title_fontsize=6)
+    # The widest chain, around its first stable point: the separatrices against the orbits.
+    first = pred.where((pred.mu_order == 1) & (pred.sign == 1), drop=True)
+    k = int(np.nanargmax(first.half_width.values))
+    r = first.isel(resonance=k)
+    sx, sy = float(r.stable_x[0]), float(r.stable_y[0])
+    j = int(np.argmin(np.hypot(r.centre_x.values - sx, r.centre_y.values - sy)))
+    span = 4.0 * float(np.hypot(r.upper_x[j] - sx, r.upper_y[j] - sy))
+    zoom.set_xlim(sx - 3 * span, sx + 3 * span)
+    zoom.set_ylim(sy - span, sy + span)
+    zoom.set_title(f"the {r.label.values} chain about axis {int(r.axis)}, near a stable point",
+                   fontsize=8)
+    fig.suptitle("hess(3, 1, 2), mu = 1e-3, H = 1, M = 0, section g = 0", fontsize=9)
+    files = ctx.figure(fig, "resonances")
+    files.append(ctx.data(pred, "resonances"))
+    rows = []
+    numbers = {}
+    chains = [("3:1", 1, 1e-3)] if ctx.quick else [("3:1", 1, 1e-3), ("3:1", 1, 1e-4),
+                                                   ("2:1", 1, 1e-3)]
+    for label, axis, mu in chains:
+        m = measure_island(body.with_mu(mu), 1.0, 0.0, label, axis=axis, n_seeds=3,
+                           n_rounds=2 if ctx.quick else 3, engine=engine)
+        p, q = float(m.predicted_half_width), float(m.measured_half_width)
+        rows.append([label, f"{mu:g}", f"{p:.4e}", f"{q:.4e}", f"{(q - p) / p:+.2%}",
+                     f"{float(m.edge_uncertainty):.1e}", f"{float(m.centre_offset):+.1e}"])
+        numbers[f"half_width_{label}_mu_{mu:g}"] = q
+    # The normal form at the rotation about y of the paper's body, against the closed form.
+    paper = ctx.body
+    nf_rows = []
+    for order in (4, 8):
+        nf = birkhoff_normal_form(paper, 1.0, order=order, lstar=0.0)
+        errs = []
+        for amp in (0.05, 0.1):
+            h = 0.5 * (paper.a * math.sin(amp) ** 2 + paper.b * math.cos(amp) ** 2)
+            exact = 2 * math.pi / euler_poinsot_frequencies(paper, h, 1.0).period
+            action = brentq(lambda a, nf=nf, h=h: float(
+                normal_form_frequency(nf, [a]).energy[0]) - h, 0.0, 0.05, xtol=1e-16)
+            w = abs(float(normal_form_frequency(nf, [action]).omega_l[0]))
+            errs.append(abs(w - exact) / exact)
+        nf_rows.append((order, errs, math.log2(errs[1] / errs[0])))
+    return Result(
+        files, numbers,
+        {"engine": engine, "n_chains": int(pred.sizes["resonance"]),
+         "nf": nf_rows},
+        Table(["chain", "mu", "predicted half-width (G)", "measured", "difference",
+               "edge uncertainty", "centre offset"], rows))
