@@ -19,6 +19,7 @@ import xarray as xr
 import andoyer
 from andoyer import RigidBody, energy, from_andoyer, hamiltonian, to_andoyer, to_hess
 from andoyer.explore.export import netcdf_bytes, orbits_dataset, plane_figure, png_bytes
+from andoyer.explore.seeds import initial_charts, seed
 from andoyer.explore.state import (
     PALETTE,
     PLANES,
@@ -28,12 +29,10 @@ from andoyer.explore.state import (
     Stage,
     crossing_stages,
     default_energy,
-    initial_charts,
     integral_drifts,
     make_settings,
     plane_coordinates,
     plane_view,
-    seed,
     unperturbed_separatrices,
 )
 from andoyer.integrate import Section, poincare

@@ -23,13 +23,13 @@ import numpy as np
 import panel as pn
 
 from andoyer.body import RigidBody
+from andoyer.explore.seeds import initial_charts
 from andoyer.explore.state import (
     Orbit,
     OutsideRegionError,
     PlaneView,
     Session,
     Settings,
-    initial_charts,
     integral_drifts,
     make_settings,
 )

@@ -59,6 +59,7 @@ from andoyer.explore.base import (
     underlay_image,
 )
 from andoyer.explore.layout import ExplorerLayout
+from andoyer.explore.seeds import seed
 from andoyer.explore.state import (
     PLANES,
     PlaneView,
@@ -69,7 +70,6 @@ from andoyer.explore.state import (
     crossing_stages,
     integral_drifts,
     orbit_indicators,
-    seed,
     shared_plane_view,
 )
 from andoyer.integrate.section import Section
