@@ -1,6 +1,7 @@
 """The report's items in report order: key, title, builder, measured cost.
 
-The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.chaos`);
+The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.space`,
+:mod:`.chaos`);
 each item's prose is ``templates/items/<key>.html.j2``.
 
 Examples
@@ -12,7 +13,7 @@ Examples
 from __future__ import annotations
 
 from andoyer.report.base import Item
-from andoyer.report.items import chaos, hess, resonance, unperturbed
+from andoyer.report.items import chaos, hess, resonance, space, unperturbed
 
 __all__ = ["ITEMS"]
 
@@ -24,6 +25,8 @@ ITEMS: list[Item] = [
     Item("solutions", "The Hess solution and the physical pendulum", hess.solutions, 1.2),
     Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
          "θ2 = 0", hess.fig3, 2.0),
+    Item("space", "Beyond the paper: the Hess motions in space, the heteroclinic cycle",
+         space.space, 5.0),
     Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
          chaos.manifolds, 2.2),
     Item("chaos", "Beyond the paper: chaos maps (FLI)", chaos.chaos, 6.2),
