@@ -27,6 +27,7 @@ from andoyer.analysis.resonance.torus import (
 )
 from andoyer.analysis.unperturbed.euler_poinsot import elliptic_f, euler_poinsot_frequencies
 from andoyer.charts.andoyer_deprit import from_andoyer
+from andoyer.charts.hess import from_hess
 from andoyer.integrate import poincare, propagate
 from andoyer.integrate.fill import section_roots
 
@@ -149,37 +150,52 @@ def test_widths_scale_and_second_order_chains():
     assert small.attrs["plane_x"] == "l_angle" and small.half_width.attrs["equation"] == "(R6)"
 
 
-def _psi_span(body, row, torus, l, L, n_crossings):
-    """Range of the unwrapped slow angle of the orbit seeded at (l, L) on g = 0."""
-    roots = section_roots(body, 1.0, 0.0, ("g", 0.0), [l], [L])[0]
-    G = float(roots[np.argmin(np.abs(roots - float(row.G_action)))])
+def _psi_span(body, row, torus, x, y, n_crossings, section="g=0"):
+    """Range of the unwrapped slow angle of the orbit seeded at the plane point (x, y)."""
+    coord, value = section.split("=")
+    roots = section_roots(body, 1.0, 0.0, (coord, float(value)), [x], [y])[0]
+    if coord == "g":
+        G = float(roots[np.argmin(np.abs(roots - float(row.G_action)))])
+        y0 = from_andoyer([x, float(value), y, G, 0.0])
+    else:   # (theta1, J1): J2 = G
+        G = float(roots[np.argmin(np.abs(roots - float(row.G_action)))])
+        y0 = from_hess(body, [x, float(value), y, G, 0.0])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ds = poincare(body, from_andoyer([l, 0.0, L, G, 0.0]), "g=0", n_crossings,
-                      engine="numba", rtol=1e-11, atol=1e-11)
+        ds = poincare(body, y0, section, n_crossings, engine="numba", rtol=1e-11, atol=1e-11)
     mom = np.stack([ds.G1.values[0], ds.G2.values[0], ds.G3.values[0]], axis=-1)
     phi1 = free_top_phase(body, mom)
     rho = np.interp(phi1 % (2 * math.pi), np.append(torus.phi1, 2 * math.pi),
                     np.append(torus.rho, torus.rho[0]))
-    n = np.arange(phi1.size) + 1.0
-    psi = int(row.q) * phi1 - (2 * math.pi * n - rho)
+    g = np.unwrap(ds.g_angle.values[0])
+    psi = int(row.q) * phi1 - int(row.p) * (g - rho)
     path = np.cumsum(np.angle(np.exp(1j * np.diff(psi))))
     return float(np.ptp(path))
 
 
-def test_stable_and_unstable_orbits_on_a_section():
+@pytest.mark.parametrize("section", ["g=0", "theta2=0", "theta2=1.0"])
+def test_stable_and_unstable_orbits_on_a_section(section):
     """The predicted stable point librates with a small slow angle; the predicted unstable
-    point sweeps (nearly) the whole circle: the pendulum's two equilibria, (R7)."""
-    ds = resonance_widths(WIDE, 1.0, 0.0, max_order=4)
+    point sweeps (nearly) the whole circle: the pendulum's two equilibria, (R7), on the
+    sections of both charts."""
+    ds = resonance_widths(WIDE, 1.0, 0.0, section, max_order=4)
     i = int(np.nonzero((ds.label.values == "3:1") & (ds.axis.values == 1)
                        & (ds.sign.values == 1))[0][0])
     row = ds.isel(resonance=i)
     torus = sample_torus(WIDE, 1.0, float(row.G_action), 0.0, 1)
     n = int(8.0 / float(row.libration_frequency))
-    stable = _psi_span(WIDE, row, torus, float(row.stable_x[0]), float(row.stable_y[0]), n)
-    unstable = _psi_span(WIDE, row, torus, float(row.unstable_x[0]), float(row.unstable_y[0]),
-                         n)
-    assert stable < 0.5
+    G = float(row.G_action)
+
+    def farthest_from_the_poles(kind):
+        # L = +-G is the chart's singular set (g undefined): take the point with least |L|
+        x, y = row[f"{kind}_x"].values, row[f"{kind}_y"].values
+        L = y if section.startswith("g") else 2.0 * y - G
+        k = int(np.nanargmin(np.abs(L)))
+        return float(x[k]), float(y[k])
+
+    stable = _psi_span(WIDE, row, torus, *farthest_from_the_poles("stable"), n, section)
+    unstable = _psi_span(WIDE, row, torus, *farthest_from_the_poles("unstable"), n, section)
+    assert stable < 0.2
     assert unstable > 5.0
 
 

@@ -247,7 +247,9 @@ def normal_form_frequency(nf: xr.Dataset, I: ArrayLike) -> xr.Dataset:
     nf : xarray.Dataset
         :func:`birkhoff_normal_form`'s result.
     I : array_like
-        Actions (>= 0).
+        Actions, ``0 <= I <= G`` (the normal form is a series about the centre: it
+        describes small actions; the largest action of the ``(l, L)`` motion is of order
+        ``G``).
 
     Returns
     -------
@@ -265,8 +267,11 @@ def normal_form_frequency(nf: xr.Dataset, I: ArrayLike) -> xr.Dataset:
     if not isinstance(nf, xr.Dataset) or "coefficient" not in nf:
         raise ValueError("nf must be a birkhoff_normal_form dataset")
     acts = np.atleast_1d(real_array("I", I))
-    if acts.ndim != 1 or not np.all(np.isfinite(acts)) or np.any(acts < 0.0):
-        raise ValueError("I must be finite actions >= 0 (a number or a 1-D array)")
+    G = float(nf.attrs.get("G", 1.0))
+    if acts.ndim != 1 or not np.all(np.isfinite(acts)) or np.any(acts < 0.0) \
+            or np.any(acts > G):
+        raise ValueError(f"I must be actions in [0, G] = [0, {G:g}] (a number or a 1-D "
+                         "array)")
     c = nf.coefficient.values
     dc = nf.g_coefficient.values
     k = nf.power.values

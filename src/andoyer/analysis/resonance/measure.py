@@ -195,6 +195,10 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         raise ValueError(f"resonance {resonance!r}: only the chains of first order in mu "
                          "(p = 1, 'q:1') have a predicted width to measure")
     g_star = finite("g_star", g_star)
+    if not abs(g_star) <= 100.0:
+        raise ValueError(f"g_star (the section g = g_star) must be an angle within "
+                         f"[-100, 100] rad, got {g_star!r}")
+    g_star = Section("g", g_star).value
     if n_crossings is not None:
         n_crossings = integer("n_crossings", n_crossings, 20, 10**6)
     n_seeds = integer("n_seeds", n_seeds, 1, 64)
