@@ -12,6 +12,7 @@ topic, imported on demand (``from andoyer.analysis.chaos.indicators import indic
   :mod:`~andoyer.analysis.unperturbed.equilibria`,
   :mod:`~andoyer.analysis.unperturbed.euler_poinsot`;
 - :mod:`~andoyer.analysis.hess`, the Hess solution and the pendulum:
+  :mod:`~andoyer.analysis.hess.reduced`,
   :mod:`~andoyer.analysis.hess.hess_solution`, :mod:`~andoyer.analysis.hess.hess_periods`,
   :mod:`~andoyer.analysis.hess.pendulum`, :mod:`~andoyer.analysis.hess.floquet`;
 - :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.indicators` (FLI, MEGNO,
