@@ -43,13 +43,13 @@ class Context:
 
     def engine_name(self, *capabilities: Capability) -> str:
         """The engine that actually runs: :attr:`engine`, or the default (heyoka where
-        installed, else numba); for an analysis that needs ``capabilities`` the engine
+        installed, else the first fallback with the capabilities); for an analysis that needs ``capabilities`` the engine
         lacks, the default.
 
         >>> from andoyer.integrate.engines.base import Capability
-        >>> ctx = Context(Path("."), RigidBody.paper(), "numba")
-        >>> ctx.engine_name(), ctx.engine_name(Capability.EXTENDED_PRECISION) != "numba"
-        ('numba', True)
+        >>> ctx = Context(Path("."), RigidBody.paper(), "taylor")
+        >>> ctx.engine_name(), ctx.engine_name(Capability.TANGENT) != "taylor"
+        ('taylor', True)
         """
         from andoyer.integrate.engines import default_engine_name, engine_class
 
