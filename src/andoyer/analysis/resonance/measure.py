@@ -14,9 +14,10 @@ returns (it librates), and *circulating* otherwise; the mean drift of ``psi`` pe
 ``2 pi (q W - p)`` on a circulating orbit, is linear in ``s`` off the island and points
 to it.
 
-The search: two seeds at ``s = +-3 Delta G`` (the prediction); while no seed is locked,
-the next is placed where the drift, fitted linearly through the last two, vanishes (the
-first-order centre is off by ``O(mu)``, more than the width of a thin chain). Then both
+The search: seeds at ``s = 0`` (the predicted stable point) and ``+-3 Delta G``; while no
+seed is locked, the next is placed where the drift, fitted linearly through the last two,
+vanishes (the first-order centre is off by ``O(mu)``, more than the width of a thin
+chain). Then both
 edges of the locked interval are bracketed and narrowed by rounds of ``n_seeds`` seeds
 inside each bracket. The result: the edges ``s_inner``, ``s_outer`` with their
 uncertainties, the measured half-width ``(s_outer - s_inner) / 2`` and centre offset.
@@ -233,7 +234,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         log_d.extend(dr.tolist())
         return lk
 
-    run(np.array([-3.0 * dG, 3.0 * dG]))
+    run(np.array([0.0, -3.0 * dG, 3.0 * dG]))
     for _ in range(_MAX_LOCATE):
         if any(log_l):
             break
