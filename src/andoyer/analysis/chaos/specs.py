@@ -40,7 +40,9 @@ ROOTS = ("largest", "smallest")
 @dataclass(frozen=True)
 class MapGrid:
     """Where the orbits of a chaos map start: the cell centres of an ``nx x ny`` grid on
-    the section's plane, the missing action solved from ``H = h`` (Eq. (5) of [1]_ on a
+    the section's plane.
+
+    Above each centre the missing action is solved from ``H = h`` (Eq. (5) of [1]_ on a
     ``g`` section, (14) on a ``theta2`` section).
 
     Parameters
@@ -103,8 +105,11 @@ class MapGrid:
 
 @dataclass(frozen=True)
 class IndicatorRun:
-    """What is integrated from each start of a chaos map: the Euler-Poisson equations (1)
-    of [1]_ with one tangent vector, to ``t_end``.
+    """What is integrated from each start of a chaos map: the state and one tangent
+    vector, to ``t_end``.
+
+    The state follows the Euler-Poisson equations (1) of [1]_, the tangent vector their
+    variational equations.
 
     Parameters
     ----------
