@@ -43,8 +43,8 @@ class Context:
 
     def engine_name(self, *capabilities: Capability) -> str:
         """The engine that actually runs: :attr:`engine`, or the default (heyoka where
-        installed, else the first fallback with the capabilities); for an analysis that needs ``capabilities`` the engine
-        lacks, the default.
+        installed, else the first fallback with the capabilities); for an analysis that
+        needs ``capabilities`` the engine lacks, the default.
 
         >>> from andoyer.integrate.engines.base import Capability
         >>> ctx = Context(Path("."), RigidBody.paper(), "taylor")
