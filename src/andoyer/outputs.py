@@ -15,6 +15,13 @@ Two rules for every output of a run (a file, a folder, a scan's Zarr store):
   refuses a folder holding files that are not in it, or that changed since (a user's
   ``index.html``): :func:`guard_folder`. The manifest is brought up to date when the run
   ends, however it ends (the files are written atomically, so each one is whole).
+* **Files, the same rule.** A command writing files (``--out sec.nc`` and the
+  ``sec.png`` beside it) records them in the manifest of *their* folder, which stays the
+  user's: only those files are listed there. An existing file is replaced only if that
+  manifest lists it with its checksum (andoyer wrote it and nobody changed it since);
+  any other file is refused, naming it: :func:`guard_file`. There is no flag to force it,
+  as there is none for folders: choose another name, or move the file away. A file being
+  written by a run that was killed (written after it started) is adopted, as in folders.
 
 Examples
 --------
@@ -48,7 +55,7 @@ import filelock
 from andoyer.errors import OutputInUseError, StaleLockWarning
 
 __all__ = ["OutputLock", "read_holder", "lock_path", "Manifest", "MANIFEST", "guard_folder",
-           "hold", "release", "release_all"]
+           "guard_file", "hold", "release", "release_all"]
 
 #: The manifest of a folder andoyer writes (hidden, inside the folder).
 MANIFEST = ".andoyer-manifest.json"
@@ -205,8 +212,8 @@ class Manifest:
         except FileNotFoundError:
             return {}
         except (OSError, ValueError) as e:
-            raise ValueError(f"{str(self.path)!r} is damaged ({e}); remove it if the folder "
-                             "holds nothing of yours") from None
+            raise ValueError(f"{str(self.path)!r} is damaged ({e}); remove it (andoyer then "
+                             "takes every file of the folder for yours)") from None
         files = data.get("files", {}) if isinstance(data, dict) else {}
         return {str(k): str(v) for k, v in files.items()} if isinstance(files, dict) else {}
 
@@ -221,13 +228,46 @@ class Manifest:
         return [p.name for p in self._entries()
                 if not p.is_file() or p.is_symlink() or known.get(p.name) != _sha256(p)]
 
+    def owns(self, name: str) -> bool:
+        """Whether the entry ``name`` is a file andoyer wrote here, unchanged since."""
+        p = self.folder / name
+        return (p.is_file() and not p.is_symlink()
+                and self.files().get(name) == _sha256(p))
+
     def record(self, since: float) -> None:
         """Record the files written since ``since`` (seconds since the epoch), and keep
         those recorded before that are still there (with their new checksums)."""
-        known = self.files()
-        files = {p.name: _sha256(p) for p in self._entries()
-                 if p.is_file() and not p.is_symlink()
-                 and (p.name in known or p.stat().st_mtime >= since - 1.0)}
+        with self._updating():
+            known = self.files()
+            files = {p.name: _sha256(p) for p in self._entries()
+                     if p.is_file() and not p.is_symlink()
+                     and (p.name in known or p.stat().st_mtime >= since - 1.0)}
+            self._write(files)
+
+    def add(self, names: list[str], since: float) -> None:
+        """Record the files ``names`` that were written since ``since`` (the outputs of one
+        run in a folder that is not andoyer's); the other entries are kept as they are,
+        those whose file is gone are dropped."""
+        with self._updating():
+            files = {k: v for k, v in self.files().items() if (self.folder / k).is_file()}
+            for name in names:
+                p = self.folder / name
+                if p.is_file() and not p.is_symlink() and p.stat().st_mtime >= since - 1.0:
+                    files[name] = _sha256(p)
+            self._write(files)
+
+    @contextlib.contextmanager
+    def _updating(self) -> Iterator[None]:
+        """Runs writing different files of one folder update its manifest in turn (its
+        own short-lived lock, removed while held as :class:`OutputLock` does)."""
+        lock = filelock.FileLock(self.folder / f"{MANIFEST}{_LOCK_SUFFIX}", timeout=30)
+        with lock:
+            try:
+                yield
+            finally:
+                Path(lock.lock_file).unlink(missing_ok=True)
+
+    def _write(self, files: dict[str, str]) -> None:
         if not files and not self.path.exists():
             return
         tmp = self.path.with_name(f"{MANIFEST}.{os.getpid()}.tmp")
@@ -278,6 +318,57 @@ def guard_folder(folder: str | os.PathLike[str], flag: str = "--out") -> OutputL
                          "choose a new or empty folder, or move them away")
     stack.callback(manifest.record, lock.start)
     return lock
+
+
+def guard_file(path: str | os.PathLike[str], flag: str = "--out") -> OutputLock:
+    """Hold the output file ``path`` for this run and refuse it if it exists and andoyer did
+    not write it (the manifest of its folder, :class:`Manifest`, lists it with its checksum).
+
+    Also refused: a file inside a folder another run is writing (``andoyer paper --out``).
+    When the run ends (:func:`release_all`) the manifest of the folder records the file,
+    if this run wrote it. A file written by a killed run (after it started) is adopted.
+
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "mine.png").write_text("a user's file")
+    >>> guard_file(folder / "mine.png")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: --out '...mine.png' exists and andoyer did not write it (or it changed since ...
+    """
+    out = Path(path)
+    key = Path(os.path.abspath(out))
+    if key in _HELD:
+        return _HELD[key][0]
+    _refuse_folder_in_use(out.parent, flag, out)
+    lock = hold(out)
+    manifest = Manifest(out.parent)
+    if (lock.stale is not None and isinstance(lock.stale.get("start"), int | float)
+            and out.exists()):
+        manifest.add([out.name], float(lock.stale["start"]))
+    if (out.exists() or out.is_symlink()) and not manifest.owns(out.name):
+        release(out)
+        what = "a folder" if out.is_dir() else "it"
+        raise ValueError(f"{flag} {str(out)!r} exists and andoyer did not write {what} (or it "
+                         "changed since andoyer wrote it): it would be replaced; choose "
+                         f"another {flag}, or move the file away")
+    _HELD[key][1].callback(manifest.add, [out.name], lock.start)
+    return lock
+
+
+def _refuse_folder_in_use(folder: Path, flag: str, out: Path) -> None:
+    """``OutputInUseError`` if another run holds ``folder`` (writes it as a whole)."""
+    if not lock_path(folder).exists() or Path(os.path.abspath(folder)) in _HELD:
+        return
+    probe = filelock.FileLock(lock_path(folder), timeout=0)
+    try:
+        probe.acquire()
+    except filelock.Timeout:
+        raise OutputInUseError(
+            f"{flag} {str(out)!r}: its folder {str(folder)!r} is being written by another "
+            f"andoyer run ({_describe(read_holder(folder))}); wait for it to end, or choose "
+            "another folder") from None
+    probe.release()
 
 
 def release(target: str | os.PathLike[str]) -> None:

@@ -11,7 +11,7 @@ from typing import Any, Literal, NamedTuple
 
 from andoyer.integrate.engines import ENGINES
 from andoyer.notation import VOCABULARY
-from andoyer.outputs import guard_folder, hold
+from andoyer.outputs import guard_file, guard_folder
 from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
@@ -128,13 +128,17 @@ def _writable_folder(folder: Path, flag: str, text: str) -> None:
         raise ValueError(f"{flag} {text!r}: folder {str(folder)!r} is not writable")
 
 
-def output_file(text: str, suffix: str, flag: str = "--out") -> Path:
+def output_file(text: str, suffix: str, flag: str = "--out",
+                beside: Iterable[str] = ()) -> Path:
     """Check an output file named on the command line before any computation.
 
     It must end in ``suffix``, must not be a folder, and its folder must exist and be
-    writable; it is then locked for the rest of the command (:func:`andoyer.outputs.hold`:
-    a second run writing it is refused, naming this one). Raises ``ValueError`` naming the
-    flag and its value.
+    writable. It and the files written beside it (``beside``: endings that replace
+    ``suffix``, e.g. ``(".png",)`` or ``("-fli.png",)``) are then locked for the rest of
+    the command, and refused if they exist and andoyer did not write them
+    (:func:`andoyer.outputs.guard_file`: the manifest of their folder lists what andoyer
+    wrote there; a second run writing them is refused, naming this one). Raises
+    ``ValueError`` naming the flag and its value, or the file.
 
     Examples
     --------
@@ -155,7 +159,11 @@ def output_file(text: str, suffix: str, flag: str = "--out") -> Path:
     if path.is_dir():
         raise ValueError(f"{flag} {text!r} is an existing folder; name a file")
     _writable_folder(path.parent if str(path.parent) else Path("."), flag, text)
-    hold(path)
+    for p in (path, *(path.with_name(path.stem + end) for end in beside)):
+        if p.is_dir():
+            raise ValueError(f"{flag} {text!r}: {str(p)!r} would be written beside it and is "
+                             "an existing folder; choose another name")
+        guard_file(p, flag)
     return path
 
 
@@ -315,7 +323,7 @@ class Inputs(NamedTuple):
 
 def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
                      state: Literal["none", "required", "optional"] = "none",
-                     level: bool = False) -> Inputs:
+                     level: bool = False, beside: Iterable[str] = (".png",)) -> Inputs:
     """The inputs of a command that integrates a body, checked in one order before any
     work: the output file (``--out``, ending in ``suffix``; figures are written beside
     it), the body, the initial state where the command takes one (``state``), and, where
@@ -331,6 +339,9 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
         where ``state`` is not ``"none"``, :func:`add_level_args` where ``level``).
     suffix : str, default ".nc"
         What ``--out`` must end in.
+    beside : iterable of str, default (".png",)
+        Endings of the files the command writes beside ``--out`` (:func:`output_file`:
+        each is refused if it exists and andoyer did not write it).
     state : {"none", "required", "optional"}, default "none"
         Whether the command takes an initial state, and must have one.
     level : bool, default False
@@ -342,7 +353,7 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
     Inputs
         ``out, body, state, chart, section, h`` (None where not asked for or not given).
     """
-    out = output_file(args.out, suffix)
+    out = output_file(args.out, suffix, beside=beside)
     body = body_from_args(args)
     given = None if state == "none" else state_from_args(args, body,
                                                          required=state == "required")

@@ -22,7 +22,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.section import save_figure
     from andoyer.scan.store import open_store
 
-    png = output_file(args.out, ".png")
+    png = output_file(args.out, ".png", beside=(".pdf",) if args.pdf else ())
     store = Path(args.store)
     distinct_outputs([png, png.with_suffix(".pdf")], [store])
     if not (store / "zarr.json").is_file() and not (store / ".zgroup").is_file():

@@ -45,7 +45,9 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.section import save_figure
 
-    out, body, _, _, _, h = inputs_from_args(args, level=True)
+    out, body, _, _, _, h = inputs_from_args(
+        args, level=True, beside=(".png",) if args.indicator != "both"
+        else ("-fli.png", "-megno.png"))
     assert h is not None  # a level command without a state has its level
     grid = _grid(args.n)
     source, seconds = warm_up(tol=args.tol, engine=args.engine)

@@ -25,7 +25,7 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.integrate.api import propagate
     from andoyer.io import write_netcdf
 
-    out_path, body, state, chart, _, _ = inputs_from_args(args, state="required")
+    out_path, body, state, chart, _, _ = inputs_from_args(args, state="required", beside=())
     assert state is not None and chart is not None  # required: given, or refused
     if args.t_end <= 0 or args.n_out < 2:
         raise ValueError("--t-end must be > 0 and --n-out >= 2")
