@@ -12,7 +12,8 @@ from typing import Any, ParamSpec, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["MAX_ACTION", "finite", "positive", "integer", "real_array", "finite_array",
+__all__ = ["MAX_ACTION", "MAX_MOMENTUM", "MAX_ENERGY", "MAX_COUNT", "QUANTITIES", "level",
+           "finite", "positive", "integer", "real_array", "finite_array",
            "floats", "choice", "grid", "box", "flag", "checks_arguments"]
 
 
@@ -49,6 +50,41 @@ def finite(name: str, value: Any) -> float:
 #: Largest momentum (``G``, ``J2``, ``G0``) an action argument takes: its square, an
 #: energy, must stay a float (``G^2`` overflows near 1.3e154).
 MAX_ACTION = 1e150
+
+
+#: Largest ``|G|`` the integrators take. The field (1) is quadratic in G and the step
+#: control multiplies it once more, so beyond about 1e102 intermediate values overflow
+#: (a section at h = 1e300, ``|G|`` ~ 1e150, ended in a division by zero inside the kernel).
+MAX_MOMENTUM = 1e100
+
+#: Largest ``|h|`` (an energy) or ``|mu|`` (the scale of the potential energy) taken where
+#: no body bounds it (:func:`level` does where one does): ``MAX_MOMENTUM**2``.
+MAX_ENERGY = 1e200
+
+#: Largest value of an integer argument (counts, sizes, steps, orders): a count beyond
+#: it is beyond any machine's memory (8 GB for one float per item); the cost guards
+#: (:mod:`andoyer.integrate.budget`) bound the work below it.
+MAX_COUNT = 10**9
+
+
+def level(name: str, h: float, body: Any) -> None:
+    """``ValueError`` naming ``name`` unless the level ``H = h`` of ``body`` is finite and
+    reaches ``|G| <= MAX_MOMENTUM`` only (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, from
+    Eq. (1): the kinetic energy is at least ``|G|^2 min(a, b, c) / 2``).
+
+    >>> from andoyer import RigidBody
+    >>> level("h", 1e300, RigidBody.paper())  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: h = 1e+300: the energy level reaches |G| = 2.24e+150, beyond the 1e+100 ...
+    """
+    h = finite(name, h)
+    reach = math.sqrt(2.0 * max(h + body.mu, 0.0) / min(body.a, body.b, body.c))
+    if not reach <= MAX_MOMENTUM:
+        raise ValueError(f"{name} = {h:g}: the energy level reaches |G| = {reach:.3g}, "
+                         f"beyond the {MAX_MOMENTUM:.3g} that the integrators take (the "
+                         "field (1) and its error control would overflow); take a lower "
+                         "level")
 
 
 def positive(name: str, value: Any, *, maximum: float | None = None) -> float:
@@ -283,7 +319,7 @@ def _scalar_kind(annotation: Any, namespace: dict[str, Any] | None = None
 def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
     if value is None and optional:
         return
-    if kind == "int":  # the type only: ranges are the function's integer() check
+    if kind == "int":  # the type, and MAX_COUNT: finer ranges are the function's integer()
         ok = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_) \
             and (isinstance(value, numbers.Integral)
                  or (math.isfinite(value) and float(value).is_integer()))
@@ -291,6 +327,9 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
             text = repr(value)
             raise ValueError(f"{name} must be an integer{' or None' if optional else ''}, "
                              f"got {text if len(text) <= 60 else text[:57] + '...'}")
+        if abs(value) > MAX_COUNT:
+            raise ValueError(f"{name} must be an integer within +-{MAX_COUNT:.0e}, got "
+                             f"{value!r}")
         return
     text = repr(value)
     text = text if len(text) <= 60 else text[:57] + "..."
@@ -326,15 +365,85 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
             raise ValueError(f"{name} must be a number, got NaN")
 
 
+#: What each argument name means, hence its range: the names follow the paper (one name,
+#: one meaning: ``tests/test_vocabulary.py``), so one table bounds every public function.
+#: ``energy``: finite, and with a ``body`` argument a level it can integrate
+#: (:func:`level`), else ``|h| <= MAX_ENERGY``; ``action`` (momenta): finite,
+#: ``|x| <= MAX_ACTION``; ``angle``, ``time``, ``finite``: finite; ``scale`` (``mu``):
+#: finite, ``|mu| <= MAX_ENERGY``; ``tolerance``: finite and > 0; ``sheet``: +1 or -1;
+#: ``count``: an integer in ``[0, MAX_COUNT]``. Every ``int`` argument is also bounded by
+#: ``MAX_COUNT`` in absolute value. Arrays under these names are checked elementwise.
+QUANTITIES: dict[str, str] = {
+    **dict.fromkeys(("h", "h0", "energy"), "energy"),
+    **dict.fromkeys(("G", "L", "M", "J1", "J2", "J3", "G0", "L0", "p", "p0", "action"),
+                    "action"),
+    **dict.fromkeys(("l", "g", "theta1", "theta2", "theta3", "psi", "psi0", "vartheta",
+                     "vartheta0", "q", "q0", "phi0", "t0"), "angle"),
+    **dict.fromkeys(("t_end", "T", "period", "duration"), "time"),
+    **dict.fromkeys(("mu",), "scale"),
+    **dict.fromkeys(("c", "epsilon", "value"), "finite"),
+    **dict.fromkeys(("tol", "xtol", "rtol", "atol"), "tolerance"),
+    **dict.fromkeys(("sheet",), "sheet"),
+    **dict.fromkeys(("n", "k", "steps", "mu_steps", "window", "points_per_period",
+                     "boundary_grid", "n_check", "n_times", "n_samples", "n_initial",
+                     "n_levels", "n_curve", "n_phase", "n_orbits", "n_crossings", "n_freq",
+                     "n_points"), "count"),
+}
+
+
+def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any]) -> None:
+    """Check ``value`` of the argument ``name`` against its quantity ``kind``."""
+    if kind == "count":
+        if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
+            if not (math.isfinite(value) and 0 <= value <= MAX_COUNT):
+                raise ValueError(f"{label} must be an integer in [0, {MAX_COUNT:.0e}], got "
+                                 f"{value!r}")
+        return
+    if kind == "sheet":
+        if not (isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
+                and value in (1, -1)):
+            raise ValueError(f"{label} must be +1 or -1, got {value!r}")
+        return
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return  # not numbers: the function's own check names it
+    if arr.size == 0:
+        return
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{label} must be finite, got {_short(value)}")
+    big = float(np.max(np.abs(arr)))
+    if kind == "energy":
+        body = bound.get("body")
+        if arr.ndim == 0 and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
+            level(label, float(arr), body)
+        elif big > MAX_ENERGY:
+            raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
+    elif kind == "action" and big > MAX_ACTION:
+        raise ValueError(f"{label} must be within +-{MAX_ACTION:g} (its square, an energy, "
+                         f"must stay a float), got {_short(value)}")
+    elif kind == "scale" and big > MAX_ENERGY:
+        raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
+    elif kind == "tolerance" and not np.all(arr > 0.0):
+        raise ValueError(f"{label} must be > 0, got {_short(value)}")
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     """Decorator of a public function: every argument annotated as a plain scalar
     (``float``, ``int``, ``bool``, ``str``, each optionally ``| None``) is checked to be
     one before the function runs (a bool, text, a list or None where a number belongs;
     NaN for a ``float``; a fraction for an ``int``); one annotated ``ArrayLike`` must not
     be None, a bool or text; one annotated with a class of the package must be an
-    instance of it. Each failure is a ``ValueError`` naming the argument (a module's
-    ``ARGUMENT_NAMES`` dict may give a longer name). Ranges, shapes, NaN in arrays and
-    choices stay each function's own checks.
+    instance of it. An argument whose name is a quantity of :data:`QUANTITIES` (``h``, the
+    actions, angles, times, ``mu``, tolerances, counts, ``sheet``) is held to its range,
+    an energy ``h`` to a level its ``body`` can integrate (:func:`level`). Each failure is a
+    ``ValueError`` naming the argument (a module's ``ARGUMENT_NAMES`` dict may give a longer
+    name). Finer ranges, shapes and choices stay each function's own checks.
 
     >>> @checks_arguments
     ... def period(h: float, n: int = 1, *, progress: bool | None = None) -> float:
@@ -354,6 +463,12 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     namespace = getattr(func, "__globals__", None)
     checks = {p.name: kind for p in sig.parameters.values()
               if (kind := _scalar_kind(p.annotation, namespace)) is not None}
+    # The quantity of a name applies where the annotation says a number or an array of
+    # numbers (an ``int`` only for counts and sheets; ``n`` of elliptic_pi is a float).
+    ranged = {name: QUANTITIES[name] for name, kind in checks.items()
+              if name in QUANTITIES and (
+                  kind[0] in ("float", "array") if QUANTITIES[name] not in ("count", "sheet")
+                  else kind[0] == "int")}
     if not checks:
         return func
     where = getattr(func, "__name__", "function")
@@ -370,6 +485,10 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
         for name, value in bound.arguments.items():
             if name in checks:
                 _check_scalar(labels.get(name, name), value, *checks[name])
+        for name, value in bound.arguments.items():
+            if name in ranged and value is not None:
+                _quantity(name, labels.get(name, name), value, ranged[name],
+                          bound.arguments)
         return func(*args, **kwargs)
 
     return wrapper

@@ -36,7 +36,8 @@ from numpy.typing import NDArray
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
-from andoyer.errors import CostLimitError
+from andoyer.errors import ArgumentTypeError, CostLimitError
+from andoyer.validation import MAX_MOMENTUM, level
 
 __all__ = ["LIMITS", "set_limits", "limits", "check", "estimate_steps", "SECONDS_PER_STEP",
            "MAX_MOMENTUM", "check_momentum", "check_level", "DATASET_BYTES"]
@@ -52,10 +53,6 @@ SECONDS_PER_STEP = 4e-7
 #: charts, integrals, drifts, flags), for the memory estimate of the cost guard.
 DATASET_BYTES = 30 * 8
 
-#: Largest ``|G|`` the integrators take. The field (1) is quadratic in G and the step
-#: control multiplies it once more, so beyond about 1e102 intermediate values overflow
-#: (a section at h = 1e300, ``|G|`` ~ 1e150, ended in a division by zero inside the kernel).
-MAX_MOMENTUM = 1e100
 
 
 def set_limits(steps: float | None = None, memory: float | None = None) -> dict[str, float]:
@@ -137,16 +134,17 @@ def check_momentum(G: float, name: str) -> None:
                          "1/|G|^2)")
 
 
-@checks_body
 def check_level(body: RigidBody, h: float, name: str = "h") -> None:
-    """``ValueError`` naming ``name`` if the level ``H = h`` reaches ``|G|`` beyond
-    :data:`MAX_MOMENTUM` (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, Eq. (1))."""
-    reach = math.sqrt(2.0 * max(h + body.mu, 0.0) / min(body.a, body.b, body.c))
-    if not reach <= MAX_MOMENTUM:
-        raise ValueError(f"{name} = {h:g}: the energy level reaches |G| = {reach:.3g}, "
-                         f"beyond the {MAX_MOMENTUM:.3g} that the integrators take (the "
-                         "field (1) and its error control would overflow); take a lower "
-                         "level")
+    """``ValueError`` naming ``name`` if the level ``H = h`` is not finite or reaches
+    ``|G|`` beyond :data:`MAX_MOMENTUM` (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, Eq.
+    (1)): :func:`andoyer.validation.level`, which every public function taking an energy
+    ``h`` and a body applies through its argument checks. Not itself decorated by
+    :func:`~andoyer.body.checks_body`, whose check of ``h`` would name ``h``, not ``name``
+    (``--energy``)."""
+    if not isinstance(body, RigidBody):
+        raise ArgumentTypeError(f"check_level: body must be a RigidBody, got "
+                                f"{type(body).__name__}")
+    level(name, h, body)
 
 
 def check(what: str, *, steps: float = 0.0, memory: float = 0.0) -> None:

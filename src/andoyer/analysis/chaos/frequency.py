@@ -58,7 +58,13 @@ from andoyer.validation import checks_arguments, integer, positive
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
            "resonance_label", "RESONANCE_ORDER", "RESONANCE_DRIFT", "MIN_PERIODS",
-           "ROTATION_RTOL"]
+           "ROTATION_RTOL", "MAX_WINDOW"]
+
+
+#: Highest order of the Hann window: its weight ``(1 + cos)^p`` reaches ``2^p``, which
+#: overflows near p = 1024, and nafflib's normalisation takes factorials of ``2 p`` (a
+#: window of order 1e300 never returned). Orders above a few tens only narrow the window.
+MAX_WINDOW = 100
 
 
 class Lines(NamedTuple):
@@ -104,7 +110,8 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     n_freq : int
         Number of lines (>= 1).
     window : int
-        Order ``p`` of the Hann window (>= 1; 2 by default, as in nafflib).
+        Order ``p`` of the Hann window (1 to :data:`MAX_WINDOW`; 2 by default, as in
+        nafflib).
 
     Returns
     -------
@@ -123,7 +130,7 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     n = zz.size
     dt = positive("dt", dt)
     n_freq = integer("n_freq", n_freq, 1, n // 4)
-    window = integer("window", window, 1)
+    window = integer("window", window, 1, MAX_WINDOW)
     # nafflib analyses x - i px with tunes Q in turns per sample: omega = -2 pi Q / dt
     # and the amplitudes are conjugated.
     A, Q = nafflib.harmonics(zz.real, zz.imag, num_harmonics=int(n_freq),
