@@ -465,3 +465,29 @@ def test_pages_past_the_cap_say_so_and_share_the_plane() -> None:
         view.boundary_x[0] = 0.0
     with pytest.raises(ValueError, match="max_sessions"):
         serve(threaded=True, max_sessions=0)
+
+
+@pytest.mark.parametrize("moment", ["sockets open", "serving"])
+def test_a_signal_stops_the_server_however_far_it_got(moment):
+    """A signal (``KeyboardInterrupt``, what ``andoyer explore``'s handlers raise for
+    SIGINT, SIGTERM and SIGHUP) stops ``serve`` cleanly whether it comes once the sockets
+    listen but before the loop runs (the race a SIGTERM under load met: the command then
+    ended as "interrupted", exit 130, not "stopped") or while it serves; the port is
+    free again."""
+    import socket
+
+    from andoyer.explore.server import serve
+
+    ports = []
+
+    def on_start(url):
+        ports.append(int(url.rsplit(":", 1)[1].strip("/")))
+        if moment == "sockets open":
+            raise KeyboardInterrupt
+        import threading  # delivered once the loop runs
+
+        threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT)).start()
+
+    assert serve(n_crossings=5, on_start=on_start) is None  # returned: no exception
+    with socket.socket() as sock:  # the server's socket is closed
+        sock.bind(("127.0.0.1", ports[0]))

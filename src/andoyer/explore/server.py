@@ -140,20 +140,25 @@ def serve(body: RigidBody | None = None, *, port: int = 0, address: str = "127.0
     from tornado.ioloop import IOLoop
 
     if not threaded:
-        p = port or _free_port(address)
-        server = _make_server(factory, p, address, IOLoop(make_current=False))
-        url = f"http://{address}:{server.port}/"
-        server.start()
-        if on_start is not None:
-            on_start(url)
-        if show:
-            server.io_loop.add_callback(server.show, "/")
+        # A signal (Ctrl-C, SIGTERM, SIGHUP: KeyboardInterrupt) stops the server however
+        # far it got: while its sockets open, before its loop runs, or while it serves
+        # (a SIGTERM between the two ended the command as "interrupted", exit 130).
+        server = None
         try:
+            p = port or _free_port(address)
+            server = _make_server(factory, p, address, IOLoop(make_current=False))
+            url = f"http://{address}:{server.port}/"
+            server.start()
+            if on_start is not None:
+                on_start(url)
+            if show:
+                server.io_loop.add_callback(server.show, "/")
             server.io_loop.start()
         except KeyboardInterrupt:
             pass
         finally:
-            server.stop()
+            if server is not None:
+                server.stop()
         return None
 
     ready: queue.Queue[Any] = queue.Queue()
