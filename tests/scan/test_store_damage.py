@@ -181,6 +181,9 @@ def test_non_utf8_and_foreign_configurations_name_the_file(tmp_path):
         assert "codec" not in str(exc.value), str(exc.value)
     with pytest.raises(DamagedFileError, match="not UTF-8 text .byte 0xe9"):
         load_config(tmp_path / "latin1.toml")
+    (tmp_path / "folder.toml").mkdir()
+    with pytest.raises(ValueError, match="folder.toml' is a folder; give the scan's TOML"):
+        load_config(tmp_path / "folder.toml")
 
 
 # ---------------------------------------------------------------------- hunts

@@ -590,6 +590,9 @@ def load_config(source: str | os.PathLike[str] | Mapping[str, Any]) -> ScanConfi
     if isinstance(source, Mapping):
         return parse_config(source)
     path = Path(source)
+    if path.is_dir():
+        raise ValueError(f"configuration file {str(path)!r} is a folder; give the scan's "
+                         "TOML file")
     if not path.is_file():
         raise ValueError(f"configuration file {str(path)!r} not found")
     raw = path.read_bytes()
