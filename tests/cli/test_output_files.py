@@ -105,3 +105,25 @@ def test_guard_file_adopts_nothing_it_did_not_write(tmp_path):
     guard_file(tmp_path / "y.nc")
     release_all()  # a file gone is dropped from the manifest
     assert json.loads((tmp_path / MANIFEST).read_text())["files"] == {}
+
+
+def test_two_runs_writing_files_in_one_folder_both_get_recorded(tmp_path):
+    """Two writers of different files in one folder update its manifest in turn (its own
+    short-lived lock): neither run's files are lost from it."""
+    import subprocess
+    import sys
+
+    code = ("import sys, pathlib\n"
+            "from andoyer.outputs import guard_file, release_all\n"
+            "folder, tag = pathlib.Path(sys.argv[1]), sys.argv[2]\n"
+            "for i in range(40):\n"
+            "    f = folder / f'{tag}{i}.nc'\n"
+            "    guard_file(f)\n"
+            "    f.write_bytes(tag.encode() * (i + 1))\n"
+            "    release_all()\n")
+    procs = [subprocess.Popen([sys.executable, "-c", code, str(tmp_path), tag])
+             for tag in ("a", "b")]
+    assert [p.wait(timeout=120) for p in procs] == [0, 0]
+    files = json.loads((tmp_path / MANIFEST).read_text())["files"]
+    assert set(files) == {f"{t}{i}.nc" for t in "ab" for i in range(40)}
+    assert not [p.name for p in tmp_path.iterdir() if "lock" in p.name]
