@@ -67,10 +67,14 @@ MAX_ENERGY = 1e200
 MAX_COUNT = 10**9
 
 
-def level(name: str, h: float, body: Any) -> None:
+def level(name: str, h: float, body: Any, maximum: float = MAX_MOMENTUM) -> None:
     """``ValueError`` naming ``name`` unless the level ``H = h`` of ``body`` is finite and
-    reaches ``|G| <= MAX_MOMENTUM`` only (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, from
+    reaches ``|G| <= maximum`` only (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, from
     Eq. (1): the kinetic energy is at least ``|G|^2 min(a, b, c) / 2``).
+
+    ``maximum``: :data:`MAX_MOMENTUM` where the level is integrated (the default, which
+    :func:`checks_arguments` applies to each argument ``h`` beside a ``body``; a module
+    of closed forms may raise it with ``LEVEL_MAXIMUM``).
 
     >>> from andoyer import RigidBody
     >>> level("h", 1e300, RigidBody.paper())  # doctest: +ELLIPSIS
@@ -80,11 +84,11 @@ def level(name: str, h: float, body: Any) -> None:
     """
     h = finite(name, h)
     reach = math.sqrt(2.0 * max(h + body.mu, 0.0) / min(body.a, body.b, body.c))
-    if not reach <= MAX_MOMENTUM:
+    if not reach <= maximum:
+        why = ("that the integrators take (the field (1) and its error control would "
+               "overflow)" if maximum <= MAX_MOMENTUM else "for which |G|^2 stays a float")
         raise ValueError(f"{name} = {h:g}: the energy level reaches |G| = {reach:.3g}, "
-                         f"beyond the {MAX_MOMENTUM:.3g} that the integrators take (the "
-                         "field (1) and its error control would overflow); take a lower "
-                         "level")
+                         f"beyond the {maximum:.3g} {why}; take a lower level")
 
 
 def positive(name: str, value: Any, *, maximum: float | None = None) -> float:
@@ -222,12 +226,13 @@ def grid(name: str, value: Any, minimum: int = 2) -> tuple[int, int]:
     ValueError: n must be an integer or a pair (nx, ny), got '8'
     """
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        k = integer(name, value, minimum)
+        k = integer(name, value, minimum, MAX_COUNT)
         return k, k
     if isinstance(value, str | bytes) or not hasattr(value, "__len__") or len(value) != 2:
         raise ValueError(f"{name} must be an integer or a pair (nx, ny), got {value!r}")
     nx, ny = value
-    return integer(f"{name}[0] (nx)", nx, minimum), integer(f"{name}[1] (ny)", ny, minimum)
+    return (integer(f"{name}[0] (nx)", nx, minimum, MAX_COUNT),
+            integer(f"{name}[1] (ny)", ny, minimum, MAX_COUNT))
 
 
 def box(name: str, value: Any) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -368,20 +373,23 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
 #: What each argument name means, hence its range: the names follow the paper (one name,
 #: one meaning: ``tests/test_vocabulary.py``), so one table bounds every public function.
 #: ``energy``: finite, and with a ``body`` argument a level it can integrate
-#: (:func:`level`), else ``|h| <= MAX_ENERGY``; ``action`` (momenta): finite,
-#: ``|x| <= MAX_ACTION``; ``angle``, ``time``, ``finite``: finite; ``scale`` (``mu``):
-#: finite, ``|mu| <= MAX_ENERGY``; ``tolerance``: finite and > 0; ``sheet``: +1 or -1;
-#: ``count``: an integer in ``[0, MAX_COUNT]``. Every ``int`` argument is also bounded by
-#: ``MAX_COUNT`` in absolute value. Arrays under these names are checked elementwise.
+#: (:func:`level`; a module of closed forms may set ``LEVEL_MAXIMUM``), else
+#: ``|h| <= MAX_ENERGY``; ``action`` (momenta): finite, ``|x| <= MAX_ACTION``; ``length``
+#: (``G = |G|``, a number; ``J2`` is signed through G = 0): also ``>= 0``; ``angle``,
+#: ``time``, ``finite``: finite;
+#: ``scale`` (``mu``, ``c``): finite, ``|x| <= MAX_ENERGY``; ``tolerance``: finite and
+#: > 0; ``sheet``: +1 or -1; ``count``: an integer in ``[0, MAX_COUNT]``. Every ``int``
+#: argument is also bounded by ``MAX_COUNT`` in absolute value. Arrays under these names
+#: are checked elementwise.
 QUANTITIES: dict[str, str] = {
     **dict.fromkeys(("h", "h0", "energy"), "energy"),
-    **dict.fromkeys(("G", "L", "M", "J1", "J2", "J3", "G0", "L0", "p", "p0", "action"),
-                    "action"),
+    **dict.fromkeys(("L", "M", "J1", "J2", "J3", "L0", "p", "p0"), "action"),
+    **dict.fromkeys(("G", "G0", "action"), "length"),
     **dict.fromkeys(("l", "g", "theta1", "theta2", "theta3", "psi", "psi0", "vartheta",
                      "vartheta0", "q", "q0", "phi0", "t0"), "angle"),
     **dict.fromkeys(("t_end", "T", "period", "duration"), "time"),
-    **dict.fromkeys(("mu",), "scale"),
-    **dict.fromkeys(("c", "epsilon", "value"), "finite"),
+    **dict.fromkeys(("mu", "c"), "scale"),
+    **dict.fromkeys(("epsilon", "value"), "finite"),
     **dict.fromkeys(("tol", "xtol", "rtol", "atol"), "tolerance"),
     **dict.fromkeys(("sheet",), "sheet"),
     **dict.fromkeys(("n", "k", "steps", "mu_steps", "window", "points_per_period",
@@ -391,11 +399,12 @@ QUANTITIES: dict[str, str] = {
 }
 
 
-def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any]) -> None:
+def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any],
+              level_maximum: float = MAX_MOMENTUM) -> None:
     """Check ``value`` of the argument ``name`` against its quantity ``kind``."""
     if kind == "count":
         if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
-            if not (math.isfinite(value) and 0 <= value <= MAX_COUNT):
+            if not (math.isfinite(value) and 0.0 <= float(value) <= MAX_COUNT):
                 raise ValueError(f"{label} must be an integer in [0, {MAX_COUNT:.0e}], got "
                                  f"{value!r}")
         return
@@ -416,10 +425,13 @@ def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any
     if kind == "energy":
         body = bound.get("body")
         if arr.ndim == 0 and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
-            level(label, float(arr), body)
+            level(label, float(arr), body, level_maximum)
         elif big > MAX_ENERGY:
             raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
-    elif kind == "action" and big > MAX_ACTION:
+    elif kind == "length" and arr.ndim == 0 and not arr >= 0.0:  # (G0 may be a vector G)
+        raise ValueError(f"{label} must be >= 0 (a length of the angular momentum), got "
+                         f"{_short(value)}")
+    if kind in ("action", "length") and big > MAX_ACTION:
         raise ValueError(f"{label} must be within +-{MAX_ACTION:g} (its square, an energy, "
                          f"must stay a float), got {_short(value)}")
     elif kind == "scale" and big > MAX_ENERGY:
@@ -475,6 +487,9 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     # A module may give an argument a longer name for messages ("n (number of plane
     # points)"): ARGUMENT_NAMES = {"n": ...} beside the function.
     labels: dict[str, str] = dict((namespace or {}).get("ARGUMENT_NAMES", {}))
+    # A module of closed forms may take levels past what the integrators take:
+    # LEVEL_MAXIMUM = math.inf beside the functions (their own checks keep them finite).
+    level_maximum = float((namespace or {}).get("LEVEL_MAXIMUM", MAX_MOMENTUM))
 
     @functools.wraps(func)
     def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
@@ -488,7 +503,7 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
         for name, value in bound.arguments.items():
             if name in ranged and value is not None:
                 _quantity(name, labels.get(name, name), value, ranged[name],
-                          bound.arguments)
+                          bound.arguments, level_maximum)
         return func(*args, **kwargs)
 
     return wrapper

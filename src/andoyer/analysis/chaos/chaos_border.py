@@ -54,7 +54,7 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
 from andoyer.body import RigidBody, checks_body
@@ -301,7 +301,7 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
 
 
 @checks_body
-def chaos_border_map(body: RigidBody, mu: Any, epsilon: Any, h: float, M: float = 0.0,
+def chaos_border_map(body: RigidBody, mu: ArrayLike, epsilon: ArrayLike, h: float, M: float = 0.0,
                      section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                      t_end: float = 300.0, margin: float = MARGIN,
                      engine: str | None = None, tol: float = 1e-12,

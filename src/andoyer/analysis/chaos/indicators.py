@@ -210,11 +210,16 @@ def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
                              f"{Y.shape}, got {np.shape(direction)}") from None
         if not np.all(np.isfinite(V)):
             raise ValueError("w0 (initial tangent direction) contains NaN or infinity")
+        # Only the direction counts: scaled to its largest component first (a direction
+        # of size 1e300 overflowed the norms).
+        big = np.max(np.abs(V), axis=1, keepdims=True)
+        V = V / np.where(big > 0.0, big, 1.0)
         W = V - _project(N[:, :k], V)
         norm = np.linalg.norm(W, axis=1)
         if np.any(norm <= 1e-8 * np.linalg.norm(V, axis=1)):
-            raise ValueError("direction is normal to the tangent space at some state: its "
-                             "projection vanishes; choose another direction")
+            raise ValueError("w0 (initial tangent direction) is normal to the tangent space "
+                             "at some state: its projection vanishes; choose another "
+                             "direction")
         return W / norm[:, None]
     # The iso-energetic part: a fixed generic vector projected onto the energy level.
     iso = np.empty_like(Y)

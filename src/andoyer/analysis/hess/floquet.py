@@ -25,6 +25,7 @@ from andoyer.analysis.hess.pendulum import (
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, as_state
 from andoyer.errors import IntegrationError
+from andoyer.integrate import budget
 from andoyer.integrate.engines import EngineLike, resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.results import provenance, values_from_attrs
@@ -124,6 +125,9 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
     if not math.isfinite(T):
         raise ValueError("T must be finite (a separatrix has no period)")
     tol = Tolerance.single(tol).tol
+    # The cost guard, before any work: T = 1e300 ran 30 s into a failed integration.
+    budget.check(f"monodromy over T = {T:.3g}",
+                 steps=budget.estimate_steps(body, y[None], T, rtol=tol))
     if method == "variational":
         Phi, yT, _ = _variational_monodromy(body, y, T, tol, engine)
     elif method == "finite_difference":

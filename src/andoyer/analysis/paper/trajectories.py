@@ -24,6 +24,7 @@ import xarray as xr
 
 from andoyer.analysis.unperturbed.separatrix import separatrix_energy as separatrix_energy
 from andoyer.body import RigidBody, checks_body
+from andoyer.integrate import budget
 from andoyer.integrate.api import poincare, propagate
 from andoyer.integrate.fill import fill_section
 from andoyer.integrate.results import values_from_attrs
@@ -99,6 +100,8 @@ def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
         raise ValueError(f"need 0 < dt < t_end, got dt = {dt!r}, t_end = {t_end!r}")
     centres = (2.0 * body.phi0, 2.0 * body.phi0 + np.pi)
     x0 = np.array([[c, theta2, s * J2, J2, 0.0] for c in centres for s in seeds])
+    budget.check(f"fig3_trajectories t_end/dt = {t_end / dt:.3g} output times",
+                 memory=budget.DATASET_BYTES * x0.shape[0] * (t_end / dt + 1.0))
     t = np.arange(0.0, t_end + 0.5 * dt, dt)
     ds = propagate(body, x0, t, chart="hess", engine=engine, rtol=rtol, atol=atol,
                    progress=progress)

@@ -416,7 +416,7 @@ def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float
     branch : ManifoldBranch
     n_initial : int
         Initial number of equal steps in ``s`` on ``[-s_margin, 1 + s_margin]`` (the
-        margin makes the closed curve overlap itself).
+        margin, in ``[0, 0.5]``, makes the closed curve overlap itself).
     max_gap : float
         Largest distance between neighbouring points in the ``(g, G)`` plane.
     max_angle : float
@@ -434,6 +434,9 @@ def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float
 
     n_initial = integer("n_initial", n_initial, 4)
     max_gap, max_angle = positive("max_gap", max_gap), positive("max_angle", max_angle)
+    s_margin = float(s_margin)
+    if not 0.0 <= s_margin <= 0.5:  # a margin past half a domain traces it thrice
+        raise ValueError(f"s_margin must be in [0, 0.5], got {s_margin!r}")
     s = np.linspace(-s_margin, 1.0 + s_margin, int(n_initial) + 1)
     crossings = [branch.trace(si) for si in s]
     y = np.stack([c.y for c in crossings])

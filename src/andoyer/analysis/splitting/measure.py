@@ -99,7 +99,7 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
     gtol : float
         Tolerance in ``g`` of the located heteroclinic points.
     noise : float
-        Below this ``max |Delta G|`` the manifolds are taken to coincide.
+        Below this ``max |Delta G|`` the manifolds are taken to coincide (>= 0).
 
     Returns
     -------
@@ -113,6 +113,8 @@ def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32
     """
     from scipy.optimize import brentq
 
+    if not noise >= 0.0:  # NaN too; a negative noise ran 26 s locating nothing
+        raise ValueError(f"noise must be >= 0, got {noise!r}")
     if int(n_phase) != n_phase or n_phase < 8 or n_phase % 2:
         raise ValueError(f"n_phase must be an even integer >= 8, got {n_phase!r}")
     if wu.branch.branch != ws.branch.branch or wu.branch.sheet != ws.branch.sheet:

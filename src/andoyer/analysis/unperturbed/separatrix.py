@@ -78,7 +78,7 @@ from andoyer.integrate.results import (
     provenance,
     values_from_attrs,
 )
-from andoyer.validation import MAX_ACTION, checks_arguments, integer
+from andoyer.validation import MAX_ACTION, MAX_COUNT, checks_arguments, integer
 from andoyer.validation import finite as _finite
 from andoyer.validation import positive as _positive
 
@@ -422,8 +422,9 @@ SEPARATRIX_LEVEL: dict[str, VariableMeta] = {
 
 @checks_arguments
 def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:
-    """A sample count ``n`` of at least ``minimum`` (``ValueError`` naming ``what``)."""
-    return integer(what, n, minimum)
+    """A sample count ``n`` of at least ``minimum`` and at most
+    :data:`~andoyer.validation.MAX_COUNT` (``ValueError`` naming ``what``)."""
+    return integer(what, n, minimum, MAX_COUNT)
 
 
 @checks_body

@@ -117,7 +117,7 @@ from andoyer.integrate.engines.values import Tolerance as Tolerance
 from andoyer.integrate.engines.values import check_tolerance_factor as check_tolerance_factor
 from andoyer.integrate.engines.values import runtime_parameters as runtime_parameters
 from andoyer.integrate.engines.values import unit_vectors as unit_vectors
-from andoyer.validation import integer, positive
+from andoyer.validation import MAX_MOMENTUM, integer, positive
 
 __all__ = [
     "Capability", "SectionEvent", "Tolerance", "Crossings", "TangentFlow", "Engine",
@@ -132,6 +132,15 @@ def _states(y0: ArrayLike, name: str = "y0") -> NDArray[np.float64]:
         y = y[None]
     if y.ndim != 2 or y.shape[1] != 6:
         raise ValueError(f"{name} must have shape (6,) or (n, 6), got {np.shape(y0)}")
+    # Every engine starts here: a state no integrator can take is refused by name, not
+    # met as an engine's failure (a level h = 1e250 reached heyoka's variational
+    # integration through analysis code that built its states itself).
+    # (NaN rows are left to the callers: some pass them through as failed orbits.)
+    G = float(np.max(np.abs(y[:, :3]), initial=0.0, where=np.isfinite(y[:, :3])))
+    if G > MAX_MOMENTUM:
+        raise ValueError(f"{name}: |G| = {G:.3g} is beyond the {MAX_MOMENTUM:.3g} that the "
+                         "integrators take (the field (1) and its error control would "
+                         "overflow); rescale the problem or take a lower energy level")
     return np.ascontiguousarray(y)
 
 
