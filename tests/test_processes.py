@@ -70,6 +70,10 @@ COMMANDS: dict[str, list[str]] = {
     "indicators": ["indicators", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "30000",
                    "--engine", "numba", "--out", "i.nc"],
     "paper-check": ["paper-check", "--points", "20000"],
+    "resonances": ["resonances", "--n-orbits", "8", "--n-crossings", "300", "--engine",
+                   "numba", "--out", "r.nc"],
+    "animate": ["animate", "--andoyer", "0.3,0,0.3,1,0", "--frames", "400", "--out",
+                "g.gif"],
 }
 #: Commands the sweep leaves out, and why: ``explore`` has its own test below (it stops
 #: with exit 0); ``atlas`` draws a store in about a second (its only outputs are written

@@ -15,8 +15,8 @@ import errno
 import os
 
 __all__ = ["ArgumentTypeError", "CostLimitError", "DamagedFileError", "DamagedStoreWarning",
-           "IntegrationError", "Interrupted", "NoCacheWarning", "NoSpaceError",
-           "OutputInUseError", "SingularChartWarning", "SingularPassageWarning",
+           "IntegrationError", "Interrupted", "ManifestWarning", "NoCacheWarning",
+           "NoSpaceError", "OutputInUseError", "SingularChartWarning", "SingularPassageWarning",
            "StaleLockWarning"]
 
 
@@ -83,6 +83,12 @@ class Interrupted(KeyboardInterrupt):
 class StaleLockWarning(UserWarning):
     """The lock of an output was left by a run that did not finish (killed); this run
     takes it over (see :mod:`andoyer.outputs`)."""
+
+
+class ManifestWarning(UserWarning):
+    """The manifest of a folder could not record the files a run wrote there (a full
+    disk, a folder made read-only): a later run takes them for the user's and leaves
+    them (see :mod:`andoyer.outputs`)."""
 
 
 class SingularChartWarning(UserWarning):

@@ -52,7 +52,7 @@ from typing import Any
 
 import filelock
 
-from andoyer.errors import OutputInUseError, StaleLockWarning
+from andoyer.errors import ManifestWarning, OutputInUseError, StaleLockWarning
 
 __all__ = ["OutputLock", "read_holder", "lock_path", "Manifest", "MANIFEST", "guard_folder",
            "guard_file", "hold", "release", "release_all"]
@@ -316,7 +316,7 @@ def guard_folder(folder: str | os.PathLike[str], flag: str = "--out") -> OutputL
         raise ValueError(f"{flag} {str(path)!r} holds files andoyer did not write, or that "
                          f"changed since it wrote them ({listed}): they could be replaced; "
                          "choose a new or empty folder, or move them away")
-    stack.callback(manifest.record, lock.start)
+    stack.callback(_safely, manifest.record, lock.start)
     return lock
 
 
@@ -352,7 +352,7 @@ def guard_file(path: str | os.PathLike[str], flag: str = "--out") -> OutputLock:
         raise ValueError(f"{flag} {str(out)!r} exists and andoyer did not write {what} (or it "
                          "changed since andoyer wrote it): it would be replaced; choose "
                          f"another {flag}, or move the file away")
-    _HELD[key][1].callback(manifest.add, [out.name], lock.start)
+    _HELD[key][1].callback(_safely, manifest.add, [out.name], lock.start)
     return lock
 
 
@@ -369,6 +369,19 @@ def _refuse_folder_in_use(folder: Path, flag: str, out: Path) -> None:
             f"andoyer run ({_describe(read_holder(folder))}); wait for it to end, or choose "
             "another folder") from None
     probe.release()
+
+
+def _safely(update: Any, *args: Any) -> None:
+    """Bring a manifest up to date at the end of a run, or say why not: a manifest that
+    cannot be written (a full disk, a folder made read-only meanwhile) must not hide the
+    run's own outcome nor keep its other outputs locked. The files it did not record are
+    then refused as foreign by the next run: the safe side."""
+    try:
+        update(*args)
+    except (OSError, ValueError, filelock.Timeout) as exc:
+        warnings.warn(f"could not record the files andoyer wrote in its manifest ({exc}); "
+                      "a later run will take them for yours and not replace them",
+                      ManifestWarning, stacklevel=2)
 
 
 def release(target: str | os.PathLike[str]) -> None:

@@ -30,7 +30,9 @@ def test_animate_writes_a_gif_with_one_frame_per_time(tmp_path, capsys):
     assert code == 0
     with Image.open(out) as im:
         assert im.format == "GIF" and im.n_frames == 12
-    assert [p.name for p in tmp_path.iterdir() if not p.name.endswith(".lock")] == ["top.gif"]
+    # nothing else but the manifest that records top.gif as andoyer's (andoyer.outputs)
+    assert sorted(p.name for p in tmp_path.iterdir() if not p.name.endswith(".lock")) == [
+        ".andoyer-manifest.json", "top.gif"]
 
 
 @pytest.mark.parametrize("name, message", [("top.png", "must name a .gif or .mp4"),

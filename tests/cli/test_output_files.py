@@ -26,7 +26,9 @@ COMMANDS = {
     "indicators": (["indicators", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "2"], "i.nc",
                    ("i.png",)),
     "frequencies orbit": (["frequencies", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "50"],
-                          "f.nc", ()),
+                          "f.nc", ("f.png",)),
+    "resonances": (["resonances", "--n-crossings", "2"], "r.nc", ("r.png",)),
+    "animate": (["animate", "--andoyer", "0.3,0,0.3,1,0", "--frames", "2"], "g.gif", ()),
     "frequencies map": (["frequencies", "--n-orbits", "2", "--t-end", "50"], "f.nc",
                         ("f.png",)),
     "atlas": (["atlas", "missing.zarr"], "a.png", ()),
@@ -127,3 +129,15 @@ def test_two_runs_writing_files_in_one_folder_both_get_recorded(tmp_path):
     files = json.loads((tmp_path / MANIFEST).read_text())["files"]
     assert set(files) == {f"{t}{i}.nc" for t in "ab" for i in range(40)}
     assert not [p.name for p in tmp_path.iterdir() if "lock" in p.name]
+
+
+def test_a_manifest_that_cannot_be_written_neither_hides_the_outcome_nor_keeps_a_lock(
+        tmp_path, capsys):
+    """The manifest is brought up to date when the run ends; if it cannot be written (here
+    a folder in its place; a full disk alike) the run still ends with its own outcome, one
+    warning line, and every output released."""
+    (tmp_path / MANIFEST).mkdir()
+    assert main([*ORBIT, "--out", str(tmp_path / "o.nc")]) == 0
+    err = capsys.readouterr().err
+    assert "could not record the files andoyer wrote" in err and "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST, "o.nc"]  # no lock left
