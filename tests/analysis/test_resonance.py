@@ -202,12 +202,17 @@ def test_stable_and_unstable_orbits_on_a_section(section):
 def test_measured_half_width_cheap():
     """One chain measured on sections (the slow test measures the convergence in mu):
     Hess(3, 1, 2), 3:1 about axis 1, mu = 1e-3: 2.5e-3 predicted, 1.9 % off measured."""
-    ds = measure_island(WIDE, 1.0, 0.0, "3:1", axis=1, n_seeds=3, n_rounds=2,
+    ds = measure_island(WIDE, 1.0, 0.0, "3:1", axis=1, n_seeds=3, n_rounds=3,
                         engine="numba")
     predicted, measured = float(ds.predicted_half_width), float(ds.measured_half_width)
     assert abs(measured - predicted) < 0.04 * predicted
     assert float(ds.edge_uncertainty) < 0.1 * predicted
     assert ds.seed_locked.values.any() and not ds.seed_locked.values.all()
+    # Where (R10): the stable orbit sits -1.17e-4 off the resonant torus (4 % of the
+    # half-width); the first-order offset gives it within 1 % (measured 0.4 %).
+    shift, where = float(ds.predicted_stable_s), float(ds.stable_s)
+    assert abs(shift) > 0.03 * predicted
+    assert abs(where - shift) < 0.01 * abs(shift)
 
 
 @pytest.mark.slow
@@ -215,9 +220,10 @@ def test_half_width_error_falls_like_mu_to_the_three_halves():
     """The measured error of the first-order half-width, |measured - predicted|, against
     mu: the fitted slope of log|error| vs log mu is about 1.45 (measured 1.44 at
     mu = 1e-4, 3e-4, 1e-3): the relative error is O(mu), as for a pendulum whose odd
-    corrections cancel in the half-width."""
+    corrections cancel in the half-width. The stable point's position (R10) errs by
+    O(mu^2)."""
     mus = [1e-4, 3e-4, 1e-3]
-    err, rel = [], []
+    err, rel, where = [], [], []
     for mu in mus:
         ds = measure_island(WIDE.with_mu(mu), 1.0, 0.0, "3:1", axis=1, n_seeds=3,
                             n_rounds=5, engine="numba")
@@ -225,6 +231,23 @@ def test_half_width_error_falls_like_mu_to_the_three_halves():
         assert float(ds.edge_uncertainty) < 0.5 * e
         err.append(e)
         rel.append(e / float(ds.predicted_half_width))
+        where.append(abs(float(ds.stable_s) - float(ds.predicted_stable_s)))
     slope = np.polyfit(np.log(mus), np.log(err), 1)[0]
     assert 1.2 < slope < 1.8, slope
     assert rel[0] < 0.005
+    # the stable point's first-order position (R10) errs by O(mu^2) (measured slope 2.0)
+    slope_where = np.polyfit(np.log(mus), np.log(where), 1)[0]
+    assert slope_where > 1.6, (slope_where, where)
+
+
+def test_stable_shift_is_first_order_and_only_on_g_sections():
+    """(R10) is linear in mu, zero at mu = 0, NaN on theta2 sections and for chains
+    without a first-order width."""
+    a = resonance_widths(WIDE.with_mu(1e-4), 1.0, 0.0, max_order=5)
+    b = resonance_widths(WIDE.with_mu(1e-3), 1.0, 0.0, max_order=5)
+    first = a.mu_order.values == 1
+    np.testing.assert_allclose(b.stable_shift[first], 10 * a.stable_shift[first], rtol=1e-6)
+    assert np.all(np.isnan(a.stable_shift.values[~first]))
+    assert np.all(np.isnan(resonance_widths(WIDE, 1.0, 0.0, "theta2=0",
+                                            max_order=3).stable_shift))
+    assert a.stable_shift.attrs["equation"] == "(R10)"

@@ -56,6 +56,8 @@ __all__ = ["measure_island"]
 
 #: Drift-guided steps allowed to find a locked seed before giving up.
 _MAX_LOCATE = 8
+#: Orbits of the search for the stable periodic orbit inside the locked interval.
+_STABLE_EVALUATIONS = 45
 
 
 def _parse_resonance(resonance: str) -> tuple[int, int]:
@@ -103,14 +105,16 @@ class _Probe:
                 y[i] = from_andoyer([l[i], self.g_star, L[i], G, self.M])
         return y
 
-    def run(self, s: NDArray[np.float64]) -> tuple[NDArray[np.bool_], NDArray[np.float64]]:
-        """``(locked, drift)`` of the orbits seeded at ``s``."""
+    def run(self, s: NDArray[np.float64]
+            ) -> tuple[NDArray[np.bool_], NDArray[np.float64], NDArray[np.float64]]:
+        """``(locked, drift, span)`` of the orbits seeded at ``s``."""
         y = self.seeds(s)
         ok = np.all(np.isfinite(y), axis=1)
         locked = np.zeros(s.size, bool)
         drift = np.full(s.size, np.nan)
+        span = np.full(s.size, np.inf)
         if not ok.any():
-            return locked, drift
+            return locked, drift, span
         c = self.c
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -131,9 +135,10 @@ class _Probe:
             psi = c.q * phi1 - c.p * (self.g_star + 2 * math.pi * n - rho)
             step = np.angle(np.exp(1j * np.diff(psi)))
             path = np.concatenate([[0.0], np.cumsum(step)])
-            locked[i] = bool(np.ptp(path) < 2 * math.pi)
+            span[i] = float(np.ptp(path))
+            locked[i] = bool(span[i] < 2 * math.pi)
             drift[i] = float(path[-1] / (path.size - 1))
-        return locked, drift
+        return locked, drift, span
 
 
 @checks_body
@@ -180,7 +185,10 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     xarray.Dataset
         0-d variables ``predicted_half_width``, ``measured_half_width``,
         ``half_width_error`` (their difference), ``edge_uncertainty``, ``s_inner``,
-        ``s_outer``, ``centre_offset``, ``libration_frequency``; ``seed_s``,
+        ``s_outer``, ``centre_offset`` (the locked interval's midpoint), ``stable_s``
+        (the measured stable periodic orbit: least libration of ``psi``, by bounded
+        Brent inside the locked interval) with ``stable_span``, ``predicted_stable_s``
+        (R10 of :mod:`~andoyer.analysis.resonance.predict`), ``libration_frequency``; ``seed_s``,
         ``seed_locked``, ``seed_drift`` per orbit run (dim ``seed``).
 
     Examples
@@ -218,7 +226,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     if n_crossings is None:
         n_crossings = max(200, math.ceil(12.0 / chain.Omega))
     probe = _Probe(chain, h, M, g_star, n_crossings, engine, tol)
-    n_orbits = 2 + _MAX_LOCATE + 2 * n_seeds * n_rounds
+    n_orbits = 3 + _MAX_LOCATE + 2 * n_seeds * n_rounds + _STABLE_EVALUATIONS
     seconds_per_return = 2 * math.pi / chain.torus.omega_g
     budget.check("measure_island", steps=budget.estimate_steps(
         body, probe.seeds(np.zeros(1))[:1], n_orbits * n_crossings * seconds_per_return, tol))
@@ -228,7 +236,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     log_d: list[float] = []
 
     def run(s: NDArray[np.float64]) -> NDArray[np.bool_]:
-        lk, dr = probe.run(s)
+        lk, dr, _span = probe.run(s)
         log_s.extend(s.tolist())
         log_l.extend(lk.tolist())
         log_d.extend(dr.tolist())
@@ -281,12 +289,23 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     s_in, s_out = 0.5 * (a_lo + a_hi), 0.5 * (b_lo + b_hi)
     unc = 0.5 * max(abs(a_hi - a_lo), abs(b_hi - b_lo))
     measured = 0.5 * (s_out - s_in)
+    # The stable periodic orbit: where the slow angle's libration is smallest (bounded
+    # Brent inside the locked interval).
+    from scipy.optimize import minimize_scalar
+
+    stable = minimize_scalar(lambda x: float(probe.run(np.array([x]))[2][0]),
+                             bounds=(s_in, s_out), method="bounded",
+                             options={"xatol": 1e-7 * (s_out - s_in),
+                                      "maxiter": _STABLE_EVALUATIONS})
+    predicted_stable = float(chain.stable_shift(np.array([probe.phase]))[0])
     ds = xr.Dataset(
         {"predicted_half_width": ((), dG), "measured_half_width": ((), measured),
          "half_width_error": ((), measured - dG), "edge_uncertainty": ((), unc),
          "s_inner": ((), s_in), "s_outer": ((), s_out),
          "centre_offset": ((), 0.5 * (s_in + s_out)),
          "libration_frequency": ((), chain.Omega),
+         "stable_s": ((), float(stable.x)), "stable_span": ((), float(stable.fun)),
+         "predicted_stable_s": ((), predicted_stable),
          "seed_s": ("seed", np.array(log_s)), "seed_locked": ("seed", np.array(log_l)),
          "seed_drift": ("seed", np.array(log_d))},
         attrs=provenance(body, h=h, M=M, resonance=resonance, axis=int(chain.row["axis"]),
@@ -309,6 +328,12 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                           "chain first order does not give", "1", ""),
         "libration_frequency": ("\\Omega", "predicted libration frequency per radian of g",
                                 "1", "(R7)"),
+        "stable_s": ("", "measured stable periodic orbit on the seed line: least libration "
+                     "of the slow angle (G units)", "1", ""),
+        "stable_span": ("", "range of the slow angle on the orbit seeded at stable_s", "rad",
+                        ""),
+        "predicted_stable_s": ("\\delta G", "first-order offset of the stable point (R10)",
+                               "1", "(R10)"),
         "seed_s": ("s", "seed position on the line (G units)", "1", ""),
         "seed_locked": ("", "the orbit librates in the chain", "1", ""),
         "seed_drift": ("", "mean change of psi per return", "rad", "")})

@@ -53,10 +53,21 @@ with ``phi2 = g - rho(phi1)`` and ``g`` the section's (``g*``, or
 ``theta2* + l + phi0`` on ``theta2 = theta2*``); the chain's separatrices are there at
 ``dG = +- Delta G |sin((psi - psi_u) / 2)|``, ``psi_u`` the unstable equilibrium.
 
-What first order does not give: the ``O(mu)`` shift of the chain's centre (the averaged
-``V_0`` moves the resonant torus and the level), the ``O(mu)`` deformation of the tori
-by the non-resonant harmonics, the width of chains with ``|p| >= 2``, and the chaotic
-layers along the separatrices (exponentially thin in ``1/sqrt(mu)``).
+(R10) Where the stable periodic orbit crosses the section, to first order in ``mu`` (in
+the ``g`` section's free-top label ``G``, the ``G`` of the torus ``H0 = h`` through the
+plane point): the equilibrium of the averaged ``Kbar`` (R4) moves the action by
+``dI1 = -mu d(V_00 + 2 |V_k| cos chi_s)/dI1 / (omega_g K0'')``, i.e.
+``-mu (d/dG)[(V_00 + 2 |V_k| cos chi_s)/omega_g] / (dW/dG)``; the non-resonant harmonics
+deform the torus by ``dI1(phi) = -mu sum_k k1 V_k exp(i k.phi) / (omega_g (k1 W + k2))``
+(``k`` not a multiple of ``(q, -p)``, ``k1 != 0``); ``G = G0(I1) - mu V / omega_g`` on the
+level, and the plane point's label is ``G + mu V / (s(l) G)`` (``dH0/dG`` at fixed
+``(l, L)``, ``s = a sin^2 l + b cos^2 l``). Together
+``dG_label = -W (dI1 + dI1(phi)) + mu V (1/(s G) - 1/omega_g)`` (``stable_shift``).
+
+What first order does not give: the width of chains with ``|p| >= 2``; the ``O(mu)``
+asymmetry of the chain (the cubic term of ``K0`` and the slope of ``|V_k|`` in the action
+move the midpoint of its two separatrices off the stable point); and the chaotic layers
+along the separatrices (exponentially thin in ``1/sqrt(mu)``).
 """
 
 from __future__ import annotations
@@ -323,6 +334,38 @@ class ResonantChain:
         chi_s = 0.0 if self.beta < 0 else math.pi                       # (R7)
         self.psi_s = chi_s - self.alpha
         self.psi_u = chi_s + math.pi - self.alpha
+        self.chi_s = chi_s
+        self.Vk = Vk
+
+    def stable_shift(self, phi1: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(R10): the O(mu) offset of the chain's stable points at section phases ``phi1``,
+        in the free-top label ``G`` of the ``g`` section's plane (NaN on other sections
+        and for chains without a first-order width)."""
+        body, T, mu, W = self.body, self.torus, self.body.mu, self.W
+        if self.section.coord != "g" or self.mu_order != 1:
+            return np.full(np.shape(phi1), np.nan)
+        lo, hi = self.row["lo"], self.row["hi"]
+        d = 1e-4 * min(T.G - lo, hi - T.G)
+        mean = []
+        for Gn in (T.G - d, T.G + d):
+            tn, vk = converged_torus(body, self.h, Gn, self.M, T.sign)
+            amp = 2.0 * abs(vk[self.q % vk.shape[0], (-self.p) % vk.shape[1]])
+            mean.append((float(vk[0, 0].real) + amp * math.cos(self.chi_s)) / tn.omega_g)
+        shift = -mu * ((mean[1] - mean[0]) / (2 * d)) / self.twist
+        n1, n2 = self.Vk.shape
+        k1 = np.fft.fftfreq(n1, 1.0 / n1)[:, None]
+        k2 = np.fft.fftfreq(n2, 1.0 / n2)[None, :]
+        resonant = (k1 * self.p + k2 * self.q == 0) | (k1 == 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            gen = np.where(resonant, 0.0, -mu * k1 * self.Vk / (T.omega_g * (k1 * W + k2)))
+        phi1 = np.atleast_1d(np.asarray(phi1, dtype=float))
+        l = trig_interpolate(T, np.unwrap(T.l), phi1)
+        phi2 = self.section_g(phi1, l) - trig_interpolate(T, T.rho, phi1)
+        e = np.exp(1j * (k1[None] * phi1[:, None, None] + k2[None] * phi2[:, None, None]))
+        deform = np.real(np.sum(gen[None] * e, axis=(1, 2)))
+        V = np.real(np.sum(self.Vk[None] * e, axis=(1, 2)))
+        S = body.a * np.sin(l) ** 2 + body.b * np.cos(l) ** 2
+        return np.asarray(-W * (shift + deform) + mu * V * (1.0 / (S * T.G) - 1.0 / T.omega_g))
 
     # ------------------------------------------------------------ section geometry
     def section_g(self, phi1: NDArray[np.float64], l: NDArray[np.float64]
@@ -460,6 +503,8 @@ _WIDTH_META = {
     "unstable_y": ("", "section-plane y of the unstable periodic orbit's points", "",
                    "(R7)"),
     "stable_phase": ("\\varphi_1", "free-top phase phi1 of the stable points", "rad", "(R9)"),
+    "stable_shift": ("\\delta G", "O(mu) offset of the stable points in the free-top label G "
+                     "of the plane (g sections; NaN otherwise)", "1", "(R10)"),
     "unstable_phase": ("\\varphi_1", "free-top phase phi1 of the unstable points", "rad",
                        "(R9)"),
     "centre_x": ("", "section-plane x of the chain's centre line (the resonant torus)", "",
@@ -507,7 +552,8 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
         ``half_width`` (``Delta G``), ``half_width_action`` (``Delta I1``),
         ``libration_frequency``, ``residue_stable``, ``residue_unstable``,
         ``n_fourier``; per island (dim ``island``, NaN-padded) ``stable_x``,
-        ``stable_y``, ``unstable_x``, ``unstable_y`` and their phases; per point of the
+        ``stable_y``, ``unstable_x``, ``unstable_y`` and their phases, ``stable_shift``
+        (R10: the stable points' ``O(mu)`` offset in ``G``, ``g`` sections); per point of the
         curves (dim ``point``) ``centre_x``, ``centre_y``, ``upper_x``, ``upper_y``,
         ``lower_x``, ``lower_y``. Attrs ``plane_x``, ``plane_y`` name the plane.
 
@@ -540,7 +586,7 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
     n_isl = max([s.size for s in stab] + [s.size for s in unst] + [1])
     arrs = {k: np.full((n, n_isl), np.nan) for k in
             ("stable_x", "stable_y", "unstable_x", "unstable_y", "stable_phase",
-             "unstable_phase")}
+             "unstable_phase", "stable_shift")}
     curves = {k: np.full((n, N_CURVE), np.nan) for k in
               ("centre_x", "centre_y", "upper_x", "upper_y", "lower_x", "lower_y")}
     for i, c in enumerate(chains):
@@ -550,6 +596,8 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
                 arrs[f"{kind}_x"][i, :ph.size] = x
                 arrs[f"{kind}_y"][i, :ph.size] = y
                 arrs[f"{kind}_phase"][i, :ph.size] = ph
+                if kind == "stable":
+                    arrs["stable_shift"][i, :ph.size] = c.stable_shift(ph)
         for k, v in c.curves(N_CURVE).items():
             curves[k][i] = v
     ds = base.assign({

@@ -97,10 +97,11 @@ def resonances(ctx: Context) -> Result:
                                                    ("2:1", 1, 1e-3)]
     for label, axis, mu in chains:
         m = measure_island(body.with_mu(mu), 1.0, 0.0, label, axis=axis, n_seeds=3,
-                           n_rounds=2 if ctx.quick else 3, engine=engine)
+                           n_rounds=3 if ctx.quick else 4, engine=engine)
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
         rows.append([label, f"{mu:g}", f"{p:.4e}", f"{q:.4e}", f"{(q - p) / p:+.2%}",
-                     f"{float(m.edge_uncertainty):.1e}", f"{float(m.centre_offset):+.1e}"])
+                     f"{float(m.edge_uncertainty):.1e}", f"{float(m.stable_s):+.4e}",
+                     f"{float(m.predicted_stable_s):+.4e}"])
         numbers[f"half_width_{label}_mu_{mu:g}"] = q
     # The normal form at the rotation about y of the paper's body, against the closed form.
     paper = ctx.body
@@ -121,4 +122,4 @@ def resonances(ctx: Context) -> Result:
         {"engine": engine, "n_chains": int(pred.sizes["resonance"]),
          "nf": nf_rows},
         Table(["chain", "mu", "predicted half-width (G)", "measured", "difference",
-               "edge uncertainty", "centre offset"], rows))
+               "edge uncertainty", "stable point, measured", "stable point, (R10)"], rows))
