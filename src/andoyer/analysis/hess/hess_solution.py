@@ -73,6 +73,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import ellipj, ellipkinc
 
+from andoyer.analysis.hess import reduced
 from andoyer.analysis.hess.pendulum import (
     pendulum_solution,
 )
@@ -92,16 +93,10 @@ from andoyer.integrate.hess_manifold import THETA1_TOL
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.validation import checks_arguments
 
+#: The reduced system's names (re-exported from :mod:`andoyer.analysis.hess.reduced`) and
+#: the closed-form motion's.
 __all__ = [
-    "MOTIONS",
-    "derive_reduced_hamiltonian",
-    "reduced_hamiltonian",
-    "reduced_field",
-    "drift_rate",
-    "energy_minimum",
-    "classify_motion",
-    "cubic_roots",
-    "period",
+    *reduced.__all__,
     "hess_state",
     "signed_to_hess",
     "hess_solution",
