@@ -55,12 +55,18 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
     import heyoka as hy
 
     if variational:
-        from andoyer.integrate.variational import variational_system
+        from andoyer.integrate.engines.base import runtime_parameters
+        from andoyer.integrate.engines.heyoka_symbolic import heyoka_state_vars, heyoka_system
 
-        system = batch_system = list(variational_system())
-        pars = np.array([*body.engine_params, 1.0 / float(np.max(t_end))])
+        # The system chaos_map(indicator="fli") integrates (engines.heyoka_tangent's
+        # "plain" flow): the state and ONE tangent column of var_ode_sys, 12 variables,
+        # not renormalised (the renormalised 17-variable system is only re-run for the
+        # few orbits whose ln|w| nears overflow).
+        vsys = hy.var_ode_sys(list(heyoka_system()), [heyoka_state_vars()[0]], order=1)
+        system = batch_system = vsys
+        pars = runtime_parameters(body.engine_params)
         assert w0 is not None
-        x0 = np.concatenate([y0, w0, np.zeros((y0.shape[0], 3))], axis=1)
+        x0 = np.concatenate([y0, w0], axis=1)
         compact = False  # as andoyer compiles it
     else:
         from andoyer.integrate.engines.heyoka_symbolic import heyoka_system
