@@ -342,3 +342,78 @@ def test_layout_fits_wide_and_narrow_windows(tmp_path: Path) -> None:
     finally:
         server.stop()
     assert not page_errors, f"JavaScript errors on the page: {page_errors}"
+
+
+#: The Plotly 3D view of the side panel (issue 27): its plot element, searched through
+#: the shadow roots Panel renders into.
+_GYROSCOPE = """() => {
+  const found = [];
+  const walk = (root) => {
+    for (const el of root.querySelectorAll('*')) {
+      if (el.classList && el.classList.contains('js-plotly-plot')) found.push(el);
+      if (el.shadowRoot) walk(el.shadowRoot);
+    }
+  };
+  walk(document);
+  const el = found.find(e => e.layout && e.layout.meta === 'andoyer-gyroscope');
+  if (!el || !el._transitionData || !el.data || el.data.length < 4
+      || !el._transitionData._frames || el._transitionData._frames.length === 0) return null;
+  const gl = el.querySelectorAll('canvas').length;
+  return {n_traces: el.data.length, n_frames: el._transitionData._frames.length,
+          names: el.data.map(d => d.name), canvases: gl,
+          axle: [el.data[2].x[1], el.data[2].y[1], el.data[2].z[1]],
+          trace_points: el.data[1].x.length};
+}"""
+
+
+def test_3d_view_of_the_selected_orbit(tmp_path: Path) -> None:
+    """A click seeds an orbit; the side panel's 3D view shows that orbit's gyroscope: a
+    WebGL scene with the sphere, the axis trace, the axle and the wheel, and frames that
+    move the axle in the browser (Plotly.animate), starting where the orbit's vertical
+    puts the symmetry axis."""
+    sync_api = _need_browser()
+    from andoyer.charts.rotation import quaternion_from_vertical, rotation_matrix
+    from andoyer.explore.server import serve
+
+    body = RigidBody.paper()
+    server = serve(body, threaded=True, n_crossings=50)
+    page_errors: list[str] = []
+    try:
+        with sync_api.sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            try:
+                page = browser.new_page(viewport={"width": 1400, "height": 1400})
+                page.on("pageerror", lambda exc: page_errors.append(str(exc)))
+                page.goto(server.url)
+                _wait(page, "s.view_ready && s.pending === 0")
+                _click(page, *CLICKS[0])
+                _wait(page, "s.n_orbits === 1 && s.pending === 0")
+                view = page.wait_for_function(_GYROSCOPE, timeout=60_000).json_value()
+                assert view["names"] == ["sphere", "axis trace", "axle", "wheel"]
+                assert view["n_frames"] == 80 and view["trace_points"] == 801
+                assert view["canvases"] >= 1  # a WebGL scene
+                y0 = np.array([_column(page, "andoyer-orbits", v)[0] for v in
+                               ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")])
+                tip = rotation_matrix(quaternion_from_vertical(y0[3:], 0.0))[:, 2]
+                np.testing.assert_allclose(view["axle"], tip, atol=1e-6)
+                # Played in the browser: a later frame moves the axle.
+                page.evaluate("""() => new Promise(done => {
+                  const walk = (root, out) => { for (const el of root.querySelectorAll('*')) {
+                    if (el.classList && el.classList.contains('js-plotly-plot')) out.push(el);
+                    if (el.shadowRoot) walk(el.shadowRoot, out); } return out; };
+                  const el = walk(document, []).find(e => e.layout.meta === 'andoyer-gyroscope');
+                  const name = el._transitionData._frames[40].name;
+                  window.Plotly.animate(el, [name], {frame: {duration: 0}, mode: 'immediate'})
+                    .then(done);
+                })""")
+                moved = page.evaluate(_GYROSCOPE)
+                assert np.linalg.norm(np.subtract(moved["axle"], view["axle"])) > 1e-3
+                page.screenshot(path=str(tmp_path / "explore-3d.png"), full_page=True)
+                if os.environ.get("ANDOYER_SCREENSHOT_3D"):
+                    shutil.copyfile(tmp_path / "explore-3d.png",
+                                    os.environ["ANDOYER_SCREENSHOT_3D"])
+            finally:
+                browser.close()
+    finally:
+        server.stop()
+    assert not page_errors, f"JavaScript errors on the page: {page_errors}"

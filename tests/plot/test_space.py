@@ -59,3 +59,15 @@ def test_animation_has_one_frame_per_time_and_the_axle_follows_z(ds):
     x, y, z = (np.asarray(v) for v in axle.get_data_3d())
     assert np.allclose([x[1], y[1], z[1]], ds.rotation.values[0, 7, :, 2])
     assert len(list(anim.new_frame_seq())) == 10
+
+
+def test_plotly_gyroscope_frames_follow_the_attitude(ds):
+    from andoyer.plot.space import gyroscope_plotly
+
+    fig = gyroscope_plotly(ds, orbit=0, frames=11)
+    assert [t.name for t in fig.data] == ["sphere", "axis trace", "axle", "wheel"]
+    assert len(fig.frames) == 11 and fig.layout.meta == "andoyer-gyroscope"
+    R = ds.rotation.values[0]
+    last = fig.frames[-1].data[0]
+    assert np.allclose([last.x[1], last.y[1], last.z[1]], R[-1, :, 2])
+    assert np.allclose(fig.data[1].x, R[:, 0, 2])

@@ -40,7 +40,7 @@ from andoyer.explore.state import (
 )
 from andoyer.integrate.engines import ENGINES
 
-__all__ = ["ExplorerLayout", "CONTROLS_WIDTH", "REDRAW_TABLE"]
+__all__ = ["ExplorerLayout", "PlotlyWithFrames", "CONTROLS_WIDTH", "REDRAW_TABLE"]
 
 #: Width of the controls' column (px).
 CONTROLS_WIDTH = 300
@@ -54,6 +54,18 @@ for (const view of Bokeh.index.all_views()) {
 
 
 
+
+
+class PlotlyWithFrames(pn.pane.Plotly):
+    """Panel's Plotly pane with the figure's animation frames: Panel 1.9's
+    ``_plotly_json_wrapper`` sends data and layout only, so a figure's frames never reach
+    the browser (its model has a ``frames`` property that nothing fills)."""
+
+    @classmethod
+    def _plotly_json_wrapper(cls, fig: Any) -> dict[str, Any]:
+        json: dict[str, Any] = super()._plotly_json_wrapper(fig)
+        json["frames"] = [frame.to_plotly_json() for frame in getattr(fig, "frames", ())]
+        return json
 
 
 class ExplorerLayout(ExplorerBase):
@@ -240,8 +252,15 @@ class ExplorerLayout(ExplorerBase):
                                       "<small>FLI/MEGNO: not available in this version "
                                       "(no andoyer.analysis.chaos.indicators)</small>", width=340)
         self.time_pane = pn.pane.Bokeh(tfig)
+        # The body in space (issue 27): the selected orbit's gyroscope in a Plotly 3D
+        # scene, played in the browser (andoyer.plot.space.gyroscope_plotly).
+        self.gyroscope = PlotlyWithFrames(None, width=340, height=340,
+                                          css_classes=["andoyer-gyroscope"])
         self.side_panel = pn.Column(pn.pane.Markdown("#### selected orbit"), self.info,
                                     self.w_coords, self.w_span, self.time_pane,
+                                    pn.pane.Markdown("#### the body in space "
+                                                     "(over the time span)"),
+                                    self.gyroscope,
                                     self.w_indicator_t, self.w_indicator, self.indicator,
                                     width=360, css_classes=["andoyer-side"])
 

@@ -76,6 +76,17 @@ from andoyer.integrate.section import Section
 
 __all__ = ["Explorer"]
 
+def _gyroscope(settings: Settings, y0: Any, span: float) -> Any:
+    """The 3D view of the side panel: the orbit's attitude over ``span`` as a Plotly
+    figure (:func:`andoyer.plot.space.gyroscope_plotly`)."""
+    from andoyer.integrate.orientation import attitude
+    from andoyer.plot.space import gyroscope_plotly
+
+    ds = attitude(settings.body, y0, np.linspace(0.0, span, 801), engine=settings.engine,
+                  rtol=settings.rtol, atol=settings.atol, progress=False)
+    return gyroscope_plotly(ds, frames=80)
+
+
 #: Integrators already warmed up in this process (one page does it for all).
 _WARM: set[tuple[Any, ...]] = set()
 _WARM_LOCK = threading.Lock()
@@ -425,6 +436,7 @@ class Explorer(ExplorerLayout):
         o = self.session.orbits.get(self._selected) if self._selected is not None else None
         if o is None:
             self.series.data = {"xs": [], "ys": [], "name": [], "colour": []}
+            self.gyroscope.object = None
             return
         coords = list(self.w_coords.value)
         settings, y0 = o.settings, o.seed.y0
@@ -443,10 +455,14 @@ class Explorer(ExplorerLayout):
                     "name": shown, "colour": [TIME_COLOURS[k % len(TIME_COLOURS)]
                                               for k in range(len(shown))]}
             missing = sorted(set(coords) - set(shown))
+            if token != self._side_token:
+                return
+            gyro = _gyroscope(settings, y0, float(span))
 
             def show() -> None:
                 if token == self._side_token:
                     self.series.data = data
+                    self.gyroscope.object = gyro
                     if missing:
                         self._status(f"no {', '.join(missing)} for this body (the Hess "
                                      "chart needs e3 = 0)", "warning")

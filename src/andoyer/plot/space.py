@@ -23,7 +23,7 @@ from andoyer.atomic import atomic_path
 from andoyer.plot.style import COLOURS, new_figure, paper_style
 
 __all__ = ["plot_axis_trace", "plot_precession_nutation", "plot_heteroclinic_cycle",
-           "gyroscope_animation", "save_animation", "ANIMATION_FORMATS",
+           "gyroscope_animation", "gyroscope_plotly", "save_animation", "ANIMATION_FORMATS",
            "animation_writer_available"]
 
 #: File suffix -> the encoder that writes it (Pillow ships with Matplotlib; MP4 needs
@@ -291,3 +291,79 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
             writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-f", "mp4"])
         anim.save(str(tmp), writer=writer, dpi=dpi)
     return final
+
+
+def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any:
+    """The gyroscope moving, as an interactive Plotly 3D figure (the explorer's 3D view).
+
+    The unit sphere, the trace of the symmetry axis, and the axle and wheel at
+    ``frames`` evenly spaced times, played in the browser (Play / Pause buttons and a
+    time slider; nothing runs on the server while it plays).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An attitude dataset (:func:`andoyer.integrate.attitude`).
+    orbit : int
+        Which orbit.
+    frames : int
+        Animation frames (>= 2).
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+        ``layout.meta = "andoyer-gyroscope"``; traces ``sphere``, ``axis trace``,
+        ``axle``, ``wheel``.
+    """
+    import plotly.graph_objects as go
+
+    one = ds.isel(orbit=orbit)
+    R = one.rotation.transpose("time", "space", "body").values
+    t = one.time.values
+    tip = R[:, :, 2]
+    n = max(2, int(frames))
+    keys = np.unique(np.linspace(0, len(t) - 1, n).round().astype(int))
+    wheel = _wheel(24)
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 25), np.linspace(0, np.pi, 13))
+
+    def moving(k: int) -> list[Any]:
+        # Plain lists, not arrays: frames reach the browser as JSON (Panel's Plotly pane
+        # sends the traces' arrays as columns, not the frames').
+        rim = wheel @ R[k].T
+        w = [[None if np.isnan(c) else float(c) for c in row] for row in rim]
+        a = [float(c) for c in tip[k]]
+        return [go.Scatter3d(x=[0.0, a[0]], y=[0.0, a[1]], z=[0.0, a[2]],
+                             mode="lines", line={"color": "#262626", "width": 7},
+                             name="axle"),
+                go.Scatter3d(x=[p[0] for p in w], y=[p[1] for p in w], z=[p[2] for p in w],
+                             mode="lines",
+                             line={"color": COLOURS["separatrix"], "width": 5},
+                             name="wheel")]
+
+    sphere = go.Surface(x=np.cos(u) * np.sin(v), y=np.sin(u) * np.sin(v), z=np.cos(v),
+                        opacity=0.25, showscale=False, colorscale="Blues", name="sphere",
+                        hoverinfo="skip")
+    trace = go.Scatter3d(x=tip[:, 0], y=tip[:, 1], z=tip[:, 2], mode="lines",
+                         line={"color": COLOURS["centre"], "width": 3}, name="axis trace")
+    fig = go.Figure(data=[sphere, trace, *moving(int(keys[0]))],
+                    frames=[go.Frame(data=moving(int(k)), traces=[2, 3], name=f"{t[k]:.3g}")
+                            for k in keys])
+    steps = [{"args": [[f"{t[k]:.3g}"], {"frame": {"duration": 0, "redraw": True},
+                                          "mode": "immediate"}],
+              "label": f"{t[k]:.3g}", "method": "animate"} for k in keys]
+    fig.update_layout(
+        meta="andoyer-gyroscope", showlegend=False, margin={"l": 0, "r": 0, "t": 0, "b": 0},
+        scene={"aspectmode": "cube", "xaxis": {"range": [-1.1, 1.1], "title": "X"},
+               "yaxis": {"range": [-1.1, 1.1], "title": "Y"},
+               "zaxis": {"range": [-1.1, 1.1], "title": "Z"}},
+        updatemenus=[{"type": "buttons", "showactive": False, "x": 0.02, "y": 0.02,
+                      "xanchor": "left", "yanchor": "bottom",
+                      "buttons": [{"label": "Play", "method": "animate",
+                                   "args": [None, {"frame": {"duration": 60, "redraw": True},
+                                                   "fromcurrent": True}]},
+                                  {"label": "Pause", "method": "animate",
+                                   "args": [[None], {"frame": {"duration": 0},
+                                                     "mode": "immediate"}]}]}],
+        sliders=[{"steps": steps, "currentvalue": {"prefix": "t = "}, "len": 0.75,
+                  "x": 0.2, "y": 0.02}])
+    return fig
