@@ -126,8 +126,9 @@ def rotation_matrix(q: ArrayLike) -> NDArray[np.float64]:
 
 
 def quaternion_from_matrix(R: ArrayLike) -> NDArray[np.float64]:
-    """The unit quaternion with ``q0 >= 0`` of a rotation matrix (Shepperd's method:
-    the largest of ``q0^2 .. q3^2`` is taken from the diagonal, the others from it).
+    """The unit quaternion with ``q0 >= 0`` of a rotation matrix, by Shepperd's method.
+
+    The largest of the squares ``q_i^2`` is taken from the diagonal, the others from it.
 
     >>> q = quaternion_from_matrix(rotation_matrix([0.5, 0.5, -0.5, 0.5]))
     >>> q.round(12).tolist()
