@@ -126,6 +126,7 @@ __all__ = [
     "ATTITUDE_REVERSAL",
 ]
 
+
 def _states(y0: ArrayLike, name: str = "y0") -> NDArray[np.float64]:
     y = np.asarray(y0, dtype=np.float64)
     if y.ndim == 1:
