@@ -71,7 +71,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ellipj, ellipkinc
+from scipy.special import ellipj
 
 from andoyer.analysis.hess import reduced
 from andoyer.analysis.hess.pendulum import (
@@ -87,6 +87,7 @@ from andoyer.analysis.hess.reduced import energy_minimum as energy_minimum
 from andoyer.analysis.hess.reduced import period as period
 from andoyer.analysis.hess.reduced import reduced_field as reduced_field
 from andoyer.analysis.hess.reduced import reduced_hamiltonian as reduced_hamiltonian
+from andoyer.analysis.unperturbed.euler_poinsot import elliptic_f
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.integrate.hess_manifold import THETA1_TOL
@@ -218,7 +219,7 @@ def _initial_phase(u0: float, udot0: float, ub: float, uc: float, omega: float,
     else:              # nearer u_b: cn is the small factor, sn > 0 chosen
         sn = math.sqrt(s2)
         cn = D / (sn * math.sqrt(1.0 - m * s2))
-    return float(ellipkinc(math.atan2(sn, cn), m))
+    return float(elliptic_f(math.atan2(sn, cn), m))
 
 
 def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: float,

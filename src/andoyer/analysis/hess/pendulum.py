@@ -72,8 +72,9 @@ import math
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
-from scipy.special import ellipj, ellipk, ellipkinc
+from scipy.special import ellipj, ellipk
 
+from andoyer.analysis.unperturbed.euler_poinsot import elliptic_f
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import provenance, states_dataset
 from andoyer.validation import checks_arguments, finite_array
@@ -203,8 +204,9 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
       ``s = sign(p)``;
     * separatrix: ``phi = 2 s gd(omega0 t + u0)``, ``p = s (2 omega0 / c) sech(...)``.
 
-    ``u0`` is fixed by the initial state through ``scipy.special.ellipkinc`` of the
-    amplitude ``atan2(sn, cn)`` (quadrant-correct). ``q`` is returned unwrapped
+    ``u0`` is fixed by the initial state through
+    :func:`~andoyer.analysis.unperturbed.euler_poinsot.elliptic_f` (not SciPy's
+    ``ellipkinc``, wrong at isolated points) of the amplitude ``atan2(sn, cn)`` (quadrant-correct). ``q`` is returned unwrapped
     (continuous in ``t``); ``(q, p)(t[0]) = (q0, p0)`` to round-off.
 
     Examples
@@ -241,7 +243,7 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
         k = math.sqrt(m)
         sn0 = math.sin(0.5 * phi0) / k
         cn0 = c * p0 / (2.0 * k * omega0)
-        u = omega0 * tau + ellipkinc(math.atan2(sn0, cn0), m)
+        u = omega0 * tau + float(elliptic_f(math.atan2(sn0, cn0), m))
         sn, cn, dn, _ = ellipj(u, m)
         phi = 2.0 * np.arctan2(k * sn, dn)
         return phi + offset, 2.0 * k * omega0 / c * cn
@@ -249,7 +251,7 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
     k = 1.0 / math.sqrt(m)
     s = 1.0 if p0 > 0 else -1.0
     half = 0.5 * s * (q0 + 0.5 * math.pi)  # the amplitude am(u0), unreduced
-    u = k * omega0 * tau + ellipkinc(half, m)
+    u = k * omega0 * tau + float(elliptic_f(half, m))
     _, _, dn, am = ellipj(u, m)
     q = 2.0 * s * am - 0.5 * math.pi
     q = q + (q0 - q.flat[0]) if q.size else q  # remove the round-off of F then am
