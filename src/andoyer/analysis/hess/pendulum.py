@@ -206,8 +206,9 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
 
     ``u0`` is fixed by the initial state through
     :func:`~andoyer.analysis.unperturbed.euler_poinsot.elliptic_f` (not SciPy's
-    ``ellipkinc``, wrong at isolated points) of the amplitude ``atan2(sn, cn)`` (quadrant-correct). ``q`` is returned unwrapped
-    (continuous in ``t``); ``(q, p)(t[0]) = (q0, p0)`` to round-off.
+    ``ellipkinc``, wrong at isolated points) of the amplitude ``atan2(sn, cn)``
+    (quadrant-correct). ``q`` is returned unwrapped (continuous in ``t``);
+    ``(q, p)(t[0]) = (q0, p0)`` to round-off.
 
     Examples
     --------
