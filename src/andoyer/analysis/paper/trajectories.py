@@ -153,6 +153,7 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
         datasets (the latter holds the accessible region's boundary).
     """
     _check_body(body)
+    J2 = positive("J2", J2, maximum=MAX_ACTION)  # the level's G (checked under its name)
     level = separatrix_energy(body, J2) if h is None else float(h)
     n_orbits = integer("n_orbits", n_orbits, 1)
     n_zoom = integer("n_zoom", n_zoom, 0)
