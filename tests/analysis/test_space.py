@@ -101,3 +101,18 @@ def test_heteroclinic_cycle_joins_the_two_pendulum_like_rotations(mu):
         assert back[0] < -1 + 1e-4 and back[-1] > 1 - 1e-4
     # M = 0: the angular momentum stays horizontal in space.
     assert np.abs(cyc.space_momentum.values[..., 2]).max() <= 1e-11
+
+
+def test_off_the_hess_direction_the_cycle_starts_on_the_nearest_hess_separatrices():
+    """A body turned by epsilon = 0.05 off the Hess direction: its orbits start on the free
+    top's separatrices (those of the nearest Hess body) and come close to both pendulum-like
+    rotations (measured: |L/G| = 0.999988 at the ends of theta1 = 0, 0.979 on the other)."""
+    body = RigidBody.near_hess(2.5, 2.0, 2.2, mu=0.01, epsilon=0.05)
+    cyc = heteroclinic_cycle(body, engine=ENGINE, n_times=801)
+    assert abs(cyc.attrs["hess_epsilon"] - 0.05) <= 1e-12
+    LG = cyc.L_over_G.values
+    assert LG[0, 0] > 1 - 1e-3 and LG[0, -1] < -1 + 1e-3
+    assert LG[1].min() < -0.9 and LG[1].max() > 0.9
+    assert np.abs(cyc.space_momentum.values[..., 2]).max() <= 1e-11
+    with pytest.raises(ValueError, match="e3"):
+        heteroclinic_cycle(LAGRANGE)

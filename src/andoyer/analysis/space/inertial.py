@@ -17,7 +17,8 @@ angles ``z-x-z``).
 * :func:`herpolhode`: the free top (``mu = 0``): the angular velocity in space,
   ``R I G``, whose tip moves on the invariable plane ``(omega, L) = 2T`` with ``L = R G``
   fixed (Poinsot); its coordinates in that plane and its distance ``2T/|L|``.
-* :func:`heteroclinic_cycle`: the Hess case at ``M = 0``. On the Hess relation (3)
+* :func:`heteroclinic_cycle`: the Hess case at ``M = 0`` (and bodies turned off the Hess
+  direction, from the separatrices of their nearest Hess body). On the Hess relation (3)
   (``theta1 = 0``) every rotation of ``theta2`` is heteroclinic: ``L/G`` goes from
   ``+1`` to ``-1`` (:mod:`andoyer.analysis.hess.hess_solution`), from the pendulum-like
   rotation ``P+`` about ``+z`` to ``P-`` about ``-z``; the other unperturbed separatrix
@@ -301,7 +302,11 @@ def heteroclinic_cycle(body: RigidBody, J2: float = 1.0, *, t_half: float | None
     Parameters
     ----------
     body : RigidBody
-        A Hess body (``mu >= 0``).
+        A Hess body (``mu >= 0``), or a body turned off the Hess direction
+        (:meth:`~andoyer.body.RigidBody.near_hess`): its orbits start on the separatrices
+        of its nearest Hess body (:meth:`~andoyer.body.RigidBody.nearest_hess`: the free
+        top's, shared by every centre of mass in the (e1, e2) plane) and are integrated
+        with the body itself -- the asymptotic motions near its split separatrices.
     J2 : float
         ``G``, the length of the angular momentum at the middle of each branch.
     t_half : float, optional
@@ -331,13 +336,13 @@ def heteroclinic_cycle(body: RigidBody, J2: float = 1.0, *, t_half: float | None
     >>> [round(float(v), 3) for v in cyc.L_over_G.isel(time=[0, -1]).values.ravel()]
     [1.0, -1.0, -1.0, 1.0]
     """
-    body.require_hess("the heteroclinic cycle of the Hess case")
+    hess = body.nearest_hess()  # ValueError unless r is in the (e1, e2) plane, A > C > B
     G = _positive("J2", J2, maximum=MAX_ACTION)
     n = integer("n_times", n_times, 3)
     rtol, atol = check_tolerances(rtol, atol)
-    lam = heteroclinic_rate(body, G)
+    lam = heteroclinic_rate(hess, G)
     T = 12.0 / lam if t_half is None else _positive("t_half", t_half)
-    y0 = np.stack([heteroclinic(body, G, [0.0], branch)["y"].values[0]
+    y0 = np.stack([heteroclinic(hess, G, [0.0], branch)["y"].values[0]
                    for branch in BRANCHES])
     budget.check("heteroclinic_cycle",
                  steps=1.3 * budget.estimate_steps(body, np.repeat(y0, 2, axis=0), T, rtol),
@@ -363,7 +368,7 @@ def heteroclinic_cycle(body: RigidBody, J2: float = 1.0, *, t_half: float | None
                         "component": list(QUATERNION), "space": list(SPACE_AXES),
                         "body": list(BODY_AXES)},
         provenance(body, engine=eng.name, rtol=rtol, atol=atol, J2=G, t_half=T,
-                   lambda_rate=lam,
+                   lambda_rate=lam, hess_epsilon=body.hess_epsilon,
                    equations="Euler-Poisson equations (1) with the attitude quaternion, "
                              "from the middle (L = 0) of the unperturbed separatrices",
                    **CONVENTIONS),
