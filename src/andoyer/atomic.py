@@ -45,6 +45,13 @@ def named_when_full(where: str | os.PathLike[str]) -> Iterator[None]:
     """Turn running out of space while writing under ``where`` into
     :class:`~andoyer.errors.NoSpaceError` naming it; other errors pass unchanged.
 
+    Parameters
+    ----------
+    where : str or os.PathLike
+        The file or folder being written, named in the error.
+
+    Examples
+    --------
     >>> import errno
     >>> with named_when_full("/data/out"):
     ...     raise OSError(errno.ENOSPC, "No space left on device")
@@ -73,6 +80,11 @@ def atomic_path(final: str | os.PathLike[str]) -> Iterator[Path]:
     On any exception the temporary file is removed and ``final`` is left untouched; a
     full file system raises :class:`~andoyer.errors.NoSpaceError` naming ``final``.
     The file gets the ordinary permissions (``0o666 & ~umask``), not mkstemp's 0o600.
+
+    Parameters
+    ----------
+    final : str or os.PathLike
+        The file to write.
     """
     out = Path(final)
     if not out.parent.exists():

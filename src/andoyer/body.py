@@ -402,6 +402,11 @@ def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
     :class:`RigidBody` there raises one clear ``TypeError`` naming the function; the
     scalar arguments are checked by :func:`andoyer.validation.checks_arguments`.
 
+    Parameters
+    ----------
+    func : callable
+        The public function to wrap (first argument: the body).
+
     Examples
     --------
     >>> from andoyer import energy

@@ -99,6 +99,15 @@ def hamiltonian(body: RigidBody, x: ArrayLike, chart: Chart = "euler_poisson"
 def canonical_field(body: RigidBody, x: ArrayLike, chart: str) -> NDArray[np.float64]:
     """The chart's generated field with the cyclic angle's rate appended (last column):
     ``d(l, g, L, G, M, m)/dt`` or ``d(theta1, ..., J3, theta3)/dt``; regular points only.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body.
+    x : array_like, shape (..., 5)
+        Regular points of the chart: ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+    chart : {"andoyer", "hess"}
+        The chart (Eq. (7) or Eqs. (13)-(14)).
     """
     arr, p = _chart_args(body, x, chart)
     _regular_check(arr, chart, f"the {chart} vector field")

@@ -47,6 +47,11 @@ class NoSpaceError(OSError):
     An ``OSError`` with ``errno.ENOSPC``; the message names the folder or file. What was
     being written was removed (files are written atomically; a scan chunk not marked
     done is computed again on resume).
+
+    Parameters
+    ----------
+    where : str or os.PathLike
+        The file or folder being written.
     """
 
     def __init__(self, where: str | os.PathLike[str]) -> None:
@@ -72,6 +77,13 @@ class Interrupted(KeyboardInterrupt):
     A ``KeyboardInterrupt``, so that every ``finally`` and every handler of Ctrl-C
     cleans up the same way. ``signal`` is the signal's name; ``note`` says what was kept
     (e.g. how to resume), for the one line the command line prints.
+
+    Parameters
+    ----------
+    signal : str, default "SIGINT"
+        The signal's name.
+    note : str, optional
+        What was kept of the work (e.g. the chunks of a scan already stored).
     """
 
     def __init__(self, signal: str = "SIGINT", note: str | None = None) -> None:

@@ -34,7 +34,21 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 
 
 class Symbol(NamedTuple):
-    """A row of the notation table of the README (several coordinates per row)."""
+    """A row of the notation table of the README (several coordinates per row).
+
+    Parameters
+    ----------
+    code : str
+        Name(s) in the code.
+    paper : str
+        The paper's symbol(s).
+    meaning : str
+        What they are.
+    equation : str
+        The paper's equation that defines them.
+    storage : str
+        Name(s) in datasets.
+    """
 
     code: str
     paper: str
@@ -72,7 +86,23 @@ NOTATION: tuple[Symbol, ...] = (
 
 
 class Coordinate(NamedTuple):
-    """One coordinate or integral as the code stores and draws it."""
+    """One coordinate or integral as the code stores and draws it.
+
+    Parameters
+    ----------
+    code : str
+        Name in the code (``"l"``, ``"theta1"``).
+    storage : str
+        Name in datasets (``"l_angle"``, ``"theta1"``).
+    symbol : str
+        Its symbol (mathtext) in figures.
+    long_name : str
+        The ``long_name`` attribute of its dataset variable.
+    equation : str
+        The paper's equation that defines it (e.g. ``"(7)"``).
+    units : str
+        Its units (``"rad"``, ``"1"``).
+    """
 
     code: str       #: the name in the code and the API (the paper's symbol in ASCII)
     storage: str    #: the dataset / Zarr variable name
@@ -133,7 +163,13 @@ ANGLES: tuple[str, ...] = tuple(c.storage for c in COORDINATES
 
 
 def storage_name(code: str) -> str:
-    """The dataset name of a coordinate given by its code name (or its storage name)."""
+    """The dataset name of a coordinate given by its code name (or its storage name).
+
+    Parameters
+    ----------
+    code : str
+        A coordinate's code name (or its storage name).
+    """
     try:
         return COORDINATE[code].storage
     except KeyError:
@@ -142,7 +178,13 @@ def storage_name(code: str) -> str:
 
 
 def coordinates(chart: str) -> tuple[str, ...]:
-    """The code names of a chart's coordinates, in state order."""
+    """The code names of a chart's coordinates, in state order.
+
+    Parameters
+    ----------
+    chart : str
+        ``"euler_poisson"``, ``"andoyer"`` or ``"hess"``.
+    """
     try:
         return CHART_COORDS[chart]
     except KeyError:
@@ -151,7 +193,13 @@ def coordinates(chart: str) -> tuple[str, ...]:
 
 
 def label(name: str) -> str:
-    """The axis label (mathtext) of a coordinate given by code or storage name."""
+    """The axis label (mathtext) of a coordinate given by code or storage name.
+
+    Parameters
+    ----------
+    name : str
+        A coordinate's code or storage name.
+    """
     return COORDINATE[name].label if name in COORDINATE else name
 
 
@@ -159,7 +207,22 @@ def label(name: str) -> str:
 class Term(NamedTuple):
     """One thing a user passes, under its one name in the API, on the command line, in a
     scan file; and the spellings of the previous release, still accepted with a
-    deprecation message (:func:`renamed`, ``cli._common``, ``scan.config``)."""
+    deprecation message (:func:`renamed`, ``cli._common``, ``scan.config``).
+
+    Parameters
+    ----------
+    api : str
+        The parameter's name in the Python API.
+    meaning : str
+        What it is (the start of the flag's help).
+    config : str, optional
+        Its key in a scan file (None: scan files do not take it).
+    cli : str, optional
+        Its command-line flag (None: ``--`` and the API name with ``-`` for ``_``).
+    old_api, old_cli, old_config : tuple of str
+        Former spellings in the API, on the command line and in scan files, still
+        accepted for one release with a deprecation message.
+    """
 
     api: str                  #: the Python parameter name
     meaning: str              #: what it is (CLI help and docs start from it)

@@ -65,6 +65,13 @@ _LOCK_SUFFIX = ".andoyer-lock"
 def lock_path(target: str | os.PathLike[str]) -> Path:
     """The lock file of an output: hidden, beside it (outside a folder that may be replaced).
 
+    Parameters
+    ----------
+    target : str or os.PathLike
+        The output file, folder or store.
+
+    Examples
+    --------
     >>> lock_path("out/s.zarr")
     PosixPath('out/.s.zarr.andoyer-lock')
     """
@@ -79,7 +86,13 @@ def _info_path(target: Path) -> Path:
 
 def read_holder(target: str | os.PathLike[str]) -> dict[str, Any] | None:
     """Who holds (or held, if it was killed) the lock of ``target``: pid, host, started
-    (ISO time, UTC), start (seconds since the epoch), command; None if nobody."""
+    (ISO time, UTC), start (seconds since the epoch), command; None if nobody.
+
+    Parameters
+    ----------
+    target : str or os.PathLike
+        The output file, folder or store.
+    """
     try:
         info = json.loads(_info_path(Path(target)).read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -199,6 +212,11 @@ class Manifest:
 
     Hidden entries (names starting with ``.``: the manifest, locks, temporary files) are
     never listed nor counted as foreign.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The output folder.
     """
 
     def __init__(self, folder: str | os.PathLike[str]) -> None:
@@ -285,7 +303,13 @@ _HELD: dict[Path, tuple[OutputLock, contextlib.ExitStack]] = {}
 
 def hold(target: str | os.PathLike[str]) -> OutputLock:
     """Lock ``target`` until :func:`release_all` (the end of a command); a path this
-    process already holds is not locked twice."""
+    process already holds is not locked twice.
+
+    Parameters
+    ----------
+    target : str or os.PathLike
+        The output file, folder or store.
+    """
     key = Path(os.path.abspath(target))
     if key in _HELD:
         return _HELD[key][0]
@@ -301,6 +325,13 @@ def guard_folder(folder: str | os.PathLike[str], flag: str = "--out") -> OutputL
     The folder may be new, empty, or hold only what andoyer wrote there (its manifest,
     checksums unchanged). Files of a killed run (written after it started) are adopted.
     When the run ends (:func:`release_all`) the manifest records what it wrote.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The output folder (it may not exist yet).
+    flag : str, default "--out"
+        The flag or argument that named it, for the error.
     """
     path = Path(folder)
     lock = hold(path)
@@ -328,6 +359,15 @@ def guard_file(path: str | os.PathLike[str], flag: str = "--out") -> OutputLock:
     When the run ends (:func:`release_all`) the manifest of the folder records the file,
     if this run wrote it. A file written by a killed run (after it started) is adopted.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file.
+    flag : str, default "--out"
+        The flag or argument that named it, for the error.
+
+    Examples
+    --------
     >>> import tempfile, pathlib
     >>> folder = pathlib.Path(tempfile.mkdtemp())
     >>> _ = (folder / "mine.png").write_text("a user's file")
@@ -385,7 +425,13 @@ def _safely(update: Any, *args: Any) -> None:
 
 
 def release(target: str | os.PathLike[str]) -> None:
-    """Release one output held by :func:`hold` (its callbacks run first)."""
+    """Release one output held by :func:`hold` (its callbacks run first).
+
+    Parameters
+    ----------
+    target : str or os.PathLike
+        The output held by :func:`hold`.
+    """
     entry = _HELD.pop(Path(os.path.abspath(target)), None)
     if entry is not None:
         entry[1].close()

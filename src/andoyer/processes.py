@@ -89,6 +89,11 @@ def end_children(timeout: float = 2.0) -> list[int]:
 
     Multiprocessing's resource tracker is left alone: it ignores signals on purpose and
     exits by itself when its parent does (it then frees what the workers left).
+
+    Parameters
+    ----------
+    timeout : float, default 2.0
+        Seconds between SIGTERM and SIGKILL.
     """
     import psutil
 

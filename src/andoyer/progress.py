@@ -63,6 +63,8 @@ class Progress:
         ``None``: shown when stderr is a terminal (tqdm's own test).
     postfix : str, optional
         Fixed text after the bar (e.g. a dashboard address).
+    initial : int, default 0
+        Units already done when the bar starts (a resumed scan).
     """
 
     def __init__(self, total: int, label: str, enabled: bool | None = None,

@@ -34,6 +34,15 @@ def _real(name: str, value: Any) -> float:
 def finite(name: str, value: Any) -> float:
     """``float(value)``, or ``ValueError`` naming ``name`` if it is not a finite real.
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : object
+        The value given.
+
+    Examples
+    --------
     >>> finite("h", 0.25)
     0.25
     >>> finite("h", "0.25")
@@ -76,6 +85,19 @@ def level(name: str, h: float, body: Any, maximum: float = MAX_MOMENTUM) -> None
     :func:`checks_arguments` applies to each argument ``h`` beside a ``body``; a module
     of closed forms may raise it with ``LEVEL_MAXIMUM``).
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    h : float
+        The energy level ``H = h``.
+    body : RigidBody
+        The body (``mu`` and its inverse moments ``a, b, c``).
+    maximum : float, default MAX_MOMENTUM
+        The largest ``|G|`` the level may reach.
+
+    Examples
+    --------
     >>> from andoyer import RigidBody
     >>> level("h", 1e300, RigidBody.paper())  # doctest: +ELLIPSIS
     Traceback (most recent call last):
@@ -95,6 +117,17 @@ def positive(name: str, value: Any, *, maximum: float | None = None) -> float:
     """``float(value)``, or ``ValueError`` naming ``name`` unless finite and > 0 (and
     ``<= maximum`` when given).
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : object
+        The value given.
+    maximum : float, optional
+        The largest value accepted (None: unbounded).
+
+    Examples
+    --------
     >>> positive("J2", 1)
     1.0
     >>> positive("J2", 1e300, maximum=MAX_ACTION)
@@ -117,6 +150,17 @@ def integer(name: str, value: Any, minimum: int | None = None,
     Counts, sizes and seeds: an integer (Python or NumPy) or a float with an integral
     value (``1e4``); not a bool, a string, a fraction, NaN or infinity.
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : object
+        The value given.
+    minimum, maximum : int, optional
+        The accepted range, inclusive (None: unbounded).
+
+    Examples
+    --------
     >>> integer("n_crossings", 1e3, minimum=1)
     1000
     >>> integer("n_crossings", 2.5, minimum=1)
@@ -149,6 +193,17 @@ def real_array(name: str, value: Any, *, copy: bool = False) -> NDArray[np.float
     ``name`` when it is not a rectangular array of real numbers (ragged rows, text,
     complex or boolean values).
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : array_like
+        The values given.
+    copy : bool, default False
+        Return a new array even where ``value`` already is one.
+
+    Examples
+    --------
     >>> real_array("y0", [1, 2.5]).tolist()
     [1.0, 2.5]
     >>> real_array("y0", [[1, 2], [3]])
@@ -178,6 +233,19 @@ def finite_array(name: str, value: Any, *, ndim: int | None = None,
     """:func:`real_array` whose values are all finite (and of ``ndim`` dimensions when
     given), or ``ValueError`` naming ``name``: a NaN in goes no further than here.
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : array_like
+        The values given.
+    ndim : int, optional
+        The number of dimensions required (None: any).
+    copy : bool, default False
+        Return a new array even where ``value`` already is one.
+
+    Examples
+    --------
     >>> finite_array("theta2_0", [0.0, 1.0]).tolist()
     [0.0, 1.0]
     >>> finite_array("theta2_0", [float("nan")])
@@ -200,6 +268,17 @@ def choice(name: str, value: Any, options: Iterable[str]) -> str:
     ``name`` and listing them (a list, a number or ``None`` included: no ``TypeError:
     unhashable type`` from a dictionary look-up).
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : object
+        The value given.
+    options : iterable of str
+        The accepted strings.
+
+    Examples
+    --------
     >>> choice("what", "tool", ("all", "tool", "paper"))
     'tool'
     >>> choice("what", ["tool"], ("all", "tool", "paper"))
@@ -218,6 +297,17 @@ def choice(name: str, value: Any, options: Iterable[str]) -> str:
 def grid(name: str, value: Any, minimum: int = 2) -> tuple[int, int]:
     """A grid size ``n`` or ``(nx, ny)`` as ``(nx, ny)``, or ``ValueError`` naming ``name``.
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : int or (int, int)
+        The grid size given.
+    minimum : int, default 2
+        The smallest size accepted along each axis.
+
+    Examples
+    --------
     >>> grid("n", 8), grid("n", (8, 4))
     ((8, 8), (8, 4))
     >>> grid("n", "8")
@@ -239,6 +329,15 @@ def box(name: str, value: Any) -> tuple[tuple[float, float], tuple[float, float]
     """A rectangle ``((x_min, x_max), (y_min, y_max))`` of finite numbers with
     ``min < max`` on both axes, or ``ValueError`` naming ``name``.
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : ((float, float), (float, float))
+        The rectangle given.
+
+    Examples
+    --------
     >>> box("plane_bounds", [(0, 6.5), (0.1, 0.9)])
     ((0.0, 6.5), (0.1, 0.9))
     >>> box("plane_bounds", ((0, 1), (2, 1)))
@@ -262,6 +361,17 @@ def flag(name: str, value: Any, *, optional: bool = True) -> bool | None:
     is decided later), or ``ValueError`` naming ``name`` (``"no"`` and ``[]`` would pass
     for their truth values).
 
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : object
+        The value given.
+    optional : bool, default True
+        Whether ``None`` is accepted.
+
+    Examples
+    --------
     >>> flag("progress", None), flag("double_cover", True)
     (None, True)
     """
@@ -276,6 +386,17 @@ def flag(name: str, value: Any, *, optional: bool = True) -> bool | None:
 def floats(text: str, n: int, what: str) -> list[float]:
     """``n`` numbers from ``"a,b,c"`` or ``"a b c"`` (command line, explorer fields).
 
+    Parameters
+    ----------
+    text : str
+        Numbers separated by commas or spaces.
+    n : int
+        How many numbers are required.
+    what : str
+        What the text is (a flag or a field), for the error.
+
+    Examples
+    --------
     >>> floats("0.3, 1", 2, "--state")
     [0.3, 1.0]
     """
@@ -457,6 +578,13 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     ``ValueError`` naming the argument (a module's ``ARGUMENT_NAMES`` dict may give a longer
     name). Finer ranges, shapes and choices stay each function's own checks.
 
+    Parameters
+    ----------
+    func : callable
+        The public function to wrap; its annotations say what each argument must be.
+
+    Examples
+    --------
     >>> @checks_arguments
     ... def period(h: float, n: int = 1, *, progress: bool | None = None) -> float:
     ...     return h * n

@@ -86,6 +86,19 @@ def rotation_chain_expr(l: Any, g: Any, G: Any, cJ: Any, sJ: Any, cI: Any, sI: A
     ``cJ, sJ`` are the cosine and sine of the angle between G and the body axis 3
     (``cos J = L/G``), ``cI, sI`` those between G and the vertical (``cos I = M/G``).
     ``gamma = R^T e_Z`` with ``R = Rz(m) Rx(I) Rz(g) Rx(J) Rz(l)``; ``m`` drops out.
+
+    Parameters
+    ----------
+    l, g : number, array or sympy.Expr
+        Andoyer-Deprit angles (rad).
+    G : number, array or sympy.Expr
+        ``|G|``.
+    cJ, sJ : number, array or sympy.Expr
+        Cosine and sine of the angle between ``G`` and body axis 3 (``cos J = L/G``).
+    cI, sI : number, array or sympy.Expr
+        Cosine and sine of the angle between ``G`` and the vertical (``cos I = M/G``).
+    sin, cos : callable
+        The functions to use (NumPy's or SymPy's).
     """
     # The vertical in the invariant-plane frame (z along G): Rz(-g) (0, sin I, cos I).
     v0, v1, v2 = sI * sin(g), sI * cos(g), cI
@@ -106,6 +119,13 @@ def andoyer_to_ep_expr(l: Any, g: Any, L: Any, G: Any, M: Any, *, sin: Any, cos:
     the rotation chain of the module docstring, so it equals Eqs. (5)-(6) of the paper.
     Radicands are written as products, ``(G - L)(G + L)``, so that they keep their
     relative accuracy near ``L = +-G``.
+
+    Parameters
+    ----------
+    l, g, L, G, M : number, array or sympy.Expr
+        Andoyer-Deprit coordinates (Eq. (7)): angles ``l, g`` (rad), actions ``L, G, M``.
+    sin, cos, sqrt : callable
+        The functions to use (NumPy's or SymPy's).
     """
     return rotation_chain_expr(l, g, G, L / G, sqrt((G - L) * (G + L)) / G,
                                M / G, sqrt((G - M) * (G + M)) / G, sin=sin, cos=cos)
@@ -180,6 +200,13 @@ def singular_mask(y: ArrayLike, scale: ArrayLike | None = None) -> NDArray[np.in
     ``G = 0`` is flagged where ``|G| <= SINGULAR_RTOL * scale`` (``scale``, e.g.
     :func:`andoyer.charts.euler_poisson.momentum_bound`, broadcasts against the states;
     without it only ``G == 0`` exactly); ``L = +-G`` and ``|M| = G`` relative to ``|G|``.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states.
+    scale : array_like, optional
+        Momentum scale for ``G = 0`` (without it only ``G == 0`` exactly is flagged).
     """
     arr = as_state(y)
     return singular_flags(arr, scale)[0]
@@ -193,6 +220,14 @@ def singular_distances(y: ArrayLike, scale: ArrayLike) -> NDArray[np.float64]:
     (to ``|M| = G``, the sine of the angle between G and the vertical). An angle that
     depends on a set is resolved to about ``(state error) / distance``; the distances to
     ``L = +-G`` and ``|M| = G`` are 0 where ``G = 0``.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states.
+    scale : array_like
+        Momentum scale (e.g. :func:`andoyer.charts.euler_poisson.momentum_bound`),
+        broadcast against the states.
 
     Examples
     --------
@@ -221,6 +256,13 @@ def singular_flags(arr: NDArray[np.float64], scale: ArrayLike | None = None
 
     The flags as in :func:`singular_mask`; the lengths are returned because the chart
     maps need them too.
+
+    Parameters
+    ----------
+    arr : ndarray, shape (..., 6)
+        Validated Euler-Poisson states.
+    scale : array_like, optional
+        Momentum scale, as in :func:`singular_mask`.
     """
     Gv, gamma = arr[..., :3], arr[..., 3:]
     G = np.linalg.norm(Gv, axis=-1)
@@ -318,7 +360,17 @@ def to_andoyer(y: ArrayLike, *, with_mask: bool = False
 
 def warn_singular(flags: NDArray[np.int_], what: str, stacklevel: int = 3) -> None:
     """Warn (:class:`~andoyer.errors.SingularChartWarning`) if any flag is set: the
-    angles of those points are the chart's conventions, not data."""
+    angles of those points are the chart's conventions, not data.
+
+    Parameters
+    ----------
+    flags : ndarray of int
+        :class:`Singular` flags.
+    what : str
+        The caller, named in the warning.
+    stacklevel : int, default 3
+        Passed to :func:`warnings.warn`.
+    """
     flags = np.asarray(flags)
     if not np.any(flags):
         return
@@ -341,6 +393,15 @@ def undefined_as_nan(x: NDArray[np.float64], flags: NDArray[np.int_]
     there), ``g`` on ``|M| = G``. Charts derived from ``x`` (Hess, (14)) inherit the NaN
     exactly where their angles depend on an undefined one.
 
+    Parameters
+    ----------
+    x : ndarray, shape (..., 5)
+        ``(l, g, L, G, M)`` from :func:`to_andoyer`.
+    flags : ndarray of int
+        Its :class:`Singular` flags.
+
+    Examples
+    --------
     >>> x, flags = to_andoyer([0.6, 0.0, 0.8, 0.6, 0.0, 0.8], with_mask=True)
     >>> undefined_as_nan(x, flags)[:2].tolist()
     [1.5707963267948966, nan]
@@ -354,7 +415,15 @@ def undefined_as_nan(x: NDArray[np.float64], flags: NDArray[np.int_]
 
 
 def require_regular(flags: NDArray[np.int_], what: str) -> None:
-    """Raise ``ValueError`` if any flag is set; ``what`` names the caller."""
+    """Raise ``ValueError`` if any flag is set; ``what`` names the caller.
+
+    Parameters
+    ----------
+    flags : ndarray of int
+        :class:`Singular` flags (:func:`singular_mask`).
+    what : str
+        The caller, named in the error.
+    """
     if np.any(flags):
         bad = Singular(int(np.bitwise_or.reduce(np.ravel(flags))))
         raise ValueError(

@@ -48,6 +48,19 @@ def hamiltonian_expr(G1: Any, G2: Any, G3: Any, gamma1: Any, gamma2: Any, gamma3
     """The Hamiltonian of Eq. (1), ``H = (G, I G)/2 + mu (r, gamma)``: the one source.
 
     Works for NumPy arrays (numeric) and SymPy symbols (derivations alike).
+
+    Parameters
+    ----------
+    G1, G2, G3 : number, array or sympy.Expr
+        Body-frame angular momentum.
+    gamma1, gamma2, gamma3 : number, array or sympy.Expr
+        Body-frame vertical unit vector.
+    a, b, c : number or sympy.Expr
+        Inverse moments of inertia ``1/A, 1/B, 1/C``.
+    mu : number or sympy.Expr
+        Weight times the distance of the centre of mass.
+    e1, e2, e3 : number or sympy.Expr
+        Unit vector ``r`` towards the centre of mass (body frame).
     """
     return (a * G1**2 + b * G2**2 + c * G3**2) / 2 + mu * (e1 * gamma1 + e2 * gamma2
                                                           + e3 * gamma3)
@@ -55,6 +68,13 @@ def hamiltonian_expr(G1: Any, G2: Any, G3: Any, gamma1: Any, gamma2: Any, gamma3
 
 def as_state(y: ArrayLike, name: str = "y") -> NDArray[np.float64]:
     """Validate an Euler-Poisson state array of shape ``(..., 6)``.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states ``(G1, G2, G3, gamma1, gamma2, gamma3)``.
+    name : str, default "y"
+        The argument's name, for the error.
 
     Raises
     ------
@@ -144,6 +164,15 @@ def momentum_bound(body: RigidBody, y: ArrayLike, H: ArrayLike | None = None
     sets of the charts (``G -> 0``) are detected relative to this scale, which an orbit
     keeps for all time (the Euler-Poisson state itself has no other momentum scale).
     ``H``, when given, is ``energy(body, y)`` already computed.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (moments, ``mu``).
+    y : array_like, shape (..., 6)
+        Euler-Poisson states.
+    H : array_like, optional
+        Their energies (default: computed from ``y``).
 
     Examples
     --------

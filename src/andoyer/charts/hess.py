@@ -66,7 +66,15 @@ FOUR_PI = 4.0 * np.pi
 
 def hess_to_andoyer_expr(theta1: Any, theta2: Any, J1: Any, J2: Any, J3: Any,
                          phi0: Any) -> tuple[Any, Any, Any, Any, Any]:
-    """Eq. (15): ``(theta1, theta2, J1, J2, J3) -> (l, g, L, G, M)``, written once."""
+    """Eq. (15): ``(theta1, theta2, J1, J2, J3) -> (l, g, L, G, M)``, written once.
+
+    Parameters
+    ----------
+    theta1, theta2, J1, J2, J3 : number, array or sympy.Expr
+        Hess-chart coordinates (Eq. (13)).
+    phi0 : number or sympy.Expr
+        The body's ``phi0`` (rad).
+    """
     l = theta1 / 2 - phi0
     g = theta2 + theta1 / 2
     return l, g, 2 * J1 - J2, J2, J3
@@ -74,7 +82,15 @@ def hess_to_andoyer_expr(theta1: Any, theta2: Any, J1: Any, J2: Any, J3: Any,
 
 def andoyer_to_hess_expr(l: Any, g: Any, L: Any, G: Any, M: Any,
                          phi0: Any) -> tuple[Any, Any, Any, Any, Any]:
-    """Eq. (14): ``(l, g, L, G, M) -> (theta1, theta2, J1, J2, J3)`` (angles unreduced)."""
+    """Eq. (14): ``(l, g, L, G, M) -> (theta1, theta2, J1, J2, J3)`` (angles unreduced).
+
+    Parameters
+    ----------
+    l, g, L, G, M : number, array or sympy.Expr
+        Andoyer-Deprit coordinates (Eq. (7)).
+    phi0 : number or sympy.Expr
+        The body's ``phi0`` (rad).
+    """
     return 2 * (l + phi0), g - l - phi0, (G + L) / 2, G, M
 
 
@@ -84,6 +100,15 @@ def hess_to_ep_expr(theta1: Any, theta2: Any, J1: Any, J2: Any, J3: Any, phi0: A
 
     Eq. (15) composed with (5)-(6), with ``G^2 - L^2 = 4 J1 (J2 - J1)`` taken exactly so
     that the map keeps full relative accuracy near ``J1 = 0`` and ``J1 = J2``.
+
+    Parameters
+    ----------
+    theta1, theta2, J1, J2, J3 : number, array or sympy.Expr
+        Hess-chart coordinates (Eq. (13)).
+    phi0 : number or sympy.Expr
+        The body's ``phi0`` (rad).
+    sin, cos, sqrt : callable
+        The functions to use (NumPy's or SymPy's).
     """
     l, g, L, G, M = hess_to_andoyer_expr(theta1, theta2, J1, J2, J3, phi0)
     return rotation_chain_expr(l, g, G, L / G, 2 * sqrt(J1 * (J2 - J1)) / G,

@@ -89,6 +89,13 @@ def _quaternions(name: str, q: ArrayLike) -> NDArray[np.float64]:
 def quaternion_product(p: ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
     """Hamilton's product ``p (x) q`` of scalar-first quaternions (broadcast).
 
+    Parameters
+    ----------
+    p, q : array_like, shape (..., 4)
+        Quaternions (scalar first), broadcast.
+
+    Examples
+    --------
     >>> quaternion_product([0, 1, 0, 0], [0, 0, 1, 0]).tolist()  # i j = k
     [0.0, 0.0, 0.0, 1.0]
     """
@@ -104,6 +111,13 @@ def quaternion_product(p: ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
 def quaternion_conjugate(q: ArrayLike) -> NDArray[np.float64]:
     """``q* = (q0, -q1, -q2, -q3)``: the inverse rotation of a unit quaternion.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternions (scalar first).
+
+    Examples
+    --------
     >>> quaternion_conjugate([1.0, 2.0, 3.0, 4.0]).tolist()
     [1.0, -2.0, -3.0, -4.0]
     """
@@ -113,6 +127,13 @@ def quaternion_conjugate(q: ArrayLike) -> NDArray[np.float64]:
 def rotation_matrix(q: ArrayLike) -> NDArray[np.float64]:
     """``R(q)`` (body -> space), shape ``(..., 3, 3)``; ``q`` is normalised first.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternions (scalar first).
+
+    Examples
+    --------
     >>> rotation_matrix([np.cos(0.5), 0.0, 0.0, np.sin(0.5)]).round(12)[:2, :2].tolist()
     [[0.540302305868, -0.841470984808], [0.841470984808, 0.540302305868]]
     """
@@ -130,6 +151,13 @@ def quaternion_from_matrix(R: ArrayLike) -> NDArray[np.float64]:
 
     The largest of the squares ``q_i^2`` is taken from the diagonal, the others from it.
 
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        Rotation matrices.
+
+    Examples
+    --------
     >>> q = quaternion_from_matrix(rotation_matrix([0.5, 0.5, -0.5, 0.5]))
     >>> q.round(12).tolist()
     [0.5, 0.5, -0.5, 0.5]
@@ -166,7 +194,19 @@ def quaternion_from_matrix(R: ArrayLike) -> NDArray[np.float64]:
 
 
 class EulerAngles(NamedTuple):
-    """``z-x-z`` Euler angles of rotations (see the module notes), in rad."""
+    """``z-x-z`` Euler angles of rotations (see the module notes), in rad.
+
+    Parameters
+    ----------
+    psi : ndarray
+        Precession (rad).
+    theta : ndarray
+        Nutation (rad), in ``[0, pi]``.
+    phi : ndarray
+        Proper rotation (rad).
+    singular : ndarray of bool
+        Where ``sin theta`` is below the threshold: only ``psi +- phi`` is defined.
+    """
 
     psi: NDArray[np.float64]       #: precession about the vertical, in (-pi, pi]; NaN if singular
     theta: NDArray[np.float64]     #: nutation, in [0, pi]: cos theta = gamma3
@@ -182,6 +222,13 @@ def euler_angles(q: ArrayLike) -> EulerAngles:
     Where ``sin theta <= EULER_SINGULAR_RTOL`` only ``psi +- phi`` is defined: ``psi`` and
     ``phi`` are NaN there and ``singular`` is True.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternions (scalar first; normalised first).
+
+    Examples
+    --------
     >>> e = euler_angles([1.0, 0.0, 0.0, 0.0])  # the identity: theta = 0
     >>> float(e.theta), bool(np.isnan(e.psi)), bool(e.singular)
     (0.0, True, True)
@@ -213,6 +260,13 @@ def quaternion_from_euler(psi: ArrayLike, theta: ArrayLike, phi: ArrayLike
                           ) -> NDArray[np.float64]:
     """The quaternion of ``Rz(psi) Rx(theta) Rz(phi)`` (any angles; broadcast).
 
+    Parameters
+    ----------
+    psi, theta, phi : array_like
+        ``z-x-z`` Euler angles (rad), broadcast.
+
+    Examples
+    --------
     >>> quaternion_from_euler(0.0, 0.0, 0.0).tolist()
     [1.0, 0.0, 0.0, 0.0]
     """
@@ -237,6 +291,8 @@ def quaternion_from_vertical(gamma: ArrayLike, psi: ArrayLike = 0.0) -> NDArray[
     psi : array_like
         Precession angles (rad), broadcast against ``gamma[..., 0]``.
 
+    Examples
+    --------
     >>> q = quaternion_from_vertical([0.0, 0.6, 0.8], 0.25)
     >>> rotation_matrix(q)[2].round(12).tolist()  # gamma = R^T e_Z, the last row
     [0.0, 0.6, 0.8]
@@ -266,6 +322,8 @@ def andoyer_rotation(x: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
         The node longitude (the cyclic angle conjugate to ``M``), broadcast against
         ``x[..., 0]``.
 
+    Examples
+    --------
     >>> from andoyer.charts.andoyer_deprit import from_andoyer
     >>> x = np.array([0.3, 1.1, 0.2, 1.0, -0.4])
     >>> R = rotation_matrix(andoyer_rotation(x, 0.7))

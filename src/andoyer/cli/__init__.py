@@ -175,6 +175,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     Every expected failure ends with one line on stderr and ``SystemExit`` with the exit
     code of its class (:data:`EXIT_CODES`), as argparse's usage errors do; never a
     traceback (``--debug`` shows it).
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments (default: ``sys.argv[1:]``).
     """
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)

@@ -65,6 +65,19 @@ def chaos_module() -> Any | None:
 
 @dataclass(frozen=True)
 class Job:
+    """One piece of work queued on a page's worker thread, and what it belongs to.
+
+    Attributes
+    ----------
+    generation : int
+        The plane's settings it belongs to (a change of body, h, M or section starts a
+        new one; older jobs are dropped).
+    epoch : int
+        "Clear all" presses before it (a job of an older epoch is dropped).
+    settings : Settings
+        The settings it runs with.
+    """
+
     generation: int   # the plane's settings it belongs to
     epoch: int        # "clear all" presses before it
     settings: Settings
@@ -75,6 +88,16 @@ class ExplorerBase:
 
     Subclasses build the Bokeh models ``status``, ``state_div``, ``plane_pane`` and
     ``time_pane`` before the first message.
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        Default: the paper's Hess body (``RigidBody.paper()``).
+    boundary_grid : int, default 160
+        Resolution of the accessible-region grid.
+    **settings
+        ``h, M, section, n_crossings, engine, root, rtol, atol`` of
+        :func:`andoyer.explore.state.make_settings`.
     """
 
     status: Any
@@ -213,7 +236,18 @@ class ExplorerBase:
 
 
 def widget(cls: Any, label: str, *, button: str | None = None, **kwargs: Any) -> Any:
-    """A Panel widget with a label (``label=`` since Panel 1.9, ``name=`` before)."""
+    """A Panel widget of class ``cls`` with a label (``label=`` since Panel 1.9, ``name=``
+    before).
+
+    Parameters
+    ----------
+    label : str
+        Its label.
+    button : str, optional
+        The button type (``"primary"``, ``"warning"``, ...) of a button widget.
+    **kwargs
+        Passed to the widget.
+    """
     kwargs["label" if "label" in cls.param else "name"] = label
     if button is not None:
         kwargs["color" if "color" in cls.param else "button_type"] = button
@@ -221,7 +255,13 @@ def widget(cls: Any, label: str, *, button: str | None = None, **kwargs: Any) ->
 
 
 def number(widget: Any) -> float:
-    """A numeric widget's value, or a ValueError naming the empty field."""
+    """A numeric widget's value, or a ValueError naming the empty field.
+
+    Parameters
+    ----------
+    widget : panel.widgets.Widget
+        A numeric input widget.
+    """
     v = widget.value
     if v is None:
         label = getattr(widget, "label", "") or widget.name
@@ -231,7 +271,13 @@ def number(widget: Any) -> float:
 
 def underlay_image(ds: Any) -> dict[str, list[Any]]:
     """The FLI of a :func:`chaos_underlay` map as an RGBA image in the FLI's colours
-    (:data:`andoyer.plot.style.SCALES`, as in the report: pale regular, dark chaotic)."""
+    (:data:`andoyer.plot.style.SCALES`, as in the report: pale regular, dark chaotic).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A :func:`~andoyer.explore.state.chaos_underlay` map.
+    """
     import matplotlib as mpl
 
     from andoyer.plot.style import colour_scale
@@ -253,7 +299,13 @@ def underlay_image(ds: Any) -> dict[str, list[Any]]:
 
 def orbit_info_html(o: Orbit) -> str:
     """The side panel's description of an orbit: its seed, its initial state in the
-    three charts and the drift of the integrals at its section points (HTML)."""
+    three charts and the drift of the integrals at its section points (HTML).
+
+    Parameters
+    ----------
+    o : Orbit
+        The orbit described.
+    """
     rows = []
     for chart, values in initial_charts(o.settings, o.seed.y0).items():
         cells = "".join(f"<tr><td>{html.escape(k)}</td><td style='text-align:right'>"
@@ -272,7 +324,13 @@ def orbit_info_html(o: Orbit) -> str:
 
 
 def orbit_columns(session: Session) -> dict[str, list[Any]]:
-    """The columns of the orbit table (model ``andoyer-orbits``): one row per orbit."""
+    """The columns of the orbit table (model ``andoyer-orbits``): one row per orbit.
+
+    Parameters
+    ----------
+    session : Session
+        The orbits on screen.
+    """
     state = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
     cols: dict[str, list[Any]] = {k: [] for k in (
         "id", "colour", "seed_x", "seed_y", "action", "crossings", "status", *state)}

@@ -31,6 +31,11 @@ def orbits_dataset(session: Session) -> xr.Dataset:
     Orbits still queued (no point yet) are left out; an orbit still running holds the
     crossings found so far. Shorter orbits are NaN-padded (``singular`` with -1).
 
+    Parameters
+    ----------
+    session : Session
+        The orbits on screen.
+
     Returns
     -------
     xarray.Dataset
@@ -98,7 +103,13 @@ def orbits_dataset(session: Session) -> xr.Dataset:
 
 
 def netcdf_bytes(ds: xr.Dataset) -> bytes:
-    """``ds`` as NetCDF-4 bytes, written by :func:`andoyer.io.write_netcdf`."""
+    """``ds`` as NetCDF-4 bytes, written by :func:`andoyer.io.write_netcdf`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset to encode.
+    """
     from andoyer.io import write_netcdf
 
     with tempfile.TemporaryDirectory(prefix="andoyer-explore-") as tmp:
@@ -149,7 +160,15 @@ def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = 
 
 
 def png_bytes(fig: Figure, dpi: int = 150) -> bytes:
-    """The figure as PNG bytes (Agg canvas, no pyplot)."""
+    """The figure as PNG bytes (Agg canvas, no pyplot).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    dpi : int, default 150
+        Resolution.
+    """
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     return buf.getvalue()
@@ -165,7 +184,17 @@ def _write_bytes(data: bytes, path: str | os.PathLike[str]) -> Path:
 
 
 def save(session: Session, view: PlaneView, path: str | os.PathLike[str]) -> list[Path]:
-    """Write ``path`` (``.nc``) and the PNG beside it, atomically."""
+    """Write ``path`` (``.nc``) and the PNG beside it, atomically.
+
+    Parameters
+    ----------
+    session : Session
+        The orbits on screen.
+    view : PlaneView
+        The plane they are drawn on (accessible region, separatrices).
+    path : str or os.PathLike
+        The NetCDF file to write (``.nc``); the PNG goes beside it.
+    """
     ds = orbits_dataset(session)
     out = Path(path)
     nc = _write_bytes(netcdf_bytes(ds), out.with_suffix(".nc"))

@@ -59,7 +59,15 @@ for (const view of Bokeh.index.all_views()) {
 class PlotlyWithFrames(pn.pane.Plotly):
     """Panel's Plotly pane with the figure's animation frames: Panel 1.9's
     ``_plotly_json_wrapper`` sends data and layout only, so a figure's frames never reach
-    the browser (its model has a ``frames`` property that nothing fills)."""
+    the browser (its model has a ``frames`` property that nothing fills).
+
+    Parameters
+    ----------
+    object : plotly.graph_objects.Figure, optional
+        The figure, with its frames.
+    **params
+        Panel's pane parameters (``sizing_mode``, ``width``, ...).
+    """
 
     @classmethod
     def _plotly_json_wrapper(cls, fig: Any) -> dict[str, Any]:
@@ -71,7 +79,18 @@ class PlotlyWithFrames(pn.pane.Plotly):
 class ExplorerLayout(ExplorerBase):
     """The models of one explorer page (no behaviour): :meth:`_build_plane`,
     :meth:`_build_controls` and :meth:`_build_side` create them and connect them to the
-    page's callbacks, which :class:`~andoyer.explore.ui.Explorer` implements."""
+    page's callbacks, which :class:`~andoyer.explore.ui.Explorer` implements.
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        Default: the paper's Hess body (``RigidBody.paper()``).
+    boundary_grid : int, default 160
+        Resolution of the accessible-region grid.
+    **settings
+        ``h, M, section, n_crossings, engine, root, rtol, atol`` of
+        :func:`andoyer.explore.state.make_settings`.
+    """
 
     # -- the page's callbacks (implemented by Explorer) -----------------------------
     def _on_tap(self, event: Event) -> None:

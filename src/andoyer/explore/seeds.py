@@ -83,7 +83,15 @@ def initial_charts(settings: Settings, y0: NDArray[np.float64]) -> dict[str, dic
     """The state ``y0`` in the three charts: Euler-Poisson, Andoyer-Deprit (5)-(6) and,
     for ``e3 = 0``, Hess (14). Angles in ``[0, 2 pi)`` (theta1 in ``[0, 4 pi)``); NaN
     where the state is on the chart's singular set and the angle is undefined
-    (:func:`~andoyer.charts.andoyer_deprit.undefined_as_nan`)."""
+    (:func:`~andoyer.charts.andoyer_deprit.undefined_as_nan`).
+
+    Parameters
+    ----------
+    settings : Settings
+        The body (its charts).
+    y0 : ndarray, shape (6,)
+        The Euler-Poisson state.
+    """
     from andoyer.charts.andoyer_deprit import to_andoyer, undefined_as_nan
     from andoyer.charts.hess import to_hess
 

@@ -36,13 +36,30 @@ def app(body: RigidBody | None = None, **kwargs: Any) -> Any:
     Parameters are those of :class:`Explorer`. In a notebook run
     ``pn.extension()`` first, then ``andoyer.explore.app()`` (or ``andoyer.explore()``)
     as the last expression of a cell.
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        As in :class:`Explorer` (default: the paper's body).
+    **kwargs
+        The other parameters of :class:`Explorer`.
     """
     return Explorer(body, **kwargs).panel
 
 
 @dataclass
 class ServerHandle:
-    """A running explorer server on a background thread (see :func:`serve`)."""
+    """A running explorer server on a background thread (see :func:`serve`).
+
+    Attributes
+    ----------
+    url : str
+        The page's address (``http://127.0.0.1:<port>/``).
+    port : int
+        The port it listens on.
+    _stop : callable
+        Stops the server and its thread (call :meth:`stop`).
+    """
 
     url: str
     port: int
@@ -124,6 +141,9 @@ def serve(body: RigidBody | None = None, *, port: int = 0, address: str = "127.0
         Pages open at once; a page past it says so (what the server does is bounded:
         the plane of a setting is computed once and shared by the pages, a closed page
         frees its explorer).
+    **kwargs
+        The parameters of :class:`~andoyer.explore.ui.Explorer` (``h``, ``M``,
+        ``section``, ``n_crossings``, ``engine``, ``rtol``, ``atol``, ...).
     """
     if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
         raise ValueError(f"port must be an integer in [0, 65535], got {port!r}")

@@ -169,7 +169,27 @@ def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: f
                   engine: str | None = None, root: RootChoice = "smallest",
                   rtol: float = 1e-12, atol: float = 1e-12) -> Settings:
     """:class:`Settings` with the explorer's defaults: the paper's body and, without
-    ``h``, :func:`default_energy` (which needs ``|M| < 1``)."""
+    ``h``, :func:`default_energy` (which needs ``|M| < 1``).
+
+    Parameters
+    ----------
+    body : RigidBody, optional
+        Default: the paper's body.
+    h : float, optional
+        Energy level (default: :func:`default_energy`).
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
+    section : Section or str, default "theta2=0"
+        The section (:meth:`andoyer.integrate.section.Section.parse`).
+    n_crossings : int, default 500
+        Crossings per orbit.
+    engine : str, optional
+        Integration engine (default heyoka where installed, else numba).
+    root : {"smallest", "largest", "all"}, default "smallest"
+        Which solutions of ``H = h`` above a click seed orbits.
+    rtol, atol : float, default 1e-12
+        Tolerances.
+    """
     body = RigidBody.paper() if body is None else body
     if h is None:
         if not abs(M) < 1.0:
@@ -186,6 +206,13 @@ def plane_coordinates(settings: Settings, ds: xr.Dataset
     """The plane coordinates of section points (a :func:`poincare` dataset), as shown.
 
     ``theta1`` is reduced mod :attr:`Settings.x_period` (mod 2 pi on ``M = 0``).
+
+    Parameters
+    ----------
+    settings : Settings
+        The plane shown.
+    ds : xarray.Dataset
+        A :func:`~andoyer.integrate.poincare` dataset.
     """
     p = settings.plane
     x = np.asarray(ds[p.x].values, dtype=float)
@@ -250,7 +277,23 @@ def unperturbed_separatrices(body: RigidBody, h: float, plane: Plane, period: fl
 
 @dataclass(frozen=True)
 class PlaneView:
-    """The static content of the section plane for one :class:`Settings`."""
+    """The static content of the section plane for one :class:`Settings`.
+
+    Attributes
+    ----------
+    settings : Settings
+        The settings it was computed for.
+    x_range, y_range : (float, float)
+        The plane's box.
+    boundary_x, boundary_y : ndarray
+        The accessible region's boundary (NaN-separated curves).
+    accessible : ndarray of bool
+        The accessible cells of the grid.
+    separatrices : list of (ndarray, ndarray)
+        The unperturbed (``mu = 0``) separatrices on the level, as curves.
+    fill : xarray.Dataset
+        The :func:`~andoyer.integrate.fill_section` dataset of the plane.
+    """
 
     settings: Settings
     x_range: tuple[float, float]
@@ -267,6 +310,13 @@ def plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView:
 
     Raises ``ValueError`` (with the energy range of the section) when the level does
     not meet the section, and for ``|M|`` too large for ``h``.
+
+    Parameters
+    ----------
+    settings : Settings
+        Body, level and section.
+    boundary_grid : int, default 160
+        Resolution of the accessible-region grid.
 
     Examples
     --------
@@ -310,6 +360,15 @@ def shared_plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView
     running one each (50 rapid page loads made 50 fills). The last :data:`VIEW_CACHE`
     views are kept; their arrays are read-only, so no page can change another's.
 
+    Parameters
+    ----------
+    settings : Settings
+        Body, level and section.
+    boundary_grid : int, default 160
+        Resolution of the accessible-region grid.
+
+    Examples
+    --------
     >>> shared_plane_view(make_settings(None), 40) is shared_plane_view(make_settings(None), 40)
     True
     """
@@ -342,7 +401,28 @@ class OutsideRegionError(ValueError):
 
 @dataclass(frozen=True)
 class Seed:
-    """The initial state through a clicked plane point, on the level ``H = h``."""
+    """The initial state through a clicked plane point, on the level ``H = h``.
+
+    Attributes
+    ----------
+    x, y : float
+        The clicked plane point.
+    action : float
+        The action solved from ``H = h`` above it.
+    root_index : int
+        Which of the solutions (``root`` of :class:`Settings`).
+    n_roots : int
+        How many solutions the point has.
+    y0 : ndarray, shape (6,)
+        The Euler-Poisson initial state.
+    chart_point : ndarray, shape (5,)
+        The state in the plane's chart.
+    section_rate : float
+        The time derivative of the section coordinate there (its sign is the crossing
+        direction).
+    residual : float
+        ``|H(y0) - h|``, relative.
+    """
 
     x: float                 # plane point (theta1, J1) or (l, L)
     y: float
@@ -362,7 +442,19 @@ class Seed:
 # --------------------------------------------------------------------------- orbits
 @dataclass(frozen=True)
 class Stage:
-    """Section points of one orbit computed so far: ``[start, stop)`` are new."""
+    """Section points of one orbit computed so far: ``[start, stop)`` are new.
+
+    Attributes
+    ----------
+    start, stop : int
+        The new section points are ``[start, stop)``.
+    x, y : ndarray
+        All the orbit's points so far, in the plane's coordinates.
+    ds : xarray.Dataset
+        Its :func:`~andoyer.integrate.poincare` dataset so far.
+    done : bool
+        The last stage.
+    """
 
     start: int
     stop: int
@@ -434,6 +526,17 @@ def integral_drifts(ds: xr.Dataset, h: float, M: float, mu: float) -> dict[str, 
 
     ``H``: ``max |H - h| / max(|h|, mu)``; ``area``: ``max |(G, gamma) - M| / |G|``;
     ``geometric``: ``max ||gamma|^2 - 1|``. NaN when there are no points.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The section points of one orbit (:func:`~andoyer.integrate.poincare`).
+    h : float
+        The energy level.
+    M : float
+        The area constant.
+    mu : float
+        The body's ``mu`` (the energy's scale where ``|h|`` is small).
     """
     if int(np.sum(np.isfinite(ds.H.values))) == 0:
         return {"H": math.nan, "area": math.nan, "geometric": math.nan}
@@ -452,7 +555,17 @@ UNDERLAY_T_END = 300.0
 def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float = 1000.0
                      ) -> dict[str, float]:
     """FLI, MEGNO ``<Y>`` and the finite-time Lyapunov exponent of one orbit at ``t_end``
-    (:func:`andoyer.analysis.chaos.indicators.indicators`), and the relative energy drift."""
+    (:func:`andoyer.analysis.chaos.indicators.indicators`), and the relative energy drift.
+
+    Parameters
+    ----------
+    settings : Settings
+        Body and engine.
+    y0 : ndarray, shape (6,)
+        The orbit's initial Euler-Poisson state.
+    t_end : float, default 1000.0
+        Integration time.
+    """
     from andoyer.analysis.chaos.indicators import indicators
 
     # The variational engines are heyoka, numba and scipy: the orbit engine's name, or
@@ -466,7 +579,19 @@ def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float =
 def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
                    t_end: float = UNDERLAY_T_END) -> xr.Dataset:
     """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.indicators.chaos_map`), on the
-    same box, for the underlay of the section plane."""
+    same box, for the underlay of the section plane.
+
+    Parameters
+    ----------
+    settings : Settings
+        Body, level, section and engine.
+    view : PlaneView
+        The plane (its box).
+    n : int, default 48
+        Grid ``n x n``.
+    t_end : float, default 300.0
+        Integration time of every orbit.
+    """
     from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
 
     sec = settings.section
@@ -480,7 +605,25 @@ def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
 
 @dataclass
 class Orbit:
-    """One seeded orbit on screen."""
+    """One seeded orbit on screen.
+
+    Attributes
+    ----------
+    id : int
+        Its number in the table.
+    colour : str
+        Its colour (``#rrggbb``).
+    seed : Seed
+        The initial state through the clicked point.
+    settings : Settings
+        The settings it runs with.
+    x, y : ndarray
+        Its section points in the plane's coordinates, so far.
+    ds : xarray.Dataset or None
+        Its :func:`~andoyer.integrate.poincare` dataset so far (None before the first stage).
+    status : str
+        ``"queued"``, ``"running"``, ``"done"``, ``"failed: ..."`` or ``"stopped"``.
+    """
 
     id: int
     colour: str
@@ -497,6 +640,11 @@ class Session:
 
     Changed on the app's event loop only, except :meth:`new_id` (safe from any thread)
     and reads of :attr:`removed` (a worker stops an orbit found there).
+
+    Parameters
+    ----------
+    settings : Settings
+        The settings of the plane.
 
     Examples
     --------

@@ -112,13 +112,27 @@ def initial_states(body: RigidBody, y0: ArrayLike, chart: str = "euler_poisson",
 
 def check_tolerances(rtol: float, atol: float) -> tuple[float, float]:
     """``(rtol, atol)`` as floats, or ``ValueError`` naming the one out of range
-    (the one check, :class:`~andoyer.integrate.engines.base.Tolerance`)."""
+    (the one check, :class:`~andoyer.integrate.engines.base.Tolerance`).
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance, in ``[1e-16, 1e-3]``.
+    atol : float
+        Absolute tolerance, in ``(0, 1e-3]``.
+    """
     tol = Tolerance(rtol, atol)
     return tol.rtol, tol.atol
 
 
 def check_times(t: ArrayLike) -> NDArray[np.float64]:
-    """Output times as a float array: 1-D, at least 2, finite, strictly increasing."""
+    """Output times as a float array: 1-D, at least 2, finite, strictly increasing.
+
+    Parameters
+    ----------
+    t : array_like
+        Output times (body time units).
+    """
     arr = real_array("t", t)
     if arr.ndim != 1 or arr.size < 2:
         raise ValueError(f"t must be a 1-D array of at least 2 output times (the first is "
@@ -360,6 +374,29 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
     vanishes. Those are moved apart, and the orbit is continued from its last root for
     the crossings still missing -- in rounds that ask for more roots each time, bounded
     by ``t_end``, :data:`_MAX_ROUNDS` and a scratch-memory budget.
+
+    Parameters
+    ----------
+    eng : Engine
+        The engine, with the ``crossings`` capability.
+    y : ndarray, shape (m, 6)
+        Initial Euler-Poisson states of the orbits.
+    scale : ndarray, shape (m,)
+        Momentum scale of each orbit
+        (:func:`~andoyer.charts.euler_poisson.momentum_bound`): where ``|G|`` is below
+        its relative threshold a root is a singular passage.
+    params : tuple of float
+        The body's engine parameters (:attr:`~andoyer.body.RigidBody.engine_params`).
+    sec : Section
+        The section and its crossing direction.
+    n : int
+        Crossings wanted per orbit.
+    t_end : float
+        Largest integration time (body time units).
+    rtol, atol : float
+        Tolerances (:class:`~andoyer.integrate.engines.base.Tolerance`).
+    body : RigidBody
+        The body (where the section's angle is undefined).
     """
     m = y.shape[0]
     event, tolerance = sec.event(), Tolerance(rtol, atol)

@@ -61,6 +61,16 @@ def set_limits(steps: float | None = None, memory: float | None = None) -> dict[
     ``memory`` is in bytes. All or nothing: every value is checked (a real number > 0,
     not a bool, a string or NaN) before any limit changes.
 
+    Parameters
+    ----------
+    steps : float, optional
+        Largest estimated integration steps of one call (None: unchanged;
+        ``math.inf``: no limit).
+    memory : float, optional
+        Largest estimated memory of one result, bytes (None: unchanged).
+
+    Examples
+    --------
     >>> old = set_limits(steps=1e3, memory=-1)
     Traceback (most recent call last):
     ...
@@ -85,7 +95,16 @@ def set_limits(steps: float | None = None, memory: float | None = None) -> dict[
 
 @contextlib.contextmanager
 def limits(steps: float | None = None, memory: float | None = None) -> Iterator[None]:
-    """Temporarily set the limits, e.g. ``with limits(steps=math.inf): ...``."""
+    """Temporarily set the limits, e.g. ``with limits(steps=math.inf): ...``.
+
+    Parameters
+    ----------
+    steps : float, optional
+        Largest estimated integration steps of one call (None: unchanged;
+        ``math.inf``: no limit).
+    memory : float, optional
+        Largest estimated memory of one result, bytes (None: unchanged).
+    """
     old = set_limits(steps, memory)
     try:
         yield
@@ -98,6 +117,19 @@ def estimate_steps(body: RigidBody, y: NDArray[np.float64], duration: float,
                    rtol: float = 1e-12) -> float:
     """Estimated DOP853 steps to integrate the states ``y`` (shape (n, 6)) for ``duration``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        The body (its frequencies scale the step).
+    y : ndarray, shape (n, 6)
+        Initial Euler-Poisson states.
+    duration : float
+        Integration time of each orbit (body time units).
+    rtol : float, default 1e-12
+        Relative tolerance (the DOP853 step scales as ``rtol^(1/8)``).
+
+    Examples
+    --------
     >>> from andoyer import RigidBody, from_andoyer
     >>> round(estimate_steps(RigidBody.paper(), from_andoyer([0.3, 0, 0.3, 1, 0])[None],
     ...                      1000.0))
@@ -122,6 +154,15 @@ def _human(nbytes: float) -> str:
 def check_momentum(G: float, name: str) -> None:
     """``ValueError`` naming ``name`` if ``|G|`` exceeds :data:`MAX_MOMENTUM`.
 
+    Parameters
+    ----------
+    G : float
+        A momentum length ``|G|``.
+    name : str
+        The name the error gives it (the argument or flag it came from).
+
+    Examples
+    --------
     >>> check_momentum(1e150, "y0")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -140,7 +181,17 @@ def check_level(body: RigidBody, h: float, name: str = "h") -> None:
     (1)): :func:`andoyer.validation.level`, which every public function taking an energy
     ``h`` and a body applies through its argument checks. Not itself decorated by
     :func:`~andoyer.body.checks_body`, whose check of ``h`` would name ``h``, not ``name``
-    (``--energy``)."""
+    (``--energy``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (``mu`` and its inverse moments ``a, b, c``).
+    h : float
+        The energy level ``H = h``.
+    name : str, default "h"
+        The name the error gives the level (``"--energy"`` on the command line).
+    """
     if not isinstance(body, RigidBody):
         raise ArgumentTypeError(f"check_level: body must be a RigidBody, got "
                                 f"{type(body).__name__}")
@@ -148,7 +199,18 @@ def check_level(body: RigidBody, h: float, name: str = "h") -> None:
 
 
 def check(what: str, *, steps: float = 0.0, memory: float = 0.0) -> None:
-    """Raise :class:`~andoyer.errors.CostLimitError` if an estimate exceeds its limit."""
+    """Raise :class:`~andoyer.errors.CostLimitError` if an estimate exceeds its limit.
+
+    Parameters
+    ----------
+    what : str
+        What is estimated, named in the error (a flag or an argument, e.g.
+        ``"--n-out 1000000000"``).
+    steps : float, default 0.0
+        Estimated integration steps.
+    memory : float, default 0.0
+        Estimated memory of the results, bytes.
+    """
     hint = ("raise it with andoyer.integrate.budget.set_limits({}=...) or, on the command "
             "line, --no-limits")
     if steps > LIMITS["steps"]:

@@ -379,6 +379,13 @@ def default_h(body: RigidBody, M: float = 0.0) -> float:
     """The default energy level of the command line and the explorer: H at
     ``(l, g, L, G, M) = (0.3, 0, 0.3, 1, M)`` (Eq. (7)).
 
+    Parameters
+    ----------
+    body : RigidBody
+        The body.
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M`` (``|M| < 1``).
+
     Examples
     --------
     >>> from andoyer import RigidBody

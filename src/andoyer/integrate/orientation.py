@@ -78,6 +78,17 @@ def attitude_variables(q: ArrayLike, G: ArrayLike, dims: tuple[str, ...]
     ``precession``, ``nutation``, ``proper_rotation`` (NaN where ``euler_singular``) and
     ``quaternion_drift``.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Unit quaternions (scalar first) of the attitude, body to space.
+    G : array_like, shape (..., 3)
+        Body-frame angular momenta.
+    dims : tuple of str
+        Names of the leading dimensions of ``q`` and ``G`` (e.g. ``("orbit", "time")``).
+
+    Examples
+    --------
     >>> v = attitude_variables([[1.0, 0.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]], ("time",))
     >>> bool(v["euler_singular"][1][0]), v["space_momentum"][1][0].tolist()
     (True, [0.0, 0.0, 1.0])

@@ -29,7 +29,17 @@ class LevelEquation(Protocol):
 
 def accessible_box(acc: NDArray[np.bool_], xs: NDArray[np.float64], ys: NDArray[np.float64]
           ) -> tuple[float, float, float, float, float]:
-    """Bounding box of the accessible grid cells (one cell of margin) and its fill ratio."""
+    """Bounding box of the accessible grid cells (one cell of margin) and its fill ratio.
+
+    Parameters
+    ----------
+    acc : ndarray of bool, shape (nx, ny)
+        Accessible cells of the grid.
+    xs : ndarray, shape (nx,)
+        Cell centres along the horizontal axis.
+    ys : ndarray, shape (ny,)
+        Cell centres along the vertical axis.
+    """
     i = np.flatnonzero(acc.any(axis=1))
     j = np.flatnonzero(acc.any(axis=0))
     i0, i1 = max(i[0] - 1, 0), min(i[-1] + 1, xs.size - 1)
@@ -40,6 +50,19 @@ def accessible_box(acc: NDArray[np.bool_], xs: NDArray[np.float64], ys: NDArray[
 
 def has_root(eq: LevelEquation, p: NDArray[np.float64], q: NDArray[np.float64]
               ) -> NDArray[np.bool_]:
+    """Whether the level's equation has a root above each plane point ``(p, q)``.
+
+    Parameters
+    ----------
+    eq : LevelEquation
+        The level's equation on the plane.
+    p, q : ndarray, shape (n,)
+        Plane points (horizontal, vertical coordinate).
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
     pts, _, _, zpts, _ = eq.brackets(p, q)
     out = np.zeros(p.size, dtype=bool)
     out[pts] = True
@@ -49,7 +72,17 @@ def has_root(eq: LevelEquation, p: NDArray[np.float64], q: NDArray[np.float64]
 
 def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float], n: int
                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Cell-centred k x k grid over the box, k chosen so that about n points are accessible."""
+    """Cell-centred k x k grid over the box, k chosen so that about n points are accessible.
+
+    Parameters
+    ----------
+    eq : LevelEquation
+        The level's equation on the plane.
+    box : (x_min, x_max, y_min, y_max, fill ratio)
+        The box of :func:`accessible_box`.
+    n : int
+        About how many accessible points are wanted.
+    """
     x0, x1, y0, y1, frac = box
     k = max(1, math.ceil(math.sqrt(n / max(frac, 1e-6))))
     best: tuple[int, NDArray[np.float64], NDArray[np.float64]] | None = None
@@ -74,7 +107,21 @@ def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float]
 
 def qmc_points(eq: LevelEquation, box: tuple[float, float, float, float, float], n: int,
                 method: str, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The first n accessible points of a scrambled Sobol or Halton sequence in the box."""
+    """The first n accessible points of a scrambled Sobol or Halton sequence in the box.
+
+    Parameters
+    ----------
+    eq : LevelEquation
+        The level's equation on the plane.
+    box : (x_min, x_max, y_min, y_max, fill ratio)
+        The box of :func:`accessible_box`.
+    n : int
+        How many accessible points are wanted.
+    method : {"sobol", "halton"}
+        The low-discrepancy sequence.
+    seed : int
+        Seed of its scrambling.
+    """
     x0, x1, y0, y1, frac = box
     from scipy.stats import qmc
 
@@ -98,7 +145,17 @@ def qmc_points(eq: LevelEquation, box: tuple[float, float, float, float, float],
 
 def polylines(xs: NDArray[np.float64], ys: NDArray[np.float64], F: NDArray[np.float64]
                ) -> NDArray[np.float64]:
-    """Contour ``F = 0`` as NaN-separated vertices, shape ``(V, 2)``."""
+    """Contour ``F = 0`` as NaN-separated vertices, shape ``(V, 2)``.
+
+    Parameters
+    ----------
+    xs : ndarray, shape (nx,)
+        Grid along the horizontal axis.
+    ys : ndarray, shape (ny,)
+        Grid along the vertical axis.
+    F : ndarray, shape (nx, ny)
+        The function whose zero level is drawn.
+    """
     gen = contourpy.contour_generator(xs, ys, F.T, line_type="Separate")
     lines = gen.lines(0.0)
     parts: list[NDArray[np.float64]] = []

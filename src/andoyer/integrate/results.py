@@ -86,7 +86,15 @@ def describe_variables(ds: xr.Dataset, meta: Mapping[str, VariableMeta] | None =
 
 
 def provenance(body: RigidBody, **extra: Any) -> dict[str, Any]:
-    """Attributes recording body, package version and creation time."""
+    """Attributes recording body, package version and creation time.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body, recorded as ``body_*`` attributes.
+    **extra
+        Further attributes (engine, tolerances, settings of the call).
+    """
     attrs: dict[str, Any] = {f"body_{k}" if not k.startswith("body") else k: v
                              for k, v in body.attrs().items()}
     attrs.update(andoyer_version=__version__,
@@ -105,6 +113,16 @@ def values_from_attrs(ds: xr.Dataset, meta: Mapping[str, VariableMeta]) -> xr.Da
     copied into a variable of that name, described by ``meta``; the attribute stays
     (older readers look there).
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset (changed in place).
+    meta : mapping of str to VariableMeta
+        Which attributes to copy and how to describe them (symbol, long name, units,
+        equation).
+
+    Examples
+    --------
     >>> ds = xr.Dataset(attrs={"rho": 0.5})
     >>> float(values_from_attrs(ds, {"rho": ("\\rho", "c J2/lambda", "1", "")}).rho)
     0.5
@@ -131,6 +149,15 @@ def derived_values(body: RigidBody, y: NDArray[np.float64], drifts: bool = False
     NaN states (padding) give NaN values and the flag -1. The drifts are taken along
     the last axis of ``y[..., 0]``, from its first entry: ``H_drift`` relative to
     ``|H(0)|``, ``area_drift`` relative to ``|G(0)|``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (chart constants, integrals).
+    y : ndarray, shape (..., 6)
+        Euler-Poisson states (NaN rows allowed: padding).
+    drifts : bool, default False
+        Also the drifts of the integrals along the last axis.
     """
     valid = np.all(np.isfinite(y), axis=-1)
     safe = np.where(valid[..., None], y, np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0]))
@@ -220,6 +247,23 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     them is read (``.values``, arithmetic, plotting, ``load()``, writing to disk). A
     dataset nobody reads the charts of costs no chart map: a short orbit's dataset
     costs a fraction of its integration (``benchmarks``, W1).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body.
+    y : ndarray, shape (*shape, 6)
+        Euler-Poisson states (NaN for padding).
+    dims : sequence of str
+        Names of the dimensions of ``shape``.
+    coords : mapping
+        Coordinates of those dimensions.
+    attrs : mapping
+        Dataset attributes (provenance).
+    extra : mapping of str to (dims, values), optional
+        Further variables.
+    drifts : bool, default False
+        Also the drifts of the integrals along the last dimension.
 
     Examples
     --------

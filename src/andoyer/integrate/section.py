@@ -51,6 +51,22 @@ class SectionPlane:
     Coordinates are ordered ``(plane x, section angle, plane y, solved action, area
     constant)``: ``storage`` gives their dataset names, ``symbols`` their ASCII names,
     ``text`` the axis labels ``(x, y, action, section coordinate)`` in plain Unicode.
+
+    Attributes
+    ----------
+    chart : {"andoyer", "hess"}
+        The chart whose coordinates span the plane.
+    coord : str
+        The section coordinate (``"g"`` or ``"theta2"``).
+    storage : tuple of 5 str
+        Dataset names of ``(plane x, section angle, plane y, solved action, area
+        constant)``.
+    symbols : tuple of 5 str
+        Their ASCII names.
+    text : tuple of 4 str
+        Axis labels ``(x, y, action, section coordinate)`` in plain Unicode.
+    equations : str
+        The paper's equations of the chart (e.g. ``"(7)"``, ``"(14)"``).
     """
 
     chart: Literal["andoyer", "hess"]

@@ -56,6 +56,21 @@ class TangentResult(NamedTuple):
 
     The tangent vectors are ``w_i(t) = exp(rho_i(t)) u_i(t)`` (:attr:`w`), with ``u_i``
     of unit length and ``w_i(0)`` the given vectors.
+
+    Parameters
+    ----------
+    y : ndarray, shape (n, m, 6)
+        Euler-Poisson states.
+    u : ndarray, shape (n, m, k, 6)
+        Unit tangent vectors ``w_i / |w_i|``.
+    rho : ndarray, shape (n, m, k)
+        ``ln |w_i|``.
+    megno_num : ndarray, shape (n, m)
+        ``int_0^t (s + delta) d rho_1/ds ds``.
+    megno_int : ndarray, shape (n, m)
+        ``int_0^t 2 megno_num / (s + delta) ds``.
+    ok : ndarray of bool, shape (n,)
+        False where the integration failed (NaN there).
     """
 
     y: NDArray[np.float64]  # (n, m, 6): Euler-Poisson states
@@ -72,7 +87,21 @@ class TangentResult(NamedTuple):
 
 
 class TangentCrossings(NamedTuple):
-    """What :func:`tangent_crossings` returns (NaN-padded beyond ``count``)."""
+    """What :func:`tangent_crossings` returns (NaN-padded beyond ``count``).
+
+    Parameters
+    ----------
+    t : ndarray, shape (n, n_crossings)
+        Crossing times.
+    y : ndarray, shape (n, n_crossings, 6)
+        Euler-Poisson states there.
+    w : ndarray, shape (n, n_crossings, k, 6)
+        Tangent vectors there.
+    count : ndarray of int, shape (n,)
+        Crossings found per orbit.
+    ok : ndarray of bool, shape (n,)
+        False where the integration failed.
+    """
 
     t: NDArray[np.float64]  # (n, n_crossings)
     y: NDArray[np.float64]  # (n, n_crossings, 6)
@@ -145,6 +174,19 @@ def fundamental_matrix(y0: ArrayLike, t: ArrayLike, params: Params, *,
     a periodic orbit this is its monodromy matrix (eigenvalues: the Floquet
     multipliers, with 1 four times for the Casimirs, H and the flow direction).
 
+    Parameters
+    ----------
+    y0 : array_like, shape (6,) or (n, 6)
+        Initial Euler-Poisson states.
+    t : array_like, shape (m,)
+        Output times (from ``t[0]``).
+    params : tuple of float
+        The body's engine parameters (:attr:`~andoyer.body.RigidBody.engine_params`).
+    tol : float, default 1e-12
+        Integration tolerance.
+    engine : str or Engine, default "numba"
+        An engine with the ``tangent`` capability.
+
     Raises
     ------
     IntegrationError
@@ -178,6 +220,33 @@ def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
     (numba: the same DOP853 and root finding, on the augmented system). ``w`` at a crossing is the
     tangent flow at the crossing *time*; the derivative of the flow *to the section*
     adds ``-f (grad s . w) / (grad s . f)``.
+
+    Parameters
+    ----------
+    y0 : array_like, shape (6,) or (n, 6)
+        Initial Euler-Poisson states.
+    w0 : array_like, shape (k, 6) or (n, k, 6)
+        Initial tangent vectors.
+    params : tuple of float
+        The body's engine parameters (:attr:`~andoyer.body.RigidBody.engine_params`).
+    kind : int
+        Section kind: an index of ``ALL_KINDS``.
+    value : float
+        Section value.
+    direction : {+1, -1, 0}
+        Crossing direction (0: both).
+    n_crossings : int
+        Crossings wanted per orbit.
+    t_max : float
+        Largest integration time (body time units).
+    tol : float, default 1e-12
+        Integration tolerance.
+    tolerance_factor : float, default 0.025
+        Factor on the DOP853 tolerances (numba).
+    max_steps : int, default 1000000000
+        Largest number of steps per orbit (numba).
+    engine : str or Engine, default "numba"
+        An engine with the ``tangent_crossings`` capability.
 
     Examples
     --------

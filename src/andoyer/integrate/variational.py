@@ -77,6 +77,17 @@ def warm_up(*, batch_size: int | None = None, tol: float = 1e-12,
 
     ``batch_size=None`` is the batch size of maps (heyoka: its SIMD size).
 
+    Parameters
+    ----------
+    batch_size : int, optional
+        Orbits integrated together (default: the batch size of the maps; heyoka: its
+        SIMD size).
+    tol : float, default 1e-12
+        Integration tolerance.
+    engine : str or Engine, optional
+        An engine with the ``tangent`` capability (default heyoka where installed, else
+        numba).
+
     Returns
     -------
     (source, seconds)
@@ -101,7 +112,15 @@ def clear_memory_cache() -> None:
 
 
 class VariationalResult(NamedTuple):
-    """What :func:`propagate_variational` returns."""
+    """What :func:`propagate_variational` returns.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n, k, 15)
+        The variables of :data:`VARIATIONAL_STATE` at the output times.
+    ok : ndarray of bool, shape (n,)
+        False where the integration failed (``x`` is NaN there).
+    """
 
     x: NDArray[np.float64]  # (n, k, 15): the variables of VARIATIONAL_STATE at times t
     ok: NDArray[np.bool_]  # (n,): False where the integration failed (x is NaN there)

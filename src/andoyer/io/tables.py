@@ -22,6 +22,13 @@ __all__ = ["format_table", "eigenvalue_text"]
 def eigenvalue_text(ev: Sequence[complex]) -> str:
     """The distinct ``+-`` pairs of a Hamiltonian spectrum, e.g. ``"+-0.5 i"``.
 
+    Parameters
+    ----------
+    ev : sequence of complex
+        The eigenvalues (pairs ``+-lambda``).
+
+    Examples
+    --------
     >>> eigenvalue_text([0.5j, -0.5j, 2.0, -2.0])
     '+-0.5 i, +-2'
     """
@@ -39,6 +46,13 @@ def eigenvalue_text(ev: Sequence[complex]) -> str:
 
 def format_table(result: FixedPointSet | EquilibriumSet | Sequence[CheckRow]) -> str:
     """A plain-text table of a fixed-point set, the Euler-Poisson equilibria or a paper check.
+
+    Parameters
+    ----------
+    result : FixedPointSet, EquilibriumSet or sequence of CheckRow
+        What to tabulate (:func:`andoyer.analysis.unperturbed.fixed_points.fixed_points`,
+        :func:`~andoyer.analysis.unperturbed.equilibria.euler_poisson_equilibria`,
+        :func:`~andoyer.analysis.paper.paper_check.paper_check`).
 
     Examples
     --------

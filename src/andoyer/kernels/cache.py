@@ -112,6 +112,13 @@ def writable(folder: str | os.PathLike[str]) -> bool:
     Tried for real, not read off permission bits, which root ignores (a read-only
     mount refuses even root).
 
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder to try.
+
+    Examples
+    --------
     >>> writable("/proc")
     False
     """

@@ -149,7 +149,13 @@ PARAMS = ("a", "b", "c", "mu", "e1", "e2", "e3", "phi0")
 
 def source_stamp(*files: str | Path) -> str:
     """SHA-256 of the bytes of ``files``: a cache key for compiled entry points whose
-    helpers live in other modules (see the module notes)."""
+    helpers live in other modules (see the module notes).
+
+    Parameters
+    ----------
+    *files : str or pathlib.Path
+        The source files whose bytes make the key.
+    """
     h = hashlib.sha256()
     for f in files:
         h.update(Path(f).read_bytes())
@@ -331,7 +337,25 @@ def ensemble_propagate(kernel: Any, y0: np.ndarray, t: np.ndarray, p: np.ndarray
                        threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Allocate the outputs of :func:`propagate` for states of any width ``y0.shape[1]``
     and run a ``propagate_block`` kernel (this module's or :mod:`andoyer.kernels.tangent`'s)
-    over blocks of orbits in threads."""
+    over blocks of orbits in threads.
+
+    Parameters
+    ----------
+    kernel : numba function
+        A ``propagate_block`` kernel.
+    y0 : ndarray, shape (n, d)
+        Initial states at ``t[0]``.
+    t : ndarray, shape (k,)
+        Output times.
+    p : ndarray
+        Kernel parameters.
+    rtol, atol : float
+        Tolerances.
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads : int
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+    """
     n = y0.shape[0]
     out = np.full((n, t.shape[0], y0.shape[1]), np.nan)
     info = np.zeros((n, len(INFO)), dtype=np.int64)
@@ -347,7 +371,33 @@ def ensemble_crossings(kernel: Any, y0: np.ndarray, p: np.ndarray, kind: int, va
                        threads: int | None = None
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """As :func:`ensemble_propagate`, for :func:`locate_crossings` and a
-    ``locate_crossings_block`` kernel."""
+    ``locate_crossings_block`` kernel.
+
+    Parameters
+    ----------
+    kernel : numba function
+        A ``locate_crossings_block`` kernel.
+    y0 : ndarray, shape (n, d)
+        Initial states at t = 0.
+    p : ndarray
+        Kernel parameters.
+    kind : int
+        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
+    value : float
+        The section value.
+    direction : int
+        +1: f increasing, -1: decreasing, 0: both.
+    n_crossings : int
+        Stop an orbit after this many crossings.
+    t_max : float
+        Stop an orbit at this time.
+    rtol, atol : float
+        Tolerances.
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads : int
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+    """
     n = y0.shape[0]
     tc = np.full((n, int(n_crossings)), np.nan)
     yc = np.full((n, int(n_crossings), y0.shape[1]), np.nan)

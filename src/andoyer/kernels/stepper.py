@@ -202,7 +202,23 @@ def _record(F, y, t, h, p, kind, value, cv, sv, direction, xa, xb, fa, fb, tc, y
 
 
 class Stepper(NamedTuple):
-    """The DOP853 pieces of one right-hand side, built by :func:`make_stepper`."""
+    """The DOP853 pieces of one right-hand side, built by :func:`make_stepper`.
+
+    Parameters
+    ----------
+    stages : numba function
+        The twelve DOP853 stages of one step.
+    initial_step : numba function
+        The starting step size.
+    step : numba function
+        One step with error control.
+    dense_coefficients : numba function
+        The coefficients of the dense output over a step.
+    propagate_orbit : numba function
+        One orbit to the output times.
+    crossings_orbit : numba function
+        One orbit's section crossings.
+    """
 
     stages: Any
     initial_step: Any
@@ -224,6 +240,11 @@ def make_stepper(field: Any) -> Stepper:
     address, which Numba cannot cache). They are not cached themselves: bind them to
     module globals and call them from cached entry points, whose cache key must then
     cover this module and the field's (see :func:`source_stamp`).
+
+    Parameters
+    ----------
+    field : numba function
+        ``field(t, y, p, out)``: the right-hand side.
 
     Returns
     -------

@@ -75,6 +75,13 @@ TANGENT_STAMP = dop853.source_stamp(_generated.__file__ or "", _kernels.__file__
 def dimension(k: int) -> int:
     """Floats per orbit with ``k`` tangent vectors: ``6 + 7 k + 2``.
 
+    Parameters
+    ----------
+    k : int
+        Tangent vectors.
+
+    Examples
+    --------
     >>> dimension(1)
     15
     """
@@ -84,6 +91,13 @@ def dimension(k: int) -> int:
 def n_vectors(dim: int) -> int:
     """The number of tangent vectors ``k`` of a state of ``dim`` floats.
 
+    Parameters
+    ----------
+    dim : int
+        Floats per orbit.
+
+    Examples
+    --------
     >>> n_vectors(dimension(3))
     3
     """
@@ -96,6 +110,11 @@ def n_vectors(dim: int) -> int:
 
 def layout(k: int) -> dict[str, slice | int]:
     """Where each part of a state with ``k`` vectors lives.
+
+    Parameters
+    ----------
+    k : int
+        Tangent vectors.
 
     Returns
     -------
@@ -214,6 +233,29 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float,
     As :func:`andoyer.kernels.dop853.locate_crossings` (the section reads
     ``z[:6]``); the crossing states ``z`` have shape
     ``(n, n_crossings, dimension(k))``.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, dimension(k))
+        Initial augmented states (state, tangent vectors, MEGNO sums).
+    p : ndarray
+        Kernel parameters.
+    kind : int
+        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
+    value : float
+        The section value.
+    direction : int
+        +1: f increasing, -1: decreasing, 0: both.
+    n_crossings : int
+        Stop an orbit after this many crossings.
+    t_max : float
+        Stop an orbit at this time.
+    rtol, atol : float
+        Tolerances.
+    max_steps : int
+        Maximum accepted steps per orbit.
+    block, threads : int
+        Orbits per block and threads.
     """
     return dop853.ensemble_crossings(locate_crossings_block, z0, p, kind, value, direction,
                                      n_crossings, t_max, rtol, atol, max_steps, block=block,

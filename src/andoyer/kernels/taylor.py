@@ -133,6 +133,13 @@ def order_for(tol: float) -> int:
     """Taylor order for the tolerance ``tol``: ``ceil(-ln(tol) / 2) + 1`` (heyoka's rule),
     kept in ``[MIN_ORDER, MAX_ORDER]``.
 
+    Parameters
+    ----------
+    tol : float
+        The tolerance.
+
+    Examples
+    --------
     >>> order_for(1e-12), order_for(1e-15)
     (15, 19)
     """
@@ -142,6 +149,13 @@ def order_for(tol: float) -> int:
 def n_vectors(width: int) -> int:
     """Tangent vectors ``k`` of a state of ``width = 6 + 6 k`` floats.
 
+    Parameters
+    ----------
+    width : int
+        Floats per state (``6 + 6 k``).
+
+    Examples
+    --------
     >>> n_vectors(12)
     1
     """
@@ -257,7 +271,19 @@ def _load(X, z):
 
 
 class Orbits(NamedTuple):
-    """The compiled orbit loops of one kind of state (built by :func:`make_orbits`)."""
+    """The compiled orbit loops of one kind of state (built by :func:`make_orbits`).
+
+    Parameters
+    ----------
+    take_step : numba function
+        One Taylor step (order and size from the jets).
+    propagate_orbit : numba function
+        One orbit to the output times (dense output from the step's polynomial).
+    record : numba function
+        Stores a state at an output time.
+    crossings_orbit : numba function
+        One orbit's section crossings (roots on each step's polynomial).
+    """
 
     take_step: Any
     propagate_orbit: Any
@@ -269,6 +295,11 @@ def make_orbits(jets: Any) -> Orbits:
     """The orbit loops for states whose jets ``jets(X, order, q)`` computes (the state
     alone, or with tangent vectors): closures over ``jets``, so a call compiles only the
     jets it needs (see :mod:`andoyer.kernels.stepper` on closures and the cache).
+
+    Parameters
+    ----------
+    jets : numba function
+        ``jets(X, order, q)``: the Taylor coefficients of the state.
     """
 
     @fast_jit
@@ -604,7 +635,23 @@ def propagate_attitude(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float,
                        max_steps: int, *, block: int = 1, threads: int | None = None
                        ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`propagate` of states ``(G, gamma, q)`` (n, 10) with the attitude quaternion
-    (its jet ``ep_taylor_attitude_jet``, a second block of 6): ``z`` (n, m, 10), ``info``."""
+    (its jet ``ep_taylor_attitude_jet``, a second block of 6): ``z`` (n, m, 10), ``info``.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, 10)
+        Initial states ``(G, gamma, q)``: Euler-Poisson state and attitude quaternion.
+    t : ndarray, shape (m,)
+        Output times.
+    p : ndarray
+        Kernel parameters.
+    tol : float
+        The Taylor method's tolerance.
+    max_steps : int
+        Maximum steps per orbit.
+    block, threads : int
+        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+    """
     n = z0.shape[0]
     z = np.zeros((n, 2 * _N))
     z[:, :10] = z0
@@ -623,6 +670,29 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     vectors there when ``z0`` has ``6 + 6 k`` columns).
 
     Parameters as :func:`andoyer.kernels.dop853.locate_crossings`, with one ``tol``.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, 6) or (n, 6 + 6 k)
+        Initial states (with tangent vectors).
+    p : ndarray
+        Kernel parameters.
+    kind : int
+        Index into the section kinds.
+    value : float
+        The section value.
+    direction : int
+        +1: f increasing, -1: decreasing, 0: both.
+    n_crossings : int
+        Stop an orbit after this many crossings.
+    t_max : float
+        Stop an orbit at this time.
+    tol : float
+        The Taylor method's tolerance.
+    max_steps : int
+        Maximum steps per orbit.
+    block, threads : int
+        Orbits per block and threads.
 
     Returns
     -------

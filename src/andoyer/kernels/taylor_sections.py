@@ -177,7 +177,19 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
     (its margin ``w`` if ``margin``): the generated
     :data:`~andoyer.kernels.taylor_generated.SECTION_TAPES` and ``section_constants``
-    (``MARGIN_TAPES``, ``margin_constants``)."""
+    (``MARGIN_TAPES``, ``margin_constants``).
+
+    Parameters
+    ----------
+    kind : int
+        Index into the section kinds.
+    phi0 : float
+        The body's ``phi0`` (Hess-chart sections).
+    value : float
+        The section value.
+    margin : bool, default False
+        The tape of the margin ``w`` instead of ``f``.
+    """
     g = taylor_generated
     tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
                         else (g.SECTION_TAPES, g.section_constants))

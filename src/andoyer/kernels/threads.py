@@ -38,6 +38,17 @@ def block_starts(n: int, threads: int, block: int = 1) -> list[int]:
     """First orbit of each block: blocks of ``block`` orbits (``0``: ``n`` split evenly
     over ``threads``).
 
+    Parameters
+    ----------
+    n : int
+        Orbits.
+    threads : int
+        Threads.
+    block : int, default 1
+        Orbits per block (0: ``n`` split evenly over ``threads``).
+
+    Examples
+    --------
     >>> block_starts(5, 2, 2)
     [0, 2, 4]
     >>> block_starts(5, 2, 0)

@@ -267,7 +267,25 @@ def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: 
     (other dims already selected); the chaotic fraction is annotated with its range under
     ``threshold -+ margin/2`` where the cells leave room for it (the font follows the
     cell size; no annotation where even the value does not fit). Returns the colour
-    mesh."""
+    mesh.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A border-of-chaos dataset with the other dimensions selected.
+    name : str, default "chaotic_fraction"
+        The variable drawn.
+    x : str
+        The swept dimension along the horizontal axis.
+    y : str or None
+        The one along the vertical axis (None: a single row).
+    label : str, optional
+        The colour-bar label (default: that of :data:`andoyer.plot.style.SCALES`).
+    annotate : bool, default True
+        Write the chaotic fraction's range in the cells where it fits.
+    """
     dims = (y, x) if y is not None else (x,)
     ok = np.ones(ds["chaotic_fraction"].shape, dtype=bool)
     if "done" in ds:

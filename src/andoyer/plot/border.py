@@ -26,7 +26,15 @@ __all__ = ["plot_splitting_vs_epsilon", "plot_frequency_map", "plot_border_of_ch
 def plot_splitting_vs_epsilon(ds: xr.Dataset, *, ax: Any) -> Any:
     """Measured splitting amplitude (markers) and the first-order Melnikov prediction
     (line) against ``epsilon``, one colour per ``mu`` (linear axes: the amplitude of the
-    Hess branch is linear in ``sin epsilon`` and zero at ``epsilon = 0``)."""
+    Hess branch is linear in ``sin epsilon`` and zero at ``epsilon = 0``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`andoyer.analysis.splitting.measure.splitting_vs_epsilon`.
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    """
     eps = np.asarray(ds.epsilon.values, dtype=float)
     palette = (COLOURS["centre"], COLOURS["saddle"], COLOURS["chaotic"], COLOURS["orbit"])
     for k, m in enumerate(np.asarray(ds.mu.values, dtype=float)):
@@ -45,7 +53,15 @@ def plot_splitting_vs_epsilon(ds: xr.Dataset, *, ax: Any) -> Any:
 def plot_frequency_map(ds: xr.Dataset, *, ax: Any) -> Any:
     """Seeds of a frequency map on their section plane, coloured by ``log10`` of the
     frequency drift (its colour scale :data:`andoyer.plot.style.SCALES`: pale on tori,
-    dark in chaos). Returns the scatter."""
+    dark in chaos). Returns the scatter.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`andoyer.analysis.chaos.frequency.frequency_map`.
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    """
     x = str(ds.attrs.get("plane_x", "theta1"))
     y = str(ds.attrs.get("plane_y", "J1"))
     X = np.asarray(ds[x].values, dtype=float)
@@ -68,7 +84,19 @@ def plot_border_of_chaos(splitting: xr.Dataset, border: xr.Dataset,
     """Three panels on a grid: (a) :func:`plot_splitting_vs_epsilon` and (b) the chaotic
     fraction over ``(epsilon, mu)`` (:func:`~andoyer.plot.atlas.border_panel`) side by
     side, (c) :func:`plot_frequency_map` across the width below; every colour bar
-    labelled."""
+    labelled.
+
+    Parameters
+    ----------
+    splitting : xarray.Dataset
+        From :func:`andoyer.analysis.splitting.measure.splitting_vs_epsilon`.
+    border : xarray.Dataset
+        From :func:`andoyer.analysis.chaos.chaos_border.chaos_border_map`.
+    frequencies : xarray.Dataset
+        From :func:`andoyer.analysis.chaos.frequency.frequency_map`.
+    width : float, default 7.5
+        Figure width, inches.
+    """
     with paper_style():
         fig = Figure(figsize=(width, 0.8 * width), layout="constrained")
         axes = fig.subplot_mosaic([["a", "b"], ["c", "c"]], height_ratios=[1.0, 0.9])

@@ -53,6 +53,10 @@ def plot_manifold_curves(unstable: xr.Dataset, stable: xr.Dataset,
     intersections : xarray.Dataset, optional
         Heteroclinic points (variables ``g``, ``G``; a ``mu`` dim is reduced to its last
         value, the ``mu`` of the curves).
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on (default: a new figure).
+    title : str, optional
+        The axes title.
     """
     if ax is None:
         with paper_style():
@@ -92,6 +96,16 @@ def plot_splitting_phase(splitting: xr.Dataset, *, ax: Axes | None = None,
     measured points approach it as ``mu -> 0``. ``hess``: the same on the Hess branch
     ``theta1 = 0`` (its profile, squares, and its prediction, dashed), drawn where it
     splits (a body turned off the Hess direction).
+
+    Parameters
+    ----------
+    splitting : xarray.Dataset
+        The splitting measured on the branch ``theta1 = 4 phi0``
+        (:func:`andoyer.analysis.splitting.measure.separatrix_splitting`).
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on (default: a new figure).
+    hess : xarray.Dataset, optional
+        The same on the Hess branch ``theta1 = 0`` of a turned body.
     """
     if ax is None:
         with paper_style():
@@ -186,6 +200,8 @@ def plot_manifolds_summary(result: dict[str, xr.Dataset], hess: xr.Dataset | Non
         What :func:`andoyer.analysis.splitting.measure.separatrix_splitting` returns.
     hess : xarray.Dataset, optional
         The ``"splitting"`` dataset of the Hess branch ``theta1 = 0``.
+    title : str, optional
+        The figure title.
     """
     with paper_style():
         fig = new_figure(2, 2, aspect=0.78)

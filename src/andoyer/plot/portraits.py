@@ -49,6 +49,18 @@ def draw_portrait(ax: Axes, ds: xr.Dataset, *, mark_hess: bool = True,
     Hess solutions approach bold dotted black when ``mark_hess``), the singular lines
     (grey), the fixed points by chart type (:data:`andoyer.plot.style.MARKERS`) and,
     with ``labels``, the digits 1-4 of the uniform rotations.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        From :func:`andoyer.analysis.unperturbed.portraits.portrait_andoyer` or
+        :func:`~andoyer.analysis.unperturbed.portraits.portrait_hess`.
+    mark_hess : bool, default True
+        Draw the separatrix the Hess solutions approach bold dotted black.
+    labels : bool, default True
+        Write the fixed points' digits of Fig. 2.
     """
     x, y = _plane(ds, "draw_portrait")
     ordinary = ds.levels.values[~ds.level_is_separatrix.values.astype(bool)]

@@ -250,6 +250,13 @@ def animation_writer_available(suffix: str) -> bool:
     """Whether an animation of file suffix ``suffix`` (``.gif``, ``.mp4``) can be written
     here (``.mp4`` needs the ffmpeg program).
 
+    Parameters
+    ----------
+    suffix : str
+        File suffix of the animation (``".gif"``, ``".mp4"``).
+
+    Examples
+    --------
     >>> animation_writer_available(".gif")
     True
     """

@@ -85,6 +85,15 @@ class ColourScale:
     """How one quantity is coloured: its colour map, range and colour-bar label.
 
     ``vmin`` / ``vmax`` left ``None`` follow the data (:meth:`norm`).
+
+    Attributes
+    ----------
+    cmap : str
+        Matplotlib colour map.
+    label : str
+        The colour-bar label.
+    vmin, vmax : float, optional
+        The range (None: follow the data).
     """
 
     cmap: str
@@ -121,6 +130,13 @@ SCALES: dict[str, ColourScale] = {
 def colour_scale(quantity: str) -> ColourScale:
     """The colour scale of ``quantity`` (a key of :data:`SCALES`).
 
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`SCALES` (``"fli"``, ``"megno"``, ``"log10_drift"``, ...).
+
+    Examples
+    --------
     >>> colour_scale("fli").cmap
     'magma_r'
     """
@@ -132,7 +148,19 @@ def colour_scale(quantity: str) -> ColourScale:
 
 
 def colour_bar(mappable: Any, ax: Any, quantity: str, **kwargs: Any) -> Any:
-    """A colour bar beside ``ax`` for ``mappable``, labelled with ``quantity``'s label."""
+    """A colour bar beside ``ax`` for ``mappable``, labelled with ``quantity``'s label.
+
+    Parameters
+    ----------
+    mappable : matplotlib.cm.ScalarMappable
+        What is coloured (an image, a scatter).
+    ax : matplotlib.axes.Axes
+        The axes it stands beside.
+    quantity : str
+        A key of :data:`SCALES`.
+    **kwargs
+        Passed to :meth:`matplotlib.figure.Figure.colorbar`.
+    """
     fig = ax.get_figure(root=True)
     return fig.colorbar(mappable, ax=ax, label=colour_scale(quantity).label, **kwargs)
 
@@ -166,7 +194,17 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, width: float = WIDTH,
 
 
 def angle_ticks(ax: Any, lo: float, hi: float, *, axis: str = "x") -> None:
-    """Ticks at multiples of pi/2 between ``lo`` and ``hi`` on an angle axis."""
+    """Ticks at multiples of pi/2 between ``lo`` and ``hi`` on an angle axis.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    lo, hi : float
+        The angle range (rad).
+    axis : {"x", "y"}, default "x"
+        Which axis.
+    """
     import numpy as np
 
     k = np.arange(np.ceil(lo / (np.pi / 2) - 1e-9), np.floor(hi / (np.pi / 2) + 1e-9) + 1)

@@ -34,7 +34,19 @@ __all__ = ["Context", "Result", "Item", "Table"]
 
 @dataclass
 class Context:
-    """What every item builder gets: the output folder, the paper's body, the engine."""
+    """What every item builder gets: the output folder, the paper's body, the engine.
+
+    Attributes
+    ----------
+    out : pathlib.Path
+        The report's folder.
+    body : RigidBody
+        The paper's body.
+    engine : str, optional
+        The integration engine asked for (None: each item's default).
+    quick : bool
+        Smaller grids and shorter times (a check, not the paper's figures).
+    """
 
     out: Path
     body: RigidBody
@@ -83,7 +95,15 @@ class Context:
 
 @dataclass
 class Table:
-    """A table of the report: column heads and rows of cells (any values, shown as text)."""
+    """A table of the report: column heads and rows of cells (any values, shown as text).
+
+    Attributes
+    ----------
+    head : list of str
+        Column heads.
+    rows : list of list
+        Rows of cells (shown as text).
+    """
 
     head: list[str]
     rows: list[list[Any]]
@@ -96,6 +116,19 @@ class Result:
     ``values`` are the names its template (``templates/items/<key>.html.j2``) reads,
     besides ``body`` and ``engine``; ``table`` and ``pre`` (preformatted text) follow the
     prose.
+
+    Attributes
+    ----------
+    files : list of pathlib.Path
+        The files it wrote.
+    numbers : dict of str to float
+        Its numbers for ``summary.json``.
+    values : dict
+        The names its template reads.
+    table : Table or None
+        A table shown under the prose.
+    pre : str
+        Preformatted text shown under the prose.
     """
 
     files: list[Path]
@@ -107,7 +140,19 @@ class Result:
 
 @dataclass(frozen=True)
 class Item:
-    """One section of the report: a key, a title and the function that builds it."""
+    """One section of the report: a key, a title and the function that builds it.
+
+    Attributes
+    ----------
+    key : str
+        Its name (files, template ``templates/items/<key>.html.j2``).
+    title : str
+        Its title in the report.
+    build : callable
+        ``build(ctx) -> Result``.
+    cost : float
+        Its relative cost (longest items start first).
+    """
 
     key: str
     title: str

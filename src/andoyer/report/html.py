@@ -58,7 +58,19 @@ def _images(result: Result) -> list[dict[str, Any]]:
 
 
 def render_item(item: Item, result: Result, seconds: float, body: RigidBody) -> str:
-    """One item's section of ``index.html``: its figures, prose, files and table."""
+    """One item's section of ``index.html``: its figures, prose, files and table.
+
+    Parameters
+    ----------
+    item : Item
+        The item.
+    result : Result
+        What it built.
+    seconds : float
+        How long it took.
+    body : RigidBody
+        The paper's body (its prose reads it).
+    """
     template = environment().get_template(f"items/{item.key}.html.j2")
     return str(template.render(item=item, result=result, v=result.values, seconds=seconds,
                                body=body, images=_images(result)))
@@ -66,7 +78,19 @@ def render_item(item: Item, result: Result, seconds: float, body: RigidBody) -> 
 
 def write_index(out: Path, body: RigidBody, engine: str,
                 done: list[tuple[Item, Result, float]]) -> Path:
-    """Write ``out/index.html`` (atomically) for the items ``done``, in their order."""
+    """Write ``out/index.html`` (atomically) for the items ``done``, in their order.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The report's folder.
+    body : RigidBody
+        The paper's body.
+    engine : str
+        The engine the items ran on.
+    done : list of (Item, Result, float)
+        The items built, their results and seconds.
+    """
     from markupsafe import Markup
 
     from andoyer._version import __version__

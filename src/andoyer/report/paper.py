@@ -39,6 +39,13 @@ def default_jobs(items: list[Item]) -> int:
     :data:`_WORKER_WORTH_S` (the heavy items use every core themselves; two processes
     keep the cores busy between them), else 1.
 
+    Parameters
+    ----------
+    items : list of Item
+        The items to build.
+
+    Examples
+    --------
     >>> default_jobs(ITEMS[2:3])  # one item of 0.1 s
     1
     """

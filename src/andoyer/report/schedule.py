@@ -38,6 +38,15 @@ class Announcer:
     """The report's progress: a bar of items (on a terminal) with the items running now,
     and one line per item, in report order, on stderr.
 
+    Parameters
+    ----------
+    items : list of Item
+        The items, in report order.
+    enabled : bool
+        Show the bar and the lines (False: silent).
+
+    Examples
+    --------
     >>> a = Announcer([], enabled=False)
     >>> a.close()
     """
@@ -125,6 +134,17 @@ def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
     Returns, per item key, its result and the seconds it took. The results do not
     depend on ``jobs``; the first error of an item is raised (the other items are
     cancelled and the workers ended).
+
+    Parameters
+    ----------
+    items : list of Item
+        The items to build.
+    ctx : Context
+        Output folder, body, engine, quick.
+    jobs : int
+        Processes (this one and ``jobs - 1`` workers).
+    progress : bool
+        Show the progress (:class:`Announcer`).
     """
     announcer = Announcer(items, progress)
     out: dict[str, tuple[Result, float]] = {}

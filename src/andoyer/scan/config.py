@@ -359,6 +359,13 @@ class ScanConfig:
 def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
     """Validate a configuration given as nested mappings (the parsed TOML).
 
+    Parameters
+    ----------
+    data : mapping
+        The parsed TOML (nested mappings).
+    where : str, default "config"
+        Where it came from (a file name), for the errors.
+
     Raises
     ------
     ValueError

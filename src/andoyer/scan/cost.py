@@ -14,7 +14,19 @@ __all__ = ["Cost", "estimate_cost", "check_size"]
 
 
 class Cost(NamedTuple):
-    """Estimated size of a scan."""
+    """Estimated size of a scan.
+
+    Parameters
+    ----------
+    points : int
+        Grid points.
+    tasks : int
+        Dask tasks (chunks).
+    core_seconds : float
+        Estimated computing time, core seconds.
+    store_bytes : float
+        Estimated size of the store, bytes.
+    """
 
     points: int
     tasks: int
@@ -62,7 +74,17 @@ def estimate_cost(cfg: ScanConfig) -> Cost:
 
 
 def check_size(cfg: ScanConfig, max_core_hours: float, max_store_gb: float) -> Cost:
-    """Refuse a scan whose estimated cost exceeds the limits; return the estimate."""
+    """Refuse a scan whose estimated cost exceeds the limits; return the estimate.
+
+    Parameters
+    ----------
+    cfg : ScanConfig
+        The configuration.
+    max_core_hours : float
+        Largest estimated computing time, core hours.
+    max_store_gb : float
+        Largest estimated store, GB.
+    """
     cost = estimate_cost(cfg)
     over = []
     if cost.core_seconds > 3600.0 * max_core_hours:

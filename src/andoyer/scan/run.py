@@ -49,7 +49,17 @@ DEFAULT_MAX_STORE_GB = 50.0
 # ---------------------------------------------------------------------- running
 @dataclass(frozen=True)
 class ChunkResult:
-    """What a worker sends back: one result per point of the chunk (C order)."""
+    """What a worker sends back: one result per point of the chunk (C order).
+
+    Attributes
+    ----------
+    block : tuple of int
+        The chunk's index in the grid of chunks.
+    points : list of xarray.Dataset or Empty
+        One result per point of the chunk, in C order.
+    seconds : float
+        The time the worker took.
+    """
 
     block: tuple[int, ...]
     points: list[xr.Dataset | Empty]
@@ -57,7 +67,15 @@ class ChunkResult:
 
 
 def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
-    """Run the task at the grid point ``index`` (one index per swept parameter)."""
+    """Run the task at the grid point ``index`` (one index per swept parameter).
+
+    Parameters
+    ----------
+    config : ScanConfig
+        The scan.
+    index : tuple of int
+        One index per swept parameter.
+    """
     kind = TASKS[config.task]
     values = config.point(index)
     body = config.body_at(values)
@@ -66,7 +84,15 @@ def run_point(config: ScanConfig, index: tuple[int, ...]) -> xr.Dataset | Empty:
 
 
 def run_chunk(config: ScanConfig, block: tuple[int, ...]) -> ChunkResult:
-    """Run every point of the chunk ``block`` (what one Dask task does)."""
+    """Run every point of the chunk ``block`` (what one Dask task does).
+
+    Parameters
+    ----------
+    config : ScanConfig
+        The scan.
+    block : tuple of int
+        The chunk's index in the grid of chunks.
+    """
     t0 = time.perf_counter()
     points = [run_point(config, index) for index in config.block_points(block)]
     return ChunkResult(tuple(block), points, time.perf_counter() - t0)
@@ -305,7 +331,13 @@ def _consume(results: Iterator[ChunkResult], path: Path, cfg: ScanConfig,
 
 
 def summary(report: ScanReport) -> str:
-    """One paragraph on what a scan did (for the command line)."""
+    """One paragraph on what a scan did (for the command line).
+
+    Parameters
+    ----------
+    report : ScanReport
+        What :func:`scan` returned.
+    """
     lines = [f"wrote {report.store}: {report.tasks} tasks ({report.computed} computed now, "
              f"{report.resumed} done before) in {report.seconds:.1f} s"]
     if report.empty:

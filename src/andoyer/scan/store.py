@@ -73,7 +73,19 @@ def _codecs() -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class Variable:
-    """One variable of a point's result: its task dims, shape, dtype and attrs."""
+    """One variable of a point's result: its task dims, shape, dtype and attrs.
+
+    Attributes
+    ----------
+    dims : tuple of str
+        Its task dimensions.
+    shape : tuple of int
+        Its shape along them.
+    dtype : numpy.dtype
+        Its type.
+    attrs : mapping
+        Its attributes (units, long name).
+    """
 
     dims: tuple[str, ...]
     shape: tuple[int, ...]
@@ -90,7 +102,15 @@ class Variable:
 
 @dataclass(frozen=True)
 class Schema:
-    """The variables of one point's result, and the task coordinates shared by all."""
+    """The variables of one point's result, and the task coordinates shared by all.
+
+    Attributes
+    ----------
+    variables : mapping of str to Variable
+        The variables of a point's result.
+    coords : mapping of str to xarray.Variable
+        The task's coordinates shared by every point.
+    """
 
     variables: Mapping[str, Variable]
     coords: Mapping[str, xr.Variable]
@@ -111,6 +131,13 @@ def point_schema(ds: xr.Dataset, fixed_coords: Sequence[str]) -> Schema:
 
     Coordinates listed in ``fixed_coords`` are kept as coordinates; other numeric
     coordinates may change from point to point and become variables ``<name>_values``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The first computed point's result.
+    fixed_coords : sequence of str
+        Coordinates that are the same at every point.
     """
     renamed: dict[str, str] = {}
     variables: dict[str, Variable] = {}
@@ -208,6 +235,19 @@ def initialise(path: Path, cfg: ScanConfig, schema: Schema, first_attrs: Mapping
     """Write the store's layout (coordinates, attrs, every variable full of fill values).
 
     Built in a temporary directory beside ``path`` and renamed into place.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store to create.
+    cfg : ScanConfig
+        The scan.
+    schema : Schema
+        The variables of a point's result.
+    first_attrs : mapping
+        The attributes of the first result (the static ones go to the store).
+    overwrite : bool
+        Replace an existing scan store.
     """
     import dask.array as da
 
@@ -440,6 +480,11 @@ def _summary(damage: Sequence[Damage], limit: int = 3) -> str:
 def open_store(path: str | os.PathLike[str]) -> xr.Dataset:
     """A scan store as a lazy dataset, once :func:`verify` found all its data.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store.
+
     Raises
     ------
     DamagedFileError
@@ -479,6 +524,15 @@ def prepare(path: Path, cfg: ScanConfig, *, overwrite: bool) -> np.ndarray | Non
     With ``overwrite`` an existing scan store is replaced when the new one is laid out
     (nothing is removed before). Leftover temporary files of an interrupted run
     (``*.partial`` of Zarr) are removed.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store.
+    cfg : ScanConfig
+        The scan it must belong to.
+    overwrite : bool
+        Whether a store of another scan may be replaced.
     """
     if not path.exists():
         return None
@@ -524,7 +578,15 @@ def prepare(path: Path, cfg: ScanConfig, *, overwrite: bool) -> np.ndarray | Non
 
 
 def store_schema(path: Path, cfg: ScanConfig) -> Schema:
-    """The schema of the task's variables, read back from an existing store."""
+    """The schema of the task's variables, read back from an existing store.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store.
+    cfg : ScanConfig
+        The scan.
+    """
     ds = _open(path)
     n = len(cfg.dims)
     variables = {str(k): Variable(tuple(map(str, v.dims[n:])), tuple(v.shape[n:]), v.dtype,
@@ -534,13 +596,33 @@ def store_schema(path: Path, cfg: ScanConfig) -> Schema:
 
 
 def done_mask(path: Path) -> np.ndarray:
-    """The ``done`` flags of a store."""
+    """The ``done`` flags of a store.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store.
+    """
     return np.asarray(_open(path)["done"].values, dtype=bool)
 
 
 def write_chunk(path: Path, cfg: ScanConfig, schema: Schema, block: tuple[int, ...],
                 points: Sequence[xr.Dataset | Empty]) -> None:
-    """Write the results of one chunk into its region, then mark it done."""
+    """Write the results of one chunk into its region, then mark it done.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store.
+    cfg : ScanConfig
+        The scan.
+    schema : Schema
+        The variables of a point's result.
+    block : tuple of int
+        The chunk's index in the grid of chunks.
+    points : sequence of xarray.Dataset or Empty
+        One result per point of the chunk, in C order.
+    """
     slices = cfg.block_slices(block)
     shape = tuple(s.stop - s.start for s in slices)
     if len(points) != int(np.prod(shape)):

@@ -68,7 +68,15 @@ REQUIRED: Any = _Required()
 
 
 class Integrator(NamedTuple):
-    """Engine and tolerances of every integration of a scan."""
+    """Engine and tolerances of every integration of a scan.
+
+    Parameters
+    ----------
+    engine : str
+        Engine name.
+    rtol, atol : float
+        Tolerances.
+    """
 
     engine: str
     rtol: float
@@ -77,14 +85,30 @@ class Integrator(NamedTuple):
 
 @dataclass(frozen=True)
 class Empty:
-    """A point with nothing to compute (e.g. the energy level misses the section)."""
+    """A point with nothing to compute (e.g. the energy level misses the section).
+
+    Attributes
+    ----------
+    reason : str
+        Why there is nothing to compute.
+    """
 
     reason: str
 
 
 @dataclass(frozen=True)
 class Option:
-    """One key of a task's ``[task]`` table: default, validation, documentation."""
+    """One key of a task's ``[task]`` table: default, validation, documentation.
+
+    Attributes
+    ----------
+    default : object
+        Its value when the table does not set it.
+    check : callable
+        ``check(name, value) -> value``: the validation, raising ``ValueError`` naming the key.
+    doc : str
+        What it is, for the documentation.
+    """
 
     default: Any
     check: Callable[[str, Any], Any]
@@ -118,6 +142,10 @@ class TaskKind:
     levels : tuple of str
         Which of the levels ``h``, ``M`` are parameters of the task (``run`` gets None
         for the others); ``levels_note`` says why a level is not one.
+    doc : str
+        What the task computes, for the documentation.
+    levels_note : str
+        Why a level is not one of the task's parameters (empty where both are).
     """
 
     name: str

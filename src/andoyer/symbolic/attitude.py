@@ -43,6 +43,13 @@ Q: tuple[sp.Symbol, ...] = sp.symbols("q0:4", real=True)
 def quaternion_product(p: tuple[sp.Expr, ...], q: tuple[sp.Expr, ...]) -> tuple[sp.Expr, ...]:
     """Hamilton's product ``p (x) q`` of scalar-first quaternions.
 
+    Parameters
+    ----------
+    p, q : tuple of sympy.Expr
+        Scalar-first quaternions.
+
+    Examples
+    --------
     >>> i, j = (0, 1, 0, 0), (0, 0, 1, 0)
     >>> quaternion_product(i, j)
     (0, 0, 0, 1)
@@ -58,6 +65,13 @@ def quaternion_product(p: tuple[sp.Expr, ...], q: tuple[sp.Expr, ...]) -> tuple[
 def rotation_matrix_expr(q: tuple[sp.Expr, ...] = Q) -> sp.Matrix:
     """``R(q)``: ``R x = q (x) (0, x) (x) q*`` (vector part), body -> space.
 
+    Parameters
+    ----------
+    q : tuple of sympy.Expr, default Q
+        A scalar-first quaternion (default the symbols ``q0 .. q3``).
+
+    Examples
+    --------
     >>> R = rotation_matrix_expr()
     >>> sp.simplify((R.T * R - sp.eye(3)).subs(Q[0], sp.sqrt(1 - Q[1]**2 - Q[2]**2 - Q[3]**2)))
     Matrix([

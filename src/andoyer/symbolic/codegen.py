@@ -127,7 +127,13 @@ def generate_source() -> str:
 
 
 def write_generated(path: Path = GENERATED_PATH) -> Path:
-    """Write the generated module atomically (temporary file, then rename)."""
+    """Write the generated module atomically (temporary file, then rename).
+
+    Parameters
+    ----------
+    path : pathlib.Path, default the package's ``kernels/generated.py``
+        Where to write.
+    """
     src = generate_source()
     with atomic_path(path) as tmp:
         tmp.write_text(src)

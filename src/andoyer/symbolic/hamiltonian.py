@@ -41,7 +41,27 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Symbols:
-    """The SymPy symbols of the package, named as in the paper (ASCII)."""
+    """The SymPy symbols of the package, named as in the paper (ASCII).
+
+    Attributes
+    ----------
+    G1, G2, G3 : sympy.Symbol
+        Body-frame angular momentum (real), Eq. (1).
+    gamma1, gamma2, gamma3 : sympy.Symbol
+        Body-frame vertical unit vector (real), Eq. (1).
+    l, g, L, G, M : sympy.Symbol
+        Andoyer-Deprit angles and actions, Eqs. (5)-(7) (``G`` positive).
+    theta1, theta2, J1, J2, J3 : sympy.Symbol
+        Hess-chart coordinates, Eqs. (13)-(14) (``J1``, ``J2`` positive).
+    a, b, c : sympy.Symbol
+        Inverse moments of inertia ``1/A, 1/B, 1/C`` (positive).
+    mu : sympy.Symbol
+        Weight times the distance of the centre of mass (non-negative).
+    e1, e2, e3 : sympy.Symbol
+        Unit vector ``r`` towards the centre of mass.
+    phi0 : sympy.Symbol
+        The Hess angle ``phi0`` of the body, Eq. (13).
+    """
 
     G1: sp.Symbol = sp.Symbol("G1", real=True)
     G2: sp.Symbol = sp.Symbol("G2", real=True)

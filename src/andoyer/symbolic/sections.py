@@ -80,7 +80,13 @@ def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
 
 
 def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:
-    """``(f, w)`` of the section ``coord = value`` as expressions in :data:`SECTION_ARGS`."""
+    """``(f, w)`` of the section ``coord = value`` as expressions in :data:`SECTION_ARGS`.
+
+    Parameters
+    ----------
+    coord : str
+        The section coordinate (a section kind's name).
+    """
     if coord in SMOOTH:
         return SMOOTH[coord] - value, sp.Integer(1)
     if coord in ANGLES or coord in EXTRA_ANGLES:

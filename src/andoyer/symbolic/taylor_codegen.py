@@ -331,7 +331,13 @@ def generate_taylor_source() -> str:
 
 
 def write_taylor(path: Path = TAYLOR_PATH) -> Path:
-    """Write the generated module atomically."""
+    """Write the generated module atomically.
+
+    Parameters
+    ----------
+    path : pathlib.Path, default the package's ``kernels/taylor_generated.py``
+        Where to write.
+    """
     src = generate_taylor_source()
     with atomic_path(path) as tmp:
         tmp.write_text(src)

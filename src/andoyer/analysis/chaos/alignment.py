@@ -108,6 +108,12 @@ def sali(w1: ArrayLike, w2: ArrayLike) -> NDArray[np.float64]:
 
     ``ValueError`` for zero, non-finite or mismatched vectors.
 
+    Parameters
+    ----------
+    w1, w2 : array_like, shape (..., d)
+        The two deviation vectors (normalised here), along the last axis; leading axes
+        broadcast (orbits, times).
+
     Examples
     --------
     >>> float(sali([1, 0, 0, 0, 0, 0], [0, 3, 0, 0, 0, 0]))  # orthogonal: sqrt 2
@@ -135,6 +141,12 @@ def gali(W: ArrayLike) -> NDArray[np.float64]:
 
     ``k`` must not exceed the dimension ``d`` (``k > d`` vectors span no k-volume: GALI
     is not defined); zero and non-finite vectors are refused (``ValueError``).
+
+    Parameters
+    ----------
+    W : array_like, shape (..., k, d)
+        ``k`` deviation vectors of dimension ``d`` (``k <= d``), along the last axis; any
+        lengths (each is normalised first). Leading axes are orbits or times.
 
     Examples
     --------
@@ -170,6 +182,19 @@ def initial_tangents(body: RigidBody, y: ArrayLike, k: int,
     and MEGNO); the others are fixed generic directions projected onto the same space
     (``"leaf"``: tangent to ``|gamma| = 1, (G, gamma) = M``; ``"energy"``: also to the
     energy level) and orthonormalised (Gram-Schmidt).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body whose energy level fixes the ``"energy"`` space.
+    y : array_like, shape (6,) or (n, 6)
+        Euler-Poisson states ``(G1, G2, G3, gamma1, gamma2, gamma3)`` of Eq. (1).
+    k : int
+        Number of deviation vectors (``1 <= k``, at most the dimension of the space: 4 on
+        the leaf, 3 on the energy level).
+    tangent : {"leaf", "energy"}, default "leaf"
+        Space the vectors are tangent to: the symplectic leaf ``|gamma| = 1,
+        (G, gamma) = M`` or, in addition, the energy level ``H = h``.
 
     Examples
     --------

@@ -112,6 +112,29 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
     the same moments: every orbit regular. Cached per process (one value serves every
     ``mu``, ``epsilon`` of a sweep).
 
+    Parameters
+    ----------
+    body : RigidBody
+        The body whose moments (and section plane) are used; its ``mu`` is set to 0.
+    h, M : float
+        The level ``H = h`` (Eq. (1)) and the area constant ``(G, gamma) = M``.
+    section : (coord, value) or str, default ("theta2", 0.0)
+        The section plane, as in :func:`chaos_border`.
+    n : int or (nx, ny), default 24
+        Grid of the plane (:func:`andoyer.analysis.chaos.indicators.chaos_map`).
+    t_end : float, default 300.0
+        Integration time of every orbit (body time units).
+    engine : str, optional
+        Engine of the variational equations, as in
+        :func:`~andoyer.analysis.chaos.indicators.chaos_map` (default heyoka where
+        installed, else numba).
+    tol : float, default 1e-12
+        Integration tolerance.
+    n_threads : int, optional
+        Threads of the numba engine (default: all cores).
+
+    Examples
+    --------
     >>> ref = regular_reference(RigidBody.hess(3.0, 1.0, 2.0, mu=1.0), 1.0, n=8, t_end=100.0)
     >>> bool(1.5 < ref < 2.5)
     True
@@ -138,6 +161,19 @@ def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
     ``theta1`` (cell centres over ``[0, 2 pi)``, increasing). The cells on either side of
     the line (mod ``2 pi``) border it.
 
+    Parameters
+    ----------
+    chaotic : ndarray of bool, shape (ny, nx)
+        Cells whose indicator exceeds the threshold (rows: ``J1``; columns: ``theta1``).
+    accessible : ndarray of bool, shape (ny, nx)
+        Cells on the energy level (a row without any is left out of the median).
+    theta1 : ndarray of float, shape (nx,)
+        Cell centres in ``theta1`` (rad), increasing over ``[0, 2 pi)``.
+    line : float, default 0.0
+        ``theta1`` of the line (rad; e.g. :func:`hess_line`), taken mod ``2 pi``.
+
+    Examples
+    --------
     >>> c = np.array([[1, 1, 0, 0, 0, 1], [0, 0, 0, 0, 0, 0]], dtype=bool)
     >>> th = (np.arange(6) + 0.5) * 2 * np.pi / 6
     >>> w, med = layer_width(c, np.ones_like(c), th)
@@ -185,6 +221,14 @@ def hess_line(body: RigidBody) -> float:
     ``2 (phi0 - phi0_H) = 2 epsilon`` (:attr:`~andoyer.body.RigidBody.hess_epsilon`).
     NaN when the moments admit no Hess body (``A > C > B`` fails) or ``e3 != 0``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        A body with its centre of mass in the (e1, e2) plane (``e3 = 0``) and
+        ``A > C > B``, e.g. :meth:`~andoyer.body.RigidBody.near_hess`.
+
+    Examples
+    --------
     >>> round(hess_line(RigidBody.near_hess(3.0, 1.0, 2.0, mu=0.1, epsilon=0.05)), 12)
     0.1
     """

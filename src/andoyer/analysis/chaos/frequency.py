@@ -68,7 +68,17 @@ MAX_WINDOW = 100
 
 
 class Lines(NamedTuple):
-    """Spectral lines of a signal, strongest first."""
+    """Spectral lines of a signal, strongest first.
+
+    Parameters
+    ----------
+    frequency : ndarray of float, shape (n_freq,)
+        Angular frequencies ``omega_j`` (rad per body time unit), strongest line first.
+    amplitude : ndarray of complex, shape (n_freq,)
+        Complex amplitudes ``a_j`` of the signal ``z ~ sum_j a_j exp(i omega_j t)``.
+    T : float
+        Length of the analysed interval, ``(n - 1) dt``.
+    """
 
     frequency: NDArray[np.float64]    #: angular frequencies omega_j (rad per time unit)
     amplitude: NDArray[np.complex128]  #: complex amplitudes a_j of z
@@ -150,6 +160,17 @@ def frequency_drift(z: ArrayLike, dt: float, *, window: int = 2) -> float:
     ``w2`` the strongest lines (:func:`naff`) of the first and the second half (for a
     real signal, whose lines come in pairs ``+-omega``, their absolute values).
 
+    Parameters
+    ----------
+    z : array_like, shape (n,)
+        The signal sampled at equal steps (real or complex; at least 64 samples).
+    dt : float
+        The sampling step (body time units, > 0).
+    window : int, default 2
+        Order of the Hann window of :func:`naff`.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> t = np.linspace(0.0, 400.0, 4001)
     >>> frequency_drift(np.exp(1j * 0.731 * t), t[1] - t[0]) < 1e-12
@@ -187,6 +208,17 @@ def resonance_label(nu: float, tol: float, max_order: int = RESONANCE_ORDER) -> 
     within ``tol`` of ``p/q`` with ``|p| + q <= max_order`` (lowest order first), else
     ``""`` (also for a NaN or infinite ``nu``: an orbit without a rotation number).
 
+    Parameters
+    ----------
+    nu : float
+        The frequency ratio ``omega_g / omega_l`` (turns of g per period of (l, L)).
+    tol : float
+        Largest distance ``|nu - p/q|`` that names a resonance (> 0).
+    max_order : int, default 8
+        Largest order ``|p| + q`` tried (:data:`RESONANCE_ORDER`).
+
+    Examples
+    --------
     >>> resonance_label(0.5 + 1e-9, 1e-6), resonance_label(0.4142, 1e-6)
     ('1:2', '')
     """

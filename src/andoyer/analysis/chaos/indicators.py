@@ -316,6 +316,17 @@ def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.
     """The output times of an indicator: ``t`` if given (checked: 1-D, increasing, finite,
     starting at 0), else ``linspace(0, t_end, n_times)``.
 
+    Parameters
+    ----------
+    t_end : float
+        Final time (body time units, > 0), used when ``t`` is None.
+    n_times : int
+        Number of output times (>= 2), used when ``t`` is None.
+    t : array_like, optional
+        Explicit output times: 1-D, increasing, finite, starting at 0.
+
+    Examples
+    --------
     >>> output_times(10.0, 3, None)
     array([ 0.,  5., 10.])
     """

@@ -51,7 +51,21 @@ def _initial_bottom(body: RigidBody, h: float) -> tuple[float, float]:
 
 # ----------------------------------------------------------------------------- monodromy
 class Monodromy(NamedTuple):
-    """Monodromy matrix ``Phi[i, j] = d y_i(T) / d y_j(0)`` of the Euler-Poisson flow (1)."""
+    """Monodromy matrix ``Phi[i, j] = d y_i(T) / d y_j(0)`` of the Euler-Poisson flow (1).
+
+    Parameters
+    ----------
+    matrix : ndarray, shape (6, 6)
+        ``Phi[i, j] = d y_i(T) / d y_j(0)`` of the Euler-Poisson flow (1).
+    period : float
+        The period ``T`` it was integrated over (body time units).
+    y0 : ndarray, shape (6,)
+        The initial Euler-Poisson state.
+    y_end : ndarray, shape (6,)
+        The state at ``T`` (``y0`` again on a periodic orbit, to the integration error).
+    method : str
+        How it was computed: ``"variational"`` or ``"finite_difference"``, with the engine.
+    """
 
     matrix: NDArray[np.float64]
     period: float
@@ -112,6 +126,10 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
         For ``"variational"``: an engine with the ``tangent`` capability, default
         heyoka where installed, else numba. For ``"finite_difference"``: the engine of
         the flow map (default numba).
+    tol : float, default 1e-15
+        Tolerance of the integration (raised to the finest the engine honours).
+    step : float, default 1e-6
+        Step of the central differences (``"finite_difference"`` only).
 
     Returns
     -------
@@ -146,6 +164,22 @@ def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "var
 
     The orbit starts at the bottom, ``vartheta = 3 pi / 2`` (``gamma = -r``), with
     ``L > 0``; the period is the closed form :func:`pendulum_period`.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body whose physical pendulum exists
+        (:func:`~andoyer.analysis.hess.pendulum.require_pendulum_body`).
+    h : float
+        Energy of the pendulum orbit (``h > -mu``, ``h != mu``).
+    method : {"variational", "finite_difference"}, default "variational"
+        As in :func:`monodromy`.
+    tol : float, default 1e-15
+        As in :func:`monodromy`.
+    step : float, default 1e-6
+        As in :func:`monodromy` (``"finite_difference"`` only).
+    engine : str or Engine, optional
+        As in :func:`monodromy`.
     """
     require_pendulum_body(body, "the physical pendulum")
     if pendulum_motion(body.mu, h) in ("separatrix", "equilibrium"):
@@ -158,7 +192,24 @@ def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "var
 
 
 class Floquet(NamedTuple):
-    """Floquet multipliers of a physical-pendulum orbit."""
+    """Floquet multipliers of a physical-pendulum orbit.
+
+    Parameters
+    ----------
+    trace : float
+        ``lambda + 1/lambda = tr Phi_perp - 1`` of the transverse monodromy.
+    multipliers : ndarray of complex, shape (2,)
+        ``(lambda, 1/lambda)`` with ``|lambda| >= 1``.
+    stability : {"elliptic", "parabolic", "hyperbolic"}
+        From ``|trace|`` against 2 (see :func:`floquet_multipliers`).
+    leaf_matrix : ndarray, shape (2, 2)
+        Transverse monodromy on the leaf ``dM = 0``.
+    shear : float
+        ``|leaf_matrix - lambda I|``: a Jordan block (linear instability) where > 0 at a
+        parabolic orbit.
+    monodromy : Monodromy
+        The full 6 x 6 monodromy it was read from.
+    """
 
     trace: float                 #: ``lambda + 1/lambda = tr Phi_perp - 1``
     multipliers: NDArray[np.complex128]  #: ``(lambda, 1/lambda)``, ``|lambda| >= 1``
@@ -189,6 +240,22 @@ def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational
     (module notes). ``|trace| < 2 - parabolic_tol``: elliptic; ``> 2 + parabolic_tol``:
     hyperbolic; else parabolic (multipliers 1; with ``shear > 0`` a Jordan block, i.e.
     linearly unstable). ``method``, ``tol`` and ``engine`` as in :func:`monodromy`.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body whose physical pendulum exists (Oz the middle axis, centre of mass in the
+        (e1, e2) plane).
+    h : float
+        Energy of the pendulum orbit (``h > -mu``; ``h != mu``, the separatrix).
+    method : {"variational", "finite_difference"}, default "variational"
+        As in :func:`monodromy`.
+    tol : float, default 1e-15
+        Integration tolerance, as in :func:`monodromy`.
+    parabolic_tol : float, default 1e-6
+        Half-width of the band ``| |trace| - 2 | <= parabolic_tol`` called parabolic.
+    engine : str or Engine, optional
+        As in :func:`monodromy`.
 
     Examples
     --------
@@ -226,6 +293,11 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
 
     Exact: along the pendulum ``d(G, r)/dt = -branch sigma G3 (G, r)`` and
     ``int G3 dt = 2 pi / c`` over one rotation.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body, or any body with Oz the middle axis (the ``mu -> 0`` limit).
     """
     sigma = body.require_middle_axis("hyperbolic pendulum rotations (in the mu -> 0 limit)")
     return math.exp(2.0 * math.pi * sigma / body.c)

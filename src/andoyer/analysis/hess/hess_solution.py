@@ -113,6 +113,19 @@ def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike
     from the chain (5)-(6) at ``l = -phi0``, ``g = theta2``, ``cos J = cos psi``,
     ``sin J = sin psi`` (``sin psi < 0`` is the sheet ``theta1 = 2 pi``). At ``M = 0``
     ``J2`` may be negative (the signed pendulum picture): the map is regular at ``G = 0``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    theta2 : array_like
+        Hess-chart angle ``theta2`` (rad), Eq. (13).
+    J2 : array_like
+        ``J2 = |G|`` (signed at ``M = 0``: the signed pendulum picture).
+    psi : array_like
+        Angle of ``G`` about ``r`` in the plane ``(n, k)``: ``cos J = cos psi``.
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
     """
     t2, j2, ps = broadcast_points(theta2=theta2, J2=J2, psi=psi)
     if M == 0.0:
@@ -135,6 +148,13 @@ def signed_to_hess(theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike, M: float = 
     applies: ``psi -> psi + pi``, ``theta2 -> pi - theta2``, ``J2 -> -J2`` (module
     notes). ``theta1 = 0`` where ``sin psi >= 0``, else ``2 pi``; ``J1 = J2 cos^2(psi/2)``;
     ``theta2`` reduced to ``[0, 2 pi)``.
+
+    Parameters
+    ----------
+    theta2, J2, psi : array_like
+        Signed-picture state (``J2 < 0`` allowed at ``M = 0``; angles in rad).
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
     """
     t2, j2, ps = broadcast_points(theta2=theta2, J2=J2, psi=psi)
     neg = j2 < 0.0

@@ -113,7 +113,15 @@ SEPARATRIX_RTOL = 4.0 * _EPS
 
 @checks_body
 def require_pendulum_body(body: RigidBody, what: str) -> None:
-    """A body whose physical pendulum exists (callers check the type: ``@checks_body``)."""
+    """A body whose physical pendulum exists (callers check the type: ``@checks_body``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body to check: Oz the middle axis and the centre of mass in the (e1, e2) plane.
+    what : str
+        The caller's name, for the error message.
+    """
     body.require_planar(what)
     if body.mu <= 0.0:
         raise ValueError(f"{what} needs mu > 0 (mu = 0 is the free body: the pendulum "
@@ -123,7 +131,17 @@ def require_pendulum_body(body: RigidBody, what: str) -> None:
 # ----------------------------------------------------------------------------- the pendulum
 @checks_arguments
 def pendulum_energy(c: float, mu: float, q: ArrayLike, p: ArrayLike) -> NDArray[np.float64]:
-    """``H = c p^2 / 2 + mu sin q``: the reduced Hamiltonian of both pendulums."""
+    """``H = c p^2 / 2 + mu sin q``: the reduced Hamiltonian of both pendulums.
+
+    Parameters
+    ----------
+    c : float
+        The inverse moment ``c = 1/C`` (> 0).
+    mu : float
+        Weight times distance of the centre of mass (> 0).
+    q, p : array_like
+        Angle (rad) and momentum of the pendulum.
+    """
     qq, pp = finite_array("q", q), finite_array("p", p)
     return np.asarray(0.5 * c * pp**2 + mu * np.sin(qq), dtype=float)
 
@@ -139,6 +157,13 @@ def pendulum_motion(mu: float, h: float) -> str:
     """``"equilibrium"``, ``"libration"``, ``"separatrix"`` or ``"rotation"`` at energy ``h``.
 
     Raises ``ValueError`` below the minimum ``h = -mu``.
+
+    Parameters
+    ----------
+    mu : float
+        Weight times distance of the centre of mass (> 0).
+    h : float
+        Energy (``h >= -mu``).
     """
     mu = _positive("mu", mu)
     if not math.isfinite(h) or h < -mu * (1.0 + SEPARATRIX_RTOL):
@@ -156,6 +181,13 @@ def pendulum_modulus(mu: float, h: float) -> float:
 
     ``m = (h + mu) / (2 mu)`` for a libration (``k = sin`` of half the amplitude in
     ``q + pi/2``), ``m = 2 mu / (h + mu)`` for a rotation, 1 on the separatrix.
+
+    Parameters
+    ----------
+    mu : float
+        Weight times distance of the centre of mass (> 0).
+    h : float
+        Energy (``h > -mu``).
     """
     motion = pendulum_motion(mu, h)
     if motion in ("libration", "equilibrium"):
@@ -173,6 +205,15 @@ def pendulum_period(c: float, mu: float, h: float) -> float:
     (``2 pi / sqrt(c mu)`` at the bottom); rotation (``h > mu``):
     ``T = 4 K(m) / sqrt(2 c (h + mu))``, ``m = 2 mu / (h + mu)`` (the time for ``q`` to
     advance by ``2 pi``); ``inf`` on the separatrix ``h = mu``.
+
+    Parameters
+    ----------
+    c : float
+        The inverse moment ``c = 1/C`` (> 0).
+    mu : float
+        Weight times distance of the centre of mass (> 0).
+    h : float
+        Energy (``h >= -mu``).
 
     Examples
     --------
@@ -209,6 +250,17 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
     ``ellipkinc``, wrong at isolated points) of the amplitude ``atan2(sn, cn)``
     (quadrant-correct). ``q`` is returned unwrapped (continuous in ``t``);
     ``(q, p)(t[0]) = (q0, p0)`` to round-off.
+
+    Parameters
+    ----------
+    c : float
+        The inverse moment ``c = 1/C`` (> 0).
+    mu : float
+        Weight times distance of the centre of mass (> 0).
+    q0, p0 : float
+        Initial angle (rad) and momentum, at ``t[0]``.
+    t : array_like
+        Times (body time units), 1-D.
 
     Examples
     --------
@@ -266,6 +318,15 @@ def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArra
     ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)``; shape ``(..., 6)``.
 
     ``mu (r, gamma) = mu sin(vartheta)``; on ``L > 0`` (``L = G``), ``vartheta = g + l + phi0``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body whose physical pendulum exists (``phi0``).
+    vartheta : array_like
+        Pendulum angle ``vartheta`` (rad): ``mu (r, gamma) = mu sin(vartheta)``.
+    L : array_like
+        ``L = G3`` (signed).
     """
     body.require_planar("the physical pendulum")
     th, LL = np.broadcast_arrays(finite_array("vartheta", vartheta), finite_array("L", L))
@@ -282,6 +343,15 @@ def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int 
     ``mu sin(g + l + phi0)`` on ``L = +G`` and ``mu sin(g - l - phi0)`` on ``L = -G``
     (derived from (5)-(6) at ``L = +-G, M = 0``; the paper's printed form after (11),
     ``mu^-1 sin(g + l - phi0)``, is wrong: see :func:`paper_pendulum_potential`).
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body whose physical pendulum exists (``mu``, ``phi0``).
+    l, g : array_like
+        Andoyer-Deprit angles (rad).
+    L_sign : {+1, -1}, default 1
+        The pendulum ``L = +G`` or ``L = -G``.
 
     Examples
     --------
@@ -308,6 +378,13 @@ def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
 
     Kept to show that it is wrong (``mu^-1`` for ``mu``, ``-phi0`` for ``+phi0``);
     use :func:`pendulum_potential`.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body whose physical pendulum exists (``mu``, ``phi0``).
+    l, g : array_like
+        Andoyer-Deprit angles (rad) on the pendulum ``L = G``, ``M = 0``.
     """
     body.require_planar("the physical-pendulum potential")
     return np.asarray(np.sin(finite_array("g", g) + finite_array("l", l)

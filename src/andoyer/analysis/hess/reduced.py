@@ -102,6 +102,15 @@ def reduced_hamiltonian(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, M: fl
 
     At ``M = 0`` the pendulum ``c J2^2/2 + mu sin(theta2)`` (any sign of ``J2``).
 
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    theta2, J2 : array_like
+        Hess-chart angle (rad) and ``J2 = |G|`` (any sign at ``M = 0``).
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M`` (``|M| <= |J2|``).
+
     Examples
     --------
     >>> from andoyer import RigidBody
@@ -123,6 +132,11 @@ def drift_rate(body: RigidBody) -> float:
     """``s = kappa sin(2 phi0) = -2 branch sigma``: the rate in ``dpsi/dt = -(s/2) J2 sin psi``.
 
     ``sigma = sqrt((b - c)(c - a))``; negative on the paper's branch (``phi0 > 0``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``kappa``, ``phi0``, ``sigma`` from its moments).
     """
     return body.kappa * math.sin(2.0 * body.phi0)
 
@@ -142,6 +156,17 @@ def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLi
 
     ``s`` = :func:`drift_rate`, ``epsilon = cos(theta1/2) = +-1``. At ``M = 0``:
     Eq. (16) at ``theta1 = 0``. Returns shape ``(..., 4)``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    theta2, J1, J2 : array_like
+        Hess-chart coordinates (Eq. (13)); ``J2 >= |M|``, ``0 <= J1 <= J2``.
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
+    theta1 : float, default 0.0
+        The invariant line: ``0`` or ``2 pi`` (``epsilon = cos(theta1/2)``).
     """
     check_hess(body)
     off = math.remainder(float(theta1), math.tau)
@@ -171,6 +196,13 @@ def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
 
     ``M = 0``: ``(0, -mu)`` (the body hanging at rest, ``G = 0``). ``M != 0``: the root
     of ``c J2^3 sqrt(J2^2 - M^2) = mu M^2`` (a relative equilibrium, ``J2* > |M|``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
     """
     from scipy.optimize import brentq
 
@@ -217,6 +249,15 @@ def classify_motion(body: RigidBody, h: float, M: float = 0.0) -> str:
     the period is finite and smooth across ``c M^2/2``.
 
     Raises ``ValueError`` below the minimum energy.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (its reduced system on ``theta1 = 0``).
+    h : float
+        Energy level ``H = h`` (not below :func:`energy_minimum`).
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
     """
     check_hess(body)
     if M == 0.0:
@@ -242,6 +283,15 @@ def cubic_roots(body: RigidBody, h: float, M: float = 0.0) -> tuple[float, float
     ``u = J2^2`` oscillates in ``[u_b, u_c]``. At ``M = 0`` they are
     ``{0, 2 (h - mu)/c, 2 (h + mu)/c}`` exactly; otherwise ``numpy.roots`` polished by
     Newton steps.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``c``, ``mu``).
+    h : float
+        Energy level ``H = h``.
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
     """
     c, mu = body.c, body.mu
     h = float(h)

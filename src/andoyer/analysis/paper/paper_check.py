@@ -71,6 +71,8 @@ class Formula:
         How the printed formula is wrong, where the numbers alone cannot say it.
     omission : str
         For a formula that holds but is incomplete: what is missing.
+    angle : bool
+        The quantity is an angle: compared modulo ``2 pi``.
     """
 
     label: str
@@ -87,7 +89,28 @@ class Formula:
 
 @dataclass(frozen=True)
 class CheckRow:
-    """Result of checking one :class:`Formula`."""
+    """Result of checking one :class:`Formula`.
+
+    Attributes
+    ----------
+    label : str
+        The paper's equation number or place, as in :class:`Formula`.
+    name : str
+        What the formula is.
+    verdict : str
+        ``"holds"``, or how it fails.
+    max_rel_error : float
+        Largest relative difference between the printed and the derived values over the
+        points.
+    nature : str
+        How the printed formula is wrong, where the numbers alone cannot say it.
+    corrected : str
+        Text of the corrected formula ("" where none is needed).
+    corrected_holds : bool or None
+        Whether the corrected formula agrees with the derivation (None: none given).
+    details : dict of str to float
+        Further numbers of the check (e.g. the error of each variant).
+    """
 
     label: str
     name: str

@@ -42,6 +42,13 @@ def zoom_box(body: RigidBody, J2: float = 1.0
     """The enlarged region of Fig. 3: a box around the saddle (theta1, J1) = (4 phi0, 0).
 
     Returns ``((theta1_min, theta1_max), (J1_min, J1_max))``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``phi0``).
+    J2 : float, default 1.0
+        ``J2 = |G|`` of the level: the box scales with it.
     """
     t = 4.0 * body.phi0
     J2 = positive("J2", J2, maximum=MAX_ACTION)
@@ -145,6 +152,13 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
         About ``n_orbits`` initial states filling the accessible plane and ``n_zoom``
         more in the enlarged box :func:`zoom_box` near the saddle (4 phi0, 0), where the
         chaotic layer of the separatrix lies; each followed for ``n_crossings`` crossings.
+    engine : str, optional
+        Integration engine (:func:`andoyer.integrate.poincare`; default heyoka where
+        installed, else numba).
+    rtol, atol : float, default 1e-12
+        Relative and absolute tolerances.
+    progress : bool, optional, default False
+        A progress bar of the integration.
 
     Returns
     -------

@@ -116,6 +116,17 @@ def section_rotation_number(body: RigidBody, h: float, G: float) -> float:
     :attr:`~andoyer.analysis.unperturbed.euler_poinsot.EulerPoinsotFrequencies.rotation_number_g_section`
     of :func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_frequencies`.
 
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis (``mu`` ignored: the free top).
+    h : float
+        Energy ``H0 = h`` of the free top (Eq. (7) at ``mu = 0``; > 0).
+    G : float
+        ``|G|`` of the torus (> 0).
+
+    Examples
+    --------
     >>> from andoyer import RigidBody
     >>> round(section_rotation_number(RigidBody.paper(), 0.2466, 1.0), 10)
     0.1281401077

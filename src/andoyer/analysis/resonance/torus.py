@@ -52,7 +52,35 @@ MAX_FOURIER = 2 ** 16
 
 
 class Torus(NamedTuple):
-    """A torus of the free top on ``H0 = h``, ``|G| = G``, sampled in its angle ``phi1``."""
+    """A torus of the free top on ``H0 = h``, ``|G| = G``, sampled in its angle ``phi1``.
+
+    Parameters
+    ----------
+    h : float
+        Energy ``H0 = h`` of the free top.
+    G : float
+        ``|G|``.
+    M : float
+        Area constant ``(G, gamma) = M``.
+    axis : int
+        Body axis (1, 2, 3) the momentum turns about.
+    sign : int
+        Sign of the momentum on that axis.
+    omega_l : float
+        ``2 pi / T``: frequency of the (l, L) motion (rad per body time unit).
+    omega_g : float
+        ``<dg/dt>``: mean rate of g.
+    phi1 : ndarray, shape (n,)
+        The samples' phase ``2 pi j / n``.
+    momentum : ndarray, shape (n, 3)
+        Body-frame momentum ``G`` at ``phi1``.
+    l, L : ndarray, shape (n,)
+        Andoyer-Deprit angle ``l`` and action ``L = G3`` at ``phi1``.
+    rho : ndarray, shape (n,)
+        ``g - phi2`` at ``phi1`` (``rho(0) = 0``).
+    ldot, gdot : ndarray, shape (n,)
+        ``dl/dt`` and ``dg/dt`` at ``phi1``.
+    """
 
     h: float
     G: float

@@ -116,6 +116,13 @@ def euler_poinsot_excess(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     (after Eq. (12)), ``kappa J1 (J1 - J2) [cos(theta1 - 2 phi0) - cos 2 phi0]`` in the
     Hess chart (13)-(14). Its bracket with ``H0`` vanishes, so along the full flow
     ``dE/dt = mu {E, H1}``: the integrand of the Melnikov function.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (its moments ``a, b, c``; ``mu`` does not enter).
+    y : array_like, shape (..., 6)
+        Euler-Poisson states of Eq. (1).
     """
     y = np.asarray(y, dtype=float)
     return np.asarray(energy(body.with_mu(0.0), y)
@@ -201,7 +208,19 @@ class ManifoldBranch:
 def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
                          ) -> tuple[float, int]:
     """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``
-    (``J2`` from :func:`~andoyer.analysis.unperturbed.separatrix.separatrix_momentum`)."""
+    (``J2`` from :func:`~andoyer.analysis.unperturbed.separatrix.separatrix_momentum`).
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body, or one turned off it (the lines of its nearest Hess body).
+    h : float
+        Energy level ``h = c J2^2 / 2`` (> 0).
+    branch : {"theta1=0", "theta1=4phi0"}
+        Which heteroclinic line.
+    sheet : {+1, -1}
+        Which of its two orbits (``theta1`` or ``theta1 + 2 pi``).
+    """
     return heteroclinic_line(body, separatrix_momentum(body, h), branch, sheet)
 
 
@@ -241,6 +260,9 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     engine : {"heyoka", "numba"}, optional
         The engine of the flow when ``orbit`` is not given (default heyoka where
         installed, else numba); a given ``orbit`` brings its own.
+    mu_steps : int, default 4
+        Steps of the continuation in ``mu`` from 0 that finds the periodic orbit when
+        ``orbit`` is not given.
 
     Returns
     -------
@@ -299,7 +321,21 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
 # ----------------------------------------------------------------------------- curves
 @dataclass(frozen=True)
 class ManifoldCurve:
-    """A manifold branch traced on ``Sigma_0``: fundamental-domain samples sorted by ``s``."""
+    """A manifold branch traced on ``Sigma_0``: fundamental-domain samples sorted by ``s``.
+
+    Attributes
+    ----------
+    branch : ManifoldBranch
+        The branch traced (:func:`manifold_branch`).
+    s : ndarray, shape (n,)
+        Fundamental-domain parameter of each point, increasing (``[0, 1)`` is one domain,
+        with the margins of :func:`grow_manifold` either side).
+    y : ndarray, shape (n, 6)
+        Euler-Poisson states of the points on ``Sigma_0`` (``L = 0``).
+    t : ndarray, shape (n,)
+        Flight time from the fundamental domain to ``Sigma_0`` (body time units; negative
+        for ``W^s``, traced backward).
+    """
 
     branch: ManifoldBranch
     s: NDArray[np.float64]
@@ -425,6 +461,9 @@ def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float
         Stop refining (with a ``RuntimeWarning``) beyond this many points.
     min_ds : float
         Do not split fundamental-domain intervals shorter than this.
+    s_margin : float, default 0.05
+        Margin added to the fundamental domain on either side of ``[0, 1]`` (so that the
+        curve overlaps itself).
 
     Returns
     -------

@@ -51,6 +51,14 @@ def splitting_at(wu: ManifoldCurve, ws: ManifoldCurve, g: float) -> dict[str, An
 
     Returns a dict with ``Delta_G = G^u - G^s``, ``Delta_E = E^u - E^s``, the states
     ``y_u``, ``y_s`` and their phases.
+
+    Parameters
+    ----------
+    wu, ws : ManifoldCurve
+        The unstable and the stable manifold traced on ``Sigma_0``
+        (:func:`~andoyer.analysis.splitting.manifolds.grow_manifold`).
+    g : float
+        Phase ``g`` (rad) of the line on ``Sigma_0`` where they are compared.
     """
     cu = wu.point_at_phase(g)
     cs = ws.point_at_phase(g)

@@ -117,6 +117,17 @@ def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
     Read from :func:`~andoyer.analysis.unperturbed.separatrix.heteroclinic` (the direction is fixed
     by the flow: for ``phi0 > 0`` J1 increases on ``theta1 = 4 phi0``).
 
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``phi0``).
+    J2 : float
+        ``J2 = G`` of the level (``h = c J2^2 / 2``).
+    branch : {"theta1=0", "theta1=4phi0"}
+        Which heteroclinic line.
+    sheet : {+1, -1}, default 1
+        Which of its two orbits (``theta1`` or ``theta1 + 2 pi``).
+
     Examples
     --------
     >>> theta1, s = heteroclinic_line(RigidBody.paper(), 1.0, "theta1=4phi0")
@@ -134,6 +145,13 @@ def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
 def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     """``rho = c J2 / lambda = c / (2 sigma)``: frequency of theta2 over the rate of J1.
 
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (``c``, ``sigma``).
+    J2 : float, default 1.0
+        ``J2 = G`` of the level.
+
     Examples
     --------
     >>> round(melnikov_rho(RigidBody.paper()), 6)
@@ -150,6 +168,13 @@ def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     ``E = H0 - c |G|^2/2`` so ``grad_G E = I G - c G``, ``grad_gamma E = 0``;
     ``X_{H1}`` is the Lie-Poisson field (1) of ``H1 = (r, gamma)``, the difference of the
     fields at ``mu = 1`` and ``mu = 0`` (the field is affine in ``mu``).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (moments, ``r``; the bracket is linear in ``mu``, which does not enter).
+    y : array_like, shape (..., 6)
+        Euler-Poisson states of Eq. (1).
     """
     arr = as_state(y)
     X1 = vector_field(body.with_mu(1.0), arr) - vector_field(body.with_mu(0.0), arr)
@@ -206,11 +231,24 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
 
     Parameters
     ----------
+    body : RigidBody
+        A Hess body.
+    theta2_0 : array_like
+        Phases (``theta2`` at ``L = 0``, rad).
+    J2 : float, default 1.0
+        ``J2 = G`` of the level (``h = c J2^2 / 2``).
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        Which heteroclinic line
+        (:data:`~andoyer.analysis.unperturbed.separatrix.DEFAULT_BRANCH`).
+    sheet : {+1, -1}, default 1
+        Which of its two orbits.
     method : {"trapezoid", "quad"}
         ``"trapezoid"``: the trapezoidal rule with ``points_per_period`` nodes per period
         of ``theta2`` (or of ``e^{-lambda t}`` if that is shorter): geometric
         convergence, one vectorised call of the closed-form orbit. ``"quad"``:
         :func:`scipy.integrate.quad` (adaptive Gauss-Kronrod; slow, a check).
+    points_per_period : int, default 32
+        Trapezoidal nodes per period (``"trapezoid"`` only).
 
     Examples
     --------
@@ -259,6 +297,22 @@ def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 
 
     ``Delta E = mu M(g - theta1/2)``, ``Delta G = -Delta E / (c G)`` (see the module
     notes), with the closed-form ``M``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body.
+    g : array_like
+        Phases ``g`` (rad) on ``L = 0``.
+    mu : float
+        The perturbation ``mu`` the first order is scaled by (the body's own ``mu`` is not
+        used: the prediction is linear in it).
+    G : float, default 1.0
+        ``|G| = J2`` of the level.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        Which heteroclinic line.
+    sheet : {+1, -1}, default 1
+        Which of its two orbits.
     """
     g = finite_array("g", g)
     theta1, _ = heteroclinic_line(body, G, branch, sheet)
@@ -287,6 +341,8 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         As in :func:`melnikov_closed_form`.
     quadrature : bool
         Also compute ``M_quadrature`` (trapezoidal rule).
+    n : int, default 64
+        Number of phases when ``theta2_0`` is not given (>= 8).
 
     Returns
     -------

@@ -345,7 +345,13 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
 
 @checks_arguments
 def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
-    """Dataset (dim ``mu``) of periodic orbits found by :func:`rotation_orbit`."""
+    """Dataset (dim ``mu``) of periodic orbits found by :func:`rotation_orbit`.
+
+    Parameters
+    ----------
+    orbits : list of RotationOrbit
+        Orbits of :func:`rotation_orbit`, one per ``mu`` (of one body, level and section).
+    """
     if not orbits:
         raise ValueError("no orbits")
     if not (isinstance(orbits, list | tuple) and orbits
@@ -401,6 +407,16 @@ def pendulum_rotation(body: RigidBody, h: float, section: RotationSection | None
     ``G1 = G2 = gamma3 = 0`` is invariant (Eq. (8), ``G^2 = L^2``, ``M = 0``): the body
     turns about z like a physical pendulum, ``dpsi/dt = c G3``,
     ``c G3^2 / 2 + mu sin(psi + phi0) = h``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body with ``e3 = 0`` and Oz the middle axis.
+    h : float
+        Energy level (above the pendulum's separatrix ``h > mu``).
+    section : RotationSection, optional
+        The section ``psi = psi0`` and the sense of the rotation (default
+        ``RotationSection()``: ``psi0 = 0`` about ``+z``).
 
     Returns
     -------

@@ -53,6 +53,11 @@ def middle_axis_rate(body: RigidBody) -> float:
 
     Raises ``ValueError`` unless ``z`` is the middle axis of inertia.
 
+    Parameters
+    ----------
+    body : RigidBody
+        A body with Oz the middle axis of inertia.
+
     Examples
     --------
     >>> round(middle_axis_rate(RigidBody.paper()), 12)
@@ -69,6 +74,15 @@ def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
 
     On this level the unperturbed separatrices of the Hess chart have ``J2 = G``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        A body with Oz the middle axis.
+    G : float, default 1.0
+        ``|G|`` of the rotation (> 0).
+
+    Examples
+    --------
     >>> rotation_energy(RigidBody.paper()) == RigidBody.paper().c / 2
     True
     """
@@ -77,14 +91,26 @@ def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
 
 @checks_arguments
 def gamma_phase(y: ArrayLike) -> NDArray[np.float64]:
-    """``psi = atan2(gamma1, gamma2)`` in ``[0, 2 pi)``, the section angle of this module."""
+    """``psi = atan2(gamma1, gamma2)`` in ``[0, 2 pi)``, the section angle of this module.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states.
+    """
     arr = as_state(y)
     return np.mod(np.arctan2(arr[..., 3], arr[..., 4]), 2.0 * np.pi)
 
 
 @checks_arguments
 def section_coords(y: ArrayLike) -> NDArray[np.float64]:
-    """``(x1, x2) = (G1, G2)/|G|`` of Euler-Poisson states, shape ``(..., 2)``."""
+    """``(x1, x2) = (G1, G2)/|G|`` of Euler-Poisson states, shape ``(..., 2)``.
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 6)
+        Euler-Poisson states (``|G| > 0``).
+    """
     arr = as_state(y)
     G = np.linalg.norm(arr[..., :3], axis=-1)
     return arr[..., :2] / G[..., None]
@@ -153,6 +179,15 @@ class Crossing:
 
     ``y`` the Euler-Poisson state on the section, ``t`` the (signed) flight time,
     ``stm`` the state-transition matrix ``dy(t)/dy0`` (6, 6) if requested (else None).
+
+    Attributes
+    ----------
+    y : ndarray, shape (6,)
+        Euler-Poisson state on the section.
+    t : float
+        The (signed) flight time.
+    stm : ndarray, shape (6, 6), or None
+        State-transition matrix ``dy(t)/dy0`` if requested.
     """
 
     y: NDArray[np.float64]
@@ -190,6 +225,14 @@ def flow_engine(engine: EngineLike = None) -> str:
     engine), else heyoka where installed, else numba; it must have the
     ``tangent_crossings`` capability.
 
+    Parameters
+    ----------
+    engine : str or Engine, optional
+        An engine name or instance with the ``tangent_crossings`` capability (default
+        heyoka where installed, else numba).
+
+    Examples
+    --------
     >>> flow_engine("numba")
     'numba'
     """
@@ -299,7 +342,19 @@ def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
 @checks_body
 def event_projector(body: RigidBody, y: NDArray[np.float64], kind: str,
                     psi0: float = 0.0) -> NDArray[np.float64]:
-    """``I - F grad(f)^T / (grad(f), F)``: the event sensitivity at a crossing ``y``."""
+    """``I - F grad(f)^T / (grad(f), F)``: the event sensitivity at a crossing ``y``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (its vector field (1)).
+    y : ndarray, shape (6,)
+        Euler-Poisson state at the crossing.
+    kind : {"psi", "L"}
+        The section: ``psi = psi0`` or ``L = G3 = 0``, as in :func:`flow_to_section`.
+    psi0 : float, default 0.0
+        Section value for ``kind="psi"``.
+    """
     yy = as_state(y, name="y")
     if yy.shape != (6,) or not np.all(np.isfinite(yy)):
         raise ValueError(f"y must be one finite state (G1, ..., gamma3), shape (6,), got "
@@ -442,7 +497,21 @@ def _implicit_matrices(body: RigidBody, y: NDArray[np.float64], n: NDArray[np.fl
 @dataclass(frozen=True)
 class SectionReturn:
     """One application of the section map: image ``x``, state ``y``, return time ``T``,
-    Jacobian ``DP`` (2, 2) and state-transition matrix ``stm`` (6, 6), or None."""
+    Jacobian ``DP`` (2, 2) and state-transition matrix ``stm`` (6, 6), or None.
+
+    Attributes
+    ----------
+    x : ndarray, shape (2,)
+        The image ``(G1, G2)/|G|``.
+    y : ndarray, shape (6,)
+        Its Euler-Poisson state.
+    T : float
+        The return time (body time units).
+    DP : ndarray, shape (2, 2), or None
+        The Jacobian of the map (None when not asked for).
+    stm : ndarray, shape (6, 6), or None
+        The state-transition matrix over ``T``.
+    """
 
     x: NDArray[np.float64]
     y: NDArray[np.float64]
@@ -462,6 +531,27 @@ def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
     (return time), ``DP`` (the 2 x 2 Jacobian, from the variational equations and the
     event sensitivity, or None) and ``stm`` (the 6 x 6 state-transition matrix).
     ``engine`` as in :func:`flow_to_section`.
+
+    Parameters
+    ----------
+    body : RigidBody
+        A body with Oz the middle axis (``e3 = 0``).
+    x : array_like, shape (2,)
+        Point ``(G1, G2)/|G|`` of the section.
+    h : float
+        Energy level ``H = h`` (fixes ``|G|`` at the point).
+    M : float, default 0.0
+        Area constant ``(G, gamma) = M``.
+    section : RotationSection, optional
+        The section ``psi = psi0`` and its sense (default ``RotationSection()``).
+    jacobian : bool, default True
+        Also compute ``DP`` from the variational equations.
+    tol : float, default 1e-15
+        Integration tolerance (raised to the finest the engine honours).
+    long_double : bool, default False
+        Extended precision (heyoka only).
+    engine : str, optional
+        As in :func:`flow_to_section`.
     """
     sec = RotationSection() if section is None else section
     y0, dy_dx = section_state(body, x, h, M, sec, jacobian=True)

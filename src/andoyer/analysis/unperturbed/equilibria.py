@@ -91,6 +91,13 @@ def classify(eigenvalues: Sequence[complex] | NDArray[np.complex128], scale: flo
     (mixed, 4-D), ``"degenerate"`` (an eigenvalue below ``TYPE_RTOL * scale``). For
     4-D: ``"centre-centre"``, ``"saddle-saddle"``.
 
+    Parameters
+    ----------
+    eigenvalues : sequence of complex
+        Eigenvalues of the linearised field at the fixed point (2 or 4).
+    scale : float
+        Scale of the field: eigenvalues below :data:`TYPE_RTOL` times it count as zero.
+
     Examples
     --------
     >>> classify([1j, -1j], 1.0), classify([0.5, -0.5], 1.0), classify([0, 0], 1.0)
@@ -113,6 +120,23 @@ def classify(eigenvalues: Sequence[complex] | NDArray[np.complex128], scale: flo
 
 @checks_arguments
 def sorted_eigenvalues(ev: NDArray[np.complex128]) -> tuple[complex, ...]:
+    """Eigenvalues in a fixed order: by real part, then imaginary part.
+
+    Parameters
+    ----------
+    ev : array_like of complex
+        Eigenvalues: 1-D, an even number (a Hamiltonian system's come in pairs),
+        finite.
+
+    Returns
+    -------
+    tuple of complex
+
+    Examples
+    --------
+    >>> [v.real for v in sorted_eigenvalues(np.array([0.5, 2.0, -0.5, -2.0]))]
+    [-2.0, -0.5, 0.5, 2.0]
+    """
     ev = _eigenvalues("ev", ev)
     order = np.lexsort((ev.imag, ev.real))
     return tuple(complex(v) for v in ev[order])
@@ -120,6 +144,14 @@ def sorted_eigenvalues(ev: NDArray[np.complex128]) -> tuple[complex, ...]:
 
 @checks_body
 def require_distinct_moments(body: RigidBody) -> None:
+    """``ValueError`` unless the three moments of inertia are distinct (relative gap
+    above 1e-12): an axisymmetric body has whole circles of permanent rotations.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body to check.
+    """
     I = (body.a, body.b, body.c)
     gaps = [abs(I[i] - I[j]) for i, j in ((0, 1), (1, 2), (0, 2))]
     if min(gaps) <= 1e-12 * max(I):
@@ -153,6 +185,8 @@ class PermanentRotation:
         ``"centre"`` (major and minor axes) or ``"saddle"`` (middle axis).
     label : int
         Its digit in Fig. 2 (:data:`ROTATION_LABELS`).
+    moment_value : float
+        The value of that moment of inertia.
     """
 
     axis: str
@@ -255,7 +289,15 @@ class EulerPoissonEquilibrium:
 
 @dataclass(frozen=True)
 class EquilibriumSet:
-    """The hanging and the upright equilibria of a body."""
+    """The hanging and the upright equilibria of a body.
+
+    Attributes
+    ----------
+    body : RigidBody
+        The body.
+    equilibria : tuple of EulerPoissonEquilibrium
+        Its equilibria (hanging and upright), with their eigenvalues and types.
+    """
 
     body: RigidBody
     equilibria: tuple[EulerPoissonEquilibrium, ...]

@@ -71,6 +71,15 @@ def elliptic_pi(n: float, m: float) -> float:
 
     ``int_0^(pi/2) dphi / ((1 - n sin^2 phi) sqrt(1 - m sin^2 phi))``, by Carlson's forms.
 
+    Parameters
+    ----------
+    n : float
+        Characteristic (``n < 1``).
+    m : float
+        Parameter ``m = k^2`` (``m < 1``).
+
+    Examples
+    --------
     >>> round(elliptic_pi(0.0, 0.5), 12) == round(float(ellipk(0.5)), 12)
     True
     """
@@ -126,7 +135,22 @@ def elliptic_f(phi: ArrayLike, m: ArrayLike) -> NDArray[np.float64]:
 
 
 class EulerPoinsotFrequencies(NamedTuple):
-    """The Euler-Poinsot motion on ``H0 = h``, ``|G| = G``."""
+    """The Euler-Poinsot motion on ``H0 = h``, ``|G| = G``.
+
+    Parameters
+    ----------
+    period : float
+        Period ``T`` of the body-frame motion, of ``(l, L)`` (body time units).
+    g_rate : float
+        Mean rate of ``g``, ``omega_g`` (rad per body time unit).
+    frequency_ratio : float
+        ``omega_g / omega_l``: the advance of ``g`` over one period ``T``, in turns.
+    modulus : float
+        ``k^2`` of the Jacobi elliptic functions.
+    regime : str
+        About which axis the momentum turns (that of the smallest or largest inverse
+        moment).
+    """
 
     period: float           #: period T of the body-frame motion, of (l, L)
     g_rate: float           #: mean rate of g

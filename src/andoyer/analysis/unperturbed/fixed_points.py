@@ -142,6 +142,10 @@ class FixedPoint:
         separatrices meet the line); its chart eigenvalues are not the physical ones.
     H0 : float
         The unperturbed energy at the point.
+    closed_form : str
+        Text of the closed form of ``(q, p)``, e.g. ``"(2 phi0, J2/2)"``.
+    eigenvalues_closed : tuple of 2 complex
+        Closed form of ``eigenvalues``.
     """
 
     chart: str
@@ -316,7 +320,19 @@ def _l_closed_forms(body: RigidBody, G0: float
 
 @checks_arguments
 def theta_text(value: float, period: float, phi0: float, lstar: float | None) -> str:
-    """Name ``value`` (mod ``period``) as ``k pi + m phi0 (+ n l*)``, simplest first."""
+    """Name ``value`` (mod ``period``) as ``k pi + m phi0 (+ n l*)``, simplest first.
+
+    Parameters
+    ----------
+    value : float
+        The angle (rad).
+    period : float
+        Its period (``2 pi`` or ``4 pi``): values are compared modulo it.
+    phi0 : float
+        The body's ``phi0`` (rad).
+    lstar : float or None
+        The angle ``l*`` of the separatrices where they are not ``+-phi0`` (None: not used).
+    """
     terms = [("phi0", phi0)] + ([("l*", lstar)] if lstar is not None else [])
     best: tuple[int, str] | None = None
     coeffs = range(-4, 5)

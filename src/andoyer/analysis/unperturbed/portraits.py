@@ -195,6 +195,21 @@ def portrait_hess(body: RigidBody, J2: float = 1.0, n: int | tuple[int, int] = (
     As :func:`portrait_andoyer` with ``theta1 in [0, 2 pi]`` (``[0, 4 pi]`` with
     ``double_cover``), ``J1 in [0, J2]``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        Three distinct moments with Oz the middle axis (``mu`` ignored: ``mu = 0``).
+    J2 : float, default 1.0
+        ``J2 = |G|`` of the level.
+    n : int or (int, int), default (241, 81)
+        Grid ``(n_theta1, n_J1)`` for H0 over the plane.
+    n_levels : int, default 14
+        Number of ordinary contour levels (the separatrix level is added).
+    n_curve : int, default 201
+        Points per separatrix curve.
+    double_cover : bool, default False
+        ``theta1`` over ``[0, 4 pi]`` (both sheets) instead of ``[0, 2 pi]``.
+
     Examples
     --------
     >>> from andoyer import RigidBody

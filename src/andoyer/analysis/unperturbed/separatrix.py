@@ -292,6 +292,13 @@ def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     the middle axis): ``G0 = |G|`` is also the Hess chart's ``J2`` there (Eq. (13) with
     ``L = +-G``); :func:`separatrix_momentum` is the inverse.
 
+    Parameters
+    ----------
+    body : RigidBody
+        The body (its middle inverse moment ``I_mid``).
+    G0 : float, default 1.0
+        ``|G|`` on the separatrices (> 0).
+
     Examples
     --------
     >>> from andoyer import RigidBody
@@ -307,6 +314,13 @@ def separatrix_momentum(body: RigidBody, h: float) -> float:
     """``|G| = J2 = sqrt(2 h / I_mid)``: the momentum of the separatrices (and of the
     rotations about the middle axis) on the level ``H = h``; the inverse of
     :func:`separatrix_energy`.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (its middle inverse moment ``I_mid``).
+    h : float
+        Energy level ``H0 = h`` (> 0).
 
     Examples
     --------
@@ -391,6 +405,40 @@ def _curves(body: RigidBody, chart: str, action: float, period: float, n: int
 @checks_body
 def separatrix_curves(body: RigidBody, chart: str, action: float, period: float,
                     n: int) -> xr.Dataset:
+    """The unperturbed separatrices and singular lines of one chart as a dataset.
+
+    The curves of the level ``H0 = I_mid G0^2 / 2`` (:func:`separatrix_energy`) in the
+    plane ``(l, L)`` (Eq. (9)) or ``(theta1, J1)`` (Eqs. (13)-(14)).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (``mu`` ignored).
+    chart : {"andoyer", "hess"}
+        Plane ``(l, L)`` or ``(theta1, J1)``.
+    action : float
+        ``G0 = |G|`` (``J2`` in the Hess chart) of the level.
+    period : float
+        Period of the chart's angle drawn: ``2 pi``, or ``4 pi`` for the double cover
+        of the Hess chart.
+    n : int
+        Points per curve.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``curve``, ``point``: ``separatrix_<q>``, ``separatrix_<p>`` (the curves),
+        ``separatrix_kind`` (``"separatrix"`` or ``"singular line"``),
+        ``separatrix_hess`` (1 on the Hess separatrix ``theta1 = 0``),
+        ``separatrix_text``; attrs ``separatrix_H0``, ``chart``, ``angle_period``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = separatrix_curves(RigidBody.paper(), "hess", 1.0, 2 * np.pi, 9)
+    >>> sorted(set(ds.separatrix_kind.values.tolist()))
+    ['separatrix', 'singular line']
+    """
     if not isinstance(chart, str) or chart not in ("andoyer", "hess"):
         raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
     qn, pn = ("theta1", "J1") if chart == "hess" else ("l_angle", "L_action")
@@ -423,7 +471,17 @@ SEPARATRIX_LEVEL: dict[str, VariableMeta] = {
 @checks_arguments
 def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:
     """A sample count ``n`` of at least ``minimum`` and at most
-    :data:`~andoyer.validation.MAX_COUNT` (``ValueError`` naming ``what``)."""
+    :data:`~andoyer.validation.MAX_COUNT` (``ValueError`` naming ``what``).
+
+    Parameters
+    ----------
+    n : int
+        The sample count given.
+    what : str
+        Its name, for the error message.
+    minimum : int, default 8
+        The smallest count accepted.
+    """
     return integer(what, n, minimum, MAX_COUNT)
 
 
@@ -473,6 +531,17 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
     ``J1 = 0``, ``J1 = J2``. Same variables as :func:`separatrix_andoyer` with
     ``theta1``, ``J1``.
 
+    Parameters
+    ----------
+    body : RigidBody
+        A Hess body (or any body with Oz the middle axis).
+    J2 : float, default 1.0
+        ``J2 = |G|`` of the level.
+    n : int, default 401
+        Points per curve (>= 8).
+    double_cover : bool, default False
+        ``theta1`` over ``[0, 4 pi]`` instead of ``[0, 2 pi]``.
+
     Examples
     --------
     >>> from andoyer import RigidBody
@@ -497,6 +566,19 @@ def separatrix_on_level(body: RigidBody, h: float, chart: str, n: int = 401, *,
     They sit at ``G0 = sqrt(2 h / I_mid)`` (``I_mid`` the middle of ``a, b, c``): the G of
     the rotation about the middle axis on that level. ``chart`` is ``"hess"`` or
     ``"andoyer"``; ``None`` when ``h <= 0`` or two moments are equal (no separatrix).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (``mu`` ignored: the unperturbed separatrices).
+    h : float
+        Energy level ``H0 = h``.
+    chart : {"hess", "andoyer"}
+        Plane ``(theta1, J1)`` or ``(l, L)``.
+    n : int, default 401
+        Points per curve (>= 8).
+    double_cover : bool, default False
+        Hess chart: ``theta1`` over ``[0, 4 pi]`` instead of ``[0, 2 pi]``.
 
     Examples
     --------

@@ -47,7 +47,13 @@ PACKAGES = {"heyoka": "heyoka", "numba": "numba", "scipy": "scipy", "taylor": "n
 
 
 def installed(name: str) -> bool:
-    """Whether the package engine ``name`` runs on is installed (nothing is imported)."""
+    """Whether the package engine ``name`` runs on is installed (nothing is imported).
+
+    Parameters
+    ----------
+    name : str
+        A registered engine name.
+    """
     if name not in ENGINES:
         raise ValueError(f"unknown engine {name!r}; choose one of {', '.join(ENGINES)}")
     package = PACKAGES.get(name)
@@ -57,7 +63,13 @@ def installed(name: str) -> bool:
 
 
 def engine_class(name: str) -> type[EngineBase]:
-    """The class registered as ``name`` (importing it does not import heyoka)."""
+    """The class registered as ``name`` (importing it does not import heyoka).
+
+    Parameters
+    ----------
+    name : str
+        A registered engine name (a key of :data:`ENGINES`).
+    """
     if name not in ENGINES:
         raise ValueError(f"unknown engine {name!r}; choose one of {', '.join(ENGINES)}")
     module, cls = ENGINES[name]
@@ -95,6 +107,13 @@ def default_engine_name(*capabilities: Capability) -> str:
     """``"heyoka"`` where installed, else the first of :data:`FALLBACK_DEFAULTS` that
     declares every capability asked for.
 
+    Parameters
+    ----------
+    *capabilities : Capability
+        Capabilities the engine must declare (none: any engine).
+
+    Examples
+    --------
     >>> default_engine_name() in ("heyoka", "taylor")
     True
     >>> default_engine_name(Capability.TANGENT) in ("heyoka", "numba")
@@ -110,6 +129,11 @@ def default_engine_name(*capabilities: Capability) -> str:
 
 def get_engine(name: str | None = None) -> EngineBase:
     """The engine called ``name`` (default: :func:`default_engine_name`).
+
+    Parameters
+    ----------
+    name : str, optional
+        A registered engine name (default: :func:`default_engine_name`).
 
     Raises
     ------
@@ -169,7 +193,13 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
 
 
 def engines_with(capability: Capability) -> list[str]:
-    """Registered engines (installed or not) that declare ``capability``."""
+    """Registered engines (installed or not) that declare ``capability``.
+
+    Parameters
+    ----------
+    capability : Capability
+        The capability asked for.
+    """
     return [name for name in ENGINES if capability in engine_class(name).capabilities]
 
 

@@ -129,7 +129,13 @@ _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
 
 def tolerance(rtol: float, atol: float) -> float:
     """heyoka's single tolerance for the other engines' ``(rtol, atol)``: ``min(rtol, atol)``
-    (:attr:`Tolerance.tol <andoyer.integrate.engines.base.Tolerance.tol>`)."""
+    (:attr:`Tolerance.tol <andoyer.integrate.engines.base.Tolerance.tol>`).
+
+    Parameters
+    ----------
+    rtol, atol : float
+        The relative and absolute tolerances asked for.
+    """
     return Tolerance(rtol, atol).tol
 
 

@@ -62,6 +62,11 @@ class BatchRecorder:
 
     One list append per root: this runs once per crossing under the GIL, so it does
     as little as possible (the polish and the bookkeeping are done per chunk).
+
+    Parameters
+    ----------
+    batch_size : int
+        SIMD lanes of the batch integrator.
     """
 
     def __init__(self, batch_size: int) -> None:
@@ -79,6 +84,21 @@ class BatchRecorder:
 
 
 class IntegratorKey(NamedTuple):
+    """What a compiled heyoka integrator of the pool is built for.
+
+    Parameters
+    ----------
+    batch_size : int
+        SIMD lanes (1: a scalar integrator).
+    kind : int
+        Section kind (an index of the generated section kinds), or ``NO_SECTION`` for
+        plain propagation.
+    direction : {+1, -1}
+        Direction of integration in time.
+    tol : float
+        heyoka's tolerance.
+    """
+
     batch_size: int
     kind: int  # NO_SECTION for plain propagation
     direction: int
@@ -86,6 +106,18 @@ class IntegratorKey(NamedTuple):
 
 
 class Slot(NamedTuple):
+    """A compiled integrator of the pool and what goes with it.
+
+    Parameters
+    ----------
+    ta : heyoka.taylor_adaptive or heyoka.taylor_adaptive_batch
+        The integrator.
+    recorder : Recorder, BatchRecorder or None
+        Its event callback (None without a section).
+    n_pars : int
+        Number of runtime parameters it takes.
+    """
+
     ta: Any
     recorder: Recorder | BatchRecorder | None
     n_pars: int
@@ -122,7 +154,13 @@ _POOL_LOCK = threading.Lock()
 
 @contextmanager
 def borrow(key: IntegratorKey) -> Iterator[Slot]:
-    """Borrow a compiled integrator for ``key`` from the process-wide pool."""
+    """Borrow a compiled integrator for ``key`` from the process-wide pool.
+
+    Parameters
+    ----------
+    key : IntegratorKey
+        What the integrator is built for (built on first use, then shared).
+    """
     with _POOL_LOCK:
         free = _POOL.setdefault(key, [])
         slot = free.pop() if free else None
@@ -142,6 +180,18 @@ def warm_up(*, batch_size: int = 1, kind: int = NO_SECTION, direction: int = 1,
     ``kind = -1`` is the plain propagation integrator; a section kind also compiles
     the functions used to polish crossings. Useful before timing, or before a
     progress bar starts.
+
+    Parameters
+    ----------
+    batch_size : int, default 1
+        SIMD lanes of the integrator (1: scalar).
+    kind : int, default -1
+        Section kind (an index of the generated section kinds), or -1 for the plain
+        propagation integrator.
+    direction : {+1, -1}, default 1
+        Direction of integration in time.
+    tol : float, default 1e-12
+        heyoka's tolerance.
     """
     with borrow(IntegratorKey(batch_size, kind, direction, tol)):
         pass
@@ -150,6 +200,16 @@ def warm_up(*, batch_size: int = 1, kind: int = NO_SECTION, direction: int = 1,
 
 
 def check_outcome(outcome: Any, what: str) -> None:
+    """:class:`~andoyer.errors.IntegrationError` unless heyoka stopped at the time or
+    step limit asked for (a non-finite state or step stops it otherwise).
+
+    Parameters
+    ----------
+    outcome : heyoka.taylor_outcome
+        The outcome of a ``propagate_*`` call.
+    what : str
+        What was integrated, named in the error.
+    """
     if outcome in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):
         return
     raise IntegrationError(

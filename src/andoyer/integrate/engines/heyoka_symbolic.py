@@ -46,7 +46,13 @@ if tuple(map(str, PARAMETERS)) != PARAMETER_NAMES:
 
 
 def par(name: str) -> Any:
-    """heyoka's runtime parameter called ``name`` (:data:`~andoyer.integrate.engines.base.PAR`)."""
+    """heyoka's runtime parameter called ``name`` (:data:`~andoyer.integrate.engines.base.PAR`).
+
+    Parameters
+    ----------
+    name : str
+        A runtime parameter name (:data:`~andoyer.integrate.engines.base.PAR`).
+    """
     return hy.par[PAR[name]]
 
 
@@ -77,6 +83,13 @@ def taylor_form(expr: sp.Expr) -> Any:
     W1 (one orbit, tol 1e-12, the same 9029 steps): 4.11 -> 3.60 ms, against 3.44 ms
     with the numbers folded in as constants (``benchmarks/``, issue 15).
 
+    Parameters
+    ----------
+    expr : sympy.Expr
+        A polynomial in the state variables with parameter coefficients.
+
+    Examples
+    --------
     >>> from andoyer.symbolic.hamiltonian import euler_poisson_field
     >>> str(taylor_form(euler_poisson_field()[3]))
     '(((p2 * gamma2) * G3) - ((p1 * gamma3) * G2))'
@@ -169,13 +182,27 @@ def _section_cfunc_cached(kind: int) -> Any:
 
 
 def section_cfunc(kind: int) -> Any:
-    """Compiled ``y, par -> (f, w, df/dt)`` (vectorised over columns)."""
+    """Compiled ``y, par -> (f, w, df/dt)`` (vectorised over columns).
+
+    Parameters
+    ----------
+    kind : int
+        Section kind (an index of the generated section kinds).
+    """
     with _CFUNC_LOCK:
         return _section_cfunc_cached(kind)
 
 
 def field_at(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function."""
+    """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function.
+
+    Parameters
+    ----------
+    Y : ndarray, shape (r, 6)
+        Euler-Poisson states.
+    pars : ndarray
+        Runtime parameters (:data:`~andoyer.integrate.engines.base.PAR` order).
+    """
     cf = field_cfunc()
     P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, Y.shape[0]))
     return np.asarray(cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))).T
@@ -187,5 +214,13 @@ def _field_cfunc_cached() -> Any:
 
 
 def field_cfunc() -> Any:
+    """The vector field (1) as a compiled heyoka function ``(y, par) -> dy/dt``
+    (vectorised over columns), built once per process and shared by threads.
+
+    Returns
+    -------
+    heyoka.cfunc
+        Called by :func:`field_at`.
+    """
     with _CFUNC_LOCK:
         return _field_cfunc_cached()

@@ -84,6 +84,13 @@ MEGNO_DELTA = 1e-6
 def variational_names(k: int = 1) -> tuple[str, ...]:
     """Variables of the renormalised system with ``k`` vectors, in order.
 
+    Parameters
+    ----------
+    k : int, default 1
+        Number of tangent vectors.
+
+    Examples
+    --------
     >>> variational_names()[9:]
     ('w_gamma1', 'w_gamma2', 'w_gamma3', 'log_norm', 'megno_num', 'megno_int')
     >>> variational_names(2)[-4:]
@@ -219,7 +226,17 @@ def _borrow(key: _Key) -> Iterator[Any]:
 def warm_up(*, batch_size: int, tol: float, k: int = 1) -> tuple[str, float]:
     """Build the renormalised integrator for these settings now: ``(source, seconds)``,
     ``source`` ``"memory"`` (built before in this process) or ``"compiled"`` (now; from
-    heyoka's on-disk cache if a process built it before)."""
+    heyoka's on-disk cache if a process built it before).
+
+    Parameters
+    ----------
+    batch_size : int
+        SIMD lanes of the integrator.
+    tol : float
+        heyoka's tolerance.
+    k : int, default 1
+        Number of tangent vectors.
+    """
     key = _Key("renormalised", batch_size, tol, k)
     t0 = time.perf_counter()
     had = key in _TEMPLATES
@@ -308,7 +325,27 @@ def _run_blocks(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
 def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
                       t: NDArray[np.float64], pars: NDArray[np.float64], tol: float,
                       scale: float, batch_size: int, n_threads: int) -> TangentFlow:
-    """The renormalised system over output times ``t`` (see the module notes)."""
+    """The renormalised system over output times ``t`` (see the module notes).
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states.
+    w0 : ndarray
+        Initial tangent vectors.
+    t : ndarray, shape (m,)
+        Output times.
+    pars : ndarray
+        Runtime parameters.
+    tol : float
+        heyoka's tolerance.
+    scale : float
+        Time scale of the MEGNO quadratures (``delta`` of the module notes).
+    batch_size : int
+        SIMD lanes per block.
+    n_threads : int
+        Threads over the blocks.
+    """
     n, k = w0.shape[:2]
     u0, rho0 = unit_vectors(w0)
     x0 = np.concatenate([y0, u0.reshape(n, -1), rho0 / scale, np.zeros((n, 2))], axis=1)
@@ -329,7 +366,25 @@ def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.f
     """``w(t) = Phi(t) w(0)`` of ONE vector per orbit, not renormalised, over output
     times ``t``: the 12-variable system (state and ``w' = J w``) in SIMD blocks of
     ``batch_size > 1`` lanes on threads, one ``propagate_grid`` per block. ``|w|``
-    overflows past ``ln|w| ~ 709``: such orbits come back with ``ok`` False."""
+    overflows past ``ln|w| ~ 709``: such orbits come back with ``ok`` False.
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states.
+    w0 : ndarray, shape (n, 6)
+        One initial tangent vector per orbit.
+    t : ndarray, shape (m,)
+        Output times.
+    pars : ndarray
+        Runtime parameters.
+    tol : float
+        heyoka's tolerance.
+    batch_size : int
+        SIMD lanes per block.
+    n_threads : int
+        Threads over the blocks.
+    """
     n = y0.shape[0]
     if w0.shape[1] != 1 or batch_size < 2:
         raise ValueError("plain_flow takes one vector per orbit and a batch size > 1")
@@ -359,7 +414,21 @@ def _matrix_vectors(ta: Any, k: int) -> tuple[NDArray[np.float64], NDArray[np.fl
 
 def matrix_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.float64],
                 pars: NDArray[np.float64], tol: float) -> TangentFlow:
-    """``w_i(t) = Phi(t) w_i(0)`` over output times ``t`` (either direction)."""
+    """``w_i(t) = Phi(t) w_i(0)`` over output times ``t`` (either direction).
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states.
+    w0 : ndarray, shape (n, k, 6) or (k, 6)
+        Initial tangent vectors.
+    t : ndarray, shape (m,)
+        Output times (either direction, from ``t[0]``).
+    pars : ndarray
+        Runtime parameters.
+    tol : float
+        heyoka's tolerance.
+    """
     n, k = w0.shape[:2]
     key = _Key("matrix", 1, tol)
     Y = np.full((n, t.size, _N), np.nan)
@@ -405,7 +474,27 @@ def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
                      pars: NDArray[np.float64], event: SectionEvent, n_crossings: int,
                      t_max: float, tol: float, extended: bool) -> TangentFlow:
     """The first crossings of ``event`` with ``w_i = Phi w_i(0)`` there; ``t_max < 0``
-    integrates backward (the event's direction is in physical time)."""
+    integrates backward (the event's direction is in physical time).
+
+    Parameters
+    ----------
+    y0 : ndarray, shape (n, 6)
+        Initial Euler-Poisson states.
+    w0 : ndarray, shape (n, k, 6) or (k, 6)
+        Initial tangent vectors.
+    pars : ndarray
+        Runtime parameters (:data:`~andoyer.integrate.engines.base.PAR` order).
+    event : SectionEvent
+        The section and its crossing direction.
+    n_crossings : int
+        Crossings wanted per orbit.
+    t_max : float
+        Largest time (negative: backward).
+    tol : float
+        heyoka's tolerance.
+    extended : bool
+        Extended precision (long double).
+    """
     n, k = w0.shape[:2]
     key = _Key("matrix", 1, tol, 1, event.kind, event.direction, extended)
     fp: Any = np.longdouble if extended else float

@@ -31,6 +31,19 @@ def solve_dop853(rhs: Callable[[float, NDArray[np.float64]], NDArray[np.float64]
     Returns SciPy's ``OdeResult`` (status 1 when a terminal event fired); raises
     :class:`~andoyer.errors.IntegrationError` when the integrator fails.
 
+    Parameters
+    ----------
+    rhs : callable
+        ``rhs(t, y) -> dy/dt``.
+    t : ndarray, shape (m,)
+        Output times, from ``t[0]`` (either direction).
+    y0 : ndarray
+        Initial state at ``t[0]``.
+    rtol, atol : float
+        Tolerances, used as given.
+    events : sequence of callable, optional
+        Event functions of :func:`scipy.integrate.solve_ivp`.
+
     Examples
     --------
     >>> sol = solve_dop853(lambda t, y: -y, np.array([0.0, 1.0]), np.array([1.0]),
@@ -45,6 +58,14 @@ def solve_dop853(rhs: Callable[[float, NDArray[np.float64]], NDArray[np.float64]
 
 
 def check_solution(sol: object, what: str) -> None:
-    """:class:`~andoyer.errors.IntegrationError` if a ``solve_ivp`` result failed."""
+    """:class:`~andoyer.errors.IntegrationError` if a ``solve_ivp`` result failed.
+
+    Parameters
+    ----------
+    sol : object
+        A :func:`scipy.integrate.solve_ivp` result.
+    what : str
+        What was integrated, named in the error.
+    """
     if getattr(sol, "status", -1) < 0:
         raise IntegrationError(f"scipy DOP853 failed {what}: {getattr(sol, 'message', '')}")

@@ -25,7 +25,17 @@ __all__ = ["LazyModule", "heyoka", "heyoka_available"]
 
 
 class LazyModule(types.ModuleType):
-    """A module imported at its first attribute access."""
+    """A module imported at its first attribute access.
+
+    Parameters
+    ----------
+    name : str
+        Dotted name of the module to import on first use.
+    hint : str, default ""
+        What to install, added to the ``ImportError`` when it is missing.
+    on_import : callable, optional
+        Called with the module once it is imported (e.g. to configure it).
+    """
 
     def __init__(self, name: str, hint: str = "",
                  on_import: Callable[[types.ModuleType], None] | None = None) -> None:

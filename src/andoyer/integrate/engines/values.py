@@ -112,6 +112,13 @@ class Tolerance:
     :attr:`tol` = ``min(rtol, atol)``; the DOP853 engines give their controller
     :data:`TOLERANCE_FACTOR` times both.
 
+    Attributes
+    ----------
+    rtol : float, default 1e-12
+        Relative tolerance, in ``[1e-16, 1e-3]``.
+    atol : float, default 1e-12
+        Absolute tolerance, in ``(0, 1e-3]``.
+
     Examples
     --------
     >>> Tolerance.single(1e-12)
@@ -250,7 +257,17 @@ def runtime_parameters(params: ArrayLike, event: SectionEvent | None = None,
 
 # ----------------------------------------------------------------------------- results
 class Crossings(NamedTuple):
-    """What :meth:`Engine.crossings` returns."""
+    """What :meth:`Engine.crossings` returns.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n, n_crossings)
+        Crossing times, NaN where an orbit had fewer crossings.
+    y : ndarray, shape (n, n_crossings, 6)
+        Euler-Poisson states at the crossings, NaN-padded likewise.
+    count : ndarray of int, shape (n,)
+        Crossings found per orbit.
+    """
 
     t: NDArray[np.float64]  # (n, n_crossings), NaN where an orbit had fewer crossings
     y: NDArray[np.float64]  # (n, n_crossings, 6), NaN-padded likewise
@@ -263,6 +280,23 @@ class TangentFlow(NamedTuple):
     The tangent vectors are ``w_i = exp(rho_i) u_i`` (:attr:`w`) with ``u_i`` of unit
     length, ``w_i(0)`` the given vectors. Rows are the output times, or the crossings
     (NaN-padded beyond ``count``) when an event was given.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n, m)
+        Output times, or crossing times.
+    y : ndarray, shape (n, m, 6)
+        Euler-Poisson states.
+    u : ndarray, shape (n, m, k, 6)
+        Unit tangent vectors ``w_i / |w_i|``.
+    rho : ndarray, shape (n, m, k)
+        ``ln |w_i|``.
+    megno : ndarray, shape (n, m, 2), or None
+        MEGNO quadratures of the first vector (None at crossings and backward).
+    count : ndarray of int, shape (n,)
+        Rows filled per orbit.
+    ok : ndarray of bool, shape (n,)
+        False where the integration failed (NaN there).
     """
 
     t: NDArray[np.float64]  # (n, m): output times, or crossing times
@@ -295,7 +329,13 @@ TOLERANCE_FACTOR = 0.025
 
 
 def check_tolerance_factor(tolerance_factor: float) -> float:
-    """Validate a DOP853 engine's ``tolerance_factor`` (in (0, 1])."""
+    """Validate a DOP853 engine's ``tolerance_factor`` (in (0, 1]).
+
+    Parameters
+    ----------
+    tolerance_factor : float
+        Factor applied to the tolerances of a DOP853 engine (in ``(0, 1]``).
+    """
     if not 0.0 < tolerance_factor <= 1.0:
         raise ValueError(f"tolerance_factor must be in (0, 1], got {tolerance_factor!r}")
     return float(tolerance_factor)
@@ -304,7 +344,13 @@ def check_tolerance_factor(tolerance_factor: float) -> float:
 
 
 def unit_vectors(W: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``(u, rho) = (W/|W|, ln|W|)`` along the last axis: the split of :class:`TangentFlow`."""
+    """``(u, rho) = (W/|W|, ln|W|)`` along the last axis: the split of :class:`TangentFlow`.
+
+    Parameters
+    ----------
+    W : ndarray, shape (..., 6)
+        Tangent vectors (non-zero, finite).
+    """
     norms = np.linalg.norm(W, axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
         return W / norms[..., None], np.log(norms)

@@ -14,7 +14,13 @@ from andoyer.report.base import Context, Result, Table
 __all__ = ["manifolds", "chaos", "border"]
 
 def manifolds(ctx: Context) -> Result:
-    """Hyperbolic rotations, their manifolds, the splitting against the Melnikov function."""
+    """Hyperbolic rotations, their manifolds, the splitting against the Melnikov function.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
 
     from andoyer.analysis.splitting.measure import separatrix_splitting
@@ -47,7 +53,13 @@ def manifolds(ctx: Context) -> Result:
 
 
 def chaos(ctx: Context) -> Result:
-    """FLI maps of the section theta2 = 0: the paper's body and a Hess body with chaos."""
+    """FLI maps of the section theta2 = 0: the paper's body and a Hess body with chaos.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
 
     from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
@@ -83,7 +95,13 @@ def chaos(ctx: Context) -> Result:
 
 def border(ctx: Context) -> Result:
     """The border of chaos off the Hess direction: splitting against epsilon, the
-    chaotic fraction over (mu, epsilon), a frequency map."""
+    chaotic fraction over (mu, epsilon), a frequency map.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
 
     from andoyer.analysis.chaos.chaos_border import chaos_border_map

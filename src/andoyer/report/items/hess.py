@@ -15,7 +15,13 @@ from andoyer.report.base import Context, Result
 __all__ = ["solutions", "fig3"]
 
 def fig3(ctx: Context) -> Result:
-    """Fig. 3: trajectories in the Hess chart and the section theta2 = 0."""
+    """Fig. 3: trajectories in the Hess chart and the section theta2 = 0.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     from andoyer.analysis.paper.trajectories import fig3_section, fig3_trajectories
     from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.fig3 import plot_fig3
@@ -35,7 +41,13 @@ def fig3(ctx: Context) -> Result:
 
 
 def solutions(ctx: Context) -> Result:
-    """The Hess solution and the physical pendulum: periods, portrait, Floquet."""
+    """The Hess solution and the physical pendulum: periods, portrait, Floquet.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
     import xarray as xr
 

@@ -18,7 +18,13 @@ BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3, name="hess(3, 1, 2)")
 
 
 def resonances(ctx: Context) -> Result:
-    """Predicted chains over a section; predicted vs measured half-widths; the normal form."""
+    """Predicted chains over a section; predicted vs measured half-widths; the normal form.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import math
     import warnings
 

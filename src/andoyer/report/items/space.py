@@ -14,7 +14,13 @@ __all__ = ["space"]
 
 
 def space(ctx: Context) -> Result:
-    """The heteroclinic cycle of the Hess case in space, with its attitude checks."""
+    """The heteroclinic cycle of the Hess case in space, with its attitude checks.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
 
     from andoyer.analysis.space.inertial import axis_trace, heteroclinic_cycle

@@ -17,7 +17,13 @@ __all__ = ["fig1", "fig2", "heteroclinic", "paper_check"]
 
 
 def paper_check(ctx: Context) -> Result:
-    """Every formula printed in the paper, evaluated against the derivation."""
+    """Every formula printed in the paper, evaluated against the derivation.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     from andoyer.analysis.paper.paper_check import paper_check as check
     from andoyer.io.tables import format_table
 
@@ -32,7 +38,13 @@ def paper_check(ctx: Context) -> Result:
 
 
 def fig1(ctx: Context) -> Result:
-    """Fig. 1: the unperturbed portrait in (l, L)."""
+    """Fig. 1: the unperturbed portrait in (l, L).
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     from andoyer.analysis.unperturbed.portraits import portrait_andoyer
     from andoyer.plot.portraits import plot_fig1
 
@@ -43,7 +55,13 @@ def fig1(ctx: Context) -> Result:
 
 
 def fig2(ctx: Context) -> Result:
-    """Fig. 2: both unperturbed portraits and every fixed point, with their tables."""
+    """Fig. 2: both unperturbed portraits and every fixed point, with their tables.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     from andoyer.analysis.unperturbed.equilibria import euler_poisson_equilibria
     from andoyer.analysis.unperturbed.fixed_points import andoyer_fixed_points, hess_fixed_points
     from andoyer.analysis.unperturbed.portraits import portrait_andoyer, portrait_hess
@@ -66,7 +84,13 @@ def fig2(ctx: Context) -> Result:
 
 
 def heteroclinic(ctx: Context) -> Result:
-    """The heteroclinic orbits of the free top in closed form, checked by integration."""
+    """The heteroclinic orbits of the free top in closed form, checked by integration.
+
+    Parameters
+    ----------
+    ctx : Context
+        Output folder, body, engine, quick.
+    """
     import numpy as np
     import xarray as xr
 
