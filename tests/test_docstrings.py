@@ -108,6 +108,23 @@ def test_every_public_module_has_a_summary(module: str) -> None:
     assert doc.strip(), f"{module} has no docstring (its API page would have no summary)"
 
 
+def _summaries(settings: object, autosummary: object) -> list[tuple[object, str]]:
+    """``(object, summary)`` of every public module and of the functions and classes of
+    its ``__all__``, extracted as autosummary extracts them."""
+    out = []
+    for module_name in _public_modules():
+        module = _import(module_name)
+        objects = [module] + [getattr(module, n) for n in getattr(module, "__all__", [])
+                              if inspect.isfunction(getattr(module, n, None))
+                              or inspect.isclass(getattr(module, n, None))]
+        for obj in objects:
+            doc = inspect.getdoc(obj)
+            if doc:
+                out.append((obj, autosummary.extract_summary(  # type: ignore[attr-defined]
+                    doc.splitlines(), settings)))
+    return out
+
+
 def test_summaries_are_not_cut_at_abbreviations(monkeypatch: pytest.MonkeyPatch) -> None:
     """autosummary ends the first sentence at "Eq." unless told it is an abbreviation:
     "H of Eq. (1) expressed in chart" was listed as "H of Eq."."""
@@ -122,20 +139,19 @@ def test_summaries_are_not_cut_at_abbreviations(monkeypatch: pytest.MonkeyPatch)
     summaries = importlib.import_module("summaries")
     summaries.setup(None)
     settings = get_default_settings(Parser)
-    cut = []
-    for module_name in _public_modules():
-        module = _import(module_name)
-        objects = [module] + [getattr(module, n) for n in getattr(module, "__all__", [])
-                              if inspect.isfunction(getattr(module, n, None))
-                              or inspect.isclass(getattr(module, n, None))]
-        for obj in objects:
-            doc = inspect.getdoc(obj)
-            if not doc:
-                continue
-            summary = autosummary.extract_summary(doc.splitlines(), settings)
-            if summary.endswith(summaries.ABBREVIATIONS):
-                cut.append(f"{getattr(obj, '__name__', obj)}: {summary!r}")
+    cut = [f"{getattr(obj, '__name__', obj)}: {summary!r}"
+           for obj, summary in _summaries(settings, autosummary)
+           if summary.endswith(summaries.ABBREVIATIONS)]
     assert not cut, cut
+    # A summary stands alone in a table of another page: a class's or function's
+    # citation ([1]_, renamed by numpydoc) resolves nowhere there (a module's is
+    # suppressed with ref.citation), an inline literal cut by the sentence's end
+    # (``q0^2 .. q3^2``) is left open; under -W both failed the docs build.
+    broken = [f"{getattr(obj, '__name__', obj)}: {summary!r}"
+              for obj, summary in _summaries(settings, autosummary)
+              if ("]_" in summary and not inspect.ismodule(obj))
+              or summary.count("``") % 2]
+    assert not broken, broken
     hamiltonian = inspect.getdoc(andoyer.hamiltonian) or ""
     assert autosummary.extract_summary(hamiltonian.splitlines(), settings) == (
         "H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).")

@@ -252,8 +252,8 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     ----------
     body : RigidBody
         The body.
-    y : ndarray, shape (*shape, 6)
-        Euler-Poisson states (NaN for padding).
+    y : ndarray, shape (..., 6)
+        Euler-Poisson states (NaN for padding); the leading axes are ``dims``.
     dims : sequence of str
         Names of the dimensions of ``shape``.
     coords : mapping

@@ -32,8 +32,9 @@ def _broken(x: NDArray[np.float64], y: NDArray[np.float64], period: float
 
 def plot_resonances(ds: xr.Dataset, *, ax: Axes | None = None, separatrices: bool = True,
                     labels: bool = True, title: str | None = None) -> Axes:
-    """Draw the predicted chains of a :func:`~andoyer.analysis.resonance.predict.
-    resonance_widths` dataset in its section plane.
+    """Draw the predicted chains of a
+    :func:`~andoyer.analysis.resonance.predict.resonance_widths` dataset in its section
+    plane.
 
     Parameters
     ----------

@@ -144,7 +144,7 @@ def _to_complex(h: NDArray[np.float64], N: int) -> tuple[NDArray[np.complex128],
 
 
 def _normalise(H: NDArray[np.complex128], omega0: float, N: int) -> NDArray[np.float64]:
-    """(B3)-(B4): the Lie series order by order; returns ``c_k``, ``k = 1 .. N // 2``."""
+    """(B3)-(B4): the Lie series order by order; returns ``c_k``, ``k = 1, ..., N // 2``."""
     for n in range(3, N + 1):
         chi = np.zeros_like(H)
         for a in range(n + 1):

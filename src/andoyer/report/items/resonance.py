@@ -13,7 +13,7 @@ from andoyer.report.base import Context, Result, Table
 
 __all__ = ["resonances"]
 
-#: The body of the comparison: low-order chains (|V_k| ~ 1e-2), a level h = 1, M = 0.
+#: The body of the comparison: low-order chains (``|V_k| ~ 1e-2``), a level h = 1, M = 0.
 BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3, name="hess(3, 1, 2)")
 
 
