@@ -91,6 +91,16 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float, atol: f
         NaN after a failure (see ``info``).
     info : ndarray of int64, shape (n, 4)
         Columns :data:`andoyer.kernels.dop853.INFO`.
+
+    Examples
+    --------
+    A free top spinning about its axis z: the quaternion turns about z at ``c G3``.
+
+    >>> p = np.array([0.5, 0.4, 0.25, 0.0, 1.0, 0.0, 0.0, 0.0])
+    >>> z0 = np.array([[0.0, 0.0, 2.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0]])
+    >>> z, info = propagate(z0, np.array([0.0, 1.0]), p, 1e-13, 1e-13, 10**6)
+    >>> bool(np.allclose(z[0, -1, 6:], [np.cos(0.25), 0.0, 0.0, np.sin(0.25)]))
+    True
     """
     return dop853.ensemble_propagate(propagate_block, z0, t, p, rtol, atol, max_steps,
                                      block=block, threads=threads)

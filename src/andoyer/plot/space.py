@@ -71,6 +71,16 @@ def plot_axis_trace(trace: xr.Dataset, *, orbits: Any = None, ax: Any = None) ->
     Returns
     -------
     matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.analysis.space.inertial import axis_trace
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.lagrange(1.0, 0.6, 1.0), [0.2, 0.1, 1.5, 0.0, 0.6, 0.8],
+    ...               np.linspace(0.0, 2.0, 21), engine="scipy")
+    >>> plot_axis_trace(axis_trace(ds, "z")).axes[0].name
+    '3d'
     """
     with paper_style():
         if ax is None:
@@ -114,6 +124,15 @@ def plot_precession_nutation(ds: xr.Dataset, orbit: int = 0) -> Figure:
     -------
     matplotlib.figure.Figure
         Two panels; gaps where the Euler angles are undefined (``euler_singular``).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.lagrange(1.0, 0.6, 1.0), [0.2, 0.1, 1.5, 0.0, 0.6, 0.8],
+    ...               np.linspace(0.0, 2.0, 21), engine="scipy")
+    >>> len(plot_precession_nutation(ds).axes)
+    2
     """
     one = ds.isel(orbit=orbit)
     t = one.time.values
@@ -145,6 +164,14 @@ def plot_heteroclinic_cycle(cycle: xr.Dataset, trace: xr.Dataset) -> Figure:
         :func:`andoyer.analysis.space.inertial.heteroclinic_cycle` output.
     trace : xarray.Dataset
         ``axis_trace(cycle, "z")``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.analysis.space.inertial import axis_trace, heteroclinic_cycle
+    >>> cyc = heteroclinic_cycle(RigidBody.paper(), n_times=11, engine="scipy")
+    >>> len(plot_heteroclinic_cycle(cyc, axis_trace(cyc, "z")).axes)
+    2
     """
     with paper_style():
         fig = Figure(figsize=(6.6, 3.0), layout="constrained")
@@ -193,6 +220,16 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
     -------
     matplotlib.animation.FuncAnimation
         Write it with :func:`save_animation` (GIF or MP4, atomically).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.lagrange(1.0, 0.6, 1.0), [0.2, 0.1, 1.5, 0.0, 0.6, 0.8],
+    ...               np.linspace(0.0, 2.0, 5), engine="scipy")
+    >>> anim = gyroscope_animation(ds)
+    >>> len(list(anim.new_frame_seq()))
+    5
     """
     one = ds.isel(orbit=orbit)
     R = one.rotation.transpose("time", "space", "body").values
@@ -285,6 +322,17 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
     Returns
     -------
     Path
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.lagrange(1.0, 0.6, 1.0), [0.2, 0.1, 1.5, 0.0, 0.6, 0.8],
+    ...               np.linspace(0.0, 2.0, 3), engine="scipy")
+    >>> out = save_animation(gyroscope_animation(ds), Path(tempfile.mkdtemp()) / "top.gif")
+    >>> out.name, out.read_bytes()[:6]
+    ('top.gif', b'GIF89a')
     """
     final = Path(path)
     suffix = final.suffix.lower()
@@ -321,6 +369,16 @@ def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any
     plotly.graph_objects.Figure
         ``layout.meta = "andoyer-gyroscope"``; traces ``sphere``, ``axis trace``,
         ``axle``, ``wheel``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> from andoyer.integrate import attitude
+    >>> ds = attitude(RigidBody.lagrange(1.0, 0.6, 1.0), [0.2, 0.1, 1.5, 0.0, 0.6, 0.8],
+    ...               np.linspace(0.0, 2.0, 21), engine="scipy")
+    >>> fig = gyroscope_plotly(ds, frames=5)
+    >>> [t.name for t in fig.data], len(fig.frames)
+    (['sphere', 'axis trace', 'axle', 'wheel'], 5)
     """
     import plotly.graph_objects as go
 

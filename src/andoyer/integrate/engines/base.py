@@ -313,6 +313,15 @@ class EngineBase:
         -------
         y : ndarray, shape (n, m, 6)
         q : ndarray, shape (n, m, 4)
+
+        Examples
+        --------
+        >>> from andoyer import RigidBody
+        >>> from andoyer.integrate.engines import get_engine
+        >>> y, q = get_engine("scipy").attitude([0, 0, 1.0, 0, 0, 1.0], [1.0, 0, 0, 0],
+        ...     [0.0, 2.0], RigidBody.lagrange(2.0, 1.0, 1.0).engine_params, Tolerance())
+        >>> q.shape, bool(np.allclose(q[0, 1], [np.cos(1.0), 0, 0, np.sin(1.0)]))
+        ((1, 2, 4), True)
         """
         self.require(Capability.ATTITUDE)
         tol = _tolerance(tolerance)
