@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from _figures import overlapping_texts
 from andoyer import RigidBody
 from andoyer.analysis.space.inertial import axis_trace, heteroclinic_cycle
 from andoyer.integrate import attitude
@@ -71,3 +72,10 @@ def test_plotly_gyroscope_frames_follow_the_attitude(ds):
     last = fig.frames[-1].data[0]
     assert np.allclose([last.x[1], last.y[1], last.z[1]], R[-1, :, 2])
     assert np.allclose(fig.data[1].x, R[:, 0, 2])
+
+
+def test_space_figures_have_no_overlapping_labels(ds):
+    cyc = heteroclinic_cycle(RigidBody.paper(mu=0.01), engine="numba", n_times=201)
+    for fig in (plot_axis_trace(axis_trace(ds, "z")), plot_precession_nutation(ds, orbit=1),
+                plot_heteroclinic_cycle(cyc, axis_trace(cyc, "z"))):
+        assert overlapping_texts(fig) == []
