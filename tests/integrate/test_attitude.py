@@ -203,3 +203,20 @@ def test_integrable_tops_keep_their_integrals_in_space(engine, case):
     assert np.abs(L[:, 2] - M).max() <= 1e-11 and np.abs(M - M[0]).max() <= 1e-11
     R = ds.rotation.values[0]
     assert np.abs(np.einsum("tki,tkj->tij", R, R) - np.eye(3)).max() <= 1e-13
+
+
+def test_an_engine_without_the_capability_is_refused_naming_those_with_it():
+    from andoyer.integrate.engines import resolve_engine
+    from andoyer.integrate.engines.base import EngineBase
+
+    class Plain(EngineBase):
+        name = "plain"
+        capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS})
+
+    with pytest.raises(NotImplementedError, match="attitude.*numba"):
+        Plain().attitude([0, 0, 1.0, 0, 0, 1.0], [1.0, 0, 0, 0], [0.0, 1.0],
+                         RigidBody.paper().engine_params, Tolerance())
+    with pytest.raises(ValueError, match="attitude"):
+        resolve_engine(Plain(), Capability.ATTITUDE)
+    with pytest.raises(ValueError, match="engine"):
+        attitude(RigidBody.paper(), X0, [0.0, 1.0], chart="andoyer", engine=Plain())
