@@ -123,6 +123,11 @@ class ExplorerBase:
         self._work = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore")
         self._side = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore-side")
         self._chaos = chaos_module()
+        # The predicted chains on the plane (issue 28): their number once drawn, None while
+        # switched off or not drawn yet; the overlay's key (body, h, M, section, order).
+        self._chains_drawn: int | None = None
+        self._chains_key: tuple[Any, ...] | None = None
+        self._chain_token = 0
 
     # ------------------------------------------------------------------ threads
     def _schedule(self, fn: Callable[[], None]) -> None:
@@ -201,7 +206,8 @@ class ExplorerBase:
                  "engine": s.engine, "body": s.body.attrs(), "view_ready":
                  self.view is not None and self.view.settings == s,
                  "n_orbits": len(self.session.orbits), "selected": self._selected,
-                 "level": self._level, "errors": self._errors}
+                 "level": self._level, "errors": self._errors,
+                 "chains": self._chains_drawn}
         self.state_div.text = json.dumps(state)
 
     # ------------------------------------------------------------------ exports

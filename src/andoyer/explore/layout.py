@@ -34,6 +34,7 @@ from andoyer.explore.base import (
     orbit_columns,
     widget,
 )
+from andoyer.explore.chains import CHAINS_MAX_ORDER, CHAINS_ORDER, empty_columns
 from andoyer.explore.state import (
     UNDERLAY_N,
     UNDERLAY_T_END,
@@ -105,6 +106,9 @@ class ExplorerLayout(ExplorerBase):
     def _on_underlay(self, _event: Any) -> None:
         raise NotImplementedError
 
+    def _on_chains(self, _event: Any) -> None:
+        raise NotImplementedError
+
     def _clear_orbits(self) -> None:
         raise NotImplementedError
 
@@ -144,6 +148,20 @@ class ExplorerLayout(ExplorerBase):
         fig.line("x", "y", source=self.separatrix, color="#c0392b", line_width=1.2,
                  line_dash="dashed", legend_label="unperturbed separatrices (μ = 0)")
         fig.scatter("x", "y", source=self.points, color="colour", size=2.6, line_width=0)
+        # The predicted island chains (issue 28; drawn by Explorer._request_chains): centre
+        # lines dashed, separatrices solid, stable points o and unstable points x.
+        chains = empty_columns()
+        self.chain_centres = ColumnDataSource(chains["centres"],
+                                              name="andoyer-chain-centres")
+        self.chain_separatrices = ColumnDataSource(chains["separatrices"],
+                                                   name="andoyer-chain-separatrices")
+        self.chain_points = ColumnDataSource(chains["points"], name="andoyer-chain-points")
+        fig.multi_line("xs", "ys", source=self.chain_centres, color="colour",
+                       line_dash="dashed", line_width=1.0)
+        fig.multi_line("xs", "ys", source=self.chain_separatrices, color="colour",
+                       line_width=0.8)
+        fig.scatter("x", "y", source=self.chain_points, marker="marker", size=8,
+                    line_color="colour", fill_color=None, line_width=1.4)
         seeds = fig.scatter("seed_x", "seed_y", source=self.orbits, color="colour", size=11,
                             marker="star", line_color="black", line_width=0.6)
         seeds.selection_glyph = seeds.glyph.clone(size=16, line_width=1.2)
@@ -215,6 +233,11 @@ class ExplorerLayout(ExplorerBase):
         self.w_underlay = widget(w.Checkbox, f"chaos-map underlay (FLI, {UNDERLAY_N}² "
                                   f"orbits to t = {UNDERLAY_T_END:g})", value=False,
                                   disabled=self._chaos is None)
+        self.w_chains = widget(w.Checkbox, "predicted island chains (first order in μ)",
+                               value=False, css_classes=["andoyer-chains"])
+        self.w_chain_order = widget(w.IntInput, "chains up to order p + q",
+                                    value=CHAINS_ORDER, start=2, end=CHAINS_MAX_ORDER,
+                                    step=1, css_classes=["andoyer-chain-order"])
         self.w_clear = widget(w.Button, "clear all orbits", button="warning")
         self.w_remove = widget(w.Button, "remove selected orbit", button="default")
         self.w_nc = widget(w.FileDownload, "NetCDF of the orbits", button="primary",
@@ -226,6 +249,8 @@ class ExplorerLayout(ExplorerBase):
                     self.w_crossings, self.w_engine, self.w_root):
             wid.param.watch(self._on_control, "value")
         self.w_underlay.param.watch(self._on_underlay, "value")
+        self.w_chains.param.watch(self._on_chains, "value")
+        self.w_chain_order.param.watch(self._on_chains, "value")
         self.w_clear.on_click(lambda _e: self._guard(self._clear_orbits))
         self.w_remove.on_click(lambda _e: self._guard(self._remove_selected))
         self._sync_body_widgets()
@@ -233,14 +258,15 @@ class ExplorerLayout(ExplorerBase):
         # they ran under the plane and their right edges were hidden.
         for wid in (self.w_body, self.w_mu, self.w_r, self.w_h, self.w_M, self.w_section,
                     self.w_value, self.w_direction, self.w_crossings, self.w_engine,
-                    self.w_root):
+                    self.w_root, self.w_chain_order):
             wid.width = CONTROLS_WIDTH - 20
         self.controls = pn.Column(
             pn.pane.Markdown("### andoyer explore\nClick inside the boundary to seed an orbit "
                              "on the energy level."),
             self.w_body, pn.Row(self.w_A, self.w_B, self.w_C), self.w_mu, self.w_r,
             self.w_h, self.w_M, self.w_section, self.w_value, self.w_direction,
-            self.w_crossings, self.w_engine, self.w_root, self.w_underlay,
+            self.w_crossings, self.w_engine, self.w_root, self.w_underlay, self.w_chains,
+            self.w_chain_order,
             pn.Row(self.w_clear, self.w_remove), self.w_nc, self.w_png, width=CONTROLS_WIDTH,
             css_classes=["andoyer-controls"])
 

@@ -27,10 +27,12 @@ Test hook
 Bokeh models carry names: ``andoyer-plane`` (figure), ``andoyer-points`` (section
 points: ``x, y, orbit, crossing, colour``), ``andoyer-orbits`` (one row per orbit: the
 seed, its Euler-Poisson state ``G1 .. gamma3``, status, crossings), ``andoyer-boundary``,
-``andoyer-separatrix``, ``andoyer-status`` (the visible message; CSS class
+``andoyer-separatrix``, the predicted island chains ``andoyer-chain-centres`` and
+``andoyer-chain-separatrices`` (``xs, ys, colour, label``: one line per row) and
+``andoyer-chain-points`` (``x, y, kind, marker, colour, label``), ``andoyer-status`` (the visible message; CSS class
 ``andoyer-level-error`` on errors) and ``andoyer-state`` (a hidden Div holding JSON:
-settings, generation, pending jobs, the level of the last message and the number of
-error messages shown so far). A browser test reads them through
+settings, generation, pending jobs, the level of the last message, the number of
+error messages shown so far and ``chains``, the number of predicted chains drawn or null). A browser test reads them through
 ``Bokeh.documents[0].get_model_by_name(...)``.
 """
 
@@ -57,6 +59,12 @@ from andoyer.explore.base import (
     orbit_columns,
     orbit_info_html,
     underlay_image,
+)
+from andoyer.explore.chains import (
+    CHAINS_MAX_ORDER,
+    ChainOverlay,
+    empty_columns,
+    shared_chain_overlay,
 )
 from andoyer.explore.layout import ExplorerLayout
 from andoyer.explore.seeds import seed
@@ -209,6 +217,8 @@ class Explorer(ExplorerLayout):
                      f"({s.plane.text[2]} is solved from H = h)", "info")
         if self.w_underlay.value:
             self._request_underlay()
+        if self.w_chains.value:
+            self._request_chains()
 
     # ------------------------------------------------------------------ clicks
     def _on_tap(self, event: Event) -> None:
@@ -418,6 +428,7 @@ class Explorer(ExplorerLayout):
         self.region.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
         self.boundary.data = {"x": [], "y": []}
         self.separatrix.data = {"x": [], "y": []}
+        self._show_chains(None)
         self._status("computing the accessible region …"
                      + (f" ({n} orbit(s) of the previous level cleared)" if n else ""), "busy")
         self._submit_view(new)
@@ -518,4 +529,56 @@ class Explorer(ExplorerLayout):
                                  "(chaotic)", "info")
             self._schedule(show)
         self._status("computing the chaos map …", "busy")
+        self._background(self._side, job)
+
+    # ------------------------------------------------------------------ predicted chains
+    def _on_chains(self, _event: Any) -> None:
+        self._guard(self._request_chains)
+
+    def _show_chains(self, overlay: ChainOverlay | None) -> None:
+        """Draw ``overlay`` (None: remove the chains) on the plane."""
+        cols = empty_columns() if overlay is None else overlay.columns()
+        self.chain_centres.data = cols["centres"]
+        self.chain_separatrices.data = cols["separatrices"]
+        self.chain_points.data = cols["points"]
+        self._chains_drawn = None if overlay is None else overlay.n_chains
+        self._chains_key = None if overlay is None else overlay.key
+        self._publish_state()
+
+    def _request_chains(self) -> None:
+        """Draw the predicted chains of the plane on screen (issue 28), computed on the
+        side worker (:func:`andoyer.explore.chains.shared_chain_overlay`, cached per body,
+        level, section and order); switched off, remove them."""
+        from andoyer.validation import integer
+
+        self._chain_token += 1
+        token = self._chain_token
+        if not self.w_chains.value:
+            self._show_chains(None)
+            return
+        order = integer("chains up to order p + q", self.w_chain_order.value, 2,
+                        CHAINS_MAX_ORDER)
+        view, gen = self.view, self._generation
+        if view is None:
+            return  # drawn when the plane is ready (_show_view asks again)
+        s = view.settings
+        if self._chains_key == (s.body, s.h, s.M, s.section, order):
+            return  # on screen already
+
+        def job() -> None:
+            if token != self._chain_token:
+                return
+            try:
+                overlay = shared_chain_overlay(s, order)
+            except ValueError as exc:
+                raise ValueError(f"predicted chains: {exc}") from exc
+
+            def show() -> None:
+                if token == self._chain_token and gen == self._generation \
+                        and self.w_chains.value:
+                    self._show_chains(overlay)
+                    self._status(overlay.message(), "info")
+            self._schedule(show)
+        self._show_chains(None)
+        self._status(f"computing the predicted chains (p + q ≤ {order}) …", "busy")
         self._background(self._side, job)
