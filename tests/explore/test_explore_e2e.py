@@ -417,3 +417,115 @@ def test_3d_view_of_the_selected_orbit(tmp_path: Path) -> None:
     finally:
         server.stop()
     assert not page_errors, f"JavaScript errors on the page: {page_errors}"
+
+
+#: JavaScript: for each source of the chain overlay, how many items its rendered glyph
+#: holds in the browser (the renderer views Bokeh drew on the plane's canvas).
+_DRAWN = """() => {
+  const out = {};
+  for (const v of Bokeh.index.all_views()) {
+    const src = v.model && v.model.data_source;
+    if (!src || !src.name || !src.name.startsWith('andoyer-chain-') || !v.glyph) continue;
+    out[src.name] = v.glyph.data_size;
+  }
+  return out;
+}"""
+
+
+def test_chain_overlay_in_chromium(tmp_path: Path) -> None:
+    """The toggle 'predicted island chains' draws, on the plane on screen, the chains of
+    :func:`andoyer.explore.chains.chain_overlay` for the page's body and level: the points
+    and lines in the browser are those computed here in Python, their glyphs are rendered,
+    the order field and a new level redraw them, unticking removes them, and a level where
+    the theory does not apply (h < 0) gives an error message and no chains."""
+    sync_api = _need_browser()
+    from andoyer.explore.chains import chain_overlay
+    from andoyer.explore.server import serve
+    from andoyer.explore.state import Settings
+
+    body = RigidBody.paper()
+    server = serve(body, threaded=True, n_crossings=50)
+    page_errors: list[str] = []
+    try:
+        with sync_api.sync_playwright() as pw:
+            browser = pw.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+            try:
+                page = browser.new_page(viewport={"width": 1400, "height": 960})
+                page.on("pageerror", lambda exc: page_errors.append(str(exc)))
+                page.goto(server.url)
+                state = _wait(page, "s.view_ready && s.pending === 0")
+                assert state["chains"] is None
+                assert _column(page, "andoyer-chain-points", "x").size == 0
+                h0 = state["h"]
+                page.locator(".andoyer-chains input").check()
+                state = _wait(page, "s.chains !== null")
+                ref = chain_overlay(Settings(body, h0), 10)
+                assert state["chains"] == ref.n_chains == 12
+                px, py = (_column(page, "andoyer-chain-points", v) for v in ("x", "y"))
+                np.testing.assert_array_equal(px, ref.points_x)
+                np.testing.assert_array_equal(py, ref.points_y)
+                assert np.all((px >= 0) & (px < 2 * math.pi))   # on the plane shown
+                kinds = page.evaluate(
+                    f"() => Array.from(({_MODEL})('andoyer-chain-points').data.kind)")
+                assert kinds == list(ref.points_kind)
+                centres = page.evaluate(
+                    f"() => ({_MODEL})('andoyer-chain-centres').data.ys.map(a => a.length)")
+                assert centres == [c.size for c in ref.centre_y]
+                status = page.evaluate(f"() => ({_MODEL})('andoyer-status').text")
+                assert "predicted chains" in status and "12 centre lines" in status
+                drawn = page.wait_for_function(
+                    f"() => {{ const d = ({_DRAWN})(); return d['andoyer-chain-points'] === "
+                    f"{ref.points_x.size} && d; }}", timeout=30_000).json_value()
+                assert drawn == {"andoyer-chain-centres": ref.n_chains,
+                                 "andoyer-chain-separatrices": len(ref.separatrix_x),
+                                 "andoyer-chain-points": ref.points_x.size}
+                page.screenshot(path=str(tmp_path / "explore-chains.png"))
+
+                # The order field: fewer chains (6:1 and 7:1 only, both signs).
+                field = page.locator(".andoyer-chain-order input")
+                field.fill("8")
+                field.press("Enter")
+                _wait(page, "s.chains === 4")
+                np.testing.assert_array_equal(_column(page, "andoyer-chain-points", "x"),
+                                              chain_overlay(Settings(body, h0), 8).points_x)
+
+                # A new level: the plane and the chains are recomputed for it.
+                h1 = round(h0 + 0.01, 6)
+                field = page.locator(".andoyer-h input")
+                field.fill(str(h1))
+                field.press("Enter")
+                _wait(page, f"s.h === {h1} && s.view_ready && s.chains !== null")
+                ref1 = chain_overlay(Settings(body, h1), 8)
+                got = _column(page, "andoyer-chain-points", "y")
+                np.testing.assert_array_equal(got, ref1.points_y)
+                assert not np.array_equal(got, ref.points_y[:got.size])
+
+                # Off: nothing of the chains stays on the plane.
+                page.locator(".andoyer-chains input").uncheck()
+                page.wait_for_function(
+                    f"() => {{ const s = {_STATE}; return s && s.chains === null && "
+                    f"({_MODEL})('andoyer-chain-centres').data.xs.length === 0; }}",
+                    timeout=30_000)
+
+                # h < 0, where the free top has no tori: on again, a message, no chains,
+                # no traceback.
+                field.fill("-0.001")
+                field.press("Enter")
+                _wait(page, "s.h === -0.001 && s.view_ready && s.pending === 0")
+                page.locator(".andoyer-chains input").check()
+                page.wait_for_function(
+                    f"() => {{ const s = {_STATE}; return s && s.errors > 0; }}",
+                    timeout=60_000)
+                status = page.evaluate(f"() => ({_MODEL})('andoyer-status').text")
+                assert "andoyer-level-error" in page.evaluate(
+                    f"() => ({_MODEL})('andoyer-status').css_classes.join(' ')")
+                assert "predicted chains: h must be &gt; 0" in status, status
+                assert "Traceback" not in status
+                assert _column(page, "andoyer-chain-points", "x").size == 0
+                assert json.loads(page.evaluate(
+                    f"() => ({_MODEL})('andoyer-state').text"))["chains"] is None
+            finally:
+                browser.close()
+    finally:
+        server.stop()
+    assert not page_errors, f"JavaScript errors on the page: {page_errors}"
