@@ -88,7 +88,7 @@ class ChainOverlay:
             text += f"; {second} of width O(μ) (second order): centre line only"
         return text
 
-    def columns(self) -> dict[str, dict[str, list[Any]]]:
+    def columns(self) -> dict[str, dict[str, Any]]:
         """The columns of the page's three sources: ``centres`` and ``separatrices``
         (``xs, ys, colour, label``: one line per row) and ``points`` (``x, y, kind,
         marker, colour, label``)."""
@@ -108,7 +108,7 @@ class ChainOverlay:
                        "label": list(self.points_label)}}
 
 
-def empty_columns() -> dict[str, dict[str, list[Any]]]:
+def empty_columns() -> dict[str, dict[str, Any]]:
     """The three sources' columns with no chain (the overlay switched off)."""
     return {"centres": {"xs": [], "ys": [], "colour": [], "label": []},
             "separatrices": {"xs": [], "ys": [], "colour": [], "label": []},
