@@ -33,7 +33,8 @@ seed, its Euler-Poisson state ``G1 .. gamma3``, status, crossings), ``andoyer-bo
 (the visible message; CSS class ``andoyer-level-error`` on errors) and
 ``andoyer-state`` (a hidden Div holding JSON: settings, generation, pending jobs, the
 level of the last message, the number of error messages shown so far and ``chains``, the
-number of predicted chains drawn or null). A browser test reads them through ``Bokeh.documents[0].get_model_by_name(...)``.
+number of predicted chains drawn or null). A browser test reads them through
+``Bokeh.documents[0].get_model_by_name(...)``.
 """
 
 from __future__ import annotations
