@@ -45,27 +45,53 @@ _EMPTY = np.empty(0)
 class ChainOverlay:
     """What the explorer draws of the predicted chains on one plane.
 
-    Lines are lists (one entry per chain, first-order chains for the separatrices) of
-    arrays in plane coordinates with NaN where the line wraps; points are flat arrays.
+    Lines are tuples (one entry per chain; for the separatrices, upper then lower of each
+    chain of first order in ``mu``) of arrays in plane coordinates with NaN where the line
+    wraps; points are flat arrays, stable points then unstable points of each chain.
+
+    Parameters
+    ----------
+    key : tuple
+        ``(body, h, M, section, max_order)``: what the overlay was computed for.
+    labels : tuple of str
+        ``"q:p (axis k, +)"`` per chain (``+``/``-``: the sign of the momentum on the
+        axis, the chain's two copies).
+    colours : tuple of str
+        One colour per chain (the orbit scale of :data:`andoyer.plot.style.SCALES`).
+    centre_x, centre_y : tuple of ndarray
+        The centre line of each chain (the resonant torus of the free top, (R9)).
+    separatrix_x, separatrix_y : tuple of ndarray
+        The separatrices (R9) of the first-order chains.
+    separatrix_colours : tuple of str
+        The colour of each separatrix (its chain's).
+    points_x, points_y : ndarray
+        The stable and unstable periodic points (R7) in the plane.
+    points_kind, points_label, points_colour : tuple of str
+        ``"stable"`` or ``"unstable"``, the chain's label and colour of each point.
+    half_width : ndarray
+        ``Delta G`` (R6) per chain, NaN where the width is of second order in ``mu``.
+    mu_order : ndarray of int
+        1, or 2 for a chain with ``p >= 2`` (centre line only).
+    ds : xarray.Dataset
+        The :func:`~andoyer.analysis.resonance.predict.resonance_widths` dataset.
     """
 
-    key: tuple[Any, ...]                 # (body, h, M, section, max_order)
-    labels: tuple[str, ...]              # "q:p (axis k, ±)" per chain (± the sign of
-    #                                      the momentum on the axis: the chain's two copies)
-    colours: tuple[str, ...]             # one colour per chain
+    key: tuple[Any, ...]
+    labels: tuple[str, ...]
+    colours: tuple[str, ...]
     centre_x: tuple[NDArray[np.float64], ...]
     centre_y: tuple[NDArray[np.float64], ...]
-    separatrix_x: tuple[NDArray[np.float64], ...]   # upper and lower of each first-order
-    separatrix_y: tuple[NDArray[np.float64], ...]   # chain, in that order
+    separatrix_x: tuple[NDArray[np.float64], ...]
+    separatrix_y: tuple[NDArray[np.float64], ...]
     separatrix_colours: tuple[str, ...]
-    points_x: NDArray[np.float64]        # stable points, then unstable points
+    points_x: NDArray[np.float64]
     points_y: NDArray[np.float64]
-    points_kind: tuple[str, ...]         # "stable" / "unstable"
+    points_kind: tuple[str, ...]
     points_label: tuple[str, ...]
     points_colour: tuple[str, ...]
-    half_width: NDArray[np.float64]      # Delta G per chain (NaN: second order in mu)
-    mu_order: NDArray[np.int64]          # 1, or 2 (width not predicted, not drawn)
-    ds: xr.Dataset                       # the resonance_widths dataset it came from
+    half_width: NDArray[np.float64]
+    mu_order: NDArray[np.int64]
+    ds: xr.Dataset
 
     @property
     def n_chains(self) -> int:
@@ -246,6 +272,20 @@ def shared_chain_overlay(settings: Settings, max_order: int = CHAINS_ORDER) -> C
 
     Pages asking at once for the same chains wait for one computation.
 
+    Parameters
+    ----------
+    settings : Settings
+        As for :func:`chain_overlay` (only body, ``h``, ``M`` and section count).
+    max_order : int, default :data:`CHAINS_ORDER`
+        Largest ``p + q``, 2 to :data:`CHAINS_MAX_ORDER`.
+
+    Returns
+    -------
+    ChainOverlay
+        Read-only arrays, shared.
+
+    Examples
+    --------
     >>> from dataclasses import replace
     >>> from andoyer import RigidBody
     >>> s = Settings(RigidBody.paper(), 0.2466, section="g=0")
