@@ -130,6 +130,22 @@ def test_bad_settings_are_refused(paper_g: Settings) -> None:
         chain_overlay(replace(paper_g, h=-0.001), 6)
 
 
+def test_png_of_the_plane_draws_the_chains(paper_g: Settings) -> None:
+    """The page's PNG export (plane_figure) draws the chains on screen: one line per centre
+    line and separatrix, the stable and unstable points at their plane coordinates."""
+    from andoyer.explore.export import plane_figure, png_bytes
+    from andoyer.explore.state import plane_view
+
+    view = plane_view(paper_g, boundary_grid=40)
+    ov = shared_chain_overlay(paper_g, ORDER)
+    bare = plane_figure(None, view).axes[0]
+    ax = plane_figure(None, view, chains=ov).axes[0]
+    assert len(ax.lines) - len(bare.lines) == ov.n_chains + len(ov.separatrix_x)
+    offsets = np.concatenate([c.get_offsets() for c in ax.collections[len(bare.collections):]])
+    np.testing.assert_array_equal(np.sort(offsets[:, 0]), np.sort(ov.points_x))
+    assert png_bytes(ax.figure)[:4] == b"\x89PNG"
+
+
 # ----------------------------------------------------------------------------- the page
 def _level(e) -> str:
     return re.search(r"<b>(\w+)</b>", e.status.text).group(1)
@@ -156,6 +172,7 @@ def test_page_toggle_draws_caches_and_reports_errors() -> None:
         assert json.loads(e.state_div.text)["chains"] == ref.n_chains > 0
         np.testing.assert_array_equal(e.chain_points.data["x"], ref.points_x)
         assert len(e.chain_centres.data["xs"]) == ref.n_chains
+        assert e.png()[:4] == b"\x89PNG"                       # the export draws them too
         e.w_h.value = e.settings.h + 0.01                     # a new level: new chains
         e.wait()
         new = shared_chain_overlay(e.settings, 8)

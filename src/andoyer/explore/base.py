@@ -127,6 +127,7 @@ class ExplorerBase:
         # switched off or not drawn yet; the overlay's key (body, h, M, section, order).
         self._chains_drawn: int | None = None
         self._chains_key: tuple[Any, ...] | None = None
+        self._chains_overlay: Any = None   # the ChainOverlay on screen (for the PNG)
         self._chain_token = 0
 
     # ------------------------------------------------------------------ threads
@@ -223,7 +224,8 @@ class ExplorerBase:
 
         if self.view is None:
             raise ValueError("the plane is not ready yet: wait for the accessible region")
-        return png_bytes(plane_figure(orbits_dataset(self.session), self.view))
+        return png_bytes(plane_figure(orbits_dataset(self.session), self.view,
+                                      chains=self._chains_overlay))
 
     def _download(self, make: Callable[[], bytes]) -> io.BytesIO:
         try:

@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
+from andoyer.explore.chains import ChainOverlay
 from andoyer.explore.state import PlaneView, Session
 from andoyer.integrate.results import provenance
 
@@ -117,10 +118,11 @@ def netcdf_bytes(ds: xr.Dataset) -> bytes:
         return path.read_bytes()
 
 
-def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = None
-                 ) -> Figure:
+def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = None,
+                 chains: ChainOverlay | None = None) -> Figure:
     """The section plane as on screen: orbits in their colours, accessible-region
-    boundary, unperturbed separatrices (andoyer's figure style).
+    boundary, unperturbed separatrices, the predicted island chains where the page
+    shows them (andoyer's figure style).
 
     Parameters
     ----------
@@ -131,6 +133,9 @@ def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = 
         Boundary, separatrices and ranges of the plane.
     title : str, optional
         Default: body, h, M and the section.
+    chains : ChainOverlay, optional
+        The predicted chains (:func:`andoyer.explore.chains.chain_overlay`): centre lines
+        dashed, separatrices solid, stable points o, unstable points x.
     """
     from andoyer.plot.section import LABELS
     from andoyer.plot.style import COLOURS, angle_ticks, new_figure, paper_style
@@ -146,6 +151,21 @@ def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = 
                            linewidths=0, color=str(o.colour.values), rasterized=True)
         for x, y in view.separatrices:
             ax.plot(x, y, color=COLOURS["separatrix"], lw=0.8, ls="--")
+        if chains is not None:
+            for x, y, c in zip(chains.centre_x, chains.centre_y, chains.colours, strict=True):
+                ax.plot(x, y, color=c, lw=0.7, ls=(0, (4, 2)))
+            for x, y, c in zip(chains.separatrix_x, chains.separatrix_y,
+                               chains.separatrix_colours, strict=True):
+                ax.plot(x, y, color=c, lw=0.5)
+            kinds = np.array(chains.points_kind)
+            colours = np.array(chains.points_colour)
+            st, un = kinds == "stable", kinds == "unstable"
+            if st.any():
+                ax.scatter(chains.points_x[st], chains.points_y[st], s=12, marker="o",
+                           facecolors="none", edgecolors=list(colours[st]), linewidths=0.7)
+            if un.any():
+                ax.scatter(chains.points_x[un], chains.points_y[un], s=12, marker="x",
+                           c=list(colours[un]), linewidths=0.7)
         ax.plot(view.boundary_x, view.boundary_y, color=COLOURS["boundary"], lw=0.8)
         ax.set_xlim(*view.x_range)
         ax.set_ylim(*view.y_range)

@@ -544,6 +544,7 @@ class Explorer(ExplorerLayout):
         self.chain_points.data = cols["points"]
         self._chains_drawn = None if overlay is None else overlay.n_chains
         self._chains_key = None if overlay is None else overlay.key
+        self._chains_overlay = overlay
         self._publish_state()
 
     def _request_chains(self) -> None:
