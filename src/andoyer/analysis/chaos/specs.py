@@ -67,7 +67,7 @@ class MapGrid:
     >>> MapGrid(1)
     Traceback (most recent call last):
     ...
-    ValueError: n must be an integer >= 2, got 1
+    ValueError: n must be an integer in [2, 1000000000], got 1
     """
 
     n: tuple[int, int] | int = 64
