@@ -129,4 +129,4 @@ class NoCacheWarning(UserWarning):
 
 class DamagedStoreWarning(UserWarning):
     """Points of a scan store marked done had missing or damaged data: they are named
-    and computed again (:func:`andoyer.scan.store.verify`)."""
+    and computed again (:func:`andoyer.scan.damage.verify`)."""
