@@ -19,6 +19,7 @@ import xarray as xr
 import andoyer
 from andoyer import RigidBody, energy, from_andoyer, hamiltonian, to_andoyer, to_hess
 from andoyer.explore.export import netcdf_bytes, orbits_dataset, plane_figure, png_bytes
+from andoyer.explore.orbits import crossing_stages, integral_drifts
 from andoyer.explore.seeds import initial_charts, seed
 from andoyer.explore.state import (
     PALETTE,
@@ -27,9 +28,7 @@ from andoyer.explore.state import (
     Session,
     Settings,
     Stage,
-    crossing_stages,
     default_energy,
-    integral_drifts,
     make_settings,
     plane_coordinates,
     plane_view,
@@ -236,7 +235,7 @@ def test_plane_view(settings: Settings) -> None:
 def test_indicators_and_underlay(settings: Settings) -> None:
     pytest.importorskip("andoyer.analysis.chaos.indicators")
     from andoyer.explore.base import underlay_image as _underlay_image
-    from andoyer.explore.state import chaos_underlay, orbit_indicators
+    from andoyer.explore.orbits import chaos_underlay, orbit_indicators
 
     regular = orbit_indicators(settings, seed(settings, 1.6, 0.5)[0].y0, 300.0)
     assert 1.5 < regular["megno"] < 2.5 and abs(regular["H_drift"]) < 1e-10

@@ -23,6 +23,7 @@ import numpy as np
 import panel as pn
 
 from andoyer.body import RigidBody
+from andoyer.explore.orbits import integral_drifts
 from andoyer.explore.seeds import initial_charts
 from andoyer.explore.state import (
     Orbit,
@@ -30,7 +31,6 @@ from andoyer.explore.state import (
     PlaneView,
     Session,
     Settings,
-    integral_drifts,
     make_settings,
 )
 
@@ -284,7 +284,7 @@ def underlay_image(ds: Any) -> dict[str, list[Any]]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A :func:`~andoyer.explore.state.chaos_underlay` map.
+        A :func:`~andoyer.explore.orbits.chaos_underlay` map.
     """
     import matplotlib as mpl
 

@@ -35,7 +35,7 @@ from andoyer.explore.base import (
     widget,
 )
 from andoyer.explore.chains import CHAINS_MAX_ORDER, CHAINS_ORDER, empty_columns
-from andoyer.explore.state import (
+from andoyer.explore.orbits import (
     UNDERLAY_N,
     UNDERLAY_T_END,
 )

@@ -11,7 +11,7 @@ Threads
 Nothing slow runs on the server's event loop. A click only queues a job on the
 session's worker thread (one per browser session, so clicks made while orbits run
 wait their turn, in order); the worker solves the seed, integrates the orbit in
-stages (:func:`andoyer.explore.state.crossing_stages`) and hands each stage back to the
+stages (:func:`andoyer.explore.orbits.crossing_stages`) and hands each stage back to the
 event loop with ``Document.add_next_tick_callback``, the thread-safe way to change a
 Bokeh document; only there is the :class:`~andoyer.explore.state.Session` or any
 model changed. A second worker computes the side panel (time plot, indicator), so it
@@ -68,6 +68,12 @@ from andoyer.explore.chains import (
     shared_chain_overlay,
 )
 from andoyer.explore.layout import ExplorerLayout
+from andoyer.explore.orbits import (
+    chaos_underlay,
+    crossing_stages,
+    integral_drifts,
+    orbit_indicators,
+)
 from andoyer.explore.seeds import seed
 from andoyer.explore.state import (
     PLANES,
@@ -75,10 +81,6 @@ from andoyer.explore.state import (
     Seed,
     Settings,
     Stage,
-    chaos_underlay,
-    crossing_stages,
-    integral_drifts,
-    orbit_indicators,
     shared_plane_view,
 )
 from andoyer.integrate.section import Section
