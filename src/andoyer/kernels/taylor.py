@@ -68,11 +68,22 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from andoyer.kernels import taylor_generated, taylor_sections
+from andoyer.kernels import taylor_generated, taylor_jets, taylor_sections
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.constants import T_START
 from andoyer.kernels.dop853 import source_stamp
 from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
+from andoyer.kernels.taylor_jets import (
+    N_STATE,
+    advance,
+    attitude_jets,
+    fill_constants,
+    horner,
+    load,
+    state_jets,
+    step_size,
+    tangent_jets,
+)
 from andoyer.kernels.taylor_sections import (
     bernstein,
     casteljau,
@@ -119,14 +130,14 @@ __all__ = [
 #: Highest and lowest Taylor orders (a tolerance of 1e-32 asks for 38).
 MAX_ORDER = 40
 MIN_ORDER = 4
-_N = 6  # the Euler-Poisson state
+_N = N_STATE  # the Euler-Poisson state
 _MAX_DEPTH = 60  # bisections of a step in the root isolation
 _MIN_WIDTH = 1e-13  # narrowest isolating interval (fraction of the step)
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka's engine)
 
 #: Hash of every source the compiled entry points depend on (their cache key).
 TAYLOR_STAMP = source_stamp(taylor_generated.__file__ or "", __file__,
-                            taylor_sections.__file__ or "")
+                            taylor_sections.__file__ or "", taylor_jets.__file__ or "")
 
 
 def order_for(tol: float) -> int:
@@ -163,111 +174,6 @@ def n_vectors(width: int) -> int:
     if r or k < 0:
         raise ValueError(f"a state has 6 + 6 k floats, got {width}")
     return k
-
-
-# Helpers: compiled into the entry points that call them (not cached on their own,
-# see andoyer.kernels.dop853's notes on the cache key).
-_constants = fast_jit(taylor_generated.ep_taylor_constants)
-_jet = fast_jit(taylor_generated.ep_taylor_jet)
-_tangent_jet = fast_jit(taylor_generated.ep_taylor_tangent_jet)
-_attitude_jet = fast_jit(taylor_generated.ep_taylor_attitude_jet)
-
-
-@fast_jit
-def _fill_constants(p, q):
-    """``q`` = the folded body coefficients of the jets, from the kernel parameters."""
-    c = _constants(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
-    for i in range(len(c)):
-        q[i] = c[i]
-
-
-@fast_jit
-def _state_jets(X, order, q):
-    """Jet of the state ``X[0]`` (row 0 is the current value) to ``order``."""
-    _jet(X[0], order, q)
-
-
-@fast_jit
-def _tangent_jets(X, order, q):
-    """Jets of the state ``X[0]`` and of the tangent vectors ``X[1:]`` (rows 0 of each
-    are the current values), to ``order``."""
-    _jet(X[0], order, q)
-    for i in range(1, X.shape[0]):
-        _tangent_jet(X[0], X[i], order, q)
-
-
-@fast_jit
-def _attitude_jets(X, order, q):
-    """Jets of the state ``X[0]`` and of the attitude quaternion ``X[1, :, 0:4]`` (its
-    block padded with two zero components, whose jets stay zero)."""
-    _jet(X[0], order, q)
-    _attitude_jet(X[0], X[1], order, q)
-    for k in range(1, order + 1):
-        X[1, k, 4] = 0.0
-        X[1, k, 5] = 0.0
-
-
-@fast_jit
-def _radius(x, order):
-    """rho of the module notes for one block of jets ``x`` (order + 1, 6)."""
-    m = 0.0
-    n1 = 0.0
-    n2 = 0.0
-    total = 0.0  # NaN or inf if any coefficient is (max() would drop a NaN)
-    for i in range(x.shape[1]):
-        m = max(m, abs(x[0, i]))
-        n1 = max(n1, abs(x[order - 1, i]))
-        n2 = max(n2, abs(x[order, i]))
-        total += abs(x[0, i]) + abs(x[order - 1, i]) + abs(x[order, i])
-    if not total < np.inf:  # a non-finite state or jet
-        return np.nan
-    m = max(1.0, m)
-    rho = np.inf
-    if n1 > 0.0:
-        rho = (m / n1) ** (1.0 / (order - 1))
-    if n2 > 0.0:
-        rho = min(rho, (m / n2) ** (1.0 / order))
-    return rho
-
-
-@fast_jit
-def _step_size(X, order):
-    """Jorba-Zou step of the module notes (least over the state and tangent vectors)."""
-    rho = _radius(X[0], order)
-    for i in range(1, X.shape[0]):
-        rho = min(rho, _radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
-        if rho != rho:
-            return rho
-    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
-
-
-@fast_jit
-def _horner(X, order, tau, out):
-    """``out[6 b + i]`` = block ``b`` (state, then vectors) at ``t0 + tau``."""
-    for b in range(X.shape[0]):
-        for i in range(_N):
-            v = X[b, order, i]
-            for k in range(order - 1, -1, -1):
-                v = v * tau + X[b, k, i]
-            out[_N * b + i] = v
-
-
-@fast_jit
-def _advance(X, order, h):
-    """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
-    for b in range(X.shape[0]):
-        for i in range(_N):
-            v = X[b, order, i]
-            for k in range(order - 1, -1, -1):
-                v = v * h + X[b, k, i]
-            X[b, 0, i] = v
-
-
-@fast_jit
-def _load(X, z):
-    for b in range(X.shape[0]):
-        for i in range(_N):
-            X[b, 0, i] = z[_N * b + i]
 
 
 class Orbits(NamedTuple):
@@ -307,7 +213,7 @@ def make_orbits(jets: Any) -> Orbits:
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
         info[3] += 1
-        h = _step_size(X, order)
+        h = step_size(X, order)
         min_step = 10.0 * (np.nextafter(t, np.inf) - t)
         if not h >= min_step:  # also NaN (a non-finite state)
             return STEP_TOO_SMALL, t, 0.0
@@ -332,7 +238,7 @@ def make_orbits(jets: Any) -> Orbits:
             for i in range(z0.shape[0]):
                 out[j, i] = z0[i]
             j += 1
-        _load(X, z0)
+        load(X, z0)
         while j < k:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
@@ -342,9 +248,9 @@ def make_orbits(jets: Any) -> Orbits:
                 info[0] = status
                 return
             while j < k and t_out[j] <= t1:
-                _horner(X, order, t_out[j] - t if t_out[j] < t1 else h, out[j])
+                horner(X, order, t_out[j] - t if t_out[j] < t1 else h, out[j])
                 j += 1
-            _advance(X, order, h)
+            advance(X, order, h)
             info[1] += 1
             t = t1
 
@@ -354,7 +260,7 @@ def make_orbits(jets: Any) -> Orbits:
                 u):
         """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
         and past T_START; returns the count. ``P``: jets of order 1 (the field there)."""
-        _horner(X, order, s_root * h, ytmp)
+        horner(X, order, s_root * h, ytmp)
         for i in range(_N):
             Y[0, i] = ytmp[i]
         f = tape_value(ftape, fC, Y, u)
@@ -364,7 +270,7 @@ def make_orbits(jets: Any) -> Orbits:
         if not abs(dt) <= _MAX_POLISH:
             dt = 0.0
         if dt != 0.0:
-            _load(P, ytmp)
+            load(P, ytmp)
             jets(P, 1, q)  # P[:, 1] = the field (1) and J w at ytmp
             for b in range(P.shape[0]):
                 for i in range(_N):
@@ -411,7 +317,7 @@ def make_orbits(jets: Any) -> Orbits:
                 W[i, k] /= W[order, k]
         for k in range(n):
             W[order, k] = 1.0
-        _load(X, z0)
+        load(X, z0)
         for i in range(_N):
             Y[0, i] = z0[i]
         fa = tape_value(ftape, fC, Y, u)
@@ -492,7 +398,7 @@ def make_orbits(jets: Any) -> Orbits:
                     sr = solve_root(a, order, lo, hi, flo)
                     count = record(X, order, q, t, h, sr, ftape, fC, wtape, wC, a, tc, zc,
                                     count, ytmp, P, Y, u)
-            _advance(X, order, h)
+            advance(X, order, h)
             info[1] += 1
             fa = fb
             t = t1
@@ -502,10 +408,10 @@ def make_orbits(jets: Any) -> Orbits:
 
 
 #: Orbits of the state alone, and of the state with tangent vectors.
-STATE = make_orbits(_state_jets)
-TANGENT = make_orbits(_tangent_jets)
+STATE = make_orbits(state_jets)
+TANGENT = make_orbits(tangent_jets)
 #: Orbits of the state with the attitude quaternion (blocks (y), (q, 0, 0)).
-ATTITUDE = make_orbits(_attitude_jets)
+ATTITUDE = make_orbits(attitude_jets)
 _attitude_propagate = ATTITUDE.propagate_orbit
 _state_propagate = STATE.propagate_orbit
 _state_crossings = STATE.crossings_orbit
@@ -523,7 +429,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         """:func:`propagate` of a block of orbits (states alone) on the calling thread."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
-        _fill_constants(p, q)
+        fill_constants(p, q)
         X = np.empty((1, order + 1, _N))
         for i in range(z0.shape[0]):
             _state_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
@@ -533,7 +439,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         """:func:`propagate` of a block of orbits with tangent vectors."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
-        _fill_constants(p, q)
+        fill_constants(p, q)
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         for i in range(z0.shape[0]):
             _tangent_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
@@ -544,7 +450,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         """:func:`locate_crossings` of a block of orbits (states alone)."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
-        _fill_constants(p, q)
+        fill_constants(p, q)
         X = np.empty((1, order + 1, _N))
         for i in range(z0.shape[0]):
             count[i] = _state_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
@@ -556,7 +462,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         """:func:`locate_crossings` of a block of orbits with tangent vectors."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
-        _fill_constants(p, q)
+        fill_constants(p, q)
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         for i in range(z0.shape[0]):
             count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
@@ -567,7 +473,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         """:func:`propagate_attitude` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
-        _fill_constants(p, q)
+        fill_constants(p, q)
         X = np.empty((2, order + 1, _N))
         for i in range(z0.shape[0]):
             _attitude_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
@@ -585,10 +491,10 @@ def jet(z0, p, order):
     """The jets (state, then tangent vectors) at ``z0`` (6 + 6 k,): shape
     (1 + k, order + 1, 6)."""
     q = np.empty(taylor_generated.N_CONSTANTS)
-    _fill_constants(p, q)
+    fill_constants(p, q)
     X = np.empty((z0.shape[0] // _N, order + 1, _N))
-    _load(X, z0)
-    _tangent_jets(X, order, q)
+    load(X, z0)
+    tangent_jets(X, order, q)
     return X
 
 

@@ -1,0 +1,136 @@
+r"""Jets and steps of the Taylor method of :mod:`andoyer.kernels.taylor`: the Taylor
+coefficients of a state (alone, with tangent vectors, or with the attitude quaternion)
+from the generated recurrences of :mod:`andoyer.kernels.taylor_generated`, the
+Jorba-Zou step size from the last two coefficients, and the step's polynomial evaluated
+(Horner) at an output time or at the step's end.
+
+The jets of a state of ``k`` blocks are an array ``X`` of shape ``(k, order + 1, 6)``:
+row ``X[b, j]`` holds the coefficients of order ``j`` of block ``b`` (the state, then
+each tangent vector or the padded quaternion), row 0 the current value.
+
+Plain Numba functions (``fast_jit``) compiled into the cached entry points of
+:mod:`andoyer.kernels.taylor` that call them (their cache key,
+:data:`andoyer.kernels.taylor.TAYLOR_STAMP`, hashes this file too).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from andoyer.kernels import taylor_generated
+from andoyer.kernels.taylor_sections import fast_jit
+
+__all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
+           "radius", "step_size", "horner", "advance", "load"]
+
+#: Floats of the Euler-Poisson state: one block of the jets.
+N_STATE = 6
+
+
+# Helpers: compiled into the entry points that call them (not cached on their own,
+# see andoyer.kernels.dop853's notes on the cache key).
+_constants = fast_jit(taylor_generated.ep_taylor_constants)
+_jet = fast_jit(taylor_generated.ep_taylor_jet)
+_tangent_jet = fast_jit(taylor_generated.ep_taylor_tangent_jet)
+_attitude_jet = fast_jit(taylor_generated.ep_taylor_attitude_jet)
+
+
+@fast_jit
+def fill_constants(p, q):
+    """``q`` = the folded body coefficients of the jets, from the kernel parameters."""
+    c = _constants(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
+    for i in range(len(c)):
+        q[i] = c[i]
+
+
+@fast_jit
+def state_jets(X, order, q):
+    """Jet of the state ``X[0]`` (row 0 is the current value) to ``order``."""
+    _jet(X[0], order, q)
+
+
+@fast_jit
+def tangent_jets(X, order, q):
+    """Jets of the state ``X[0]`` and of the tangent vectors ``X[1:]`` (rows 0 of each
+    are the current values), to ``order``."""
+    _jet(X[0], order, q)
+    for i in range(1, X.shape[0]):
+        _tangent_jet(X[0], X[i], order, q)
+
+
+@fast_jit
+def attitude_jets(X, order, q):
+    """Jets of the state ``X[0]`` and of the attitude quaternion ``X[1, :, 0:4]`` (its
+    block padded with two zero components, whose jets stay zero)."""
+    _jet(X[0], order, q)
+    _attitude_jet(X[0], X[1], order, q)
+    for k in range(1, order + 1):
+        X[1, k, 4] = 0.0
+        X[1, k, 5] = 0.0
+
+
+@fast_jit
+def radius(x, order):
+    """rho of :mod:`andoyer.kernels.taylor`'s notes for one block of jets ``x`` (order + 1, 6)."""
+    m = 0.0
+    n1 = 0.0
+    n2 = 0.0
+    total = 0.0  # NaN or inf if any coefficient is (max() would drop a NaN)
+    for i in range(x.shape[1]):
+        m = max(m, abs(x[0, i]))
+        n1 = max(n1, abs(x[order - 1, i]))
+        n2 = max(n2, abs(x[order, i]))
+        total += abs(x[0, i]) + abs(x[order - 1, i]) + abs(x[order, i])
+    if not total < np.inf:  # a non-finite state or jet
+        return np.nan
+    m = max(1.0, m)
+    rho = np.inf
+    if n1 > 0.0:
+        rho = (m / n1) ** (1.0 / (order - 1))
+    if n2 > 0.0:
+        rho = min(rho, (m / n2) ** (1.0 / order))
+    return rho
+
+
+@fast_jit
+def step_size(X, order):
+    """Jorba-Zou step of :mod:`andoyer.kernels.taylor`'s notes (least over the state
+    and tangent vectors)."""
+    rho = radius(X[0], order)
+    for i in range(1, X.shape[0]):
+        rho = min(rho, radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
+        if rho != rho:
+            return rho
+    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+
+
+@fast_jit
+def horner(X, order, tau, out):
+    """``out[6 b + i]`` = block ``b`` (state, then vectors) at ``t0 + tau``."""
+    for b in range(X.shape[0]):
+        for i in range(N_STATE):
+            v = X[b, order, i]
+            for k in range(order - 1, -1, -1):
+                v = v * tau + X[b, k, i]
+            out[N_STATE * b + i] = v
+
+
+@fast_jit
+def advance(X, order, h):
+    """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
+    for b in range(X.shape[0]):
+        for i in range(N_STATE):
+            v = X[b, order, i]
+            for k in range(order - 1, -1, -1):
+                v = v * h + X[b, k, i]
+            X[b, 0, i] = v
+
+
+@fast_jit
+def load(X, z):
+    """Rows 0 of the jets ``X`` = the state ``z`` (6 + 6 k floats), block by block."""
+    for b in range(X.shape[0]):
+        for i in range(N_STATE):
+            X[b, 0, i] = z[N_STATE * b + i]
