@@ -442,6 +442,13 @@ def _scalar_kind(annotation: Any, namespace: dict[str, Any] | None = None
     return None
 
 
+def _shown(value: Any) -> str:
+    """``repr(value)`` cut to 60 characters, for an error message (built only on an error:
+    the repr of an array costs more than the whole check)."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
     if value is None and optional:
         return
@@ -450,20 +457,17 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
             and (isinstance(value, numbers.Integral)
                  or (math.isfinite(value) and float(value).is_integer()))
         if not ok:
-            text = repr(value)
             raise ValueError(f"{name} must be an integer{' or None' if optional else ''}, "
-                             f"got {text if len(text) <= 60 else text[:57] + '...'}")
+                             f"got {_shown(value)}")
         if abs(value) > MAX_COUNT:
             raise ValueError(f"{name} must be an integer within +-{MAX_COUNT:.0e}, got "
                              f"{value!r}")
         return
-    text = repr(value)
-    text = text if len(text) <= 60 else text[:57] + "..."
     if isinstance(kind, type):
         if not isinstance(value, kind):
             raise ValueError(f"{name} must be a {kind.__name__}"
                              f"{' or None' if optional else ''}, got {type(value).__name__} "
-                             f"{text}")
+                             f"{_shown(value)}")
         return
     if kind == "array":
         # The values NumPy would turn silently into a number: None (NaN), a bool (1.0), a
@@ -471,22 +475,22 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
         # each function's real_array check (with its own name for the argument).
         if value is None or isinstance(value, bool | np.bool_ | str | bytes):
             raise ValueError(f"{name} must be a number or an array of numbers"
-                             f"{' or None' if optional else ''}, got {text}")
+                             f"{' or None' if optional else ''}, got {_shown(value)}")
         return
     if kind == "bool":
         if not isinstance(value, bool | np.bool_):
             raise ValueError(f"{name} must be True or False"
-                             f"{' or None' if optional else ''}, got {text}")
+                             f"{' or None' if optional else ''}, got {_shown(value)}")
     elif kind == "str":
         if not isinstance(value, str):
             raise ValueError(f"{name} must be a string{' or None' if optional else ''}, "
-                             f"got {text}")
+                             f"got {_shown(value)}")
     elif kind == "float":
         if isinstance(value, np.ndarray) and value.ndim == 0:
             value = value[()]
         if not isinstance(value, numbers.Real) or isinstance(value, bool | np.bool_):
             raise ValueError(f"{name} must be a real number{' or None' if optional else ''}"
-                             f", got {text}")
+                             f", got {_shown(value)}")
         if math.isnan(value):
             raise ValueError(f"{name} must be a number, got NaN")
 
