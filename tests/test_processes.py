@@ -243,6 +243,31 @@ def test_sigterm_ends_a_process_pool_and_its_worker(tmp_path):
     assert_clean_end(o, tmp_path, "paper")
 
 
+_CHILD_WITH_A_BAR = """
+import concurrent.futures as cf, multiprocessing as mp, os, signal
+from andoyer.processes import child_signals
+if __name__ == "__main__":
+    with cf.ProcessPoolExecutor(1, mp_context=mp.get_context("spawn"),
+                                initializer=child_signals) as pool:
+        code = ("from tqdm import tqdm; tqdm(range(1), disable=True); "
+                "import os, signal; os.kill(os.getpid(), signal.SIGTERM)")
+        try:
+            pool.submit(exec, code).result()
+        except Exception:
+            pass  # the worker ended by SIGTERM (BrokenProcessPool): what is tested
+"""
+
+
+def test_a_child_ended_by_sigterm_leaves_no_semaphore_to_report():
+    """A pool worker that drew a progress bar and was ended by SIGTERM: no "leaked
+    semaphore" from multiprocessing's resource tracker on the parent's stderr (tqdm's
+    default lock is a named semaphore; the noheyoka CI job saw the message under
+    ``andoyer paper``'s one line)."""
+    done = subprocess.run([sys.executable, "-c", _CHILD_WITH_A_BAR], capture_output=True,
+                          text=True, timeout=120)
+    assert "leaked" not in done.stderr and "Traceback" not in done.stderr, done.stderr
+
+
 def test_ctrl_c_on_a_local_cluster_scan_is_one_line_and_resumes_exactly(tmp_path):
     """Ctrl-C (SIGINT to the group) on a scan on a local Dask cluster, once a chunk is
     done: one line (no tracebacks of the workers), every process ended, every server

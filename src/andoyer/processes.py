@@ -39,6 +39,13 @@ def child_signals() -> None:
     for sig in CHILD_IGNORES:
         signal.signal(sig, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _end_now)
+    # tqdm's default lock is a multiprocessing RLock: a named semaphore registered with
+    # the resource tracker, which a child ended by SIGTERM (os._exit) never unlinks, so
+    # the tracker printed "leaked semaphore objects" under the parent's one-line message.
+    # A child's bars are its own (silenced in report workers): a thread lock suffices.
+    from tqdm import tqdm
+
+    tqdm.set_lock(threading.RLock())
 
 
 def _end_now(signum: int, frame: object) -> None:
