@@ -13,8 +13,6 @@ broken where they wrap. :func:`shared_chain_overlay` computes it once per
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,7 +20,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from andoyer.explore.state import Settings
+from andoyer.explore.state import Settings, SharedCache
 from andoyer.integrate.section import Section
 from andoyer.validation import integer
 
@@ -261,9 +259,7 @@ def chain_overlay(settings: Settings, max_order: int = CHAINS_ORDER) -> ChainOve
                         else np.empty(0, dtype=np.int64), ds)
 
 
-_OVERLAYS: OrderedDict[tuple[Any, ...], ChainOverlay] = OrderedDict()
-_OVERLAYS_LOCK = threading.Lock()
-_COMPUTING: dict[tuple[Any, ...], threading.Lock] = {}
+_OVERLAYS = SharedCache(CHAINS_CACHE)
 
 
 def shared_chain_overlay(settings: Settings, max_order: int = CHAINS_ORDER) -> ChainOverlay:
@@ -296,24 +292,14 @@ def shared_chain_overlay(settings: Settings, max_order: int = CHAINS_ORDER) -> C
         raise TypeError(f"settings must be an explorer Settings, got {type(settings).__name__}")
     max_order = integer("max_order", max_order, 2, CHAINS_MAX_ORDER)
     s = settings
-    key = (s.body, s.h, s.M, s.section, max_order)
-    with _OVERLAYS_LOCK:
-        if key in _OVERLAYS:
-            _OVERLAYS.move_to_end(key)
-            return _OVERLAYS[key]
-        computing = _COMPUTING.setdefault(key, threading.Lock())
-    with computing:
-        with _OVERLAYS_LOCK:
-            if key in _OVERLAYS:
-                return _OVERLAYS[key]
+
+    def compute() -> ChainOverlay:
         overlay = chain_overlay(settings, max_order)
         for arr in (overlay.points_x, overlay.points_y, overlay.half_width, overlay.mu_order,
                     *overlay.centre_x, *overlay.centre_y, *overlay.separatrix_x,
                     *overlay.separatrix_y):
             arr.flags.writeable = False
-        with _OVERLAYS_LOCK:
-            _OVERLAYS[key] = overlay
-            while len(_OVERLAYS) > CHAINS_CACHE:
-                _OVERLAYS.popitem(last=False)
-            _COMPUTING.pop(key, None)
         return overlay
+
+    overlay: ChainOverlay = _OVERLAYS.get((s.body, s.h, s.M, s.section, max_order), compute)
+    return overlay

@@ -28,6 +28,7 @@ import itertools
 import math
 import threading
 from collections import OrderedDict
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -43,8 +44,8 @@ from andoyer.integrate.section import SectionPlane as Plane
 from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 
-__all__ = ["Settings", "Plane", "PLANES", "Seed", "OutsideRegionError", "Stage", "Orbit",
-           "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",
+__all__ = ["Settings", "SharedCache", "Plane", "PLANES", "Seed", "OutsideRegionError",
+           "Stage", "Orbit", "Session", "PlaneView", "PALETTE", "default_energy", "make_settings",
            "plane_view", "shared_plane_view", "VIEW_CACHE", "plane_coordinates",
            "unperturbed_separatrices"]
 
@@ -338,11 +339,62 @@ def plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView:
                      fill.accessible.values, seps, fill)
 
 
+class SharedCache:
+    """Results computed once per key and shared, read-only, by every page of a server.
+
+    Pages asking at once for the same key wait for the one computation instead of
+    running one each; the last ``size`` results are kept (least recently used dropped).
+    The one owner of this pattern in the explorer: plane views, predicted chains.
+
+    Parameters
+    ----------
+    size : int
+        Results kept.
+
+    Examples
+    --------
+    >>> cache = SharedCache(2)
+    >>> cache.get("a", lambda: [1]) is cache.get("a", lambda: [2])
+    True
+    """
+
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self._done: OrderedDict[Any, Any] = OrderedDict()
+        self._lock = threading.Lock()
+        self._computing: dict[Any, threading.Lock] = {}
+
+    def get(self, key: Any, compute: Callable[[], Any]) -> Any:
+        """The result for ``key``, calling ``compute()`` once if it is not kept.
+
+        Parameters
+        ----------
+        key : hashable
+            What the result depends on.
+        compute : callable
+            Builds the result (and makes its arrays read-only).
+        """
+        with self._lock:
+            if key in self._done:
+                self._done.move_to_end(key)
+                return self._done[key]
+            computing = self._computing.setdefault(key, threading.Lock())
+        with computing:
+            with self._lock:
+                if key in self._done:
+                    return self._done[key]
+            result = compute()
+            with self._lock:
+                self._done[key] = result
+                while len(self._done) > self.size:
+                    self._done.popitem(last=False)
+                self._computing.pop(key, None)
+            return result
+
+
 #: Plane views kept for sharing between pages (the most recently used).
 VIEW_CACHE = 16
-_VIEWS: OrderedDict[tuple[Settings, int], PlaneView] = OrderedDict()
-_VIEWS_LOCK = threading.Lock()
-_COMPUTING: dict[tuple[Settings, int], threading.Lock] = {}
+_VIEWS = SharedCache(VIEW_CACHE)
 
 
 def shared_plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView:
@@ -365,26 +417,15 @@ def shared_plane_view(settings: Settings, boundary_grid: int = 160) -> PlaneView
     >>> shared_plane_view(make_settings(None), 40) is shared_plane_view(make_settings(None), 40)
     True
     """
-    key = (settings, int(boundary_grid))
-    with _VIEWS_LOCK:
-        if key in _VIEWS:
-            _VIEWS.move_to_end(key)
-            return _VIEWS[key]
-        computing = _COMPUTING.setdefault(key, threading.Lock())
-    with computing:
-        with _VIEWS_LOCK:
-            if key in _VIEWS:
-                return _VIEWS[key]
+    def compute() -> PlaneView:
         view = plane_view(settings, boundary_grid)
         for arr in (view.boundary_x, view.boundary_y, view.accessible,
                     *(a for pair in view.separatrices for a in pair)):
             arr.flags.writeable = False
-        with _VIEWS_LOCK:
-            _VIEWS[key] = view
-            while len(_VIEWS) > VIEW_CACHE:
-                _VIEWS.popitem(last=False)
-            _COMPUTING.pop(key, None)
         return view
+
+    view: PlaneView = _VIEWS.get((settings, int(boundary_grid)), compute)
+    return view
 
 
 # --------------------------------------------------------------------------- seeds
