@@ -171,6 +171,8 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "measure_island": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,
                        "resonance": "3:1", "axis": 1, "n_crossings": 60, "n_seeds": 1,
                        "n_rounds": 1, "engine": "numba"},
+    "resonant_normal_form": {"body": RigidBody(2.5, 1.0, 2.0, 1e-3, (0.6, 0.48, 0.64)),
+                             "h": 1.0, "resonance": "2:1", "axis": 2},
     "splitting_vs_epsilon": {"body": HESS, "n_phase": 8},
     **{f: {"mu": 0.01} for f in ("pendulum_energy", "pendulum_modulus", "pendulum_motion",
                                  "pendulum_period", "pendulum_solution",

@@ -8,7 +8,9 @@
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
   Poincare sections of the perturbed flow;
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
-  at its centres (Lie series), the frequencies as functions of the action.
+  at its centres (Lie series), the frequencies as functions of the action;
+- :mod:`~andoyer.analysis.resonance.resonant_normal_form`: near a centre, where the two
+  frequencies resonate, the Birkhoff polynomial plus the resonant harmonic (a pendulum).
 """
 
 from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form, normal_form_frequency
@@ -17,6 +19,7 @@ from andoyer.analysis.resonance.predict import (
     resonant_tori,
     section_rotation_number,
 )
+from andoyer.analysis.resonance.resonant_normal_form import resonant_normal_form
 
 __all__ = ["resonant_tori", "resonance_widths", "section_rotation_number",
-           "birkhoff_normal_form", "normal_form_frequency"]
+           "birkhoff_normal_form", "normal_form_frequency", "resonant_normal_form"]
