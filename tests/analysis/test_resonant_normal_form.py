@@ -145,3 +145,19 @@ def test_measured_half_width_nearer_the_centre():
         unc = float(m.edge_uncertainty) / float(nf.half_width)
         err = abs(float(m.measured_half_width) / float(nf.half_width) - 1.0)
         assert err < unc + 1e-4, (mu, err, unc)
+
+
+def test_stable_and_unstable_angles_match_the_torus_route():
+    # the sign of the twist from the polynomial picks the same equilibrium of the
+    # pendulum as the elliptic-integral twist does (R7), for both copies of the chain
+    from andoyer.analysis.resonance.predict import ResonantChain, resonant_rows
+    from andoyer.integrate.section import Section
+
+    body = _body(2.3)
+    for sign in (1, -1):
+        nf = resonant_normal_form(body, 1.0, 0.0, "2:1", axis=2, sign=sign)
+        row = [r for r in resonant_rows(body, 1.0, 0.0, 3)
+               if (r["p"], r["q"], r["axis"], r["sign"]) == (1, 2, 2, sign)][0]
+        chain = ResonantChain(body, 1.0, 0.0, row, Section("g", 0.0, 1))
+        for mine, theirs in ((nf.stable_angle, chain.psi_s), (nf.unstable_angle, chain.psi_u)):
+            assert abs(math.remainder(float(mine) - theirs, 2 * math.pi)) < 1e-6
