@@ -32,6 +32,13 @@ The differences from :func:`~andoyer.analysis.resonance.predict.resonance_widths
 resonant torus and the twist: there from the elliptic-integral frequencies, here from the
 truncated Birkhoff polynomial; they agree to ``O(I*^(N/2))``, and both with measurement to
 ``O(mu)`` relative (the pendulum is first order in ``mu``).
+
+What it does not give: the pendulum needs the island away from the centre,
+``Delta I < I*``; where the chain reaches the centre (``|V_k| ~ I^(q/2)`` then changes the
+model near ``I = 0``: the centre itself bifurcates) the half-width is wrong (measured on
+the 2:1 chain at ``I* = 0.126``: ``Delta I / I* = 0.61`` at ``mu = 0.01``, 0.07 % off;
+1.06 at ``mu = 0.03``, 12 % too wide). The expansion of ``V`` in the centre's complex
+coordinates is not done: ``V_k`` comes from the torus (exact for the free-top torus).
 """
 
 from __future__ import annotations
