@@ -155,3 +155,41 @@ def test_summaries_are_not_cut_at_abbreviations(monkeypatch: pytest.MonkeyPatch)
     hamiltonian = inspect.getdoc(andoyer.hamiltonian) or ""
     assert autosummary.extract_summary(hamiltonian.splitlines(), settings) == (
         "H of Eq. (1) expressed in ``chart`` (Eq. (7) in Andoyer-Deprit variables).")
+
+
+#: Functions whose ``engine`` parameter states its default, and the capability with which
+#: the function resolves ``engine=None`` (the default is the registry's for it).
+ENGINE_DEFAULTS = {
+    "andoyer.integrate.api.propagate": "propagate",
+    "andoyer.integrate.api.poincare": "crossings",
+    "andoyer.integrate.orientation.attitude": "attitude",
+    "andoyer.integrate.variational.propagate_variational": "tangent",
+    "andoyer.analysis.splitting.section_map.flow_engine": "tangent_crossings",
+    "andoyer.analysis.splitting.section_map.flow_to_section": "tangent_crossings",
+    "andoyer.analysis.splitting.periodic.rotation_orbit": "tangent_crossings",
+    "andoyer.analysis.splitting.manifolds.manifold_branch": "tangent_crossings",
+    "andoyer.analysis.paper.trajectories.fig3_section": "crossings",
+    "andoyer.analysis.chaos.alignment.alignment_indices": "tangent",
+}
+
+
+@pytest.mark.parametrize("name", sorted(ENGINE_DEFAULTS))
+def test_a_stated_default_engine_is_the_registrys(name: str) -> None:
+    """Where a docstring says which engine runs without heyoka ("heyoka where installed,
+    else X"), X is the first of ``FALLBACK_DEFAULTS`` with the capability the function
+    asks for (:func:`~andoyer.integrate.engines.default_engine_name`; several said numba
+    after taylor became the default of orbits and sections)."""
+    import re
+
+    from andoyer.integrate.engines import FALLBACK_DEFAULTS, engine_class
+    from andoyer.integrate.engines.base import Capability
+
+    module, _, function = name.rpartition(".")
+    doc = NumpyDocString(inspect.getdoc(getattr(_import(module), function)) or "")
+    text = " ".join(" ".join(p.desc) for p in doc["Parameters"] if p.name == "engine")
+    stated = re.search(r"heyoka\s+where\s+installed,\s+else\s+(?:the\s+first\s+of\s+)?(\w+)",
+                       text)
+    assert stated, f"{name}: the engine parameter does not state its default: {text!r}"
+    capability = Capability(ENGINE_DEFAULTS[name])
+    fallback = next(n for n in FALLBACK_DEFAULTS if capability in engine_class(n).capabilities)
+    assert stated.group(1) == fallback, f"{name}: says {stated.group(1)}, is {fallback}"

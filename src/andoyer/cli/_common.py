@@ -9,7 +9,7 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any, Literal, NamedTuple
 
-from andoyer.integrate.engines import ENGINES
+from andoyer.integrate.engines import ENGINES, FALLBACK_DEFAULTS
 from andoyer.notation import VOCABULARY
 from andoyer.outputs import guard_file, guard_folder
 from andoyer.validation import finite, floats, integer
@@ -18,7 +18,7 @@ from andoyer.validation import positive as _positive
 __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
            "add_term", "add_state_args", "state_from_args", "floats", "output_file",
            "output_folder", "distinct_outputs", "count", "real", "Inputs",
-           "inputs_from_args"]
+           "inputs_from_args", "ENGINE_HELP"]
 
 #: The body flags each --body takes (others are refused, not ignored).
 BODY_FLAGS = {
@@ -373,11 +373,15 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
     return Inputs(out, body, y0, chart, section, h)
 
 
+#: The help of ``--engine``: the default is :func:`andoyer.integrate.engines.default_engine_name`'s.
+ENGINE_HELP = ("integration engine (default: heyoka where installed, else the first of "
+               f"{', '.join(FALLBACK_DEFAULTS)} that can do what the command asks)")
+
+
 def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> None:
     """``--engine`` and, where the integration has the mixed criterion, ``--rtol``,
     ``--atol``."""
-    add_term(p, "engine", choices=tuple(ENGINES), default=None,
-             help="integration engine (default: heyoka where installed, else numba)")
+    add_term(p, "engine", choices=tuple(ENGINES), default=None, help=ENGINE_HELP)
     if tolerances:
         add_term(p, "rtol", type=real(positive=True), default=1e-12,
                  help="relative tolerance (default 1e-12)")

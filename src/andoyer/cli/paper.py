@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from andoyer.cli._common import count
+from andoyer.cli._common import ENGINE_HELP, count
 from andoyer.integrate.engines import ENGINES
 
 NAME = "paper"
@@ -30,8 +30,7 @@ def register(sub: Any) -> None:
                                   "check into a folder with an index.html (the main job)")
     p.add_argument("--out", default=DEFAULT_OUT,
                    help=f"output folder (default: {DEFAULT_OUT})")
-    p.add_argument("--engine", choices=tuple(ENGINES), default=None,
-                   help="integration engine (default: heyoka where installed, else numba)")
+    p.add_argument("--engine", choices=tuple(ENGINES), default=None, help=ENGINE_HELP)
     p.add_argument("--quick", action="store_true",
                    help="smaller grids and shorter runs (a smoke test, not the figures)")
     p.add_argument("--jobs", type=count(1), default=None, metavar="N",

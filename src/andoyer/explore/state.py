@@ -89,8 +89,9 @@ class Settings:
         with its crossing direction.
     n_crossings : int, default 500
         Section points per orbit.
-    engine : {"heyoka", "numba", "scipy"}, optional
-        Integration engine (default: heyoka where installed).
+    engine : {"heyoka", "taylor", "numba", "scipy"}, optional
+        Integration engine of the orbits (default: heyoka where installed, else taylor;
+        the chaos indicators: heyoka, else numba).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` for the missing action a click seeds (one orbit
         each with ``"all"``).
@@ -178,7 +179,8 @@ def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: f
     n_crossings : int, default 500
         Crossings per orbit.
     engine : str, optional
-        Integration engine (default heyoka where installed, else numba).
+        Integration engine of the orbits (default heyoka where installed, else taylor;
+        the chaos indicators: heyoka, else numba).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` above a click seed orbits.
     rtol, atol : float, default 1e-12

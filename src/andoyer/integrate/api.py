@@ -185,7 +185,8 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
         Output times, strictly increasing; ``t[0]`` is the initial time.
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
-        heyoka where installed, else numba.
+        heyoka where installed, else taylor
+        (:func:`~andoyer.integrate.engines.default_engine_name`).
     rtol, atol : float
         Tolerances (heyoka has a single tolerance: it uses ``min(rtol, atol)``).
     chart : {"euler_poisson", "andoyer", "hess"}
@@ -247,7 +248,8 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         Crossings wanted per orbit.
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
-        heyoka where installed, else numba.
+        heyoka where installed, else taylor
+        (:func:`~andoyer.integrate.engines.default_engine_name`).
     rtol, atol : float
         Tolerances of the mixed criterion ``atol + rtol |y|`` (heyoka has a single
         tolerance: it uses ``min(rtol, atol)``).

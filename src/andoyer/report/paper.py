@@ -70,7 +70,8 @@ def build_paper(out: str | Path = DEFAULT_OUT, *, body: RigidBody | None = None,
     body : RigidBody, optional
         Default: the paper's body, :meth:`RigidBody.paper`.
     engine : str, optional
-        Integration engine (default: heyoka where installed). The report names the
+        Integration engine (default: heyoka where installed, else each item's default,
+        :func:`~andoyer.integrate.engines.default_engine_name`). The report names the
         engine that ran each integration.
     quick : bool
         Smaller grids and shorter runs (for tests).

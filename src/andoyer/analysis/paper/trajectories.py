@@ -154,7 +154,7 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
         chaotic layer of the separatrix lies; each followed for ``n_crossings`` crossings.
     engine : str, optional
         Integration engine (:func:`andoyer.integrate.poincare`; default heyoka where
-        installed, else numba).
+        installed, else taylor).
     rtol, atol : float, default 1e-12
         Relative and absolute tolerances.
     progress : bool, optional, default False

@@ -257,9 +257,11 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
         The periodic orbit (default: continued in ``mu`` from 0 in ``mu_steps`` steps).
     tol, long_double :
         Integration tolerance and precision (extended precision needs heyoka).
-    engine : {"heyoka", "numba"}, optional
+    engine : str, optional
         The engine of the flow when ``orbit`` is not given (default heyoka where
-        installed, else numba); a given ``orbit`` brings its own.
+        installed, else taylor:
+        :func:`~andoyer.analysis.splitting.section_map.flow_engine`); a given ``orbit``
+        brings its own.
     mu_steps : int, default 4
         Steps of the continuation in ``mu`` from 0 that finds the periodic orbit when
         ``orbit`` is not given.

@@ -293,8 +293,8 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         Keyword arguments of :func:`grow_manifold`.
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
-    engine : {"heyoka", "numba"}, optional
-        The engine of the flow (default heyoka where installed, else numba;
+    engine : str, optional
+        The engine of the flow (default heyoka where installed, else taylor;
         :func:`~andoyer.analysis.splitting.section_map.flow_engine`).
 
     Returns
