@@ -1,6 +1,7 @@
 """One error boundary for the command line: one line on stderr, a distinct exit code per
 class of expected failure, no traceback; outputs checked before any computation."""
 
+import os
 import subprocess
 import sys
 
@@ -154,3 +155,25 @@ def test_chaos_map_grid_is_checked_before_compiling(capsys, tmp_path):
     assert info.value.code == EXIT_CODES["bad input"]
     assert "--n must be an integer >= 2, got 1" in err
     assert "compiled" not in out and not any(tmp_path.iterdir())
+
+
+def test_matplotlibs_logged_warnings_are_the_warning_line(tmp_path):
+    """Matplotlib logs its warnings (findfont: a font family not found, once per text
+    drawn; building the font cache): they reached the command's stderr as raw lines
+    (hundreds of ``findfont: ...``); now each distinct one is the CLI's warning line."""
+    config = tmp_path / "mpl"
+    config.mkdir()
+    (config / "matplotlibrc").write_text("font.family: NoSuchFontAndoyer\n")
+    proc = subprocess.run([sys.executable, "-m", "andoyer", "section", "--energy", "0.25",
+                           "--n-orbits", "2", "--n-crossings", "2", "--engine", "scipy",
+                           "--out", str(tmp_path / "s.nc")],
+                          capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "MPLCONFIGDIR": str(config)})
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "s.png").exists()
+    lines = [line for line in proc.stderr.replace("\r", "\n").splitlines()
+             if line.strip() and "poincare (scipy)" not in line]  # progress bars aside
+    assert lines, "no warning shown"
+    assert all(line.startswith("andoyer: warning: matplotlib: findfont: Font family")
+               for line in lines), lines
+    assert len(lines) == len(set(lines)) <= 2, lines

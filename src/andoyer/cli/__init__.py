@@ -10,15 +10,17 @@ from __future__ import annotations
 
 import argparse
 import atexit
+import contextlib
 import errno
 import importlib
+import logging
 import os
 import pkgutil
 import shutil
 import sys
 import tempfile
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from andoyer._version import __version__
@@ -126,16 +128,62 @@ def _unrecognized(parser: argparse.ArgumentParser, command: str, extra: list[str
             + f"; see andoyer {command} --help")
 
 
+def _warning_line(text: object) -> None:
+    """The command line's warning: one line on stderr, ``andoyer: warning: ...``."""
+    sys.stderr.write(f"andoyer: warning: {' '.join(str(text).split())}\n")
+
+
 def _show_warning(message: Warning | str, category: type[Warning], filename: str,
                   lineno: int, file: object = None, line: str | None = None) -> None:
-    """andoyer's own warnings as one line, ``andoyer: warning: ...``; others as Python's."""
+    """andoyer's own warnings as the warning line; others as Python's."""
     if category.__module__ == "andoyer.errors":
-        sys.stderr.write(f"andoyer: warning: {message}\n")
+        _warning_line(message)
     else:
         _python_show_warning(message, category, filename, lineno, file, line)  # type: ignore[arg-type]
 
 
 _python_show_warning = warnings.showwarning
+
+#: Libraries whose logged warnings reach a command's stderr: Matplotlib logs
+#: "findfont: Font family ... not found" (once per text drawn) and "Matplotlib is
+#: building the font cache", which Python's last-resort handler printed as raw lines.
+LOGGED_WARNINGS = ("matplotlib",)
+
+
+class _LoggedWarning(logging.Handler):
+    """A library's logged warning as the warning line, each distinct message once."""
+
+    def __init__(self) -> None:
+        super().__init__(logging.WARNING)
+        self.seen: set[str] = set()
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            text = f"{record.name.split('.')[0]}: {record.getMessage()}"
+        except Exception:  # a record whose message cannot be formatted
+            self.handleError(record)
+            return
+        if text not in self.seen:
+            self.seen.add(text)
+            _warning_line(text)
+
+
+@contextlib.contextmanager
+def _logged_warnings() -> Iterator[None]:
+    """Within the block the loggers of :data:`LOGGED_WARNINGS` write the warning line
+    (and nothing else: they do not propagate to the root logger); restored after."""
+    handler = _LoggedWarning()
+    loggers = [logging.getLogger(name) for name in LOGGED_WARNINGS]
+    propagate = [logger.propagate for logger in loggers]
+    for logger in loggers:
+        logger.addHandler(handler)
+        logger.propagate = False
+    try:
+        yield
+    finally:
+        for logger, before in zip(loggers, propagate, strict=True):
+            logger.removeHandler(handler)
+            logger.propagate = before
 
 
 def _writable(folder: Path) -> bool:
@@ -188,7 +236,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     warnings.showwarning = _show_warning
     _matplotlib_config()
     try:
-        with interrupts() as signals:
+        with interrupts() as signals, _logged_warnings():
             try:
                 if args.no_limits:
                     import math
