@@ -150,6 +150,9 @@ HOW: dict[str, Way] = {
     "andoyer resonances --max-order 10": Way(
         "cli", ("resonances", "--max-order", "10"), "as written",
         expect=("resonances.nc", "resonances.png")),
+    "andoyer resonances --max-order 8 --order 8": Way(
+        "cli", ("resonances", "--max-order", "8", "--order", "8"), "as written",
+        expect=("resonances.nc", "resonances-normal-form.nc", "resonances.png")),
     "andoyer indicators --andoyer 0.3,0,0.3,1,0 --t-end 1000": Way(
         "cli", ("indicators", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "1000"), "as written",
         expect=("indicators.nc", "indicators.png")),

@@ -45,7 +45,8 @@ COMMAND_API = {
                     "andoyer.analysis.chaos.frequency:frequency_map"),
     "indicators": ("andoyer.analysis.chaos.indicators:indicators",),
     "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
-                   "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare"),
+                   "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
+                   "andoyer.analysis.resonance.resonant_normal_form:resonant_normal_form"),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.
@@ -250,6 +251,8 @@ DEFAULTS_ON_PURPOSE = {
     ("explore", "body"): "the same body: the CLI names the paper's preset",
     ("resonances", "n_orbits"): "0: no section drawn under the chains unless asked (the "
                                 "prediction itself integrates nothing)",
+    ("resonances", "order"): "0: no normal form unless asked (the API's 8 is the degree "
+                             "when it is)",
     ("scan:section", "n_orbits"): "a grid of points: fewer orbits per point (cost)",
     ("scan:section", "sampling"): "sobol: a prefix of the sequence is spread over the plane",
     ("scan:section", "boundary_grid"): "a grid of points: a coarser boundary search (cost)",

@@ -292,6 +292,7 @@ TERMS: tuple[Term, ...] = (
     Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),
     Term("long_double", "integrate in 80-bit extended precision"),
     Term("max_order", "largest order p + q of the p/q resonances (island chains) listed"),
+    Term("order", "degree N of the normal form in the distance to the centre (even)"),
 )
 
 #: API name -> its term.

@@ -44,3 +44,53 @@ def test_resonances_command_refuses_bad_input(tmp_path, capsys, argv, message):
     assert info.value.code != 0
     err = capsys.readouterr().err
     assert "Traceback" not in err and message in err
+
+
+def test_resonances_command_writes_the_normal_forms(tmp_path, capsys):
+    """--order 8: beside the chains, the Birkhoff coefficients at the two centres of the
+    level and each chain's resonant normal form. Checked against routes that share none of
+    the Lie series: the linearised frequency of a permanent rotation (Euler), and the torus
+    route's half-width (elliptic-integral W) of the 2:1 chain near the y centre."""
+    out = tmp_path / "res.nc"
+    assert main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+                 "--mu", "0.001", "--energy", "1", "--max-order", "4", "--order", "8",
+                 "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "normal forms of degree 8" in text and "res-normal-form.nc" in text
+    nf = xr.open_dataset(tmp_path / "res-normal-form.nc")
+    assert int(nf.attrs["order"]) == 8 and nf.sizes["power"] == 4
+    a, b, c = 1 / 3, 1.0, 0.5                  # inverse moments of hess(3, 1, 2)
+    for axis, (inv, others) in {1: (a, (b, c)), 2: (b, (a, c))}.items():
+        G = np.sqrt(2.0 / inv)                 # the rotation about the axis on H = 1
+        euler = G * np.sqrt(abs((others[0] - inv) * (others[1] - inv)))
+        r = nf.sel(centre=axis)
+        np.testing.assert_allclose(float(r.G_centre), G, rtol=1e-14)
+        np.testing.assert_allclose(abs(float(r.omega0)), euler, rtol=1e-12)
+        np.testing.assert_allclose(float(r.H_star), 1.0, rtol=1e-12)
+    near = nf.where(np.isfinite(nf.nf_half_width), drop=True)
+    # only the 2:1 chains about y (both senses) are within half-way to the separatrix
+    assert sorted(zip(near.q.values, near.axis.values, strict=True)) == [(2, 2), (2, 2)]
+    # the Birkhoff polynomial at I* = 0.43 truncated at degree 8: 0.55 % from the torus
+    np.testing.assert_allclose(near.nf_half_width, near.torus_half_width, rtol=1e-2)
+    assert np.all(np.abs(near.nf_half_width / near.torus_half_width - 1) > 1e-4)
+    assert nf.nf_half_width.attrs["equation"] == "(N5)"
+
+
+def test_resonances_command_without_order_writes_no_normal_form(tmp_path, capsys):
+    out = tmp_path / "res.nc"
+    assert main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+                 "--mu", "0.001", "--energy", "1", "--max-order", "3",
+                 "--out", str(out)]) == 0
+    assert "normal form" not in capsys.readouterr().out
+    assert not (tmp_path / "res-normal-form.nc").exists()
+
+
+@pytest.mark.parametrize("order, message", [("5", "--order must be 0"), ("2", "--order must be 0"),
+                                            ("18", "--order"), ("x", "--order")])
+def test_resonances_command_refuses_a_bad_order(tmp_path, capsys, order, message):
+    with pytest.raises(SystemExit) as info:
+        main(["resonances", "--order", order, "--out", str(tmp_path / "r.nc")])
+    assert info.value.code != 0
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and message in err
+    assert not list(tmp_path.iterdir())

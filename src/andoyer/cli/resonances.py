@@ -1,6 +1,7 @@
 """``andoyer resonances``: the p/q island chains predicted at first order in mu (their
 centres, half-widths, periodic orbits and stability); NetCDF + PNG, the chains drawn over
-a computed section with ``--n-orbits``."""
+a computed section with ``--n-orbits``; with ``--order N``, the normal forms of degree N
+near the centres (Birkhoff coefficients, each chain's resonant normal form) beside it."""
 
 from __future__ import annotations
 
@@ -20,6 +21,66 @@ NAME = "resonances"
 ORDER = 48
 
 
+#: The ending of the normal forms' NetCDF beside ``--out`` (``--order``).
+NORMAL_FORM = "-normal-form.nc"
+
+
+def _normal_forms(body: Any, h: float, M: float, pred: Any, order: int) -> Any:
+    """The normal forms of degree ``order`` near the two centres of the level, as one
+    dataset: per centre (dims ``centre``, ``power``) the Birkhoff coefficients ``c_k`` at
+    the permanent rotation of energy ``h`` (:func:`~andoyer.analysis.resonance.
+    birkhoff_normal_form`, (B4)); per chain of ``pred`` (dim ``resonance``) its resonant
+    normal form (:func:`~andoyer.analysis.resonance.resonant_normal_form`, (N1)-(N5)) beside
+    the torus route's half-width (``torus_half_width``, (R6)); NaN for the chains whose
+    ``W = p/q`` is not reached near a centre (half-way to the separatrix)."""
+    import math
+
+    import numpy as np
+    import xarray as xr
+
+    from andoyer.analysis.resonance import birkhoff_normal_form, resonant_normal_form
+    from andoyer.analysis.resonance.birkhoff import CENTRES
+    from andoyer.integrate.results import provenance
+
+    names = ("action", "G_action", "half_width_action", "half_width",
+             "libration_frequency", "stable_angle", "dalembert_coefficient")
+    cols: dict[str, list[float]] = {k: [] for k in names}
+    meta: dict[str, Any] = {}
+    for i in range(pred.sizes["resonance"]):
+        r = pred.isel(resonance=i)
+        try:
+            nf = resonant_normal_form(body, h, M, f"{int(r.q)}:{int(r.p)}", axis=int(r.axis),
+                                      sign=int(r.sign), order=order)
+        except ValueError:   # W = p/q not reached near that centre (order checked before)
+            nf = None
+        for k in names:
+            cols[k].append(float(nf[k]) if nf is not None else math.nan)
+            if nf is not None:
+                meta[k] = dict(nf[k].attrs)
+    out = xr.Dataset({f"nf_{k}": ("resonance", np.array(v)) for k, v in cols.items()},
+                     coords={"resonance": pred.resonance.values})
+    for k in names:
+        out[f"nf_{k}"].attrs.update(meta.get(k, {}))
+    for k in ("p", "q", "axis", "sign", "G_action", "half_width"):
+        out[f"torus_{k}" if k in ("G_action", "half_width") else k] = pred[k]
+    centres = []
+    for axis in (1, 2):
+        G = math.sqrt(2.0 * h / (body.a, body.b)[axis - 1])   # H0 = h at the rotation
+        lstar = min(k for k, a in CENTRES.items() if a == axis)   # pi/2 (x), 0 (y)
+        nf = birkhoff_normal_form(body, G, order=order, lstar=lstar)
+        centres.append(nf[["coefficient", "omega0", "H_star"]].assign(G_centre=G))
+    birk = xr.concat(centres, dim="centre").assign_coords(centre=[1, 2])
+    birk["G_centre"].attrs.update(symbol="G", long_name="|G| of the permanent rotation on "
+                                  "the level", units="1", equation="(9)")
+    birk["centre"].attrs.update(long_name="body axis of the centre", units="1")
+    for var in birk.data_vars:
+        out[var] = birk[var]
+    out.attrs.update(provenance(body, h=h, M=M, order=order,
+                                derivation="andoyer.analysis.resonance.birkhoff (B1)-(B4), "
+                                           "resonant_normal_form (N1)-(N5)"))
+    return out
+
+
 def run(args: argparse.Namespace) -> int:
     import math
 
@@ -31,11 +92,21 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.plot.resonance import plot_resonances
     from andoyer.plot.section import plot_section, save_figure
 
-    inputs = inputs_from_args(args, level=True)
+    if args.order and (args.order % 2 or args.order < 4):
+        raise ValueError(f"--order must be 0 (no normal form) or even, 4 to 16 (the normal "
+                         f"form has whole powers of the action), got {args.order}")
+    inputs = inputs_from_args(args, level=True,
+                              beside=(".png", NORMAL_FORM) if args.order else (".png",))
     out, body, h = inputs.out, inputs.body, inputs.h
     assert h is not None
     ds = resonance_widths(body, h, args.M, args.section, max_order=args.max_order)
     write_netcdf(ds, out)
+    written = [out]
+    nfs = None
+    if args.order:
+        nfs = _normal_forms(body, h, args.M, ds, args.order)
+        written.append(out.with_name(out.stem + NORMAL_FORM))
+        write_netcdf(nfs, written[-1])
     ax = None
     if args.n_orbits:
         import warnings
@@ -70,8 +141,37 @@ def run(args: argparse.Namespace) -> int:
         print(f"  {str(r.label.values):>6} {int(r.axis):>4} {int(r.sign):>4} "
               f"{float(r.G_action):12.8f} {text} {float(r.libration_frequency):10.3e} "
               f"{float(r.residue_stable):10.3e}")
-    print(f"wrote {out} and {png}")
+    if nfs is not None:
+        _print_normal_forms(nfs)
+    print(f"wrote {', '.join(str(p) for p in written)} and {png}")
     return 0
+
+
+def _print_normal_forms(nfs: Any) -> None:
+    import math
+
+    order = int(nfs.attrs["order"])
+    print(f"normal forms of degree {order} about the centres (Birkhoff, mu = 0):")
+    for c in nfs.centre.values:
+        b = nfs.sel(centre=c)
+        coef = ", ".join(f"{float(v):.6g}" for v in b.coefficient.values[1:3])
+        print(f"  axis {int(c)}: |G| = {float(b.G_centre):.8f}, omega0 = "
+              f"{abs(float(b.omega0)):.8g}, c_2, c_3 = {coef}")
+    near = [i for i in range(nfs.sizes["resonance"])
+            if math.isfinite(float(nfs.nf_G_action[i]))]
+    if not near:
+        print("  no chain near a centre (W = p/q reached within half-way to the separatrix)")
+        return
+    print("  chains near a centre, resonant normal form (N1)-(N5) vs the torus (R6):")
+    print(f"  {'q:p':>6} {'axis':>4} {'sign':>4} {'I*':>10} {'G* (NF)':>12} "
+          f"{'half-width NF':>13} {'torus':>13} {'rel. diff':>9}")
+    for i in near:
+        r = nfs.isel(resonance=i)
+        nf, tor = float(r.nf_half_width), float(r.torus_half_width)
+        text = (f"{nf:13.4e} {tor:13.4e} {nf / tor - 1:+9.1e}" if math.isfinite(nf)
+                else f"{'(2nd order)':>13} {'':>13} {'':>9}")
+        print(f"  {f'{int(r.q)}:{int(r.p)}':>6} {int(r.axis):>4} {int(r.sign):>4} "
+              f"{float(r.nf_action):10.4e} {float(r.nf_G_action):12.8f} {text}")
 
 
 def register(sub: Any) -> None:
@@ -95,6 +195,9 @@ def register(sub: Any) -> None:
                   "':-' for the decreasing direction (default g=0)")
     add_term(p, "max_order", type=count(2, 100), default=12,
              help="largest order p + q of the chains (default 12)")
+    add_term(p, "order", type=count(0, 16), default=0,
+             help="degree N of the normal forms near the centres (even, 4 to 16), written "
+                  f"beside --out as *{NORMAL_FORM}; default 0: none")
     add_term(p, "n_orbits", type=count(0), default=0,
              help="orbits of a section drawn under the chains (default 0: none)")
     add_term(p, "n_crossings", type=count(1), default=300,
