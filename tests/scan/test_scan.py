@@ -565,3 +565,32 @@ def test_atlas_panels(reference):
     assert one.axes[1].get_title() == "$h = 0.3$, $\\mu = 0.3$"
     with pytest.raises(ValueError, match="not a swept dim"):
         plot_atlas(ds, rows="A")
+
+
+@pytest.mark.parametrize("kind", ["file", "foreign folder"])
+def test_cli_scan_refuses_a_path_that_is_not_a_store_before_anything(kind, tmp_path, capsys,
+                                                                    monkeypatch):
+    """``andoyer scan --store`` on a regular file or a foreign folder printed its cost and
+    "computed on a local cluster" lines, then refused: the refusal is now the only line,
+    and no cluster is started."""
+    distributed = pytest.importorskip("distributed")
+
+    def no_cluster(*args, **kwargs):
+        raise AssertionError("a local cluster was started")
+
+    monkeypatch.setattr(distributed, "LocalCluster", no_cluster)
+    (tmp_path / "tiny.toml").write_text(_toml(TINY))
+    store = tmp_path / "not-a-store"
+    if kind == "file":
+        store.write_text("keep")
+    else:
+        store.mkdir()
+        (store / "precious.txt").write_text("keep")
+    with pytest.raises(SystemExit) as exc:
+        main(["scan", str(tmp_path / "tiny.toml"), "--store", str(store), "--no-progress"])
+    out, err = capsys.readouterr()
+    assert exc.value.code == 2
+    assert out == "", out
+    assert err.splitlines() == [f"andoyer scan: error: {store} exists and is not an andoyer "
+                                "scan store; choose another store path"]
+    assert (store if kind == "file" else store / "precious.txt").read_text() == "keep"

@@ -17,9 +17,12 @@ def run(args: argparse.Namespace) -> int:
     from andoyer.scan.config import STORAGE_NAMES, load_config
     from andoyer.scan.cost import check_size
     from andoyer.scan.run import scan, summary
+    from andoyer.scan.store import check_store
 
     cfg = load_config(args.config)
     store = Path(args.store) if args.store else Path(Path(args.config).stem + ".zarr")
+    if not args.dry_run:  # a store the scan cannot use is refused before anything is said
+        check_store(store, cfg, overwrite=args.overwrite)
     cost = check_size(cfg, args.max_core_hours, args.max_store_gb)
     grid = " x ".join(f"{STORAGE_NAMES[k]}[{len(cfg.values(k))}]" for k in cfg.swept)
     print(f"scan {args.config}: task {cfg.task} over {grid} "

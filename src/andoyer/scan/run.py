@@ -31,7 +31,15 @@ from andoyer.processes import children_ignore_interrupts
 from andoyer.progress import Progress
 from andoyer.scan.config import ScanConfig, load_config
 from andoyer.scan.cost import check_size
-from andoyer.scan.store import Schema, initialise, point_schema, prepare, store_schema, write_chunk
+from andoyer.scan.store import (
+    Schema,
+    check_store,
+    initialise,
+    point_schema,
+    prepare,
+    store_schema,
+    write_chunk,
+)
 from andoyer.scan.tasks import TASKS, Empty
 from andoyer.validation import integer
 
@@ -260,8 +268,7 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     n_workers = None if n_workers is None else integer("n_workers", n_workers, 1)
     check_size(cfg, max_core_hours, max_store_gb)
     path = Path(store)
-    if not path.parent.exists():
-        raise ValueError(f"folder {str(path.parent)!r} of the store does not exist; create it")
+    check_store(path, cfg, overwrite=overwrite)  # before the lock and any cluster
     # One writer per store, for the whole run: a second scan (with --overwrite too) is
     # refused, naming this one, instead of replacing the store under it.
     with OutputLock(path):

@@ -51,7 +51,7 @@ from andoyer.scan.config import PARAMETER_ATTRS, STORAGE_NAMES, ScanConfig
 from andoyer.scan.damage import CHECKSUM, Damage, damage_summary, read_metadata, verify
 from andoyer.scan.tasks import TASKS, Empty
 
-__all__ = ["Schema", "Variable", "Damage", "point_schema", "initialise", "prepare",
+__all__ = ["Schema", "Variable", "Damage", "point_schema", "initialise", "check_store", "prepare",
            "write_chunk", "store_schema", "done_mask", "verify", "open_store", "FLAGS",
            "CHECKSUM"]
 
@@ -358,22 +358,43 @@ def _differences(old: Mapping[str, Any], new: Mapping[str, Any], prefix: str = "
     return out
 
 
-def prepare(path: Path, cfg: ScanConfig, *, overwrite: bool) -> np.ndarray | None:
-    """Check an existing store against ``cfg``: its ``done`` mask, or None if absent.
+def check_store(path: str | os.PathLike[str], cfg: ScanConfig, *, overwrite: bool) -> None:
+    """Refuse a store path the scan cannot use, before any work (nothing is written).
 
-    With ``overwrite`` an existing scan store is replaced when the new one is laid out
-    (nothing is removed before). Leftover temporary files of an interrupted run
-    (``*.partial`` of Zarr) are removed.
+    Refused (``ValueError``, naming the path): a path whose folder does not exist, an
+    existing file or folder that is not an andoyer scan store, and, without
+    ``overwrite``, a scan store of another configuration or andoyer version; a scan
+    store whose metadata is damaged raises ``DamagedFileError``.
 
     Parameters
     ----------
-    path : pathlib.Path
+    path : str or os.PathLike
         The store.
     cfg : ScanConfig
         The scan it must belong to.
     overwrite : bool
         Whether a store of another scan may be replaced.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from andoyer.scan.config import load_config
+    >>> cfg = load_config({"parameters": {"mu": [0.01, 0.1], "h": 0.3},
+    ...                    "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3}})
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     check_store(Path(tmp) / "new.zarr", cfg, overwrite=False)  # absent: fine
+    ...     check_store(tmp, cfg, overwrite=False)
+    Traceback (most recent call last):
+    ...
+    ValueError: ... exists and is not an andoyer scan store; choose another store path
     """
+    _checked(Path(path), cfg, overwrite)
+
+
+def _checked(path: Path, cfg: ScanConfig, overwrite: bool) -> xr.Dataset | None:
+    """:func:`check_store`; the store opened where it is resumed, else None."""
+    if not path.parent.exists():
+        raise ValueError(f"folder {str(path.parent)!r} of the store does not exist; create it")
     if not path.exists():
         return None
     try:
@@ -399,6 +420,29 @@ def prepare(path: Path, cfg: ScanConfig, *, overwrite: bool) -> np.ndarray | Non
             f"the store {path} was written by andoyer {ds.attrs.get('andoyer_version')}, "
             f"this is {__version__}: resuming would mix results of two versions; use a new "
             "store path, or --overwrite (overwrite=True)")
+    return ds
+
+
+def prepare(path: Path, cfg: ScanConfig, *, overwrite: bool) -> np.ndarray | None:
+    """Check an existing store against ``cfg`` (:func:`check_store`): its ``done`` mask,
+    or None if absent.
+
+    With ``overwrite`` an existing scan store is replaced when the new one is laid out
+    (nothing is removed before). Leftover temporary files of an interrupted run
+    (``*.partial`` of Zarr) are removed.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store.
+    cfg : ScanConfig
+        The scan it must belong to.
+    overwrite : bool
+        Whether a store of another scan may be replaced.
+    """
+    ds = _checked(path, cfg, overwrite)
+    if ds is None:
+        return None
     for partial in path.rglob("*.partial"):
         partial.unlink(missing_ok=True)
     done = np.asarray(ds["done"].values, dtype=bool)
