@@ -15,6 +15,9 @@ __all__ = ["resonances"]
 
 #: The body of the comparison: low-order chains (``|V_k| ~ 1e-2``), a level h = 1, M = 0.
 BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3, name="hess(3, 1, 2)")
+#: The body of the resonant normal form: off Hess, tilted; its 2:1 chain about y on h = 1
+#: sits at a small Birkhoff action (I* = 0.27), where the Birkhoff polynomial holds.
+TILTED = RigidBody(2.5, 1.0, 2.0, 1e-3, (0.6, 0.48, 0.64), name="tilted(2.5, 1, 2)")
 
 
 def resonances(ctx: Context) -> Result:
@@ -35,6 +38,7 @@ def resonances(ctx: Context) -> Result:
         birkhoff_normal_form,
         normal_form_frequency,
         resonance_widths,
+        resonant_normal_form,
     )
     from andoyer.analysis.resonance.measure import measure_island
     from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
@@ -105,27 +109,61 @@ def resonances(ctx: Context) -> Result:
         m = measure_island(body.with_mu(mu), 1.0, 0.0, label, axis=axis, n_seeds=3,
                            n_rounds=3 if ctx.quick else 4, engine=engine)
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
-        rows.append([label, f"{mu:g}", f"{p:.4e}", f"{q:.4e}", f"{(q - p) / p:+.2%}",
+        rows.append([body.name, f"{label} (axis {axis})", f"{mu:g}", f"{p:.4e}", "-",
+                     f"{q:.4e}", f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
+                     f"{float(m.stable_s):+.4e}", f"{float(m.predicted_stable_s):+.4e}"])
+        numbers[f"half_width_{label}_mu_{mu:g}"] = q
+    # Near a centre, at a resonance: the resonant normal form (N1)-(N5) of the tilted
+    # body's 2:1 chain about y, against the torus route and the sections.
+    near = []
+    for mu in ((1e-3,) if ctx.quick else (1e-4, 1e-3)):
+        tilted = TILTED.with_mu(mu)
+        rnf = resonant_normal_form(tilted, 1.0, 0.0, "2:1", axis=2, order=8)
+        m = measure_island(tilted, 1.0, 0.0, "2:1", axis=2, n_seeds=3,
+                           n_rounds=3 if ctx.quick else 5, engine=engine)
+        p, n, q = (float(m.predicted_half_width), float(rnf.half_width),
+                   float(m.measured_half_width))
+        rows.append([TILTED.name, "2:1 (axis 2, near the centre)", f"{mu:g}", f"{p:.4e}",
+                     f"{n:.4e}", f"{q:.4e}", f"{(q - n) / n:+.2%}",
                      f"{float(m.edge_uncertainty):.1e}", f"{float(m.stable_s):+.4e}",
                      f"{float(m.predicted_stable_s):+.4e}"])
-        numbers[f"half_width_{label}_mu_{mu:g}"] = q
+        numbers[f"normal_form_half_width_2:1_mu_{mu:g}"] = n
+        numbers[f"half_width_near_centre_2:1_mu_{mu:g}"] = q
+        numbers[f"torus_half_width_2:1_mu_{mu:g}"] = p
+        numbers[f"edge_uncertainty_near_centre_2:1_mu_{mu:g}"] = float(m.edge_uncertainty)
+        near.append({"mu": mu, "action": float(rnf.action), "nf": n, "torus": p,
+                     "measured": q, "unc": float(m.edge_uncertainty)})
     # The normal form at the rotation about y of the paper's body, against the closed form.
+    # At growing amplitude (0.05, 0.1, 0.2 rad): the error must fall like amplitude^N.
     paper = ctx.body
+    amps = (0.05, 0.1, 0.2)
     nf_rows = []
-    for order in (4, 8):
+    lines = ["Birkhoff normal form at the rotation about y, |G| = 1, the paper's body: "
+             "relative error of omega_l against the closed form",
+             f"{'order N':>8} " + " ".join(f"{a:>9g} rad" for a in amps)
+             + f" {'fitted slope':>13}"]
+    for order in (2, 4, 6, 8):
         nf = birkhoff_normal_form(paper, 1.0, order=order, lstar=0.0)
         errs = []
-        for amp in (0.05, 0.1):
+        for amp in amps:
             h = 0.5 * (paper.a * math.sin(amp) ** 2 + paper.b * math.cos(amp) ** 2)
             exact = 2 * math.pi / euler_poinsot_frequencies(paper, h, 1.0).period
             action = brentq(lambda a, nf=nf, h=h: float(
-                normal_form_frequency(nf, [a]).energy[0]) - h, 0.0, 0.05, xtol=1e-16)
+                normal_form_frequency(nf, [a]).energy[0]) - h, 0.0, 0.1, xtol=1e-16)
             w = abs(float(normal_form_frequency(nf, [action]).omega_l[0]))
             errs.append(abs(w - exact) / exact)
-        nf_rows.append((order, errs, math.log2(errs[1] / errs[0])))
+        slope = float(np.polyfit(np.log(amps), np.log(errs), 1)[0])
+        lines.append(f"{order:>8} " + " ".join(f"{e:>13.2e}" for e in errs)
+                     + f" {slope:>13.2f}")
+        numbers[f"birkhoff_slope_order_{order}"] = slope
+        if order in (4, 8):
+            nf_rows.append((order, errs[:2], math.log2(errs[1] / errs[0])))
     return Result(
         files, numbers,
         {"engine": engine, "n_chains": int(pred.sizes["resonance"]),
-         "nf": nf_rows},
-        Table(["chain", "mu", "predicted half-width (G)", "measured", "difference",
-               "edge uncertainty", "stable point, measured", "stable point, (R10)"], rows))
+         "nf": nf_rows, "near": near},
+        Table(["body", "chain", "mu", "predicted half-width (G), torus (R6)",
+               "normal form (N5)", "measured", "difference (to the normal form where "
+               "given)", "edge uncertainty", "stable point, measured",
+               "stable point, (R10)"], rows),
+        pre="\n".join(lines))
