@@ -116,12 +116,13 @@ def test_bad_inputs_are_refused(kwargs, exc, word):
         resonant_normal_form(_body(2.3), **args)
 
 
-def _measured(A: float, mu: float):
+def _measured(A: float, mu: float, n_rounds: int = 5):
     from andoyer.analysis.resonance.measure import measure_island
 
     body = _body(A, mu)
     nf = resonant_normal_form(body, 1.0, 0.0, "2:1", axis=2)
-    m = measure_island(body, 1.0, 0.0, "2:1", axis=2, n_seeds=3, n_rounds=5, engine="numba")
+    m = measure_island(body, 1.0, 0.0, "2:1", axis=2, n_seeds=3, n_rounds=n_rounds,
+                       engine="numba")
     return nf, m
 
 
@@ -145,6 +146,23 @@ def test_measured_half_width_nearer_the_centre():
         unc = float(m.edge_uncertainty) / float(nf.half_width)
         err = abs(float(m.measured_half_width) / float(nf.half_width) - 1.0)
         assert err < unc + 1e-4, (mu, err, unc)
+
+
+@pytest.mark.slow
+def test_measured_half_width_with_the_island_near_the_centre():
+    # The pendulum holds while the island stays off the centre: Delta I / I* = 0.34, 0.62,
+    # 0.87 at mu = 3e-3, 1e-2, 2e-2 (I* = 0.126). With 7 rounds (edge resolution 6.1e-5 of
+    # the width) the measured errors are -1.5e-4, -3.3e-4, -4.2e-4, growing like mu^0.54
+    # (the pendulum's neglected I-dependence across the island, ~5e-4 Delta I / I*); the
+    # tolerance is the resolution plus 6e-4 Delta I / I*. (At mu = 3e-2, Delta I / I* = 1.06,
+    # the chain is 12 % narrower: the documented failure, not asserted here.)
+    for mu in (3e-3, 1e-2, 2e-2):
+        nf, m = _measured(2.2, mu, n_rounds=7)
+        reach = float(nf.half_width_action) / float(nf.action)
+        assert reach < 0.9
+        unc = float(m.edge_uncertainty) / float(nf.half_width)
+        err = abs(float(m.measured_half_width) / float(nf.half_width) - 1.0)
+        assert err < unc + 6e-4 * reach, (mu, err, unc, reach)
 
 
 def test_stable_and_unstable_angles_match_the_torus_route():

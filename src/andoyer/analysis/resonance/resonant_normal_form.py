@@ -36,9 +36,11 @@ truncated Birkhoff polynomial; they agree to ``O(I*^(N/2))``, and both with meas
 What it does not give: the pendulum needs the island away from the centre,
 ``Delta I < I*``; where the chain reaches the centre (``|V_k| ~ I^(q/2)`` then changes the
 model near ``I = 0``: the centre itself bifurcates) the half-width is wrong (measured on
-the 2:1 chain at ``I* = 0.126``: ``Delta I / I* = 0.61`` at ``mu = 0.01``, 0.07 % off;
-1.06 at ``mu = 0.03``, 12 % too wide). The expansion of ``V`` in the centre's complex
-coordinates is not done: ``V_k`` comes from the torus (exact for the free-top torus).
+the 2:1 chain at ``I* = 0.126``: ``Delta I / I* = 0.61`` at ``mu = 0.01``, 0.03 % off,
+0.87 at ``mu = 0.02``, 0.04 % off -- an error growing like ``mu^0.54``, about
+``5e-4 Delta I / I*``; 1.06 at ``mu = 0.03``, 12 % too wide). The expansion of ``V`` in
+the centre's complex coordinates is not done: ``V_k`` comes from the torus (exact for the
+free-top torus).
 """
 
 from __future__ import annotations
