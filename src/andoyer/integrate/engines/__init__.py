@@ -1,8 +1,7 @@
 """Integration engines behind one seam (:mod:`andoyer.integrate.engines.base`).
 
 ``heyoka`` (Taylor method compiled with LLVM) is the default where it is installed,
-``taylor`` elsewhere (``numba`` for what taylor cannot do yet: tangent vectors at output
-times);
+``taylor`` elsewhere (it has every capability of ``numba``);
 ``numba`` (adaptive DOP853 compiled with Numba) is portable; ``taylor`` (heyoka's
 Taylor method compiled with Numba, section events inside the kernel) is portable;
 ``scipy``
@@ -98,8 +97,8 @@ def available_engines() -> list[str]:
 
 
 #: The defaults where heyoka is not installed, in order: the first that has what a
-#: caller needs (taylor runs heyoka's method in Numba; numba's DOP853 also integrates
-#: tangent vectors at output times with the MEGNO quadratures).
+#: caller needs (taylor runs heyoka's method in Numba, tangent flows included; numba's
+#: DOP853 is the portable fallback).
 FALLBACK_DEFAULTS = ("taylor", "numba")
 
 
@@ -116,7 +115,7 @@ def default_engine_name(*capabilities: Capability) -> str:
     --------
     >>> default_engine_name() in ("heyoka", "taylor")
     True
-    >>> default_engine_name(Capability.TANGENT) in ("heyoka", "numba")
+    >>> default_engine_name(Capability.TANGENT) in ("heyoka", "taylor")
     True
     """
     if heyoka_available():

@@ -16,11 +16,19 @@ Tolerances: as heyoka, one tolerance :attr:`Tolerance.tol` = ``min(rtol, atol)``
 :func:`andoyer.kernels.taylor.order_for` (15 at 1e-12). Backward flows come from the
 base class (time reversal).
 
+Tangent flows at output times (``tangent``): renormalised, by
+:mod:`andoyer.kernels.taylor_tangent` (the vectors' jets of :mod:`andoyer.kernels.taylor`,
+each vector rescaled to unit length at every step's start, the MEGNO quadratures as
+extra jet variables of the same step); without renormalisation, the linear flow's own
+vectors (:func:`andoyer.kernels.taylor.propagate` on ``6 + 6 k`` floats).
+
 The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
 a machine compiles what it calls (a few seconds), later processes load it.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,6 +49,12 @@ __all__ = ["TaylorEngine"]
 _N = 6
 
 
+def _tangent_kernels() -> Any:
+    from andoyer.kernels import taylor_tangent  # its machine code loads here, not at import
+
+    return taylor_tangent
+
+
 class TaylorEngine(EngineBase):
     """Adaptive Taylor method (Jorba-Zou order and step) in Numba, orbits in parallel.
 
@@ -57,6 +71,9 @@ class TaylorEngine(EngineBase):
     -----
     Tangent vectors at crossings (``tangent(event=..., renormalise=False)``) are the
     linear flow's own vectors, integrated with the state (``u, rho`` split at the end).
+    At output times with ``renormalise`` (chaos indicators) each vector is rescaled to
+    unit length at every step's start and the MEGNO quadratures are jet variables of the
+    same step (:mod:`andoyer.kernels.taylor_tangent`).
 
     Examples
     --------
@@ -74,9 +91,11 @@ class TaylorEngine(EngineBase):
     name = "taylor"
     method = "Taylor integration"
     repr_options = ("max_steps", "chunksize", "n_threads")
+    tangent_method = ("the Taylor jets of the variational equations (generated from the "
+                      "SymPy field), Numba Taylor method")
     capabilities = frozenset({Capability.PROPAGATE, Capability.CROSSINGS,
-                              Capability.BACKWARD, Capability.TANGENT_CROSSINGS,
-                              Capability.ATTITUDE})
+                              Capability.BACKWARD, Capability.TANGENT,
+                              Capability.TANGENT_CROSSINGS, Capability.ATTITUDE})
 
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  n_threads: int | None = None) -> None:
@@ -110,6 +129,34 @@ class TaylorEngine(EngineBase):
             threads=self.n_threads)
         self._raise_on_failure(info, taylor, "while locating crossings")
         return Crossings(tc, yc, count)
+
+    def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
+                 t: NDArray[np.float64], par: NDArray[np.float64], tolerance: Tolerance,
+                 renormalise: bool, scale: float) -> TangentFlow:
+        """Renormalised: :mod:`andoyer.kernels.taylor_tangent` (the quadratures unscaled,
+        each jet block with its own error scale, so ``scale`` is not used); else the
+        linear flow's own vectors (``megno`` None; an overflow fails the orbit)."""
+        n, k = w0.shape[:2]
+        m = t.size
+        z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
+        if renormalise:
+            out, info = _tangent_kernels().propagate(
+                z0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
+                block=self.chunksize, threads=self.n_threads)
+        else:
+            out, info = taylor.propagate(z0, t, self._kernel_params(par), tolerance.tol,
+                                         self.max_steps, block=self.chunksize,
+                                         threads=self.n_threads)
+        ok = (info[:, 0] == taylor.SUCCESS) & np.all(np.isfinite(out), axis=(1, 2))
+        out[~ok] = np.nan
+        times = np.broadcast_to(t, (n, m)).copy()
+        count = np.full(n, m, dtype=np.int64)
+        if not renormalise:
+            u, rho = unit_vectors(out[..., _N:].reshape(n, m, k, _N))
+            return TangentFlow(times, out[..., :_N], u, rho, None, count, ok)
+        u = out[..., _N:_N + _N * k].reshape(n, m, k, _N)
+        return TangentFlow(times, out[..., :_N], u, out[..., _N + _N * k:_N + 7 * k],
+                           out[..., -2:], count, ok)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
                            par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
