@@ -152,7 +152,7 @@ def propagate_variational(y0: NDArray[np.float64], w0: NDArray[np.float64],
         The scale ``T`` of the quadratures (default ``t[-1]``).
     engine : str or Engine, optional
         Any engine with the ``tangent`` capability (:data:`ENGINES`); default heyoka
-        where installed, else numba.
+        where installed, else taylor.
     batch_size, n_threads : int, optional
         For the engines that take them (heyoka: orbits per SIMD integrator, threads).
 

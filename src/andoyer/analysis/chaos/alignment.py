@@ -257,7 +257,7 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
         Accuracy asked for (DOP853 gets ``0.025 tol``; heyoka's Taylor tolerance).
     engine : str or Engine, optional
         Any engine with the ``tangent`` capability; default heyoka where installed,
-        else numba (no heyoka needed).
+        else taylor (no heyoka needed).
 
     Returns
     -------

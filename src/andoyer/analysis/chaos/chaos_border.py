@@ -127,7 +127,7 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
     engine : str, optional
         Engine of the variational equations, as in
         :func:`~andoyer.analysis.chaos.indicators.chaos_map` (default heyoka where
-        installed, else numba).
+        installed, else taylor).
     tol : float, default 1e-12
         Integration tolerance.
     n_threads : int, optional

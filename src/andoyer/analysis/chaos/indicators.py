@@ -2,9 +2,10 @@
 
 All three come from one integration of the Euler-Poisson equations (1) with their
 first-order variational equations (:mod:`andoyer.integrate.variational`, derived from
-``H = (G, IG)/2 + mu (r, gamma)``: by heyoka's ``var_ode_sys``, or for
-``engine="numba"``, the default where heyoka is not installed, by SymPy's Jacobian on
-the Numba DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:
+``H = (G, IG)/2 + mu (r, gamma)``: by heyoka's ``var_ode_sys``; for
+``engine="taylor"``, the default where heyoka is not installed, by the Taylor jets of the
+same SymPy field in Numba; for ``engine="numba"`` by SymPy's Jacobian on the Numba
+DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:
 
 * **FLI** (fast Lyapunov indicator, Froeschle, Lega & Gonczi 1997):
   :math:`\\mathrm{FLI}(t) = \\sup_{0 \\le s \\le t} \\ln \\|w(s)\\|`, the supremum taken
@@ -259,7 +260,7 @@ def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float
 
 
 def _engine(engine: EngineLike, **options: Any) -> EngineBase:
-    """The engine (name or instance; ``None``: heyoka where installed, else numba)."""
+    """The engine (name or instance; ``None``: heyoka where installed, else taylor)."""
     able = engines_with(Capability.TANGENT)
     if not (engine is None or isinstance(engine, str | EngineBase)) \
             or (isinstance(engine, str) and engine not in able):
@@ -371,9 +372,10 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
         Tolerance of the Taylor integrator (DOP853 gets ``0.025 tol``).
     engine : str or Engine, optional
         Any engine with the ``tangent`` capability (:func:`andoyer.integrate.engines.
-        capability_table`). Default: heyoka where installed, else numba (the Numba
-        DOP853, orbits in parallel). ``"scipy"``: ``solve_ivp(DOP853)`` on the same
-        equations, one orbit at a time (a slow independent check).
+        capability_table`). Default: heyoka where installed, else taylor (the Taylor
+        method in Numba, orbits in parallel); ``"numba"``: the Numba DOP853;
+        ``"scipy"``: ``solve_ivp(DOP853)`` on the same equations, one orbit at a time
+        (a slow independent check).
 
     Returns
     -------
@@ -487,7 +489,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         tangent vector), ``tol``.
     engine : str or Engine, optional
         Any engine with the ``tangent`` capability. Default: heyoka (batch mode and
-        threads) where installed, else numba (orbits in parallel); scipy is one orbit
+        threads) where installed, else taylor (orbits in parallel); scipy is one orbit
         at a time, for checks. heyoka's SIMD batch size and threads are options of the
         engine: ``resolve_engine("heyoka", batch_size=4, n_threads=1)``.
     chunk : int, default 1024

@@ -349,8 +349,18 @@ def unit_vectors(W: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[n
     Parameters
     ----------
     W : ndarray, shape (..., 6)
-        Tangent vectors (non-zero, finite).
+        Tangent vectors (non-zero, finite). Each is scaled by its largest component
+        first, so a finite vector longer than 1e154 (whose squared length overflows)
+        still gets its finite ``ln|W|``.
+
+    Examples
+    --------
+    >>> u, rho = unit_vectors(np.array([0.0, 0.0, 3e200, 4e200, 0.0, 0.0]))
+    >>> u[2:4].tolist(), round(float(rho), 6) == round(float(np.log(5e200)), 6)
+    ([0.6, 0.8], True)
     """
-    norms = np.linalg.norm(W, axis=-1)
+    big = np.max(np.abs(W), axis=-1, keepdims=True)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return W / norms[..., None], np.log(norms)
+        scaled = W / big
+        norms = np.linalg.norm(scaled, axis=-1, keepdims=True)
+        return scaled / norms, np.log(norms[..., 0]) + np.log(big[..., 0])
