@@ -73,13 +73,14 @@ def test_agrees_with_the_continuously_renormalised_dop853(general: RigidBody) ->
     L = DT.layout(2)
     np.testing.assert_allclose(z[0, 0, L["rho"]], np.log(np.linalg.norm(W, axis=1)),
                                rtol=0, atol=1e-15)
-    # measured: y 7e-14, u 1.1e-13, rho 1e-13, the quadratures 3e-14 relative (N ~ 98,
-    # I ~ 108 at t = 60)
+    # measured: y 7e-14, u 1.1e-13, rho 1e-13, the quadratures 3e-14 relative at t = 60
+    # (N ~ 98, I ~ 108) and 7.4e-13 absolute at t = 0.5 (I = -0.007: the error control
+    # is absolute while |I| < 1)
     np.testing.assert_allclose(z[0, :, L["y"]], ref[:, L["y"]], rtol=0, atol=1e-12)
     np.testing.assert_allclose(z[0, :, L["u"]], ref[:, L["u"]], rtol=0, atol=1e-11)
     np.testing.assert_allclose(z[0, :, L["rho"]], ref[:, L["rho"]], rtol=0, atol=1e-11)
     for q in ("megno_num", "megno_int"):
-        np.testing.assert_allclose(z[0, :, L[q]], ref[:, L[q]], rtol=1e-12, atol=1e-13)
+        np.testing.assert_allclose(z[0, :, L[q]], ref[:, L[q]], rtol=1e-12, atol=5e-12)
 
 
 def test_megno_jets_solve_their_equations(general: RigidBody) -> None:

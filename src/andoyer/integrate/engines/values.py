@@ -349,8 +349,8 @@ def unit_vectors(W: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[n
     Parameters
     ----------
     W : ndarray, shape (..., 6)
-        Tangent vectors (non-zero, finite). Each is scaled by its largest component
-        first, so a finite vector longer than 1e154 (whose squared length overflows)
+        Tangent vectors (non-zero, finite). A finite vector longer than 1e154 (whose
+        squared length overflows) is scaled by its largest component first, so it
         still gets its finite ``ln|W|``.
 
     Examples
@@ -359,8 +359,13 @@ def unit_vectors(W: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[n
     >>> u[2:4].tolist(), round(float(rho), 6) == round(float(np.log(5e200)), 6)
     ([0.6, 0.8], True)
     """
-    big = np.max(np.abs(W), axis=-1, keepdims=True)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        scaled = W / big
-        norms = np.linalg.norm(scaled, axis=-1, keepdims=True)
-        return scaled / norms, np.log(norms[..., 0]) + np.log(big[..., 0])
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        norms = np.linalg.norm(W, axis=-1)
+        u, rho = W / norms[..., None], np.asarray(np.log(norms))
+        huge = np.isinf(norms) & np.all(np.isfinite(W), axis=-1)
+        if np.any(huge):
+            big = np.max(np.abs(W[huge]), axis=-1, keepdims=True)
+            scaled = W[huge] / big
+            size = np.linalg.norm(scaled, axis=-1, keepdims=True)
+            u[huge], rho[huge] = scaled / size, np.log(size[..., 0]) + np.log(big[..., 0])
+    return u, rho
