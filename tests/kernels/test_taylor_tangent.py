@@ -61,12 +61,20 @@ def _dop853(y0: NDArray[np.float64], W: NDArray[np.float64], t: NDArray[np.float
     return out[0]
 
 
+def _start(y0: NDArray[np.float64], W: NDArray[np.float64]
+           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``z0 = (y0, u_1 .. u_k)`` and ``rho0 = ln|w_i|`` of the kernel."""
+    norms = np.linalg.norm(W, axis=1)
+    return (np.concatenate([y0, (W / norms[:, None]).ravel()])[None],
+            np.log(norms)[None])
+
+
 def test_agrees_with_the_continuously_renormalised_dop853(general: RigidBody) -> None:
     p = params(general)
     y0 = from_andoyer([Y0])[0]
     W = W0 * np.array([[3.0], [0.5]])  # lengths other than 1: rho starts at ln|w0|
     t = np.array([0.0, 0.5, 3.0, 20.0, 60.0])
-    z, info = TT.propagate(np.concatenate([y0, W.ravel()])[None], t, p, 1e-14, MAX_STEPS)
+    z, info = TT.propagate(*_start(y0, W), t, p, 1e-14, MAX_STEPS)
     assert info[0, 0] == T.SUCCESS and info[0, 1] > 0
     ref = _dop853(y0, W, t, p)
     assert z.shape == (1, t.size, TT.width(2)) == (1, t.size, DT.dimension(2))
@@ -112,7 +120,7 @@ def test_log_norms_are_the_linear_flows_own(general: RigidBody) -> None:
     y0 = from_andoyer([Y0])[0]
     z0 = np.concatenate([y0, W0.ravel()])[None]
     t = np.linspace(0.0, 100.0, 11)
-    z, _ = TT.propagate(z0, t, p, 1e-13, MAX_STEPS)
+    z, _ = TT.propagate(*_start(y0, W0), t, p, 1e-13, MAX_STEPS)
     plain, info = T.propagate(z0, t, p, 1e-13, MAX_STEPS)
     assert info[0, 0] == T.SUCCESS
     W = plain[0, :, 6:].reshape(t.size, 2, 6)
@@ -128,9 +136,8 @@ def test_a_long_chaotic_run_stays_finite() -> None:
     and the quadratures do not (measured ln|w(20000)| = 1.1e3, 0.6 s)."""
     p = params(CHAOTIC_BODY)
     y0 = from_hess(CHAOTIC_BODY, [CHAOTIC])[0]
-    z0 = np.concatenate([y0, W0[0]])[None]
     t = np.linspace(0.0, 20000.0, 5)
-    z, info = TT.propagate(z0, t, p, 1e-12, MAX_STEPS)
+    z, info = TT.propagate(*_start(y0, W0[:1]), t, p, 1e-12, MAX_STEPS)
     assert info[0, 0] == T.SUCCESS
     assert np.all(np.isfinite(z))
     L = DT.layout(1)
@@ -145,16 +152,16 @@ def test_a_long_chaotic_run_stays_finite() -> None:
 
 def test_needs_a_tangent_vector() -> None:
     with pytest.raises(ValueError, match="at least one tangent vector"):
-        TT.propagate(from_andoyer([Y0]), np.array([0.0, 1.0]), params(RigidBody.paper()),
-                     1e-12, MAX_STEPS)
+        TT.propagate(from_andoyer([Y0]), np.zeros((1, 0)), np.array([0.0, 1.0]),
+                     params(RigidBody.paper()), 1e-12, MAX_STEPS)
 
 
 def test_second_process_loads_from_the_cache() -> None:
     p = params(RigidBody.paper()).tolist()
-    z0 = np.concatenate([from_andoyer([Y0])[0], W0[0]])[None]
-    TT.propagate(z0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
-    z = z0.tolist()
+    z0, rho0 = _start(from_andoyer([Y0])[0], W0[:1])
+    TT.propagate(z0, rho0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
+    z, r = z0.tolist(), rho0.tolist()
     out = fresh_process_cache_stats("andoyer.kernels.taylor_tangent", {
-        "propagate_block": f"m.propagate(np.array({z}), np.array([0.0, 1.0]), "
+        "propagate_block": f"m.propagate(np.array({z}), np.array({r}), np.array([0.0, 1.0]), "
                            f"np.array({p}), 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0] and out["hits"] == [1]

@@ -214,21 +214,29 @@ def _renormalise(X, rho):
 
 
 @fast_jit
-def renormalised_orbit(z0, t_out, q, order, max_steps, X, Q, out, info):
-    """One orbit from ``z0 = (y, w_1 .. w_k)`` (any non-zero lengths): ``out[j]`` = the
-    row at ``t_out[j]`` (non-decreasing; rows not reached stay as they are)."""
+def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
+    """One orbit from ``z0 = (y, u_1 .. u_k)`` (unit vectors) and ``rho0`` (their log
+    lengths): ``out[j]`` = the row at ``t_out[j]`` (non-decreasing; rows not reached
+    stay as they are). The rows at the initial time are ``z0, rho0, 0, 0`` as given."""
     m = t_out.shape[0]
     k = X.shape[0] - 1
-    rho = np.zeros(k)
-    tmp = np.empty(_N + _N * k)
+    nz = _N + _N * k
+    rho = np.empty(k)
+    for b in range(k):
+        rho[b] = rho0[b]
+    tmp = np.empty(nz)
     load(X, z0)
-    _renormalise(X, rho)
     Q[1, 0, 0] = 0.0
     Q[2, 0, 0] = 0.0
     for j in range(m):  # rows at the initial time
         if j > 0 and t_out[j] > t_out[0]:
             break
-        _write_row(X, Q, 0, 0.0, rho, tmp, out[j])
+        for i in range(nz):
+            out[j, i] = z0[i]
+        for b in range(k):
+            out[j, nz + b] = rho0[b]
+        out[j, nz + k] = 0.0
+        out[j, nz + k + 1] = 0.0
     if m == 1:
         return
     t = t_out[0]
@@ -272,7 +280,7 @@ def _build(stamp: str) -> Any:
     """The cached entry point, keyed on ``stamp`` (see :mod:`andoyer.kernels.dop853`)."""
 
     @cached_njit(nogil=True, fastmath=False)
-    def propagate_block(z0, t, p, order, max_steps, out, info):
+    def propagate_block(z0, rho0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
         q = np.empty(taylor_generated.N_CONSTANTS)
@@ -280,7 +288,8 @@ def _build(stamp: str) -> Any:
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         Q = np.zeros((_N_Q, order + 1, 1))
         for i in range(z0.shape[0]):
-            renormalised_orbit(z0[i], t, q, order, max_steps, X, Q, out[i], info[i])
+            renormalised_orbit(z0[i], rho0[i], t, q, order, max_steps, X, Q, out[i],
+                               info[i])
 
     return propagate_block
 
@@ -288,15 +297,18 @@ def _build(stamp: str) -> Any:
 propagate_block = _build(TANGENT_STAMP)
 
 
-def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_steps: int, *,
-              block: int = 1, threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float,
+              max_steps: int, *, block: int = 1, threads: int | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
     """Renormalised tangent flows of many orbits at the output times ``t``.
 
     Parameters
     ----------
     z0 : ndarray, shape (n, 6 + 6 k)
-        Initial states and vectors ``(y, w_1 .. w_k)`` at ``t[0]`` (any non-zero
-        lengths; ``rho`` starts at ``ln|w_i|``).
+        Initial states and unit vectors ``(y, u_1 .. u_k)`` at ``t[0]``
+        (:func:`andoyer.integrate.engines.values.unit_vectors` splits given vectors).
+    rho0 : ndarray, shape (n, k)
+        ``ln|w_i(t[0])|``: where ``rho`` starts.
     t : ndarray, shape (m,)
         Output times, non-decreasing; the MEGNO weights are ``t + delta``.
     p : ndarray, shape (8,)
@@ -319,8 +331,8 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_step
     --------
     >>> from andoyer import RigidBody, from_andoyer
     >>> y0 = from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4]])
-    >>> z0 = np.concatenate([y0, [[0.0, 0.0, 0.0, 0.0, 0.0, 2.0]]], axis=1)
-    >>> z, info = propagate(z0, np.array([0.0, 1.0]),
+    >>> z0 = np.concatenate([y0, [[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]], axis=1)
+    >>> z, info = propagate(z0, np.log([[2.0]]), np.array([0.0, 1.0]),
     ...                     np.asarray(RigidBody.paper().engine_params), 1e-12, 10**6)
     >>> z.shape, float(z[0, 0, 12]) == float(np.log(2.0)), int(info[0, 0]) == taylor.SUCCESS
     ((1, 2, 15), True, True)
@@ -331,7 +343,8 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_step
         raise ValueError("z0 must carry at least one tangent vector (6 + 6 k floats, k >= 1)")
     out = np.full((n, t.shape[0], width(k)), np.nan)
     info = np.zeros((n, len(INFO)), dtype=np.int64)
-    over_orbits(propagate_block, n, (np.ascontiguousarray(z0, dtype=np.float64),),
+    rho = np.ascontiguousarray(np.broadcast_to(rho0, (n, k)), dtype=np.float64)
+    over_orbits(propagate_block, n, (np.ascontiguousarray(z0, dtype=np.float64), rho),
                 (out, info), (t, p, order_for(float(tol)), int(max_steps)), block=block,
                 threads=threads)
     return out, info

@@ -101,6 +101,14 @@ class TaylorEngine(EngineBase):
                  n_threads: int | None = None) -> None:
         self._ensemble_options(max_steps, chunksize, n_threads)
 
+    def versions(self) -> dict[str, str]:
+        """Numba's version, and the Taylor kernels' own: the hash of their sources
+        (:data:`andoyer.kernels.taylor.TAYLOR_STAMP`, the key of their compiled code)."""
+        import numba
+
+        return {"taylor_version": f"kernels {taylor.TAYLOR_STAMP[:12]}",
+                "numba_version": str(numba.__version__)}
+
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
                    par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """States at times ``t`` (non-decreasing): each step's Taylor polynomial there."""
@@ -138,12 +146,14 @@ class TaylorEngine(EngineBase):
         linear flow's own vectors (``megno`` None; an overflow fails the orbit)."""
         n, k = w0.shape[:2]
         m = t.size
-        z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
         if renormalise:
+            u0, rho0 = unit_vectors(w0)
+            z0 = np.ascontiguousarray(np.concatenate([y0, u0.reshape(n, k * _N)], axis=1))
             out, info = _tangent_kernels().propagate(
-                z0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
+                z0, rho0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
                 block=self.chunksize, threads=self.n_threads)
         else:
+            z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
             out, info = taylor.propagate(z0, t, self._kernel_params(par), tolerance.tol,
                                          self.max_steps, block=self.chunksize,
                                          threads=self.n_threads)
