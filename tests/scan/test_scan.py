@@ -102,8 +102,8 @@ def test_each_point_is_the_public_api_result(reference, i, j):
     body = RigidBody.paper(mu)
     fill = fill_section(body, h, 0.0, ("theta2", 0.0), n_orbits=5, sampling="sobol", seed=0,
                         boundary_grid=64)
-    # The scan's engine (its default also has tangent flows: numba where heyoka is
-    # absent, while a bare poincare's default there is taylor).
+    # The scan's engine (its default also has tangent flows: taylor where heyoka is
+    # absent, as a bare poincare's default there).
     engine = default_engine_name(Capability.TANGENT, Capability.TANGENT_CROSSINGS)
     direct = poincare(body, fill["y0"].values[:5], "theta2=0", 20, engine=engine)
     point = ds.isel(mu=i, h_level=j).load()

@@ -60,7 +60,7 @@ class Context:
 
         >>> from andoyer.integrate.engines.base import Capability
         >>> ctx = Context(Path("."), RigidBody.paper(), "taylor")
-        >>> ctx.engine_name(), ctx.engine_name(Capability.TANGENT) != "taylor"
+        >>> ctx.engine_name(), ctx.engine_name(Capability.EXTENDED_PRECISION) != "taylor"
         ('taylor', True)
         """
         from andoyer.integrate.engines import default_engine_name, engine_class
