@@ -406,3 +406,67 @@ def test_public_entries_reject_bad_values_clearly(name, data):
     except (ValueError, TypeError) as exc:
         assert str(exc), name  # a message, naming something
     assert time.perf_counter() - t0 < 20.0, name
+
+
+#: |G| between what the integrators take (MAX_MOMENTUM) and what a closed form takes
+#: (MAX_ACTION), and beyond both.
+BETWEEN, BEYOND = 1e120, 2e150
+
+
+def _momentum_arguments() -> list[tuple[str, str]]:
+    """``(function, argument)``: every public argument that is an action, a length or an
+    energy level of a body (the quantities :func:`validation.momentum_limit` bounds)."""
+    from andoyer.validation import QUANTITIES
+
+    out = []
+    for name, func in sorted(API.items()):
+        params = inspect.signature(func).parameters
+        for p in params:
+            kind = QUANTITIES.get(p)
+            if kind in ("action", "length") or (kind == "energy" and "body" in params):
+                out.append((name, p))
+    return out
+
+
+def _at(name: str, param: str, G: float, good: Any) -> Any:
+    """The value of ``param`` that means ``|G| = G`` (an energy: the level reaching it; a
+    vector where the good value is one: ``good`` scaled)."""
+    from andoyer.validation import QUANTITIES
+
+    if QUANTITIES[param] != "energy":
+        vector = np.asarray(good, dtype=float) if np.ndim(good) else None
+        return G if vector is None else list(G * vector / np.linalg.norm(vector))
+    body = {**GOOD, **OVERRIDES.get(name, {})}["body"]
+    return G * G * min(body.a, body.b, body.c) / 2.0 - body.mu
+
+
+@pytest.mark.parametrize("name, param", _momentum_arguments())
+def test_one_momentum_limit_for_actions_and_levels(name, param):
+    """One rule (``validation.momentum_limit``) for every action and every level of a body:
+    a module of closed forms (``CLOSED_FORM``) takes ``|G|`` up to MAX_ACTION, any other up
+    to MAX_MOMENTUM (what the integrators take), whether ``|G|`` is given or reached by a
+    level. Before, closed forms took an action J2 = 1e120 but refused the level reaching
+    it ("beyond what the integrators take"), and an integrating function took it and
+    refused its own state, naming y0."""
+    from andoyer.validation import MAX_ACTION, MAX_MOMENTUM
+
+    func = API[name]
+    closed = bool(getattr(importlib.import_module(func.__module__), "CLOSED_FORM", False))
+    args = _good_args(name, func)
+    limit = MAX_ACTION if closed else MAX_MOMENTUM
+    for G in (BETWEEN, BEYOND):
+        try:
+            _call(func, {**args, param: _at(name, param, G, args.get(param, 1.0))})
+        except (ValueError, TypeError) as exc:
+            said = str(exc)
+            if G > limit:  # refused, naming the argument (its own range may come first)
+                assert _names(said, param), f"{name}({param} at |G| = {G:g}): {said[:160]}"
+            else:  # a closed form: its own ranges only, not the integrators' limit
+                assert f"{MAX_MOMENTUM:g}" not in said, \
+                    f"{name}({param} at |G| = {G:g}) refused by the integrators' limit: " \
+                    f"{said[:160]}"
+            continue
+        except CostLimitError:
+            assert G <= limit
+            continue
+        assert G <= limit, f"{name}({param} at |G| = {G:g}) was accepted beyond {limit:g}"

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = ["MAX_ACTION", "MAX_MOMENTUM", "MAX_ENERGY", "MAX_COUNT", "QUANTITIES", "level",
+           "momentum_limit",
            "finite", "positive", "integer", "real_array", "finite_array",
            "floats", "choice", "grid", "box", "flag", "checks_arguments"]
 
@@ -56,8 +57,9 @@ def finite(name: str, value: Any) -> float:
     return v
 
 
-#: Largest momentum (``G``, ``J2``, ``G0``) an action argument takes: its square, an
-#: energy, must stay a float (``G^2`` overflows near 1.3e154).
+#: Largest momentum (``G``, ``J2``, ``G0``) a closed form takes, as an action or reached
+#: by a level (:func:`momentum_limit`): its square, an energy, must stay a float (``G^2``
+#: overflows near 1.3e154).
 MAX_ACTION = 1e150
 
 
@@ -70,6 +72,30 @@ MAX_MOMENTUM = 1e100
 #: no body bounds it (:func:`level` does where one does): ``MAX_MOMENTUM**2``.
 MAX_ENERGY = 1e200
 
+
+def momentum_limit(closed_form: bool) -> float:
+    """The largest ``|G|`` a public function takes, whether given as an action (``G``,
+    ``J2``, ``M``, ...) or reached by an energy level: the one rule of
+    :func:`checks_arguments`.
+
+    :data:`MAX_MOMENTUM` where the function integrates (the field (1) and its error
+    control stay finite); :data:`MAX_ACTION` where it evaluates closed forms only (a
+    module that sets ``CLOSED_FORM = True`` beside its functions: ``|G|^2``, an energy,
+    stays a float). An energy given without a body is held to the square of the limit.
+
+    Parameters
+    ----------
+    closed_form : bool
+        Whether the function evaluates closed forms only (integrates nothing).
+
+    Examples
+    --------
+    >>> momentum_limit(False) == MAX_MOMENTUM, momentum_limit(True) == MAX_ACTION
+    (True, True)
+    """
+    return MAX_ACTION if closed_form else MAX_MOMENTUM
+
+
 #: Largest value of an integer argument (counts, sizes, steps, orders): a count beyond
 #: it is beyond any machine's memory (8 GB for one float per item); the cost guards
 #: (:mod:`andoyer.integrate.budget`) bound the work below it.
@@ -81,9 +107,9 @@ def level(name: str, h: float, body: Any, maximum: float = MAX_MOMENTUM) -> None
     reaches ``|G| <= maximum`` only (``|G| <= sqrt(2 (h + mu) / min(a, b, c))``, from
     Eq. (1): the kinetic energy is at least ``|G|^2 min(a, b, c) / 2``).
 
-    ``maximum``: :data:`MAX_MOMENTUM` where the level is integrated (the default, which
-    :func:`checks_arguments` applies to each argument ``h`` beside a ``body``; a module
-    of closed forms may raise it with ``LEVEL_MAXIMUM``).
+    ``maximum``: :func:`momentum_limit` (:data:`MAX_MOMENTUM` where the level is
+    integrated, the default; :data:`MAX_ACTION` in a module of closed forms), which
+    :func:`checks_arguments` applies to each argument ``h`` beside a ``body``.
 
     Parameters
     ----------
@@ -497,9 +523,10 @@ def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
 
 #: What each argument name means, hence its range: the names follow the paper (one name,
 #: one meaning: ``tests/test_vocabulary.py``), so one table bounds every public function.
-#: ``energy``: finite, and with a ``body`` argument a level it can integrate
-#: (:func:`level`; a module of closed forms may set ``LEVEL_MAXIMUM``), else
-#: ``|h| <= MAX_ENERGY``; ``action`` (momenta): finite, ``|x| <= MAX_ACTION``; ``length``
+#: ``energy``: finite, and with a ``body`` argument a level reaching ``|G|`` within
+#: :func:`momentum_limit` (:func:`level`; ``MAX_MOMENTUM``, or ``MAX_ACTION`` in a module
+#: of closed forms), else ``|h|`` within its square (``MAX_ENERGY`` where integrated);
+#: ``action`` (momenta): finite, within :func:`momentum_limit`; ``length``
 #: (``G = |G|``, a number; ``J2`` is signed through G = 0): also ``>= 0``; ``angle``,
 #: ``time``, ``finite``: finite;
 #: ``scale`` (``mu``, ``c``): finite, ``|x| <= MAX_ENERGY``; ``tolerance``: finite and
@@ -525,7 +552,7 @@ QUANTITIES: dict[str, str] = {
 
 
 def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any],
-              level_maximum: float = MAX_MOMENTUM) -> None:
+              limit: float = MAX_MOMENTUM) -> None:
     """Check ``value`` of the argument ``name`` against its quantity ``kind``."""
     if kind == "count":
         if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
@@ -550,15 +577,18 @@ def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any
     if kind == "energy":
         body = bound.get("body")
         if arr.ndim == 0 and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
-            level(label, float(arr), body, level_maximum)
-        elif big > MAX_ENERGY:
-            raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
+            level(label, float(arr), body, limit)
+        elif big > limit * limit:
+            raise ValueError(f"{label} must be within +-{limit * limit:g}, got "
+                             f"{_short(value)}")
     elif kind == "length" and arr.ndim == 0 and not arr >= 0.0:  # (G0 may be a vector G)
         raise ValueError(f"{label} must be >= 0 (a length of the angular momentum), got "
                          f"{_short(value)}")
-    if kind in ("action", "length") and big > MAX_ACTION:
-        raise ValueError(f"{label} must be within +-{MAX_ACTION:g} (its square, an energy, "
-                         f"must stay a float), got {_short(value)}")
+    if kind in ("action", "length") and big > limit:
+        why = ("its square, an energy, must stay a float" if limit > MAX_MOMENTUM else
+               "what the integrators take: the field (1) and its error control would "
+               "overflow")
+        raise ValueError(f"{label} must be within +-{limit:g} ({why}), got {_short(value)}")
     elif kind == "scale" and big > MAX_ENERGY:
         raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
     elif kind == "tolerance" and not np.all(arr > 0.0):
@@ -578,7 +608,9 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     be None, a bool or text; one annotated with a class of the package must be an
     instance of it. An argument whose name is a quantity of :data:`QUANTITIES` (``h``, the
     actions, angles, times, ``mu``, tolerances, counts, ``sheet``) is held to its range,
-    an energy ``h`` to a level its ``body`` can integrate (:func:`level`). Each failure is a
+    an energy ``h`` to a level its ``body`` reaches within :func:`momentum_limit` (what
+    the integrators take, or in a module with ``CLOSED_FORM = True`` what its actions
+    take: :func:`level`). Each failure is a
     ``ValueError`` naming the argument (a module's ``ARGUMENT_NAMES`` dict may give a longer
     name). Finer ranges, shapes and choices stay each function's own checks.
 
@@ -619,9 +651,9 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
     # A module may give an argument a longer name for messages ("n (number of plane
     # points)"): ARGUMENT_NAMES = {"n": ...} beside the function.
     labels: dict[str, str] = dict((namespace or {}).get("ARGUMENT_NAMES", {}))
-    # A module of closed forms may take levels past what the integrators take:
-    # LEVEL_MAXIMUM = math.inf beside the functions (their own checks keep them finite).
-    level_maximum = float((namespace or {}).get("LEVEL_MAXIMUM", MAX_MOMENTUM))
+    # A module of closed forms (CLOSED_FORM = True beside the functions) takes levels
+    # past what the integrators take, as far as its actions (momentum_limit).
+    limit = momentum_limit(bool((namespace or {}).get("CLOSED_FORM", False)))
 
     @functools.wraps(func)
     def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
@@ -635,7 +667,7 @@ def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
         for name, value in bound.arguments.items():
             if name in ranged and value is not None:
                 _quantity(name, labels.get(name, name), value, ranged[name],
-                          bound.arguments, level_maximum)
+                          bound.arguments, limit)
         return func(*args, **kwargs)
 
     return wrapper

@@ -103,6 +103,10 @@ __all__ = [
     "hess_solution",
 ]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 # ----------------------------------------------------------------------------- embedding
 @checks_body
 def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike,

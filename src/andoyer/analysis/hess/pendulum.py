@@ -97,6 +97,10 @@ __all__ = [
     "physical_pendulum",
 ]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 #: Motion codes stored in datasets (``flag_values`` / ``flag_meanings``).
 MOTIONS = {"equilibrium": 0, "libration": 1, "separatrix": 2, "rotation": 3}
 #: Linear-stability codes of a periodic orbit.

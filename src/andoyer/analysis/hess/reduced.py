@@ -48,6 +48,10 @@ __all__ = [
     "period",
 ]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 #: Motion codes. ``pole_passage`` (``M != 0``, ``h = c M^2/2``): the orbit passes
 #: through ``|M| = G`` (gamma parallel to G), the chart's singular point; not a separatrix.
 MOTIONS = {"equilibrium": 0, "libration": 1, "separatrix": 2, "rotation": 3,

@@ -41,9 +41,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.validation import integer, positive, real_array
+from andoyer.validation import integer, momentum_limit, positive, real_array
 
 __all__ = ["birkhoff_normal_form", "normal_form_frequency", "CENTRES"]
+
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
 
 #: The fixed points of (9) that are centres when Oz is the middle axis: ``l*`` and the
 #: body axis of the rotation they stand for (L = 0 at all four).
@@ -197,7 +201,7 @@ def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
     >>> round(abs(float(nf.omega0)), 12) == round(math.sqrt((0.5 - 0.4) * (0.5 - 1 / 2.2)), 12)
     True
     """
-    G = positive("G", G, maximum=1e100)
+    G = positive("G", G, maximum=momentum_limit(CLOSED_FORM))
     N = integer("order", order, 2, 24)
     if N % 2:
         raise ValueError(f"order must be even (the normal form has whole powers of the "

@@ -43,6 +43,10 @@ from andoyer.integrate.results import VariableMeta, describe_variables, provenan
 
 __all__ = ["lagrange_top"]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 #: Gauss-Legendre nodes of the quadratures of :func:`lagrange_top` (smooth integrands).
 _QUADRATURE_NODES = 200
 

@@ -105,6 +105,10 @@ __all__ = [
     "melnikov_off_hess",
 ]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 #: The integrand is below ``exp(-TAIL)`` times its maximum beyond the truncation time.
 TAIL = 46.0
 

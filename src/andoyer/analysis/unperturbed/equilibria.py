@@ -43,6 +43,10 @@ __all__ = [
     "permanent_rotations", "require_distinct_moments", "sorted_eigenvalues",
 ]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 
 #: Principal axis -> (moment name, index in (a, b, c)).
 AXES: dict[str, tuple[str, int]] = {"x": ("A", 0), "y": ("B", 1), "z": ("C", 2)}

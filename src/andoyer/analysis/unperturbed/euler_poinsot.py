@@ -56,9 +56,9 @@ from andoyer.validation import checks_arguments, finite, positive, real_array
 __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi", "elliptic_f",
            "euler_poinsot_momentum", "MAX_PERIODS"]
 
-#: Closed forms: any finite level (their own checks keep the results finite), not only the
-#: levels the integrators take (:func:`andoyer.validation.checks_arguments`).
-LEVEL_MAXIMUM = math.inf
+#: Closed forms: levels and actions up to |G| = MAX_ACTION, not only what the integrators
+#: take (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
 
 #: Most periods :func:`euler_poinsot_momentum` follows: beyond, the phase ``lambda t`` has
 #: lost about ``log10(MAX_PERIODS) + 1`` of its 16 digits (a 1e-5 rad phase error here).

@@ -25,6 +25,10 @@ from andoyer.validation import positive as _positive
 
 __all__ = ["portrait_andoyer", "portrait_hess"]
 
+#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: (:func:`andoyer.validation.momentum_limit`).
+CLOSED_FORM = True
+
 
 # ---------------------------------------------------------------------- portraits
 def _grid_n(n: Any) -> tuple[int, int]:
