@@ -54,7 +54,7 @@ ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6:
 
 
 def chaos_module() -> Any | None:
-    """:mod:`andoyer.analysis.chaos.indicators` (on heyoka where installed, else on numba), or None
+    """:mod:`andoyer.analysis.chaos.indicators` (on heyoka where installed, else on taylor), or None
     if it cannot be imported: the indicator controls are then disabled."""
     try:
         from andoyer.analysis.chaos import indicators as chaos

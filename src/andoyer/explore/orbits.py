@@ -135,8 +135,8 @@ def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float =
     """
     from andoyer.analysis.chaos.indicators import indicators
 
-    # The orbit engine's name (it must have the tangent capability: heyoka, numba,
-    # scipy), or the default of tangent flows (heyoka where installed, else numba).
+    # The orbit engine's name (it must have the tangent capability: heyoka, taylor,
+    # numba, scipy), or the default of tangent flows (heyoka where installed, else taylor).
     ds = indicators(settings.body, y0, _finite("t_end", t_end), engine=settings.engine,
                     tol=min(settings.rtol, settings.atol)).isel(orbit=0, time=-1)
     return {"fli": float(ds.fli), "megno": float(ds.megno), "mle": float(ds.mle),

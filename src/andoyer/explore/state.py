@@ -90,8 +90,8 @@ class Settings:
     n_crossings : int, default 500
         Section points per orbit.
     engine : {"heyoka", "taylor", "numba", "scipy"}, optional
-        Integration engine of the orbits (default: heyoka where installed, else taylor;
-        the chaos indicators: heyoka, else numba).
+        Integration engine of the orbits and the chaos indicators (default: heyoka where
+        installed, else taylor).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` for the missing action a click seeds (one orbit
         each with ``"all"``).
@@ -179,8 +179,8 @@ def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: f
     n_crossings : int, default 500
         Crossings per orbit.
     engine : str, optional
-        Integration engine of the orbits (default heyoka where installed, else taylor;
-        the chaos indicators: heyoka, else numba).
+        Integration engine of the orbits and the chaos indicators (default heyoka where
+        installed, else taylor).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` above a click seed orbits.
     rtol, atol : float, default 1e-12

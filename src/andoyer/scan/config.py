@@ -56,8 +56,8 @@ Keys
     * ``splitting``: ``G`` (1.0), ``branch`` (``"theta1=0"``, the Hess separatrix, or
       ``"theta1=4phi0"``), ``n_phase`` (16, even), ``delta`` (1e-5).
 ``[integrator]``
-    ``engine``: ``"heyoka"`` (default where installed), ``"numba"`` (the default
-    without heyoka: one engine for every task, and it has tangent flows), ``"taylor"``,
+    ``engine``: ``"heyoka"`` (default where installed), ``"taylor"`` (the default
+    without heyoka: one engine for every task, tangent flows included), ``"numba"``,
     ``"scipy"``;
     ``rtol``, ``atol`` (1e-12 each; heyoka and the chaos tasks use ``min(rtol, atol)``),
     or ``tol`` for both (the ``tol`` of the API's chaos indicators).

@@ -31,7 +31,8 @@ start in the leaf's 4-dimensional tangent space, which the linearised flow keeps
 The vectors are integrated with the state by any engine with the ``tangent``
 capability (:meth:`EngineBase.tangent <andoyer.integrate.engines.base.EngineBase.tangent>`:
 the variational equations, each vector renormalised continuously): heyoka's Taylor
-method where installed, else the Numba DOP853 (no heyoka needed).
+method where installed, else the Taylor method in Numba (no heyoka needed; the Numba
+DOP853 with ``engine="numba"``).
 
 References
 ----------

@@ -1,7 +1,8 @@
 """Stability of the physical pendulum in the full system: the monodromy matrix over one
 period (variational equations -- heyoka's Taylor integrator where installed, else the
-Numba DOP853 -- or finite differences of the flow map as an independent check) and its
-Floquet multipliers; see the 'Stability' notes of :mod:`andoyer.analysis.hess.pendulum`.
+Taylor method in Numba, or the Numba DOP853 with ``engine="numba"`` -- or finite
+differences of the flow map as an independent check) and its Floquet multipliers; see
+the 'Stability' notes of :mod:`andoyer.analysis.hess.pendulum`.
 """
 
 from __future__ import annotations
@@ -124,7 +125,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
         ``tol`` such as 1e-13: the error is about ``step^2 |D^3 y_T| + tol / step``).
     engine : str or Engine, optional
         For ``"variational"``: an engine with the ``tangent`` capability, default
-        heyoka where installed, else numba. For ``"finite_difference"``: the engine of
+        heyoka where installed, else taylor. For ``"finite_difference"``: the engine of
         the flow map (default numba).
     tol : float, default 1e-15
         Tolerance of the integration (raised to the finest the engine honours).
