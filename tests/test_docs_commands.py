@@ -153,6 +153,12 @@ HOW: dict[str, Way] = {
     "andoyer resonances --max-order 8 --order 8": Way(
         "cli", ("resonances", "--max-order", "8", "--order", "8"), "as written",
         expect=("resonances.nc", "resonances-normal-form.nc", "resonances.png")),
+    "andoyer resonances --body custom --A 2.5 --B 1 --C 2 --mu 0.001 --r 0.6 0.48 0.64 "
+    "--energy 1 --max-order 3 --order 8": Way(
+        "cli", ("resonances", "--body", "custom", "--A", "2.5", "--B", "1", "--C", "2",
+                "--mu", "0.001", "--r", "0.6", "0.48", "0.64", "--energy", "1",
+                "--max-order", "3", "--order", "8"), "as written",
+        expect=("resonances.nc", "resonances-normal-form.nc", "resonances.png")),
     "andoyer indicators --andoyer 0.3,0,0.3,1,0 --t-end 1000": Way(
         "cli", ("indicators", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "1000"), "as written",
         expect=("indicators.nc", "indicators.png")),
