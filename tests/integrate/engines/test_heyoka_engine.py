@@ -290,3 +290,39 @@ def test_both_heyoka_forms_of_the_field_equal_the_generated_field(scalar):
     got = np.asarray(cf(Y, pars=P))
     want = np.array(ep_field(*Y, *P[:7]))
     assert np.allclose(got, want, rtol=1e-13, atol=1e-14)
+
+
+@pytest.mark.parametrize("body", [RigidBody(2.4, 1.9, 1.4, mu=0.5, r=(0.4, -0.3, 0.85)),
+                                  RigidBody.paper(),  # e3 = 0: the e3 terms left out
+                                  RigidBody(2.0, 2.0, 1.0, mu=0.3, r=(0.0, 0.0, 1.0))])
+def test_the_fli_system_is_the_field_and_its_jacobian(body):
+    """The 12-variable system of the FLI maps (body coefficients as runtime parameters,
+    the vanishing ones left out) is ``(f(y), J(y) w)`` of the generated kernels,
+    compiled, at random states and tangent vectors; ``zero`` lists what vanishes."""
+    from andoyer.integrate.engines.heyoka_symbolic import (
+        coefficient_tangent_system,
+        coefficient_values,
+        heyoka_state_vars,
+    )
+    from andoyer.kernels.generated import ep_jacobian
+
+    values = coefficient_values(body.engine_params)
+    zero = frozenset(np.flatnonzero(values == 0.0).tolist())
+    system = coefficient_tangent_system(zero)
+    variables = [v for v, _ in system]
+    assert [str(v) for v in variables[:6]] == [str(v) for v in heyoka_state_vars()]
+    cf = hy.cfunc([rhs for _, rhs in system], variables)
+    rng = np.random.default_rng(3)
+    Y = rng.normal(size=(12, 30))
+    P = np.repeat(values[:cf.nparams, None], 30, axis=1)
+    got = np.asarray(cf(Y, pars=P))
+    params = body.params
+    J = np.array(ep_jacobian(*Y[:6], *params), dtype=object)
+    Jw = np.array([sum(np.broadcast_to(J[6 * i + j], (30,)) * Y[6 + j] for j in range(6))
+                   for i in range(6)], dtype=float)
+    np.testing.assert_allclose(got[:6], np.array(ep_field(*Y[:6], *params)), rtol=1e-13,
+                               atol=1e-14)
+    np.testing.assert_allclose(got[6:], Jw, rtol=1e-13, atol=1e-14)
+    # The Hess body has e3 = 0, the symmetric top a = b and e1 = e2 = 0: their terms
+    # vanish and are left out of the compiled code.
+    assert (len(zero) > 0) == (body.e3 == 0.0 or body.A == body.B)

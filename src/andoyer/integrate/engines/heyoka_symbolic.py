@@ -23,12 +23,13 @@ from numpy.typing import NDArray
 from andoyer.integrate.engines.base import ALL_KINDS, PAR
 from andoyer.integrate.engines.base import PARAMETERS as PARAMETER_NAMES
 from andoyer.integrate.engines.lazy import heyoka as hy
-from andoyer.symbolic.hamiltonian import S, euler_poisson_field
+from andoyer.symbolic.hamiltonian import S, euler_poisson_field, euler_poisson_jacobian
 from andoyer.symbolic.sections import SECTION_ARGS, section_function
 
 __all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "INV_SCALE", "par", "heyoka_state_vars",
            "symbol_map", "taylor_form", "heyoka_system", "section_exprs", "section_cfunc",
-           "field_cfunc", "field_at", "attitude_vars", "attitude_system"]
+           "field_cfunc", "field_at", "attitude_vars", "attitude_system",
+           "tangent_coefficients", "coefficient_values", "coefficient_tangent_system"]
 
 #: ``cos phi0``, ``sin phi0`` as runtime parameters of their own in the section functions:
 #: heyoka would expand ``cos(par)``, ``sin(par)`` by their Taylor recursions at every step
@@ -135,6 +136,121 @@ def heyoka_system(scalar: bool = False) -> tuple[tuple[Any, Any], ...]:
     smap = symbol_map()
     return tuple((x, taylor_form(e) if scalar else hy.from_sympy(e, smap))
                  for x, e in zip(heyoka_state_vars(), euler_poisson_field(), strict=True))
+
+
+# ----------------------------------------------------------------------------- FLI system
+#: Names of the tangent-vector variables of :func:`coefficient_tangent_system`.
+TANGENT_NAMES = tuple(f"w_{s}" for s in map(str, S.y))
+
+
+@cache
+def _coefficient_form() -> tuple[tuple[sp.Expr, ...],
+                                  tuple[tuple[tuple[int, tuple[tuple[int, ...], ...]], ...],
+                                        ...]]:
+    """The field (1) and its tangent equations ``w' = J(y) w`` as sums of monomials in
+    ``(y, w)`` grouped by their body coefficients.
+
+    Returns ``(coefficients, equations)``: the distinct coefficients (SymPy expressions
+    in the body's symbols, signs included, in order of first appearance), and per
+    equation the groups ``(coefficient index, (exponents of (y, w), ...))``.
+    """
+    w = sp.symbols(" ".join(TANGENT_NAMES), real=True)
+    J = euler_poisson_jacobian()
+    n = len(S.y)
+    exprs = [*euler_poisson_field(),
+             *(sp.expand(sum(J[n * i + j] * w[j] for j in range(n))) for i in range(n))]
+    coefficients: list[sp.Expr] = []
+    equations: list[tuple[tuple[int, tuple[tuple[int, ...], ...]], ...]] = []
+    for e in exprs:
+        groups: dict[int, list[tuple[int, ...]]] = {}
+        for m, c in sp.Poly(e, *S.y, *w).terms():
+            c = sp.factor(c)
+            same = [i for i, d in enumerate(coefficients) if sp.expand(c - d) == 0]
+            if not same:
+                coefficients.append(c)
+            index = same[0] if same else len(coefficients) - 1
+            groups.setdefault(index, []).append(tuple(int(k) for k in m))
+        equations.append(tuple((i, tuple(ms)) for i, ms in groups.items()))
+    return tuple(coefficients), tuple(equations)
+
+
+def tangent_coefficients() -> tuple[sp.Expr, ...]:
+    """The distinct body coefficients (signs included) of the monomials of the field (1)
+    and its tangent equations: the runtime parameters of
+    :func:`coefficient_tangent_system`.
+
+    Examples
+    --------
+    >>> tangent_coefficients()[:3]
+    (-b + c, e3*mu, -e2*mu)
+    """
+    return _coefficient_form()[0]
+
+
+@cache
+def _coefficient_function() -> Any:
+    return sp.lambdify(S.body, list(tangent_coefficients()), modules="math")
+
+
+def coefficient_values(params: Any) -> NDArray[np.float64]:
+    """The values of :func:`tangent_coefficients` for a body.
+
+    Parameters
+    ----------
+    params : sequence of floats
+        ``(a, b, c, mu, e1, e2, e3, ...)`` (:attr:`RigidBody.engine_params`; extra
+        entries ignored).
+
+    Examples
+    --------
+    >>> v = coefficient_values((0.4, 0.5, 0.5, 0.01, 1.0, 0.0, 0.0))  # b = c, e = (1, 0, 0)
+    >>> [str(c) for c, x in zip(tangent_coefficients(), v) if x == 0.0]
+    ['-b + c', 'e3*mu', '-e2*mu', '-e3*mu', 'e2*mu']
+    """
+    return np.array(_coefficient_function()(*(float(v) for v in params[:len(S.body)])),
+                    dtype=float)
+
+
+@cache
+def coefficient_tangent_system(zero: frozenset[int] = frozenset()
+                               ) -> tuple[tuple[Any, Any], ...]:
+    """The state and ONE tangent vector, ``y' = f(y)``, ``w' = J(y) w`` (12 variables),
+    as heyoka ``(variable, rhs)`` pairs whose runtime parameters are the body
+    coefficients :func:`tangent_coefficients` (``par[i]``, values from
+    :func:`coefficient_values`).
+
+    Each right-hand side is ``sum_i par[i] * (sum of its monomials)``: one product per
+    coefficient instead of one per monomial and body symbol, as a script with the
+    numbers folded in, while the numbers stay runtime parameters (one compiled
+    integrator serves every body). The groups whose coefficient vanishes for the body
+    (``zero``: e.g. ``e3 mu`` on a Hess body) are left out, which changes nothing but
+    the cost; such a system is compiled once per pattern of zeros.
+
+    Parameters
+    ----------
+    zero : frozenset of int
+        Indices of coefficients that are exactly 0 for the body.
+    """
+    _, equations = _coefficient_form()
+    variables = [*heyoka_state_vars(), *hy.make_vars(*TANGENT_NAMES)]
+    out = []
+    for x, groups in zip(variables, equations, strict=True):
+        parts = []
+        for i, monomials in groups:
+            if i in zero:
+                continue
+            terms = []
+            for m in monomials:
+                term: Any = None
+                for v, k in zip(variables, m, strict=True):
+                    for _ in range(k):
+                        term = v if term is None else term * v
+                terms.append(term)
+            parts.append(hy.par[i] * (terms[0] if len(terms) == 1 else hy.sum(terms)))
+        rhs = (hy.expression(0.0) if not parts else parts[0] if len(parts) == 1
+               else hy.sum(parts))
+        out.append((x, rhs))
+    return tuple(out)
 
 
 @cache

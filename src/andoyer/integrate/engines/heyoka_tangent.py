@@ -26,10 +26,13 @@ transforms of the one SymPy -> heyoka field (:func:`heyoka_system`) by
   The engine returns them unscaled. Orbits run in blocks of ``batch_size`` lanes of
   one SIMD integrator and blocks on threads, each owning a copy of the integrator.
 * **plain** (:func:`plain_flow`), for the FLI alone over many orbits: the state and ONE
-  tangent vector ``w' = J w`` as is (the first column of ``var_ode_sys`` started at
-  ``w0``; 12 variables, no division, fully compiled), in the same SIMD blocks and
-  threads; ``|w|`` is not renormalised, so the caller re-runs orbits whose ``ln|w|``
-  nears overflow.
+  tangent vector ``w' = J w`` as is (12 variables, no division, fully compiled), each
+  right-hand side a sum of monomials grouped by the body coefficient they share (one
+  product per coefficient: :func:`~andoyer.integrate.engines.heyoka_symbolic.
+  coefficient_tangent_system`, derived from the same SymPy field; the coefficients are
+  runtime parameters and those that vanish for the body are left out), in the same
+  SIMD blocks and threads; ``|w|`` is not renormalised, so the caller re-runs orbits
+  whose ``ln|w|`` nears overflow.
 * **the fundamental matrix** (``var_args.vars``: ``Phi = dy/dy0``, 36 variables),
   for short flights (monodromy matrices, the Jacobian of a section map): the
   columns start as the given vectors, so ``w_i(t) = Phi(t) w_i(0)``; optionally
@@ -59,6 +62,8 @@ from numpy.typing import NDArray
 
 from andoyer.integrate.engines.base import PAR, SectionEvent, TangentFlow, unit_vectors
 from andoyer.integrate.engines.heyoka_symbolic import (
+    coefficient_tangent_system,
+    coefficient_values,
     field_at,
     heyoka_state_vars,
     heyoka_system,
@@ -145,17 +150,17 @@ class _Key(NamedTuple):
     kind: int = -1  # section kind of the terminal event (matrix only), -1: none
     direction: int = 0
     extended: bool = False
+    zero: frozenset[int] = frozenset()  # plain only: body coefficients left out (zero)
 
 
 def _compile(key: _Key) -> Any:
     fp: Any = np.longdouble if key.extended else float
     if key.system == "plain":
-        # The state and ONE tangent column of var_ode_sys (d y / d G1(0), started at
-        # the given vector instead: the column's equations are linear in it): 12
-        # variables, compiled in full for fast steps.
-        vsys = hy.var_ode_sys(list(heyoka_system()), [heyoka_state_vars()[0]], order=1)
-        return hy.taylor_adaptive_batch(vsys, np.zeros((2 * _N, key.batch_size)),
-                                        tol=key.tol)
+        # The state and ONE tangent vector, w' = J w: 12 variables, the body's
+        # coefficients as runtime parameters (one product per coefficient), compiled in
+        # full for fast steps.
+        return hy.taylor_adaptive_batch(list(coefficient_tangent_system(key.zero)),
+                                        np.zeros((2 * _N, key.batch_size)), tol=key.tol)
     if key.system == "renormalised":
         system = list(variational_system(key.k))
         n = len(system)
@@ -360,24 +365,45 @@ def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
                        np.full(n, t.size, dtype=np.int64), ok)
 
 
+def _plain_blocks(key: _Key, x0: NDArray[np.float64], grid: NDArray[np.float64],
+                  coeffs: NDArray[np.float64], out: NDArray[np.float64],
+                  good: NDArray[np.bool_], tasks: _Counter) -> None:
+    """Integrate blocks of lanes taken from ``tasks``: ``x0`` (12, n) padded to whole
+    blocks, ``out`` (blocks, times, 12, lanes) and ``good`` (blocks, lanes) written in
+    place, one ``propagate_grid`` per block and nothing else per block in Python."""
+    m = key.batch_size
+    t0 = float(grid[0, 0])
+    with _borrow(key) as ta:
+        ta.pars[:] = coeffs[:int(np.shape(ta.pars)[0]), None]
+        time_limit = hy.taylor_outcome.time_limit
+        while (start := tasks.next()) is not None:
+            b = start // m
+            ta.set_time(t0)
+            ta.state[:] = x0[:, start:start + m]
+            out[b] = ta.propagate_grid(grid)[-1]
+            good[b] = [r[0] == time_limit for r in ta.propagate_res]
+
+
 def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.float64],
                pars: NDArray[np.float64], tol: float, batch_size: int,
                n_threads: int) -> TangentFlow:
     """``w(t) = Phi(t) w(0)`` of ONE vector per orbit, not renormalised, over output
-    times ``t``: the 12-variable system (state and ``w' = J w``) in SIMD blocks of
-    ``batch_size > 1`` lanes on threads, one ``propagate_grid`` per block. ``|w|``
-    overflows past ``ln|w| ~ 709``: such orbits come back with ``ok`` False.
+    times ``t``: the 12-variable system (state and ``w' = J w``,
+    :func:`~andoyer.integrate.engines.heyoka_symbolic.coefficient_tangent_system`, the
+    body's coefficients as runtime parameters and those that vanish left out) in SIMD
+    blocks of ``batch_size > 1`` lanes on threads, one ``propagate_grid`` per block.
+    ``|w|`` overflows past ``ln|w| ~ 709``: such orbits come back with ``ok`` False.
 
     Parameters
     ----------
     y0 : ndarray, shape (n, 6)
         Initial Euler-Poisson states.
-    w0 : ndarray, shape (n, 6)
+    w0 : ndarray, shape (n, 1, 6)
         One initial tangent vector per orbit.
     t : ndarray, shape (m,)
         Output times.
     pars : ndarray
-        Runtime parameters.
+        Runtime parameters (the body's ``a, b, c, mu, e1, e2, e3`` first).
     tol : float
         heyoka's tolerance.
     batch_size : int
@@ -386,14 +412,34 @@ def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.f
         Threads over the blocks.
     """
     n = y0.shape[0]
-    if w0.shape[1] != 1 or batch_size < 2:
+    m = batch_size
+    if w0.shape[1] != 1 or m < 2:
         raise ValueError("plain_flow takes one vector per orbit and a batch size > 1")
-    x0 = np.concatenate([y0, w0[:, 0]], axis=1)
-    key = _Key("plain", batch_size, tol)
-    out = np.empty((n, t.size, 2 * _N))
-    ok = np.zeros(n, dtype=bool)
+    coeffs = coefficient_values(pars)
+    key = _Key("plain", m, tol, zero=frozenset(np.flatnonzero(coeffs == 0.0).tolist()))
+    n_blocks = -(-n // m)
+    # Lanes as columns, padded to whole blocks with the last orbit (its copies are
+    # dropped): no per-block concatenation.
+    x0 = np.empty((2 * _N, n_blocks * m))
+    x0[:_N, :n] = y0.T
+    x0[_N:, :n] = w0[:, 0].T
+    x0[:, n:] = x0[:, n - 1:n]
+    grid = np.ascontiguousarray(np.repeat(t, m).reshape(-1, m))
+    blocks = np.empty((n_blocks, t.size, 2 * _N, m))
+    good = np.zeros((n_blocks, m), dtype=bool)
     _template(key)
-    _run_blocks(key, x0, t, pars, out, ok, n_threads)
+    tasks = _Counter(n_blocks * m, m)
+    workers = min(n_threads, n_blocks)
+    if workers <= 1:
+        _plain_blocks(key, x0, grid, coeffs, blocks, good, tasks)
+    else:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            for fut in [pool.submit(_plain_blocks, key, x0, grid, coeffs, blocks, good, tasks)
+                        for _ in range(workers)]:
+                fut.result()
+    out = np.moveaxis(blocks, 3, 1).reshape(n_blocks * m, t.size, 2 * _N)[:n]
+    ok = good.reshape(-1)[:n] & np.isfinite(out).all(axis=(1, 2))
+    out[~ok] = np.nan
     u, rho = unit_vectors(out[..., None, _N:])
     return TangentFlow(np.broadcast_to(t, (n, t.size)).copy(), out[..., :_N], u, rho, None,
                        np.full(n, t.size, dtype=np.int64), ok)
