@@ -222,6 +222,43 @@ def test_initial_tangent_is_tangent_to_the_level_sets() -> None:
             assert np.all(np.abs(d) < 1e-8) if zero else np.all(np.abs(d) > 1e-3)
 
 
+@pytest.mark.parametrize("body", [PAPER, RigidBody(2.4, 1.9, 1.4, mu=0.5, r=(0.4, -0.3, 0.85))])
+def test_initial_tangent_equals_the_least_squares_projection(body: RigidBody) -> None:
+    """The vectorised Gram-Schmidt projection of initial_tangent gives the vectors of
+    an independent route -- the projection by per-state least squares
+    (``numpy.linalg.lstsq`` on the gradients, the pinv of the former code) -- to 1e-12,
+    on random states and the states of a map grid."""
+    from andoyer.analysis.chaos import indicators as I
+
+    rng = np.random.default_rng(5)
+    gamma = rng.normal(size=(300, 3))
+    y = np.concatenate([rng.normal(size=(300, 3)),
+                        gamma / np.linalg.norm(gamma, axis=1)[:, None]], axis=1)
+    grid = np.column_stack([rng.uniform(0, 2 * np.pi, 100), np.zeros(100),
+                            rng.uniform(-0.9, 0.9, 100), np.ones(100), np.zeros(100)])
+    y = np.concatenate([y, from_andoyer(grid)])
+    N = I._gradients(body, y)
+
+    def lstsq_projection(rows: np.ndarray, v: np.ndarray) -> np.ndarray:
+        return np.stack([n.T @ np.linalg.lstsq(n.T, vi, rcond=1e-15)[0]
+                         for n, vi in zip(rows, v, strict=True)])
+
+    v = np.broadcast_to(I._GENERIC[0] / np.linalg.norm(I._GENERIC[0]), y.shape)
+    for k in (2, 3):
+        np.testing.assert_allclose(I._project(N[:, :k], v), lstsq_projection(N[:, :k], v),
+                                   rtol=0, atol=1e-12)
+    # The whole vector, for both spaces: the same construction on the reference route.
+    for tangent in ("leaf", "energy"):
+        w = initial_tangent(body, y, tangent)
+        iso = v - lstsq_projection(N, v)
+        iso /= np.linalg.norm(iso, axis=1)[:, None]
+        if tangent == "leaf":
+            gH = N[:, 2]
+            normal = gH - lstsq_projection(N[:, :2], gH)
+            iso = (iso + normal / np.linalg.norm(normal, axis=1)[:, None]) / math.sqrt(2.0)
+        np.testing.assert_allclose(w, iso, rtol=0, atol=1e-12)
+
+
 def test_tangent_stays_on_the_leaf_along_the_flow() -> None:
     y0 = from_andoyer(TORUS)
     w0 = initial_tangent(PAPER, y0)

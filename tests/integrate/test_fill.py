@@ -308,3 +308,62 @@ def test_roots_in_chunks_equal_roots_at_once() -> None:
              + section_roots(body, body.c / 2, 0.0, ("theta2", 0.0), p[2500:], q[2500:]))
     assert len(whole) == len(parts) == 5000 and sum(r.size for r in whole) > 3000
     assert all(np.array_equal(a, b) for a, b in zip(whole, parts, strict=True))
+
+
+def _scalar_roots(body: RigidBody, h: float, M: float, coord: str, value: float,
+                  p: float, q: float) -> np.ndarray:
+    """The roots of H = h above one plane point by a scalar route independent of the
+    solver: 200 001 nodes (quadratically dense at the lower end), brentq per sign
+    change, the same admissibility margins."""
+    from scipy.optimize import brentq
+
+    chart = "andoyer" if coord == "g" else "hess"
+    gmax = np.sqrt(2 * (h + body.mu) / min(body.a, body.b, body.c))
+    lo = max(abs(q), abs(M), 1e-9 * gmax)
+    if lo >= gmax * (1 - SINGULAR_MARGIN):
+        return np.empty(0)
+    A = lo + (gmax - lo) * np.linspace(0, 1, 200_001) ** 2
+
+    def f(a: np.ndarray) -> np.ndarray:
+        return hamiltonian(body, np.stack(np.broadcast_arrays(p, value, q, a, M), axis=-1),
+                           chart) - h
+
+    F = f(A)
+    i = np.flatnonzero(F[:-1] * F[1:] < 0)
+    r = np.array([brentq(lambda a: float(f(np.array(a))), A[k], A[k + 1], xtol=1e-15,
+                         rtol=4 * np.finfo(float).eps) for k in i])
+    margin = SINGULAR_MARGIN * r
+    ok = (r - abs(q) > margin) & (r - abs(M) > margin) & ((q > margin) if chart == "hess"
+                                                          else True)
+    return r[ok]
+
+
+@pytest.mark.parametrize("body, coord, M", [
+    (RigidBody.paper(), "theta2", 0.0), (RigidBody.paper(), "g", 0.3),
+    (RigidBody.hess(3.0, 1.0, 2.0, mu=1.0), "theta2", 0.2),
+    (RigidBody(2.4, 1.9, 1.4, mu=0.5, r=(0.4, -0.3, 0.85)), "g", 0.0)])
+def test_roots_of_a_map_grid_near_the_boundary_and_singular_sets(body, coord, M) -> None:
+    """The vectorised solver (scans in slabs, all brackets closed at once, duplicates and
+    singular roots dropped in NumPy) gives the roots of an independent scalar route to
+    1e-12: random points, points on the accessible boundary (two roots close together
+    or none) and points next to the chart's singular sets (q ~ 0, |q| ~ the action)."""
+    from andoyer.integrate.fill import default_h
+
+    h = default_h(body, M) + 0.01
+    fill = fill_section(body, h, M, (coord, 0.4), n_orbits=1, boundary_grid=64)
+    rng = np.random.default_rng(11)
+    bx, by = fill.boundary_x.values, fill.boundary_y.values
+    on = np.flatnonzero(np.isfinite(bx))
+    pick = rng.choice(on, 12, replace=False)
+    x0, x1 = float(fill.attrs["plane_x_min"]), float(fill.attrs["plane_x_max"])
+    y0, y1 = float(fill.attrs["plane_y_min"]), float(fill.attrs["plane_y_max"])
+    r = float(fill[fill.attrs["action"]].values[0])
+    p = np.concatenate([rng.uniform(x0, x1, 12), bx[pick], rng.uniform(x0, x1, 4),
+                        rng.uniform(x0, x1, 4)])
+    q = np.concatenate([rng.uniform(y0, y1, 12), by[pick], np.full(4, 1e-7 * r),
+                        np.full(4, r * (1 - 1e-7)) * (1 if coord == "g" else 0.5)])
+    got = section_roots(body, h, M, (coord, 0.4), p, q)
+    for pi, qi, g in zip(p, q, got, strict=True):
+        want = _scalar_roots(body, h, M, coord, 0.4, pi, qi)
+        assert g.size == want.size, (pi, qi, g, want)
+        np.testing.assert_allclose(g, want, rtol=1e-12, atol=1e-13)  # solver: xatol 1e-14 G_max
