@@ -228,7 +228,7 @@ def test_initial_tangent_equals_the_least_squares_projection(body: RigidBody) ->
     an independent route -- the projection by per-state least squares
     (``numpy.linalg.lstsq`` on the gradients, the pinv of the former code) -- to 1e-12,
     on random states and the states of a map grid."""
-    from andoyer.analysis.chaos import indicators as I
+    from andoyer.analysis.chaos import tangent_space as I
 
     rng = np.random.default_rng(5)
     gamma = rng.normal(size=(300, 3))

@@ -61,7 +61,6 @@ References
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -75,9 +74,10 @@ from andoyer.analysis.chaos.specs import (
     Tangent,
     regroup,
 )
+from andoyer.analysis.chaos.tangent_space import initial_tangent
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
-from andoyer.charts.euler_poisson import STATE, energy, hamiltonian_expr
+from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
@@ -94,7 +94,7 @@ from andoyer.integrate.results import (
 from andoyer.integrate.variational import MEGNO_DELTA
 from andoyer.notation import COORDINATE
 from andoyer.progress import Progress
-from andoyer.validation import checks_arguments, finite, integer, positive, real_array
+from andoyer.validation import checks_arguments, finite, integer, positive
 
 #: Longer names of arguments in messages (andoyer.validation.checks_arguments).
 ARGUMENT_NAMES = {"w0": "w0 (initial tangent direction)"}
@@ -108,13 +108,6 @@ INDICATORS = ("fli", "megno")
 DEFAULT_GRID = MapGrid()
 DEFAULT_RUN = IndicatorRun()
 
-# The fixed generic vectors whose projections are the initial tangent vectors (the second
-# is used where the first is nearly normal to the tangent space).
-_GENERIC = np.array([[1.0, math.sqrt(2), math.sqrt(3), math.sqrt(5), math.sqrt(7),
-                      math.sqrt(11)],
-                     [math.sqrt(13), -math.sqrt(3), math.sqrt(2), -1.0, math.sqrt(5),
-                      -math.sqrt(7)]])
-_MIN_PROJECTION = 0.05
 #: ln|w| beyond which a tangent vector integrated without renormalisation is integrated
 #: again renormalised (|w| overflows a double at ln|w| ~ 709).
 _OVERFLOW_LOG = 600.0
@@ -133,150 +126,6 @@ _ATTRS: dict[str, dict[str, str]] = {
     "mle": {"long_name": "finite-time maximal Lyapunov exponent ln|w(t)|/t",
             "symbol": "lambda", "units": "1 / body time unit"},
 }
-
-
-# ----------------------------------------------------------------------------- tangent
-
-
-def _gradients(body: RigidBody, y: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Gradients of ``(G, gamma)``, ``|gamma|^2`` and ``H`` at states ``y``, (n, 3, 6).
-
-    ``grad H`` by complex-step differentiation of the one H of Eq. (1) (exact to
-    round-off, nothing transcribed); the Casimirs' gradients are
-    ``grad (G, gamma) = (gamma, G)`` and ``grad |gamma|^2 = (0, 2 gamma)``.
-    """
-    G, gamma = y[:, :3], y[:, 3:]
-    rows = [np.concatenate([gamma, G], axis=1),
-            np.concatenate([np.zeros_like(gamma), 2.0 * gamma], axis=1)]
-    step = 1e-30
-    grad = np.empty_like(y)
-    for k in range(len(STATE)):
-        z = y.astype(complex)
-        z[:, k] += 1j * step
-        G1, G2, G3, gamma1, gamma2, gamma3 = z.T
-        grad[:, k] = np.imag(hamiltonian_expr(G1, G2, G3, gamma1, gamma2, gamma3,
-                                              *body.params)) / step
-    rows.append(grad)
-    return np.stack(rows, axis=1)
-
-
-@checks_body
-def initial_tangent(body: RigidBody, y: ArrayLike, tangent: Tangent = "leaf",
-                    direction: ArrayLike | None = None) -> NDArray[np.float64]:
-    """Unit initial tangent vectors at Euler-Poisson states ``y``, shape (n, 6).
-
-    Parameters
-    ----------
-    body : RigidBody
-    y : array_like, shape (6,) or (n, 6)
-        Euler-Poisson states.
-    tangent : {"leaf", "energy"}
-        ``"leaf"`` (default): orthogonal to ``grad (G, gamma)`` and ``grad |gamma|^2``
-        (tangent to the symplectic leaf); ``"energy"``: also orthogonal to ``grad H``
-        (tangent to the energy level of the reduced system).
-    direction : array_like, shape (6,) or (n, 6), optional
-        The vector to project (default: a fixed generic vector).
-
-    Returns
-    -------
-    ndarray
-        The normalised orthogonal projections.
-
-    Raises
-    ------
-    ValueError
-        If ``direction`` is (nearly) normal to the tangent space at some state.
-
-    Examples
-    --------
-    >>> body = RigidBody.paper()
-    >>> y = from_andoyer([0.3, 0.0, 0.3, 1.0, 0.0])
-    >>> w = initial_tangent(body, y)
-    >>> bool(abs(np.linalg.norm(w) - 1) < 1e-15), bool(abs(w[0, 3:] @ y[3:]) < 1e-15)
-    (True, True)
-    """
-    if tangent not in TANGENT_SPACES:
-        raise ValueError(f"unknown tangent space {tangent!r}; choose 'energy' or 'leaf'")
-    Y = np.atleast_2d(np.asarray(y, dtype=float))
-    if Y.ndim != 2 or Y.shape[1] != len(STATE):
-        raise ValueError(f"y must have shape (6,) or (n, 6), got {np.shape(y)}")
-    N = _gradients(body, Y)  # (n, 3, 6): the Casimirs' gradients, then grad H
-    if direction is not None:
-        k = 2 if tangent == "leaf" else 3
-        D = real_array("w0 (initial tangent direction)", direction)
-        try:
-            V = np.broadcast_to(D, Y.shape)
-        except ValueError:
-            raise ValueError(f"w0 (initial tangent direction) must have shape (6,) or "
-                             f"{Y.shape}, got {np.shape(direction)}") from None
-        if not np.all(np.isfinite(V)):
-            raise ValueError("w0 (initial tangent direction) contains NaN or infinity")
-        # Only the direction counts: scaled to its largest component first (a direction
-        # of size 1e300 overflowed the norms).
-        big = np.max(np.abs(V), axis=1, keepdims=True)
-        V = V / np.where(big > 0.0, big, 1.0)
-        W = V - _project(N[:, :k], V)
-        norm = np.linalg.norm(W, axis=1)
-        if np.any(norm <= 1e-8 * np.linalg.norm(V, axis=1)):
-            raise ValueError("w0 (initial tangent direction) is normal to the tangent space "
-                             "at some state: its projection vanishes; choose another "
-                             "direction")
-        return W / norm[:, None]
-    # The iso-energetic part: a fixed generic vector projected onto the energy level.
-    iso = np.empty_like(Y)
-    todo = np.ones(Y.shape[0], dtype=bool)
-    for v in _GENERIC:
-        v = np.broadcast_to(v / np.linalg.norm(v), Y.shape)
-        W = v - _project(N, v)
-        norm = np.linalg.norm(W, axis=1)
-        take = todo & (norm > _MIN_PROJECTION)
-        iso[take] = W[take] / norm[take, None]
-        todo &= ~take
-    if np.any(todo):
-        raise RuntimeError("no generic vector projects onto the tangent space; "
-                           "please report this state")
-    if tangent == "energy":
-        return iso
-    # "leaf": add the unit normal to the energy level within the leaf, so that the shear
-    # between energy levels is excited by the same amount at every state (with a generic
-    # vector alone its energy component would vanish on curves of the map, and so would
-    # the linear growth on the tori there).
-    gH = N[:, 2]
-    normal = gH - _project(N[:, :2], gH)
-    size = np.linalg.norm(normal, axis=1)
-    ok = size > 1e-12 * np.maximum(np.linalg.norm(gH, axis=1), 1e-300)
-    out = iso.copy()  # at a relative equilibrium (grad H in the Casimirs' span): iso only
-    out[ok] = (iso[ok] + normal[ok] / size[ok, None]) / math.sqrt(2.0)
-    # iso and the normal are orthogonal to rounding: unit length to the last bit.
-    return out / np.linalg.norm(out, axis=1)[:, None]
-
-
-#: Relative size below which a Gram-Schmidt residual counts as a dependent direction
-#: (the cut-off ``numpy.linalg.pinv`` applies to singular values, relative to the largest).
-_RCOND = 1e-15
-
-
-def _project(N: NDArray[np.float64], V: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Orthogonal projection of the rows of ``V`` (n, 6) onto the span of ``N`` (n, k, 6).
-
-    Modified Gram-Schmidt over the ``k <= 3`` spanning vectors, in NumPy over all states
-    at once (the batched SVD of ``pinv`` it replaces cost 15 times more); a direction
-    whose residual is below ``_RCOND`` times the largest spanning vector is dropped, as
-    ``pinv`` drops the singular values below its ``rcond``.
-    """
-    scale = np.max(np.linalg.norm(N, axis=2), axis=1)  # (n,)
-    out = np.zeros_like(V)
-    basis: list[NDArray[np.float64]] = []
-    for i in range(N.shape[1]):
-        r = N[:, i].copy()
-        for q in basis:
-            r -= np.einsum("nj,nj->n", q, r)[:, None] * q
-        size = np.linalg.norm(r, axis=1)
-        keep = size > _RCOND * scale
-        q = np.where(keep[:, None], r / np.where(keep, size, 1.0)[:, None], 0.0)
-        basis.append(q)
-        out += np.einsum("nj,nj->n", q, V)[:, None] * q
-    return out
 
 
 # ----------------------------------------------------------------------------- helpers
