@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import Any, TypeVar
 
 import numpy as np
 import xarray as xr
@@ -40,7 +40,8 @@ from andoyer.progress import Progress
 from andoyer.validation import integer, positive, real_array
 
 __all__ = ["propagate", "poincare", "initial_states", "integrate_canonical", "GAMMA_TOL",
-           "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings"]
+           "RESIDUAL_BOUND", "check_times", "check_tolerances", "section_crossings",
+           "ORBIT_PARAMETERS", "orbit_docstring", "orbit_inputs", "orbit_dataset"]
 
 #: ``|gamma|`` may differ from 1 by this much (then it is renormalised); more is an error.
 GAMMA_TOL = 1e-12
@@ -144,6 +145,129 @@ def check_times(t: ArrayLike) -> NDArray[np.float64]:
     return arr
 
 
+#: The parameters the orbit functions share (:func:`propagate`, :func:`poincare`,
+#: :func:`andoyer.integrate.attitude`), documented once: name -> the numpydoc lines.
+ORBIT_PARAMETERS: dict[str, tuple[str, ...]] = {
+    "y0": ("y0 : array_like, shape (6,) or (n, 6) (or (5,)/(n, 5) in the other charts)",
+           "    Initial states in ``chart`` coordinates."),
+    "t": ("t : array_like, shape (k,)",
+          "    Output times, strictly increasing; ``t[0]`` is the initial time."),
+    "tolerances": ("rtol, atol : float",
+                   "    Tolerances of the mixed criterion ``atol + rtol |y|`` (heyoka has a "
+                   "single",
+                   "    tolerance: it uses ``min(rtol, atol)``)."),
+    "chart": ('chart : {"euler_poisson", "andoyer", "hess"}',
+              "    Chart of ``y0``."),
+    "progress": ("progress : bool, optional",
+                 "    Show a progress line on stderr (default: when stderr is a terminal)."),
+}
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def orbit_docstring(func: _F) -> _F:
+    """Decorator: a line ``{name}`` of ``func``'s docstring (``name`` a key of
+    :data:`ORBIT_PARAMETERS`) becomes that parameter's documentation, at the line's
+    indentation (apply it below ``checks_body``, which copies the docstring).
+
+    Parameters
+    ----------
+    func : callable
+        A function whose docstring names shared parameters.
+
+    Examples
+    --------
+    >>> @orbit_docstring
+    ... def f(chart="andoyer"):
+    ...     '''Parameters
+    ...     ----------
+    ...     {chart}
+    ...     '''
+    >>> print(f.__doc__.splitlines()[3].strip())
+    Chart of ``y0``.
+    """
+    lines = []
+    for line in (func.__doc__ or "").split("\n"):
+        name = line.strip()[1:-1] if line.strip().startswith("{") else ""
+        if name in ORBIT_PARAMETERS:
+            indent = line[:len(line) - len(line.lstrip())]
+            lines += [indent + part for part in ORBIT_PARAMETERS[name]]
+        else:
+            lines.append(line)
+    func.__doc__ = "\n".join(lines)
+    return func
+
+
+def orbit_inputs(body: RigidBody, y0: ArrayLike, t: ArrayLike, rtol: float, atol: float,
+                 chart: str) -> tuple[NDArray[np.float64], NDArray[np.float64], Tolerance]:
+    """The checked inputs of an orbit function (:data:`ORBIT_PARAMETERS`): Euler-Poisson
+    initial states, shape (n, 6), the output times and the tolerance, checked in that
+    order: tolerances, times, states.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body (``phi0`` of the Hess chart, the momentum bound).
+    y0 : array_like
+        Initial states in ``chart`` coordinates (:func:`initial_states`).
+    t : array_like
+        Output times (:func:`check_times`).
+    rtol, atol : float
+        Tolerances (:func:`check_tolerances`).
+    chart : str
+        Chart of ``y0``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> y, t, tol = orbit_inputs(RigidBody.paper(), [0.3, 1.0, 0.2, 1.0, 0.0], [0.0, 1.0],
+    ...                          1e-12, 1e-12, "andoyer")
+    >>> y.shape, t.tolist(), tol.rtol
+    ((1, 6), [0.0, 1.0], 1e-12)
+    """
+    rtol, atol = check_tolerances(rtol, atol)
+    times = check_times(t)
+    y = initial_states(body, y0, chart)
+    return y, times, Tolerance(rtol, atol)
+
+
+def orbit_dataset(body: RigidBody, Y: NDArray[np.float64], times: NDArray[np.float64],
+                  attrs: Mapping[str, Any],
+                  extra: Mapping[str, tuple[Any, Any]] | None = None,
+                  coords: Mapping[str, Any] | None = None) -> xr.Dataset:
+    """The dataset of orbits at output times (dims ``(orbit, time)``), with the drifts of
+    the integrals (:func:`~andoyer.integrate.results.states_dataset`).
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body integrated.
+    Y : ndarray, shape (n, k, 6)
+        Euler-Poisson states of ``n`` orbits at ``k`` times.
+    times : ndarray, shape (k,)
+        The output times.
+    attrs : mapping
+        Dataset attributes (:func:`~andoyer.integrate.results.provenance`).
+    extra : mapping, optional
+        More variables, ``name -> (dims, values)``.
+    coords : mapping, optional
+        More coordinates (those of the dims of ``extra``).
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = orbit_dataset(RigidBody.paper(), np.array([[[0.6, 0, 0.8, 0, 0.6, 0.8]] * 2]),
+    ...                    np.array([0.0, 1.0]), {})
+    >>> dict(ds.sizes), ds.time.attrs["long_name"]
+    ({'orbit': 1, 'time': 2}, 'time')
+    """
+    ds = states_dataset(body, Y, ("orbit", "time"),
+                        {"orbit": np.arange(Y.shape[0]), "time": times, **(coords or {})},
+                        attrs, extra, drifts=True)
+    ds.variables["time"].attrs.update(units="body time units", long_name="time")
+    return ds
+
+
 #: Fewest orbits per engine call while a progress line is shown.
 _MIN_CHUNK = 64
 
@@ -171,6 +295,7 @@ def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
 
 # ---------------------------------------------------------------------- orbits
 @checks_body
+@orbit_docstring
 def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLike = None,
               rtol: float = 1e-12, atol: float = 1e-12, chart: str = "euler_poisson",
               progress: bool | None = None) -> xr.Dataset:
@@ -179,20 +304,15 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     Parameters
     ----------
     body : RigidBody
-    y0 : array_like, shape (6,) or (n, 6) (or (5,)/(n, 5) in the other charts)
-        Initial states in ``chart`` coordinates.
-    t : array_like, shape (k,)
-        Output times, strictly increasing; ``t[0]`` is the initial time.
+    {y0}
+    {t}
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
         heyoka where installed, else taylor
         (:func:`~andoyer.integrate.engines.default_engine_name`).
-    rtol, atol : float
-        Tolerances (heyoka has a single tolerance: it uses ``min(rtol, atol)``).
-    chart : {"euler_poisson", "andoyer", "hess"}
-        Chart of ``y0``.
-    progress : bool, optional
-        Show a progress line on stderr (default: when stderr is a terminal).
+    {tolerances}
+    {chart}
+    {progress}
 
     Returns
     -------
@@ -210,27 +330,22 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     >>> ds.sizes["time"], bool(abs(ds.H_drift).max() < 1e-10)
     (3, True)
     """
-    rtol, atol = check_tolerances(rtol, atol)
-    times = check_times(t)
-    y = initial_states(body, y0, chart)
-    budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
+    y, times, tolerance = orbit_inputs(body, y0, t, rtol, atol, chart)
+    budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0],
+                                                          tolerance.rtol),
                  memory=budget.DATASET_BYTES * y.shape[0] * times.size)
     eng = resolve_engine(engine, Capability.PROPAGATE)
     name = eng.name
     params = body.engine_params
-    tolerance = Tolerance(rtol, atol)
     parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, tolerance),
                         y.shape[0], f"propagate ({name})", progress)
-    Y = np.concatenate(parts, axis=0)
-    ds = states_dataset(
-        body, Y, ("orbit", "time"), {"orbit": np.arange(Y.shape[0]), "time": times},
-        provenance(body, engine=name, rtol=rtol, atol=atol, initial_chart=chart),
-        drifts=True)
-    ds.variables["time"].attrs.update(units="body time units", long_name="time")
-    return ds
+    return orbit_dataset(body, np.concatenate(parts, axis=0), times,
+                         provenance(body, engine=name, rtol=tolerance.rtol,
+                                    atol=tolerance.atol, initial_chart=chart))
 
 
 @checks_body
+@orbit_docstring
 def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings: int, *,
              engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,
              t_max: float | None = None, chart: str = "euler_poisson",
@@ -240,8 +355,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     Parameters
     ----------
     body : RigidBody
-    y0 : array_like
-        Initial states (see :func:`propagate`).
+    {y0}
     section : Section or str
         E.g. ``Section("g", 0.0)``, ``"theta2=0"``, ``"G3=0:+"``.
     n_crossings : int
@@ -250,16 +364,12 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
         heyoka where installed, else taylor
         (:func:`~andoyer.integrate.engines.default_engine_name`).
-    rtol, atol : float
-        Tolerances of the mixed criterion ``atol + rtol |y|`` (heyoka has a single
-        tolerance: it uses ``min(rtol, atol)``).
+    {tolerances}
     t_max : float, optional
         Integrate at most to this time (default ``1000 * n_crossings``); orbits with
         fewer crossings are NaN-padded.
-    chart : {"euler_poisson", "andoyer", "hess"}
-        Chart of ``y0``.
-    progress : bool, optional
-        Show a progress line on stderr (default: when stderr is a terminal).
+    {chart}
+    {progress}
 
     Returns
     -------

@@ -31,10 +31,10 @@ from andoyer.charts.rotation import (
     rotation_matrix,
 )
 from andoyer.integrate import budget
-from andoyer.integrate.api import check_times, check_tolerances, initial_states
+from andoyer.integrate.api import orbit_dataset, orbit_docstring, orbit_inputs
 from andoyer.integrate.engines import EngineLike, resolve_engine
-from andoyer.integrate.engines.base import Capability, Tolerance
-from andoyer.integrate.results import describe_variables, provenance, states_dataset
+from andoyer.integrate.engines.base import Capability
+from andoyer.integrate.results import describe_variables, provenance
 from andoyer.progress import Progress
 from andoyer.validation import finite_array
 
@@ -110,6 +110,7 @@ def attitude_variables(q: ArrayLike, G: ArrayLike, dims: tuple[str, ...]
 
 
 @checks_body
+@orbit_docstring
 def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: ArrayLike = 0.0,
              engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,
              chart: str = "euler_poisson", progress: bool | None = None) -> xr.Dataset:
@@ -128,21 +129,16 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: Array
     Parameters
     ----------
     body : RigidBody
-    y0 : array_like, shape (6,) or (n, 6) (or (5,)/(n, 5) in the other charts)
-        Initial states in ``chart`` coordinates.
-    t : array_like, shape (k,)
-        Output times, strictly increasing; ``t[0]`` is the initial time.
+    {y0}
+    {t}
     precession0 : float or array_like, shape (n,)
         Initial precession angle(s) (rad): the orientation about the vertical.
     engine : str or Engine, optional
         An engine with the attitude capability (default heyoka where installed, else
         the first of taylor, numba that has it).
-    rtol, atol : float
-        Tolerances, as for :func:`andoyer.integrate.propagate`.
-    chart : {"euler_poisson", "andoyer", "hess"}
-        Chart of ``y0``.
-    progress : bool, optional
-        Show a progress line on stderr (default: when stderr is a terminal).
+    {tolerances}
+    {chart}
+    {progress}
 
     Returns
     -------
@@ -167,9 +163,7 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: Array
     ...                  .to_array().T.values, atol=1e-10))
     True
     """
-    rtol, atol = check_tolerances(rtol, atol)
-    times = check_times(t)
-    y = initial_states(body, y0, chart)
+    y, times, tolerance = orbit_inputs(body, y0, t, rtol, atol, chart)
     n = y.shape[0]
     psi = finite_array("precession0", precession0)
     if psi.ndim > 1 or (psi.ndim == 1 and psi.shape[0] not in (1, n)):
@@ -177,26 +171,22 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: Array
                          f"{psi.shape}")
     psi = np.broadcast_to(psi, (n,))
     budget.check("attitude", steps=1.3 * budget.estimate_steps(body, y, times[-1] - times[0],
-                                                               rtol),
+                                                               tolerance.rtol),
                  memory=(budget.DATASET_BYTES + ATTITUDE_BYTES) * n * times.size)
     eng = resolve_engine(engine, Capability.ATTITUDE)
     q0 = quaternion_from_vertical(y[:, 3:], psi)
-    tolerance = Tolerance(rtol, atol)
     bar = Progress(n, f"attitude ({eng.name})", progress)
     Y, Q = eng.attitude(y, q0, times, body.engine_params, tolerance)
     bar.update(n)
     bar.close()
-    dims = ("orbit", "time")
-    extra = attitude_variables(Q, Y[..., :3], dims)
-    ds = states_dataset(
-        body, Y, dims, {"orbit": np.arange(n), "time": times,
-                        "component": list(QUATERNION), "space": list(SPACE_AXES),
-                        "body": list(BODY_AXES)},
-        provenance(body, engine=eng.name, rtol=rtol, atol=atol, initial_chart=chart,
+    ds = orbit_dataset(
+        body, Y, times,
+        provenance(body, engine=eng.name, rtol=tolerance.rtol, atol=tolerance.atol,
+                   initial_chart=chart,
                    equations="Euler-Poisson equations (1) with the attitude quaternion "
                              "dq/dt = q (x) (0, I G)/2", **CONVENTIONS),
-        extra, drifts=True)
-    ds.variables["time"].attrs.update(units="body time units", long_name="time")
+        attitude_variables(Q, Y[..., :3], ("orbit", "time")),
+        {"component": list(QUATERNION), "space": list(SPACE_AXES), "body": list(BODY_AXES)})
     ds["precession0"] = ("orbit", np.array(psi, dtype=float))
     describe_variables(ds, {**_META, "precession0": ("ψ0", "initial precession angle", "rad",
                                                      "")})
