@@ -71,8 +71,11 @@ so their size never loosens the state's control; the engine's ``scale`` is not u
 
 Step size: Jorba-Zou's (:mod:`andoyer.kernels.taylor`), the least radius over the state,
 each vector (``m = 1`` after the renormalisation: absolute error = relative error of
-``w``), ``L`` (``m = 1``: an absolute error of ``rho``), ``N`` and ``I`` (``m = max(1,
-|N_0|)``, ``max(1, |I_0|)``).
+``w``), ``L`` (``m = 1``: an absolute error of ``rho``) and, while the pole of ``I`` is
+nearer than that radius (:math:`s_0 \le r`: the first steps), ``I`` (``m = max(1,
+|I_0|)``). ``N`` has ``L``'s singularities (:math:`N' = (s_0 + \tau) L'`), and once
+:math:`s_0 > r` the series of ``I`` converges faster than the state's (its terms fall
+as :math:`(h / s_0)^k` with :math:`h \approx r / e^2`), so neither is measured then.
 
 Entry point (cached, ``nogil``; blocks of orbits in threads,
 :func:`andoyer.kernels.threads.over_orbits`): :func:`propagate`. Its rows have the
@@ -148,27 +151,37 @@ def megno_jets(X, order, s0, Q):
     I = Q[2, :, 0]  # noqa: E741 (the paper's symbol)
     P = Q[3, :, 0]
     g = Q[4, :, 0]
-    for k in range(order + 1):
+    w = X[1]
+    for k in range(order + 1):  # the Cauchy product w.w, each pair of terms once
         s = 0.0
-        for i in range(_N):
-            for j in range(k + 1):
-                s += X[1, j, i] * X[1, k - j, i]
+        for j in range((k + 1) // 2):
+            a = w[j]
+            b = w[k - j]
+            s += (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+                  + a[3] * b[3] + a[4] * b[4] + a[5] * b[5])
+        s *= 2.0
+        if k % 2 == 0:
+            a = w[k // 2]
+            s += (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
+                  + a[3] * a[3] + a[4] * a[4] + a[5] * a[5])
         P[k] = s
-    L[0] = math.log(P[0])  # ln P first, halved below
+    inv_p0 = 1.0 / P[0]
+    inv_s0 = 1.0 / s0
+    L[0] = 0.5 * math.log(P[0])
+    g[0] = N[0] * inv_s0
+    ell_prev = 0.0  # l_{k-1} = 2 L_{k-1} (ln P), carried to N_k
     for k in range(1, order + 1):
+        inv_k = 1.0 / k
         acc = 0.0
         for j in range(1, k):
-            acc += j * L[j] * P[k - j]
-        L[k] = (P[k] - acc / k) / P[0]
-    for k in range(order + 1):
-        L[k] *= 0.5
-    for k in range(1, order + 1):
-        N[k] = s0 * L[k] + (k - 1) / k * L[k - 1]
-    g[0] = N[0] / s0
-    for k in range(1, order):
-        g[k] = (N[k] - g[k - 1]) / s0
-    for k in range(1, order + 1):
-        I[k] = 2.0 * g[k - 1] / k
+            acc += j * L[j] * P[k - j]  # L_j = l_j / 2, hence the 2 below
+        ell = (P[k] - 2.0 * acc * inv_k) * inv_p0
+        L[k] = 0.5 * ell
+        N[k] = s0 * L[k] + (k - 1) * inv_k * 0.5 * ell_prev
+        ell_prev = ell
+        I[k] = 2.0 * g[k - 1] * inv_k
+        if k < order:
+            g[k] = (N[k] - g[k - 1]) * inv_s0
 
 
 @fast_jit
@@ -254,8 +267,9 @@ def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
         r = radius(X[0], order)
         for b in range(1, k + 1):
             r = min(r, radius(X[b], order))
-        for c in range(3):
-            r = min(r, radius(Q[c], order))
+        r = min(r, radius(Q[0], order))  # L (N has the same singularities)
+        if not t + MEGNO_DELTA > r:  # I's pole at distance s0 = t + delta is near
+            r = min(r, radius(Q[2], order))
         h = r * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
         min_step = 10.0 * (np.nextafter(t, np.inf) - t)
         if not h >= min_step:  # also NaN (a non-finite state)
