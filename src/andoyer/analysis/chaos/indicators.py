@@ -27,7 +27,10 @@ DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:
 
 A chaos map of the FLI alone (``IndicatorRun("fli")``, the default) integrates
 only the state and ``w' = J w`` itself, without renormalisation or MEGNO quadratures
-(on heyoka 12 variables instead of 17, no division per step); the few orbits whose
+(on heyoka 12 variables instead of 17, no division per step, each right-hand side one
+product per body coefficient,
+:func:`~andoyer.integrate.engines.heyoka_symbolic.coefficient_tangent_system`, in
+batches of twice heyoka's SIMD width); the few orbits whose
 ``ln|w|`` nears overflow (> 600, a double overflows at 709) are integrated again
 renormalised. Both routes give the same FLI to 1e-8 on regular orbits (tested).
 

@@ -28,8 +28,9 @@ transforms of the one SymPy -> heyoka field (:func:`heyoka_system`) by
 * **plain** (:func:`plain_flow`), for the FLI alone over many orbits: the state and ONE
   tangent vector ``w' = J w`` as is (12 variables, no division, fully compiled), each
   right-hand side a sum of monomials grouped by the body coefficient they share (one
-  product per coefficient: :func:`~andoyer.integrate.engines.heyoka_symbolic.
-  coefficient_tangent_system`, derived from the same SymPy field; the coefficients are
+  product per coefficient:
+  :func:`~andoyer.integrate.engines.heyoka_symbolic.coefficient_tangent_system`,
+  derived from the same SymPy field; the coefficients are
   runtime parameters and those that vanish for the body are left out), in the same
   SIMD blocks and threads; ``|w|`` is not renormalised, so the caller re-runs orbits
   whose ``ln|w|`` nears overflow.
