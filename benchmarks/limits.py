@@ -54,17 +54,23 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
     """Steps of the orbits ``y0`` to their times ``t_end`` and the heyoka limit."""
     import heyoka as hy
 
+    lanes = 1
     if variational:
-        from andoyer.integrate.engines.base import runtime_parameters
-        from andoyer.integrate.engines.heyoka_symbolic import heyoka_state_vars, heyoka_system
+        from andoyer.integrate.engines.heyoka_engine import PLAIN_SIMD_MULTIPLE
+        from andoyer.integrate.engines.heyoka_symbolic import (
+            coefficient_tangent_system,
+            coefficient_values,
+        )
 
         # The system chaos_map(indicator="fli") integrates (engines.heyoka_tangent's
-        # "plain" flow): the state and ONE tangent column of var_ode_sys, 12 variables,
-        # not renormalised (the renormalised 17-variable system is only re-run for the
-        # few orbits whose ln|w| nears overflow).
-        vsys = hy.var_ode_sys(list(heyoka_system()), [heyoka_state_vars()[0]], order=1)
-        system = batch_system = vsys
-        pars = runtime_parameters(body.engine_params)
+        # "plain" flow): the state and ONE tangent vector, 12 variables, the body's
+        # coefficients as runtime parameters (those that vanish left out), not
+        # renormalised (the renormalised 17-variable system is only re-run for the few
+        # orbits whose ln|w| nears overflow), in PLAIN_SIMD_MULTIPLE x SIMD lanes.
+        pars = coefficient_values(body.engine_params)
+        zero = frozenset(np.flatnonzero(pars == 0.0).tolist())
+        system = batch_system = list(coefficient_tangent_system(zero))
+        lanes = PLAIN_SIMD_MULTIPLE
         assert w0 is not None
         x0 = np.concatenate([y0, w0], axis=1)
         compact = False  # as andoyer compiles it
@@ -92,7 +98,7 @@ def heyoka_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
     if single_orbit:
         return Limit("heyoka", steps, scalar, steps * scalar,
                      "one orbit: one lane of one core (scalar integrator)")
-    m = int(hy.recommended_simd_size())
+    m = lanes * int(hy.recommended_simd_size())
     tb = hy.taylor_adaptive_batch(batch_system, np.zeros((dim, m)), tol=tol, compact_mode=compact)
     tb.pars[:] = pars[:len(ta.pars), None]
     rows = np.resize(np.arange(x0.shape[0]), m)
