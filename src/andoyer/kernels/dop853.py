@@ -24,7 +24,9 @@ Entry points (compiled with ``cache=True`` into the folder
   on the dense output polynomial;
 * both run blocks of orbits in threads (:func:`andoyer.kernels.threads.over_orbits`)
   through the compiled, nogil :func:`propagate_block` and
-  :func:`locate_crossings_block`;
+  :func:`locate_crossings_block`: :class:`Flow`, the one driver of every field's
+  entry points (this module's, :mod:`andoyer.kernels.tangent`'s and
+  :mod:`andoyer.kernels.attitude`'s);
 * :func:`integrate_fixed`, :func:`interpolate_step` -- fixed steps without control
   and the interpolant of one step, for measuring the orders of the method.
 
@@ -78,7 +80,15 @@ cached entry points are therefore built by a factory closing over :data:`KERNEL_
 the cache key; the helpers they call are not cached themselves (their code is part
 of each entry point's cached library). The stepper's pieces close over their field
 (:func:`make_stepper`) instead of taking it as an argument: a compiled function
-passed as a value is lowered as a run-time address, which Numba refuses to cache.
+passed as a value is lowered as a run-time address, which Numba refuses to cache. For
+the same reason each module keeps its own cached doors (``propagate_block``,
+``locate_crossings_block``: a loop over the orbits of a block around its stepper's
+``propagate_orbit``, ``crossings_orbit``), and :class:`Flow`, the driver they share, is
+Python: a door built by a shared factory would close over the stepper's functions, whose
+pickled form (Numba's cache key of a closure) carries a new uuid in every process, so
+nothing would ever load from the cache; and moving the loop into the stepper (one more
+compiled call between the door and the orbit) changed LLVM's inlining and so the
+rounding of the tangent flow's results (measured: not bit-identical).
 
 References
 ----------
@@ -92,7 +102,7 @@ from __future__ import annotations
 
 import hashlib
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
@@ -136,8 +146,8 @@ __all__ = [
     "locate_crossings",
     "propagate_block",
     "locate_crossings_block",
-    "ensemble_propagate",
-    "ensemble_crossings",
+    "Flow",
+    "EP_FLOW",
     "integrate_fixed",
     "interpolate_step",
 ]
@@ -255,157 +265,130 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
  interpolate_step) = _build(KERNEL_STAMP)
 
 
-def propagate(y0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float, atol: float,
-              max_steps: int, *, block: int = 1, threads: int | None = None
-              ) -> tuple[np.ndarray, np.ndarray]:
-    """States of many orbits at the output times ``t`` (dense output), orbits in threads.
+class Flow(NamedTuple):
+    """The entry points of the DOP853 on one field (:func:`make_stepper`): its cached block
+    kernels run over blocks of orbits in threads
+    (:func:`andoyer.kernels.threads.over_orbits`), for states of any width ``d``
+    (:data:`EP_FLOW`: the field (1), ``d = 6``; :mod:`andoyer.kernels.tangent`,
+    :mod:`andoyer.kernels.attitude`).
 
     Parameters
     ----------
-    y0 : ndarray, shape (n, 6)
-        Initial Euler-Poisson states at time ``t[0]`` (C-contiguous floats).
-    t : ndarray, shape (k,)
-        Output times, non-decreasing, ``k >= 1``.
-    p : ndarray, shape (8,)
-        Kernel parameters :data:`PARAMS`.
-    rtol, atol : float
-        Tolerances of the local error (componentwise ``atol + rtol |y|``).
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads :
-        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
-
-    Returns
-    -------
-    y : ndarray, shape (n, k, 6)
-        ``y[i, j] = y_i(t[j])``; NaN after a failure (see ``info``).
-    info : ndarray of int64, shape (n, 4)
-        Columns :data:`INFO`.
+    propagate_block : numba function
+        ``propagate_block(y0, t, p, rtol, atol, max_steps, out, info)``: the cached
+        kernel of a block of orbits to output times.
+    locate_crossings_block : numba function, optional
+        ``locate_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol,
+        max_steps, tc, yc, count, info)``: the cached kernel of a block's crossings
+        (None: the field has no crossings entry point).
     """
-    return ensemble_propagate(propagate_block, y0, t, p, rtol, atol, max_steps, block=block,
-                              threads=threads)
+
+    propagate_block: Any
+    locate_crossings_block: Any = None
+
+    def propagate(self, y0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float,
+                  atol: float, max_steps: int, *, block: int = 1, threads: int | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
+        """States of many orbits at the output times ``t`` (dense output), orbits in threads.
+
+        Parameters
+        ----------
+        y0 : ndarray, shape (n, d)
+            Initial states at time ``t[0]`` (C-contiguous floats).
+        t : ndarray, shape (k,)
+            Output times, non-decreasing, ``k >= 1``.
+        p : ndarray, shape (8,)
+            Kernel parameters :data:`PARAMS`.
+        rtol, atol : float
+            Tolerances of the local error (componentwise ``atol + rtol |y|``).
+        max_steps : int
+            Maximum accepted steps per orbit.
+        block, threads :
+            Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+        Returns
+        -------
+        y : ndarray, shape (n, k, d)
+            ``y[i, j] = y_i(t[j])``; NaN after a failure (see ``info``).
+        info : ndarray of int64, shape (n, 4)
+            Columns :data:`INFO`.
+
+        Examples
+        --------
+        A free top spinning about its axis z: G stays (0, 0, 2).
+
+        >>> p = np.array([0.5, 0.4, 0.25, 0.0, 1.0, 0.0, 0.0, 0.0])
+        >>> y, info = EP_FLOW.propagate(np.array([[0.0, 0.0, 2.0, 0.0, 0.0, 1.0]]),
+        ...                             np.array([0.0, 1.0]), p, 1e-12, 1e-12, 10**6)
+        >>> y.shape, y[0, -1, :3].tolist(), int(info[0, 0]) == SUCCESS
+        ((1, 2, 6), [0.0, 0.0, 2.0], True)
+        """
+        n = y0.shape[0]
+        out = np.full((n, t.shape[0], y0.shape[1]), np.nan)
+        info = np.zeros((n, len(INFO)), dtype=np.int64)
+        over_orbits(self.propagate_block, n, (y0,), (out, info),
+                    (t, p, float(rtol), float(atol), int(max_steps)), block=block,
+                    threads=threads)
+        return out, info
+
+    def locate_crossings(self, y0: np.ndarray, p: np.ndarray, kind: int, value: float,
+                         direction: int, n_crossings: int, t_max: float, rtol: float,
+                         atol: float, max_steps: int, *, block: int = 1,
+                         threads: int | None = None
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The first crossings after t = 0 of a section of the Euler-Poisson state (the
+        first six components), for many orbits, orbits in threads.
+
+        Parameters
+        ----------
+        y0 : ndarray, shape (n, d)
+            Initial states at t = 0.
+        p : ndarray, shape (8,)
+            Kernel parameters :data:`PARAMS`.
+        kind : int
+            Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
+        value : float
+            The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
+        direction : int
+            +1: f increasing, -1: decreasing, 0: both.
+        n_crossings : int
+            Stop an orbit after this many crossings.
+        t_max : float
+            Stop an orbit at this time.
+        rtol, atol : float
+            Tolerances.
+        max_steps : int
+            Maximum accepted steps per orbit.
+        block, threads :
+            Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+        Returns
+        -------
+        t : ndarray, shape (n, n_crossings)
+            Crossing times, NaN-padded.
+        y : ndarray, shape (n, n_crossings, d)
+            States on the section, NaN-padded.
+        count : ndarray of int64, shape (n,)
+            Crossings found per orbit.
+        info : ndarray of int64, shape (n, 4)
+            Columns :data:`INFO`.
+        """
+        if self.locate_crossings_block is None:
+            raise TypeError("this flow has no crossings entry point")
+        n = y0.shape[0]
+        tc = np.full((n, int(n_crossings)), np.nan)
+        yc = np.full((n, int(n_crossings), y0.shape[1]), np.nan)
+        count = np.zeros(n, dtype=np.int64)
+        info = np.zeros((n, len(INFO)), dtype=np.int64)
+        over_orbits(self.locate_crossings_block, n, (y0,), (tc, yc, count, info),
+                    (p, int(kind), float(value), int(direction), float(t_max), float(rtol),
+                     float(atol), int(max_steps)), block=block, threads=threads)
+        return tc, yc, count, info
 
 
-def locate_crossings(y0: np.ndarray, p: np.ndarray, kind: int, value: float,
-                     direction: int, n_crossings: int, t_max: float, rtol: float,
-                     atol: float, max_steps: int, *, block: int = 1,
-                     threads: int | None = None
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The first crossings after t = 0 of a section, for many orbits, orbits in threads.
-
-    Parameters
-    ----------
-    y0 : ndarray, shape (n, 6)
-        Initial Euler-Poisson states at t = 0.
-    p : ndarray, shape (8,)
-        Kernel parameters :data:`PARAMS`.
-    kind : int
-        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
-    value : float
-        The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
-    direction : int
-        +1: f increasing, -1: decreasing, 0: both.
-    n_crossings : int
-        Stop an orbit after this many crossings.
-    t_max : float
-        Stop an orbit at this time.
-    rtol, atol : float
-        Tolerances.
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads :
-        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
-
-    Returns
-    -------
-    t : ndarray, shape (n, n_crossings)
-        Crossing times, NaN-padded.
-    y : ndarray, shape (n, n_crossings, 6)
-        States on the section, NaN-padded.
-    count : ndarray of int64, shape (n,)
-        Crossings found per orbit.
-    info : ndarray of int64, shape (n, 4)
-        Columns :data:`INFO`.
-    """
-    return ensemble_crossings(locate_crossings_block, y0, p, kind, value, direction,
-                              n_crossings, t_max, rtol, atol, max_steps, block=block,
-                              threads=threads)
-
-
-def ensemble_propagate(kernel: Any, y0: np.ndarray, t: np.ndarray, p: np.ndarray,
-                       rtol: float, atol: float, max_steps: int, *, block: int = 1,
-                       threads: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Allocate the outputs of :func:`propagate` for states of any width ``y0.shape[1]``
-    and run a ``propagate_block`` kernel (this module's or :mod:`andoyer.kernels.tangent`'s)
-    over blocks of orbits in threads.
-
-    Parameters
-    ----------
-    kernel : numba function
-        A ``propagate_block`` kernel.
-    y0 : ndarray, shape (n, d)
-        Initial states at ``t[0]``.
-    t : ndarray, shape (k,)
-        Output times.
-    p : ndarray
-        Kernel parameters.
-    rtol, atol : float
-        Tolerances.
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads : int
-        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
-    """
-    n = y0.shape[0]
-    out = np.full((n, t.shape[0], y0.shape[1]), np.nan)
-    info = np.zeros((n, len(INFO)), dtype=np.int64)
-    over_orbits(kernel, n, (y0,), (out, info),
-                (t, p, float(rtol), float(atol), int(max_steps)), block=block,
-                threads=threads)
-    return out, info
-
-
-def ensemble_crossings(kernel: Any, y0: np.ndarray, p: np.ndarray, kind: int, value: float,
-                       direction: int, n_crossings: int, t_max: float, rtol: float,
-                       atol: float, max_steps: int, *, block: int = 1,
-                       threads: int | None = None
-                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """As :func:`ensemble_propagate`, for :func:`locate_crossings` and a
-    ``locate_crossings_block`` kernel.
-
-    Parameters
-    ----------
-    kernel : numba function
-        A ``locate_crossings_block`` kernel.
-    y0 : ndarray, shape (n, d)
-        Initial states at t = 0.
-    p : ndarray
-        Kernel parameters.
-    kind : int
-        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
-    value : float
-        The section value.
-    direction : int
-        +1: f increasing, -1: decreasing, 0: both.
-    n_crossings : int
-        Stop an orbit after this many crossings.
-    t_max : float
-        Stop an orbit at this time.
-    rtol, atol : float
-        Tolerances.
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads : int
-        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
-    """
-    n = y0.shape[0]
-    tc = np.full((n, int(n_crossings)), np.nan)
-    yc = np.full((n, int(n_crossings), y0.shape[1]), np.nan)
-    count = np.zeros(n, dtype=np.int64)
-    info = np.zeros((n, len(INFO)), dtype=np.int64)
-    over_orbits(kernel, n, (y0,), (tc, yc, count, info),
-                (p, int(kind), float(value), int(direction), float(t_max), float(rtol),
-                 float(atol), int(max_steps)), block=block, threads=threads)
-    return tc, yc, count, info
-
-
+#: The entry points of the field (1).
+EP_FLOW = Flow(propagate_block, locate_crossings_block)
+#: :meth:`Flow.propagate` of the field (1).
+propagate = EP_FLOW.propagate
+#: :meth:`Flow.locate_crossings` of the field (1).
+locate_crossings = EP_FLOW.locate_crossings

@@ -26,9 +26,9 @@ by hand. The stepper is :func:`andoyer.kernels.stepper.make_stepper` on this fie
 same DOP853, dense output and section crossings as the plain orbits.
 
 Entry points (``cache=True``; blocks of orbits in threads, as in
-:mod:`andoyer.kernels.dop853`): :func:`propagate` and :func:`locate_crossings`, with the
-signatures and ``info`` of their namesakes in :mod:`andoyer.kernels.dop853` but states of
-:func:`dimension` ``(k)`` floats.
+:mod:`andoyer.kernels.dop853`): :func:`propagate` and :func:`locate_crossings`, those of
+:class:`andoyer.kernels.dop853.Flow` (:data:`FLOW`) on states of :func:`dimension`
+``(k)`` floats.
 """
 
 from __future__ import annotations
@@ -36,7 +36,6 @@ from __future__ import annotations
 from typing import Any
 
 import numba
-import numpy as np
 
 from andoyer.kernels import dop853, dop853_coefficients, stepper
 from andoyer.kernels import generated as _generated
@@ -56,6 +55,7 @@ __all__ = [
     "locate_crossings",
     "propagate_block",
     "locate_crossings_block",
+    "FLOW",
 ]
 
 #: Time shift of the MEGNO weights (as :data:`andoyer.integrate.variational.MEGNO_DELTA`).
@@ -192,71 +192,12 @@ def _build(stamp: str) -> tuple[Any, Any]:
 propagate_block, locate_crossings_block = _build(TANGENT_STAMP)
 
 
-def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, rtol: float, atol: float,
-              max_steps: int, *, block: int = 1, threads: int | None = None
-              ) -> tuple[np.ndarray, np.ndarray]:
-    """States with tangent vectors of many orbits at the output times ``t``.
-
-    Parameters
-    ----------
-    z0 : ndarray, shape (n, dimension(k))
-        Initial states (:func:`layout`) at time ``t[0]``.
-    t : ndarray, shape (m,)
-        Output times, non-decreasing.
-    p : ndarray, shape (8,)
-        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
-    rtol, atol : float
-        Tolerances of the local error (componentwise ``atol + rtol |z|``).
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads :
-        Orbits per block and threads (:func:`andoyer.kernels.threads.over_orbits`).
-
-    Returns
-    -------
-    z : ndarray, shape (n, m, dimension(k))
-        NaN after a failure (see ``info``).
-    info : ndarray of int64, shape (n, 4)
-        Columns :data:`andoyer.kernels.dop853.INFO`.
-    """
-    return dop853.ensemble_propagate(propagate_block, z0, t, p, rtol, atol, max_steps,
-                                     block=block, threads=threads)
-
-
-def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float,
-                     direction: int, n_crossings: int, t_max: float, rtol: float,
-                     atol: float, max_steps: int, *, block: int = 1,
-                     threads: int | None = None
-                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The first crossings after t = 0 of a section, with the tangent vectors there.
-
-    As :func:`andoyer.kernels.dop853.locate_crossings` (the section reads
-    ``z[:6]``); the crossing states ``z`` have shape
-    ``(n, n_crossings, dimension(k))``.
-
-    Parameters
-    ----------
-    z0 : ndarray, shape (n, dimension(k))
-        Initial augmented states (state, tangent vectors, MEGNO sums).
-    p : ndarray
-        Kernel parameters.
-    kind : int
-        Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
-    value : float
-        The section value.
-    direction : int
-        +1: f increasing, -1: decreasing, 0: both.
-    n_crossings : int
-        Stop an orbit after this many crossings.
-    t_max : float
-        Stop an orbit at this time.
-    rtol, atol : float
-        Tolerances.
-    max_steps : int
-        Maximum accepted steps per orbit.
-    block, threads : int
-        Orbits per block and threads.
-    """
-    return dop853.ensemble_crossings(locate_crossings_block, z0, p, kind, value, direction,
-                                     n_crossings, t_max, rtol, atol, max_steps, block=block,
-                                     threads=threads)
+#: The entry points (:class:`andoyer.kernels.dop853.Flow`) on states of
+#: :func:`dimension` ``(k)`` floats (:func:`layout`).
+FLOW = dop853.Flow(propagate_block, locate_crossings_block)
+#: States with tangent vectors of many orbits at output times
+#: (:meth:`~andoyer.kernels.dop853.Flow.propagate`).
+propagate = FLOW.propagate
+#: The first crossings of a section (read off ``z[:6]``) with the tangent vectors there
+#: (:meth:`~andoyer.kernels.dop853.Flow.locate_crossings`).
+locate_crossings = FLOW.locate_crossings
