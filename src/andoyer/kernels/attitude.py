@@ -56,7 +56,7 @@ def attitude_rhs(t, z, p, out):
 
 
 _STEPPER = dop853.make_stepper(attitude_rhs)
-_propagate_orbit = _STEPPER.propagate_orbit
+_propagate_block = _STEPPER.propagate_block
 
 
 def _build(stamp: str) -> Any:
@@ -66,8 +66,7 @@ def _build(stamp: str) -> Any:
     def propagate_block(z0, t, p, rtol, atol, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        for i in range(z0.shape[0]):
-            _propagate_orbit(z0[i], t, p, rtol, atol, max_steps, out[i], info[i])
+        _propagate_block(z0, t, p, rtol, atol, max_steps, out, info)
 
     return propagate_block
 

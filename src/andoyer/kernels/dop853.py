@@ -81,14 +81,13 @@ the cache key; the helpers they call are not cached themselves (their code is pa
 of each entry point's cached library). The stepper's pieces close over their field
 (:func:`make_stepper`) instead of taking it as an argument: a compiled function
 passed as a value is lowered as a run-time address, which Numba refuses to cache. For
-the same reason each module keeps its own cached doors (``propagate_block``,
-``locate_crossings_block``: a loop over the orbits of a block around its stepper's
-``propagate_orbit``, ``crossings_orbit``), and :class:`Flow`, the driver they share, is
-Python: a door built by a shared factory would close over the stepper's functions, whose
-pickled form (Numba's cache key of a closure) carries a new uuid in every process, so
-nothing would ever load from the cache; and moving the loop into the stepper (one more
-compiled call between the door and the orbit) changed LLVM's inlining and so the
-rounding of the tangent flow's results (measured: not bit-identical).
+the same reason the driver is in two parts: the loops over a block of orbits are the
+stepper's (``propagate_block``, ``crossings_block`` of :func:`make_stepper`) and the
+allocation and threads are :class:`Flow`'s, but each module keeps its own two-line
+cached doors around its stepper's blocks (``propagate_block``,
+``locate_crossings_block``): a door built by a shared factory would close over the
+stepper's functions, whose pickled form (Numba's cache key of a closure) carries a new
+uuid in every process, so nothing would ever load from the cache.
 
 References
 ----------
@@ -192,8 +191,8 @@ def ep_rhs(t, y, p, out):
 
 #: The stepper of the Euler-Poisson field (1).
 EP = make_stepper(ep_rhs)
-_ep_propagate_orbit = EP.propagate_orbit
-_ep_crossings_orbit = EP.crossings_orbit
+_ep_propagate_block = EP.propagate_block
+_ep_crossings_block = EP.crossings_block
 _ep_stages = EP.stages
 _ep_dense_coefficients = EP.dense_coefficients
 
@@ -208,8 +207,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
         """:func:`propagate` of a block of orbits on the calling thread, into ``out``
         (n, k, 6) and ``info`` (n, 4)."""
         _ = len(stamp)  # keys the cache, see _build
-        for i in range(y0.shape[0]):
-            _ep_propagate_orbit(y0[i], t, p, rtol, atol, max_steps, out[i], info[i])
+        _ep_propagate_block(y0, t, p, rtol, atol, max_steps, out, info)
 
     @cached_njit(nogil=True, fastmath=FASTMATH)
     def locate_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
@@ -217,9 +215,8 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
         """:func:`locate_crossings` of a block of orbits on the calling thread, into
         ``tc`` (n, n_crossings), ``yc`` (n, n_crossings, 6), ``count`` (n,), ``info``."""
         _ = len(stamp)  # keys the cache, see _build
-        for i in range(y0.shape[0]):
-            count[i] = _ep_crossings_orbit(y0[i], p, kind, value, direction, t_max, rtol,
-                                           atol, max_steps, tc[i], yc[i], info[i])
+        _ep_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
+                            yc, count, info)
 
     @cached_njit(nogil=True, fastmath=FASTMATH)
     def integrate_fixed(y0, p, h, n_steps):

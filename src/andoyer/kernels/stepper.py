@@ -218,6 +218,10 @@ class Stepper(NamedTuple):
         One orbit to the output times.
     crossings_orbit : numba function
         One orbit's section crossings.
+    propagate_block : numba function
+        :attr:`propagate_orbit` for each orbit of a block.
+    crossings_block : numba function
+        :attr:`crossings_orbit` for each orbit of a block.
     """
 
     stages: Any
@@ -226,6 +230,8 @@ class Stepper(NamedTuple):
     dense_coefficients: Any
     propagate_orbit: Any
     crossings_orbit: Any
+    propagate_block: Any
+    crossings_block: Any
 
 
 def make_stepper(field: Any) -> Stepper:
@@ -253,7 +259,10 @@ def make_stepper(field: Any) -> Stepper:
         ``out[j] = y(t_out[j])``) and ``crossings_orbit(y0, p, kind, value, direction,
         t_max, rtol, atol, max_steps, tc, yc, info)`` (the first ``len(tc)`` crossings,
         returns their number), with the stages, starting step, controlled step and dense
-        output they use.
+        output they use; ``propagate_block`` and ``crossings_block``, the same for each
+        row of a block of orbits (``y0`` (n, d); ``out``, ``tc``, ``yc``, ``info`` with a
+        leading dimension n; ``crossings_block`` writes the counts into ``count`` (n,)):
+        what a module's cached entry points call (:class:`andoyer.kernels.dop853.Flow`).
     """
 
     @_jit
@@ -534,6 +543,20 @@ def make_stepper(field: Any) -> Stepper:
                 K[0, i] = K_prev[N_STAGES, i]
         return count
 
+    @_jit
+    def propagate_block(y0, t_out, p, rtol, atol, max_steps, out, info):
+        """:func:`propagate_orbit` for each orbit (row) of ``y0``."""
+        for i in range(y0.shape[0]):
+            propagate_orbit(y0[i], t_out, p, rtol, atol, max_steps, out[i], info[i])
+
+    @_jit
+    def crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
+                        yc, count, info):
+        """:func:`crossings_orbit` for each orbit (row) of ``y0``; counts into ``count``."""
+        for i in range(y0.shape[0]):
+            count[i] = crossings_orbit(y0[i], p, kind, value, direction, t_max, rtol, atol,
+                                       max_steps, tc[i], yc[i], info[i])
+
     return Stepper(stages, initial_step, step, dense_coefficients, propagate_orbit,
-                   crossings_orbit)
+                   crossings_orbit, propagate_block, crossings_block)
 

@@ -163,8 +163,8 @@ def tangent_rhs(t, z, p, out):
 
 
 _STEPPER = dop853.make_stepper(tangent_rhs)
-_propagate_orbit = _STEPPER.propagate_orbit
-_crossings_orbit = _STEPPER.crossings_orbit
+_propagate_block = _STEPPER.propagate_block
+_crossings_block = _STEPPER.crossings_block
 
 
 def _build(stamp: str) -> tuple[Any, Any]:
@@ -174,17 +174,15 @@ def _build(stamp: str) -> tuple[Any, Any]:
     def propagate_block(z0, t, p, rtol, atol, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        for i in range(z0.shape[0]):
-            _propagate_orbit(z0[i], t, p, rtol, atol, max_steps, out[i], info[i])
+        _propagate_block(z0, t, p, rtol, atol, max_steps, out, info)
 
     @cached_njit(nogil=True, fastmath=dop853.FASTMATH)
     def locate_crossings_block(z0, p, kind, value, direction, t_max, rtol, atol, max_steps,
                                tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        for i in range(z0.shape[0]):
-            count[i] = _crossings_orbit(z0[i], p, kind, value, direction, t_max, rtol,
-                                        atol, max_steps, tc[i], zc[i], info[i])
+        _crossings_block(z0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc, zc,
+                         count, info)
 
     return propagate_block, locate_crossings_block
 
