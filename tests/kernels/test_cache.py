@@ -65,3 +65,28 @@ def test_a_fresh_process_caches_outside_the_package(tmp_path: Path) -> None:
     assert path.is_relative_to(tmp_path / "numba")
     assert not path.is_relative_to(out["package"])
     assert any(path.glob("*.nbi")) and any(path.glob("*.nbc"))
+
+
+def test_the_cache_subfolder_follows_every_kernel_source(tmp_path: Path,
+                                                          monkeypatch) -> None:
+    """Numba keys an entry on the defining file only: an edit of a module whose functions
+    a kernel calls (a stepper, a jet routine) must still move every kernel to a new
+    folder, or the callers load stale machine code."""
+    src = Path(cache.__file__).parent
+    copy = tmp_path / "kernels"
+    copy.mkdir()
+    for f in src.glob("*.py"):
+        (copy / f.name).write_bytes(f.read_bytes())
+    assert cache._stamp(copy) == cache.sources_stamp()
+    callee = copy / "stepper.py"
+    callee.write_bytes(callee.read_bytes() + b"\n")
+    assert cache._stamp(copy) != cache.sources_stamp()
+    monkeypatch.setenv(cache.CACHE_ENV, str(tmp_path))
+
+    @cache.cached_njit(nogil=True)
+    def thrice(x: float) -> float:
+        return 3.0 * x
+
+    assert thrice(1.0) == 3.0
+    assert Path(thrice._cache._cache_path).is_relative_to(
+        tmp_path / "numba" / f"kernels-{cache.sources_stamp()}")

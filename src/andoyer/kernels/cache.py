@@ -11,13 +11,21 @@ under the user's cache directory instead (:func:`cache_folder`):
 * otherwise ``platformdirs.user_cache_dir("andoyer")/numba`` (on Linux
   ``~/.cache/andoyer/numba``).
 
-:func:`cached_njit` is ``numba.njit(cache=True, ...)`` with that folder. Numba picks a
+:func:`cached_njit` is ``numba.njit(cache=True, ...)`` with a subfolder of it named
+after the kernels' sources (:func:`sources_stamp`). Numba picks a
 function's cache locator when the function is decorated, reading the documented
 setting ``numba.config.CACHE_DIR`` (the mirror of ``NUMBA_CACHE_DIR``); the decorator
 sets it for the decoration only and restores it, so the user's own Numba functions and
-environment are untouched. Entries are keyed by Numba on the source file's path, size
-and time stamp (and by andoyer on a hash of the generated kernels, see
-:mod:`andoyer.kernels.dop853`), so two installs or versions never share an entry.
+environment are untouched. Numba keys an entry on the path, size and time stamp of the
+file that defines the function only, not of the files whose functions it calls and
+compiles into its own code: after an edit of one kernel module (a stepper, a jet
+routine) the callers in other modules would load stale machine code (seen here:
+tangent kernels that differed from their sources compiled fresh). The subfolder named
+after a hash of every source of :mod:`andoyer.kernels` (:func:`sources_stamp`) closes
+that hole for all kernels at once, so two installs, versions or edits never share an
+entry (the per-module keys of :mod:`andoyer.kernels.dop853` stay, as a second lock).
+Folders of former sources are left in place (another install may still use them);
+deleting ``cache_folder()`` is always safe.
 
 Where nothing is writable (a read-only install and a read-only home, as on many
 clusters and containers: Numba finds no folder of its own either), the kernels are
@@ -31,6 +39,8 @@ fact that it was said).
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import os
 import warnings
 from collections.abc import Callable
@@ -42,7 +52,8 @@ import platformdirs
 
 from andoyer.errors import NoCacheWarning
 
-__all__ = ["cache_folder", "cached_njit", "writable", "warn_no_cache", "CACHE_ENV"]
+__all__ = ["cache_folder", "cached_njit", "sources_stamp", "writable", "warn_no_cache",
+           "CACHE_ENV"]
 
 #: Environment variable that moves andoyer's caches (Numba's under ``<dir>/numba``).
 CACHE_ENV = "ANDOYER_CACHE_DIR"
@@ -70,6 +81,36 @@ def cache_folder() -> Path:
     return Path(platformdirs.user_cache_dir("andoyer", appauthor=False)) / "numba"
 
 
+@functools.cache
+def sources_stamp() -> str:
+    """The first 16 hex digits of the SHA-256 of every ``*.py`` of
+    :mod:`andoyer.kernels` (names and bytes, in name order): the subfolder of
+    :func:`cache_folder` that :func:`cached_njit` caches in.
+
+    Reads about 0.3 MB once per process.
+
+    Returns
+    -------
+    str
+        16 hexadecimal digits; changes with any byte of any kernel source.
+
+    Examples
+    --------
+    >>> len(sources_stamp()), sources_stamp() == sources_stamp()
+    (16, True)
+    """
+    return _stamp(Path(__file__).parent)
+
+
+def _stamp(folder: Path) -> str:
+    """:func:`sources_stamp` of the ``*.py`` files of ``folder``."""
+    h = hashlib.sha256()
+    for f in sorted(folder.glob("*.py")):
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
 def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
     """``numba.njit(cache=True, **options)`` caching in :func:`cache_folder`.
 
@@ -81,7 +122,8 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
     Returns
     -------
     callable
-        A decorator. If the folder cannot be created or written, Numba falls back to
+        A decorator caching in ``cache_folder() / ("kernels-" + sources_stamp())``.
+        If the folder cannot be created or written, Numba falls back to
         its own locations (beside the source, then Numba's user folder); if none is
         writable, the function is compiled without a cache, with one
         :class:`~andoyer.errors.NoCacheWarning` per run.
@@ -92,7 +134,7 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
 
     def decorate(function: Callable[..., Any]) -> Any:
         previous = config.CACHE_DIR
-        config.CACHE_DIR = str(cache_folder())
+        config.CACHE_DIR = str(cache_folder() / f"kernels-{sources_stamp()}")
         try:
             return numba.njit(**options)(function)
         except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
