@@ -28,6 +28,8 @@ COMMANDS = {
     "frequencies orbit": (["frequencies", "--andoyer", "0.3,0,0.3,1,0", "--t-end", "50"],
                           "f.nc", ("f.png",)),
     "resonances": (["resonances", "--n-crossings", "2"], "r.nc", ("r.png",)),
+    "resonances order": (["resonances", "--order", "8"], "r.nc",
+                         ("r.png", "r-normal-form.nc")),
     "animate": (["animate", "--andoyer", "0.3,0,0.3,1,0", "--frames", "2"], "g.gif", ()),
     "frequencies map": (["frequencies", "--n-orbits", "2", "--t-end", "50"], "f.nc",
                         ("f.png",)),
