@@ -87,7 +87,7 @@ from andoyer.kernels.taylor_jets import (
 from andoyer.kernels.taylor_sections import (
     bernstein,
     casteljau,
-    fast_jit,
+    kernel_jit,
     poly_d,
     section_jet,
     section_tape,
@@ -212,7 +212,7 @@ def make_orbits(jets: Any) -> Orbits:
         ``jets(X, order, q)``: the Taylor coefficients of the state.
     """
 
-    @fast_jit
+    @kernel_jit
     def take_step(t, t_end, X, order, q, info):
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
@@ -227,7 +227,7 @@ def make_orbits(jets: Any) -> Orbits:
         return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
 
 
-    @fast_jit
+    @kernel_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
         """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
         k = t_out.shape[0]
@@ -259,7 +259,7 @@ def make_orbits(jets: Any) -> Orbits:
             t = t1
 
 
-    @fast_jit
+    @kernel_jit
     def record(X, order, q, t, h, s_root, ftape, fC, wtape, wC, a, tc, zc, count, ytmp, P, Y,
                 u):
         """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
@@ -292,7 +292,7 @@ def make_orbits(jets: Any) -> Orbits:
         return count
 
 
-    @fast_jit
+    @kernel_jit
     def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
                         zc, info):
         """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section

@@ -8,7 +8,7 @@ The jets of a state of ``k`` blocks are an array ``X`` of shape ``(k, order + 1,
 row ``X[b, j]`` holds the coefficients of order ``j`` of block ``b`` (the state, then
 each tangent vector or the padded quaternion), row 0 the current value.
 
-Plain Numba functions (``fast_jit``) compiled into the cached entry points of
+Plain Numba functions (``kernel_jit``: no Python entry) compiled into the cached entry points of
 :mod:`andoyer.kernels.taylor` that call them (their cache key,
 :data:`andoyer.kernels.taylor.TAYLOR_STAMP`, hashes this file too).
 """
@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from andoyer.kernels import taylor_generated
-from andoyer.kernels.taylor_sections import fast_jit
+from andoyer.kernels.taylor_sections import kernel_jit
 
 __all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
            "radius", "step_size", "horner", "advance", "load"]
@@ -31,13 +31,13 @@ N_STATE = 6
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
 # see andoyer.kernels.dop853's notes on the cache key).
-_constants = fast_jit(taylor_generated.ep_taylor_constants)
-_jet = fast_jit(taylor_generated.ep_taylor_jet)
-_tangent_jet = fast_jit(taylor_generated.ep_taylor_tangent_jet)
-_attitude_jet = fast_jit(taylor_generated.ep_taylor_attitude_jet)
+_constants = kernel_jit(taylor_generated.ep_taylor_constants)
+_jet = kernel_jit(taylor_generated.ep_taylor_jet)
+_tangent_jet = kernel_jit(taylor_generated.ep_taylor_tangent_jet)
+_attitude_jet = kernel_jit(taylor_generated.ep_taylor_attitude_jet)
 
 
-@fast_jit
+@kernel_jit
 def fill_constants(p, q):
     """``q`` = the folded body coefficients of the jets, from the kernel parameters."""
     c = _constants(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
@@ -45,13 +45,13 @@ def fill_constants(p, q):
         q[i] = c[i]
 
 
-@fast_jit
+@kernel_jit
 def state_jets(X, order, q):
     """Jet of the state ``X[0]`` (row 0 is the current value) to ``order``."""
     _jet(X[0], order, q)
 
 
-@fast_jit
+@kernel_jit
 def tangent_jets(X, order, q):
     """Jets of the state ``X[0]`` and of the tangent vectors ``X[1:]`` (rows 0 of each
     are the current values), to ``order``."""
@@ -60,7 +60,7 @@ def tangent_jets(X, order, q):
         _tangent_jet(X[0], X[i], order, q)
 
 
-@fast_jit
+@kernel_jit
 def attitude_jets(X, order, q):
     """Jets of the state ``X[0]`` and of the attitude quaternion ``X[1, :, 0:4]`` (its
     block padded with two zero components, whose jets stay zero)."""
@@ -71,7 +71,7 @@ def attitude_jets(X, order, q):
         X[1, k, 5] = 0.0
 
 
-@fast_jit
+@kernel_jit
 def radius(x, order):
     """rho of :mod:`andoyer.kernels.taylor`'s notes for one block of jets ``x`` (order + 1, 6)."""
     m = 0.0
@@ -94,7 +94,7 @@ def radius(x, order):
     return rho
 
 
-@fast_jit
+@kernel_jit
 def step_size(X, order):
     """Jorba-Zou step of :mod:`andoyer.kernels.taylor`'s notes (least over the state
     and tangent vectors)."""
@@ -106,7 +106,7 @@ def step_size(X, order):
     return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
 
 
-@fast_jit
+@kernel_jit
 def horner(X, order, tau, out):
     """``out[6 b + i]`` = block ``b`` (state, then vectors) at ``t0 + tau``."""
     for b in range(X.shape[0]):
@@ -117,7 +117,7 @@ def horner(X, order, tau, out):
             out[N_STATE * b + i] = v
 
 
-@fast_jit
+@kernel_jit
 def advance(X, order, h):
     """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
     for b in range(X.shape[0]):
@@ -128,7 +128,7 @@ def advance(X, order, h):
             X[b, 0, i] = v
 
 
-@fast_jit
+@kernel_jit
 def load(X, z):
     """Rows 0 of the jets ``X`` = the state ``z`` (6 + 6 k floats), block by block."""
     for b in range(X.shape[0]):

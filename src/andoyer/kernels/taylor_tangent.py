@@ -110,7 +110,7 @@ from andoyer.kernels.taylor_jets import (
     radius,
     tangent_jets,
 )
-from andoyer.kernels.taylor_sections import fast_jit
+from andoyer.kernels.taylor_sections import fast_jit, kernel_jit
 from andoyer.kernels.threads import over_orbits
 
 __all__ = ["MEGNO_DELTA", "TANGENT_STAMP", "width", "megno_jets", "renormalised_orbit",
@@ -184,7 +184,7 @@ def megno_jets(X, order, s0, Q):
             g[k] = (N[k] - g[k - 1]) * inv_s0
 
 
-@fast_jit
+@kernel_jit
 def _value(c, order, tau):
     """The polynomial of coefficients ``c[:order + 1, 0]`` at ``tau`` (Horner)."""
     v = c[order, 0]
@@ -193,7 +193,7 @@ def _value(c, order, tau):
     return v
 
 
-@fast_jit
+@kernel_jit
 def _write_row(X, Q, order, tau, rho, tmp, row):
     """An output row (layout of the module notes) at ``t0 + tau``."""
     k = X.shape[0] - 1
@@ -213,7 +213,7 @@ def _write_row(X, Q, order, tau, rho, tmp, row):
     row[_N + 7 * k + 1] = _value(Q[2], order, tau)
 
 
-@fast_jit
+@kernel_jit
 def _renormalise(X, rho):
     """Rows 0 of the vectors' jets to unit length, their logarithms added to ``rho``."""
     for b in range(1, X.shape[0]):
@@ -226,7 +226,7 @@ def _renormalise(X, rho):
         rho[b - 1] += math.log(nrm)
 
 
-@fast_jit
+@kernel_jit
 def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
     """One orbit from ``z0 = (y, u_1 .. u_k)`` (unit vectors) and ``rho0`` (their log
     lengths): ``out[j]`` = the row at ``t_out[j]`` (non-decreasing; rows not reached
