@@ -291,3 +291,28 @@ def test_second_process_loads_from_the_cache() -> None:
         "locate_crossings_block": f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, "
                                   f"1, 1, 50.0, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
+
+
+def test_kernel_helpers_compile_once_and_refuse_python_calls() -> None:
+    # A helper of the kernels has no Python entry (kernel_jit): a call from Python is a
+    # TypeError, not a jump into a missing wrapper. tape_value evaluates the tape as a jet
+    # of order len(Y) - 1: a literal 0 there compiled tape_jet a second time, for
+    # Literal[int](0) (0.3 s of every cold first section).
+    import numba
+
+    from andoyer.kernels import taylor_sections as S
+
+    with pytest.raises(TypeError, match="compiled kernels only"):
+        S.poly(np.ones(3), 2, 0.5)
+    tape, C = T.section_tape(2, 0.0, 0.1)
+
+    @numba.njit
+    def g3(tape: NDArray[np.int64], C: NDArray[np.float64], y: NDArray[np.float64]) -> float:
+        Y = np.empty((1, 6))
+        Y[0] = y
+        return float(S.tape_value(tape, C, Y, np.empty((tape.shape[0], 1))))
+
+    y = state(Y0)
+    assert g3(tape, C, y) == y[2] - 0.1
+    orders = {str(sig[3]) for sig in S.tape_jet.signatures}
+    assert orders == {"int64"}, orders

@@ -23,7 +23,7 @@ from numba.core.registry import CPUDispatcher
 from andoyer.kernels import taylor_generated
 from andoyer.kernels.cache import cached_njit
 
-__all__ = ["FASTMATH", "fast_jit", "kernel_jit", "KernelOnly", "VAR", "LIN", "MUL",
+__all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
            "ROOT_MAXITER", "tape_jet",
            "tape_value", "bernstein", "sign_changes", "poly", "poly_d", "solve_root",
            "casteljau", "section_jet", "section_tape"]
@@ -40,7 +40,7 @@ FASTMATH = {"reassoc", "contract", "arcp"}
 fast_jit = numba.njit(nogil=True, fastmath=FASTMATH)
 
 
-class KernelOnly(CPUDispatcher):
+class _KernelOnly(CPUDispatcher):
     """A Numba function compiled only into other compiled code (:func:`kernel_jit`):
     calling it from Python raises TypeError (it has no Python entry)."""
 
@@ -58,14 +58,24 @@ def kernel_jit(function: Callable[..., Any]) -> Any:
     call (fresh process, empty cache; 2 shared cores, CPU time, median of 3): the first
     ``poincare`` after a ``propagate`` 5.34 -> 4.37 s, the first ``propagate`` 3.39 ->
     3.02 s. The machine code of the kernels is unchanged (bit-identical results). A call
-    from Python raises TypeError (:class:`KernelOnly`) instead of reaching the missing
+    from Python raises TypeError (``_KernelOnly``) instead of reaching the missing
     wrapper.
+
+    Parameters
+    ----------
+    function : callable
+        The Python function to compile.
+
+    Returns
+    -------
+    numba.core.registry.CPUDispatcher
+        Its dispatcher (the function itself under ``NUMBA_DISABLE_JIT``).
     """
     # Target options of Numba's CPU target that its stubs do not list.
     options: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
     dispatcher = numba.njit(nogil=True, fastmath=FASTMATH, **options)(function)
     if isinstance(dispatcher, CPUDispatcher):  # not under NUMBA_DISABLE_JIT
-        dispatcher.__class__ = KernelOnly
+        dispatcher.__class__ = _KernelOnly
     return dispatcher
 
 
