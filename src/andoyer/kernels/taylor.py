@@ -430,7 +430,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
     :mod:`andoyer.kernels.dop853`). They call the orbit loops as module globals: a
     compiled function in a closure cell would change the cache key in every process."""
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits (states alone) on the calling thread."""
         _ = len(stamp)  # keys the cache
@@ -440,7 +440,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         for i in range(z0.shape[0]):
             _state_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def tangent_propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits with tangent vectors."""
         _ = len(stamp)  # keys the cache
@@ -450,7 +450,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         for i in range(z0.shape[0]):
             _tangent_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
                                max_steps, tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits (states alone)."""
@@ -462,7 +462,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
             count[i] = _state_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
                                         t_max, max_steps, X, tc[i], zc[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def tangent_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
                                 max_steps, tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits with tangent vectors."""
@@ -474,7 +474,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
             count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
                                           t_max, max_steps, X, tc[i], zc[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def attitude_propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate_attitude` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
@@ -492,7 +492,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
  tangent_crossings_block, attitude_propagate_block) = _build(TAYLOR_STAMP)
 
 
-@cached_njit(nogil=True, fastmath=False)
+@cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
 def jet(z0, p, order):
     """The jets (state, then tangent vectors) at ``z0`` (6 + 6 k,): shape
     (1 + k, order + 1, 6)."""

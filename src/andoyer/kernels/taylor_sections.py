@@ -208,7 +208,7 @@ def tape_value(tape, C, Y, u):
     return u[tape.shape[0] - 1, 0]
 
 
-@cached_njit(nogil=True, fastmath=False)
+@cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
 def section_jet(tape, C, x, order):
     """The jet of a section function or margin (:func:`section_tape`) along a state's
     jet ``x`` (order + 1, 6): shape (order + 1,)."""

@@ -184,6 +184,11 @@ def megno_jets(X, order, s0, Q):
             g[k] = (N[k] - g[k - 1]) * inv_s0
 
 
+#: The kernel's own megno_jets: without Python and C-callback wrappers (kernel_jit);
+#: ``megno_jets`` keeps its Python entry (tests).
+_megno_jets = kernel_jit(megno_jets.py_func)
+
+
 @kernel_jit
 def _value(c, order, tau):
     """The polynomial of coefficients ``c[:order + 1, 0]`` at ``tau`` (Horner)."""
@@ -262,7 +267,7 @@ def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
             info[0] = MAX_STEPS
             return
         tangent_jets(X, order, q)
-        megno_jets(X, order, t + MEGNO_DELTA, Q)
+        _megno_jets(X, order, t + MEGNO_DELTA, Q)
         info[3] += 1
         r = radius(X[0], order)
         for b in range(1, k + 1):
@@ -293,7 +298,7 @@ def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
 def _build(stamp: str) -> Any:
     """The cached entry point, keyed on ``stamp`` (see :mod:`andoyer.kernels.dop853`)."""
 
-    @cached_njit(nogil=True, fastmath=False)
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
     def propagate_block(z0, rho0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
