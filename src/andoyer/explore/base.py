@@ -9,7 +9,9 @@ here too, so that the page module holds only its layout and callbacks.
 
 from __future__ import annotations
 
+import collections
 import html
+import importlib
 import io
 import json
 import logging
@@ -56,11 +58,10 @@ ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6:
 def chaos_module() -> Any | None:
     """:mod:`andoyer.analysis.chaos.indicators` (on heyoka where installed, else on taylor), or None
     if it cannot be imported: the indicator controls are then disabled."""
-    try:
-        from andoyer.analysis.chaos import indicators as chaos
+    try:  # the module by its full name: the package's shim would warn (former names)
+        return importlib.import_module("andoyer.analysis.chaos.indicators")
     except ImportError:  # pragma: no cover - chaos needs no optional package
         return None
-    return chaos
 
 
 @dataclass(frozen=True)
@@ -118,6 +119,8 @@ class ExplorerBase:
         self._pending = 0
         self._selected: int | None = None
         self._lock = threading.RLock()
+        self._queue: collections.deque[Callable[[], None]] = collections.deque()
+        self._queue_lock = threading.Lock()
         self._closed = False
         self._doc = pn.state.curdoc
         self._work = ThreadPoolExecutor(1, thread_name_prefix="andoyer-explore")
@@ -137,8 +140,17 @@ class ExplorerBase:
             return
         doc = self._doc
         if doc is not None and doc.session_context is not None:
+            # Our own FIFO: Bokeh's next-tick callbacks added from two threads may run out
+            # of order (Document.unhold clears the hold before it replays the held
+            # "callback added" events, so a callback added meanwhile from a worker thread
+            # overtakes them): an orbit's first stage then ran before the callback that
+            # adds the orbit, was dropped, and the next stage was refused ("stage starts
+            # at crossing 100, but 0 points are shown": seen once in CI). Each tick drains
+            # the queue in the order the callbacks were scheduled, whatever tick runs first.
+            with self._queue_lock:
+                self._queue.append(fn)
             try:
-                doc.add_next_tick_callback(lambda: self._guard(fn))
+                doc.add_next_tick_callback(self._drain)
             except Exception:  # noqa: BLE001 - the session is gone: nothing to update
                 self.close()
             return
@@ -148,6 +160,15 @@ class ExplorerBase:
             pn.io.push_notebook(self.plane_pane, self.time_pane)
         except Exception:  # noqa: BLE001 - no notebook comm (plain Python): nothing to push
             pass
+
+    def _drain(self) -> None:
+        """Run the scheduled callbacks, oldest first (on the event loop)."""
+        while True:
+            with self._queue_lock:
+                if not self._queue:
+                    return
+                fn = self._queue.popleft()
+            self._guard(fn)
 
     def _guard(self, fn: Callable[[], None]) -> None:
         """Run a UI callback; any error becomes a visible message, never a dead page."""
