@@ -46,7 +46,7 @@ COMMAND_API = {
     "indicators": ("andoyer.analysis.chaos.indicators:indicators",),
     "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
                    "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
-                   "andoyer.analysis.resonance.resonant_normal_form:resonant_normal_form"),
+                   "andoyer.analysis.resonance.near_centre:resonant_normal_form"),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.

@@ -112,7 +112,7 @@ DEFAULT_GRID = MapGrid()
 DEFAULT_RUN = IndicatorRun()
 
 #: ln|w| beyond which a tangent vector integrated without renormalisation is integrated
-#: again renormalised (|w| overflows a double at ln|w| ~ 709).
+#: again renormalised (``|w|`` overflows a double at ln|w| ~ 709).
 _OVERFLOW_LOG = 600.0
 
 _ATTRS: dict[str, dict[str, str]] = {

@@ -97,7 +97,7 @@ __all__ = [
     "physical_pendulum",
 ]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

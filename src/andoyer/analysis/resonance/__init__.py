@@ -9,17 +9,18 @@
   Poincare sections of the perturbed flow;
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
   at its centres (Lie series), the frequencies as functions of the action;
-- :mod:`~andoyer.analysis.resonance.resonant_normal_form`: near a centre, where the two
-  frequencies resonate, the Birkhoff polynomial plus the resonant harmonic (a pendulum).
+- :mod:`~andoyer.analysis.resonance.near_centre` (``resonant_normal_form``): near a
+  centre, where the two frequencies resonate, the Birkhoff polynomial plus the resonant
+  harmonic (a pendulum).
 """
 
 from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form, normal_form_frequency
+from andoyer.analysis.resonance.near_centre import resonant_normal_form
 from andoyer.analysis.resonance.predict import (
     resonance_widths,
     resonant_tori,
     section_rotation_number,
 )
-from andoyer.analysis.resonance.resonant_normal_form import resonant_normal_form
 
 __all__ = ["resonant_tori", "resonance_widths", "section_rotation_number",
            "birkhoff_normal_form", "normal_form_frequency", "resonant_normal_form"]

@@ -45,7 +45,7 @@ from andoyer.validation import integer, momentum_limit, positive, real_array
 
 __all__ = ["birkhoff_normal_form", "normal_form_frequency", "CENTRES"]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

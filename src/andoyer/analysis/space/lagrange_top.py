@@ -43,7 +43,7 @@ from andoyer.integrate.results import VariableMeta, describe_variables, provenan
 
 __all__ = ["lagrange_top"]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

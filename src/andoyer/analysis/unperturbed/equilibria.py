@@ -43,7 +43,7 @@ __all__ = [
     "permanent_rotations", "require_distinct_moments", "sorted_eigenvalues",
 ]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

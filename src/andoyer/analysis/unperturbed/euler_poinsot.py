@@ -56,7 +56,7 @@ from andoyer.validation import checks_arguments, finite, positive, real_array
 __all__ = ["EulerPoinsotFrequencies", "euler_poinsot_frequencies", "elliptic_pi", "elliptic_f",
            "euler_poinsot_momentum", "MAX_PERIODS"]
 
-#: Closed forms: levels and actions up to |G| = MAX_ACTION, not only what the integrators
+#: Closed forms: levels and actions up to ``|G| = MAX_ACTION``, not only what the integrators
 #: take (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

@@ -81,7 +81,7 @@ from andoyer.validation import positive as _positive
 __all__ = ["FixedPoint", "FixedPointSet", "andoyer_fixed_points", "hess_fixed_points",
            "theta_text"]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

@@ -25,7 +25,7 @@ from andoyer.validation import positive as _positive
 
 __all__ = ["portrait_andoyer", "portrait_hess"]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 

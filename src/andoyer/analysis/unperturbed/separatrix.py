@@ -88,7 +88,7 @@ __all__ = ["BRANCHES", "DEFAULT_BRANCH", "heteroclinic_rate", "heteroclinic", "s
            "FIG2_CAPTION", "SEPARATRIX_LEVEL", "check_grid_size", "separatrix_curves",
            "separatrix_on_level"]
 
-#: Closed forms only: levels and actions up to |G| = MAX_ACTION
+#: Closed forms only: levels and actions up to ``|G| = MAX_ACTION``
 #: (:func:`andoyer.validation.momentum_limit`).
 CLOSED_FORM = True
 
