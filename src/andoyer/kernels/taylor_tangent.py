@@ -99,7 +99,7 @@ import numpy as np
 from andoyer.kernels import taylor, taylor_generated, taylor_jets, taylor_sections
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.tangent import MEGNO_DELTA
+from andoyer.kernels.tangent import MEGNO_DELTA, dimension
 from andoyer.kernels.taylor import INFO, MAX_STEPS, STEP_TOO_SMALL, order_for
 from andoyer.kernels.taylor_jets import (
     N_STATE,
@@ -113,7 +113,7 @@ from andoyer.kernels.taylor_jets import (
 from andoyer.kernels.taylor_sections import fast_jit, kernel_jit
 from andoyer.kernels.threads import over_orbits
 
-__all__ = ["MEGNO_DELTA", "TANGENT_STAMP", "width", "megno_jets", "renormalised_orbit",
+__all__ = ["MEGNO_DELTA", "TANGENT_STAMP", "megno_jets", "renormalised_orbit",
            "propagate_block", "propagate"]
 
 _N = N_STATE
@@ -122,22 +122,6 @@ _N_Q = 5  # rows of the quadrature jets: L, N, I, and the work rows P, g
 #: Hash of every source the compiled entry point depends on (its cache key).
 TANGENT_STAMP = source_stamp(__file__, taylor.__file__ or "", taylor_generated.__file__ or "",
                              taylor_jets.__file__ or "", taylor_sections.__file__ or "")
-
-
-def width(k: int) -> int:
-    """Floats of an output row with ``k`` vectors: ``6 + 7 k + 2``.
-
-    Parameters
-    ----------
-    k : int
-        Tangent vectors.
-
-    Examples
-    --------
-    >>> width(1)
-    15
-    """
-    return _N + 7 * k + 2
 
 
 @fast_jit
@@ -360,7 +344,7 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     k = taylor.n_vectors(z0.shape[1])
     if k < 1:
         raise ValueError("z0 must carry at least one tangent vector (6 + 6 k floats, k >= 1)")
-    out = np.full((n, t.shape[0], width(k)), np.nan)
+    out = np.full((n, t.shape[0], dimension(k)), np.nan)
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     rho = np.ascontiguousarray(np.broadcast_to(rho0, (n, k)), dtype=np.float64)
     over_orbits(propagate_block, n, (np.ascontiguousarray(z0, dtype=np.float64), rho),
