@@ -101,6 +101,14 @@ def _tree(pid: int) -> list[psutil.Process]:
         return []
 
 
+def _threads(p: psutil.Process) -> int:
+    """Threads of ``p`` (0 once it has ended)."""
+    try:
+        return p.num_threads()
+    except psutil.Error:
+        return 0
+
+
 def handles_sigterm(pid: int) -> bool:
     """Whether the process catches SIGTERM: ``andoyer.cli.main`` has started (Python
     itself catches SIGINT only). Read from ``/proc/PID/status`` (Linux)."""
@@ -227,8 +235,11 @@ def _resume_is_exact(cwd: Path) -> None:
 # ---------------------------------------------------------------------- make test
 def test_sigterm_ends_a_command_without_children_cleanly(tmp_path):
     """SIGTERM to ``andoyer section`` (no children) once its work has started."""
+    # Ready once its integration runs: a second thread (the kernels' pool or heyoka's)
+    # after a second. A fixed 1 s once signalled the no-heyoka run during its imports,
+    # which then ended with exit 0.
     o = run_signalled(COMMANDS["section"], tmp_path, signal.SIGTERM,
-                      lambda tree, t, *_: t > 1.0)
+                      lambda tree, t, *_: t > 1.0 and _threads(tree[0]) >= 3)
     assert o.signalled and o.returncode == 130, (o.returncode, o.err)
     assert_clean_end(o, tmp_path, "section")
 
