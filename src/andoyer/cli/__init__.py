@@ -217,6 +217,15 @@ def _matplotlib_config() -> None:
     os.environ["MPLCONFIGDIR"] = tmp
 
 
+def _interrupted(signals: list[int]) -> KeyboardInterrupt:
+    """The ``Interrupted`` of the first signal the command took."""
+    import signal
+
+    from andoyer.errors import Interrupted
+
+    return Interrupted(signal.Signals(signals[0]).name)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``andoyer`` console script.
 
@@ -244,7 +253,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                     from andoyer.integrate.budget import set_limits
 
                     set_limits(steps=math.inf, memory=math.inf)
-                return int(args.func(args))
+                code = int(args.func(args))
+                if signals:  # taken, then swallowed by a library: still an interruption
+                    raise _interrupted(signals)
+                return code
             finally:
                 release_all()
     except (Exception, KeyboardInterrupt) as exc:
@@ -252,11 +264,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise
         if signals and not isinstance(exc, KeyboardInterrupt):
             # a failure caused by the interruption (a pool whose worker was ended)
-            import signal
-
-            from andoyer.errors import Interrupted
-
-            exc = Interrupted(signal.Signals(signals[0]).name)
+            exc = _interrupted(signals)
         kind, message = _classify(exc)
         from andoyer.progress import close_all
 
