@@ -133,5 +133,5 @@ def test_cli_prints_the_one_warning_as_one_line(read_only, tmp_path: Path) -> No
                "1", "--n-out", "3", "--engine", "numba", "--out", str(tmp_path / "orbit.nc")])
     assert out.returncode == 0, out.stderr
     lines = [x for x in out.stderr.splitlines() if "warning" in x.lower()]
-    assert len(lines) == 1 and lines[0].startswith("andoyer: warning: no writable folder"), \
+    assert len(lines) == 1 and lines[0].startswith("andoyer orbit: warning: no writable folder"), \
         out.stderr

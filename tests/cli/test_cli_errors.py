@@ -174,6 +174,6 @@ def test_matplotlibs_logged_warnings_are_the_warning_line(tmp_path):
     lines = [line for line in proc.stderr.replace("\r", "\n").splitlines()
              if line.strip() and "poincare (scipy)" not in line]  # progress bars aside
     assert lines, "no warning shown"
-    assert all(line.startswith("andoyer: warning: matplotlib: findfont: Font family")
+    assert all(line.startswith("andoyer section: warning: matplotlib: findfont: Font family")
                for line in lines), lines
     assert len(lines) == len(set(lines)) <= 2, lines

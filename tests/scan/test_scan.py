@@ -567,12 +567,14 @@ def test_atlas_panels(reference):
         plot_atlas(ds, rows="A")
 
 
+@pytest.mark.parametrize("dry", [[], ["--dry-run"]], ids=["run", "dry run"])
 @pytest.mark.parametrize("kind", ["file", "foreign folder"])
-def test_cli_scan_refuses_a_path_that_is_not_a_store_before_anything(kind, tmp_path, capsys,
-                                                                    monkeypatch):
+def test_cli_scan_refuses_a_path_that_is_not_a_store_before_anything(kind, dry, tmp_path,
+                                                                    capsys, monkeypatch):
     """``andoyer scan --store`` on a regular file or a foreign folder printed its cost and
     "computed on a local cluster" lines, then refused: the refusal is now the only line,
-    and no cluster is started."""
+    and no cluster is started. A dry run says the same (it used to report the cost and
+    exit 0 for a store the run then refused)."""
     distributed = pytest.importorskip("distributed")
 
     def no_cluster(*args, **kwargs):
@@ -587,7 +589,8 @@ def test_cli_scan_refuses_a_path_that_is_not_a_store_before_anything(kind, tmp_p
         store.mkdir()
         (store / "precious.txt").write_text("keep")
     with pytest.raises(SystemExit) as exc:
-        main(["scan", str(tmp_path / "tiny.toml"), "--store", str(store), "--no-progress"])
+        main(["scan", str(tmp_path / "tiny.toml"), "--store", str(store), "--no-progress",
+              *dry])
     out, err = capsys.readouterr()
     assert exc.value.code == 2
     assert out == "", out

@@ -128,9 +128,15 @@ def _unrecognized(parser: argparse.ArgumentParser, command: str, extra: list[str
             + f"; see andoyer {command} --help")
 
 
+#: Who speaks on stderr: ``andoyer COMMAND`` once :func:`main` has parsed the command
+#: (as in its error line), ``andoyer`` before.
+_speaker = ["andoyer"]
+
+
 def _warning_line(text: object) -> None:
-    """The command line's warning: one line on stderr, ``andoyer: warning: ...``."""
-    sys.stderr.write(f"andoyer: warning: {' '.join(str(text).split())}\n")
+    """The command line's warning: one line on stderr, ``andoyer COMMAND: warning: ...``
+    (the prefix of the command's error line)."""
+    sys.stderr.write(f"{_speaker[0]}: warning: {' '.join(str(text).split())}\n")
 
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str,
@@ -242,6 +248,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args, extra = parser.parse_known_args(argv)
     if extra:  # the command's usage, not the top-level one, with a suggestion
         _unrecognized(parser, args.command, extra)
+    _speaker[0] = f"andoyer {args.command}"
     warnings.showwarning = _show_warning
     _matplotlib_config()
     try:

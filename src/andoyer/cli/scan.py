@@ -21,8 +21,8 @@ def run(args: argparse.Namespace) -> int:
 
     cfg = load_config(args.config)
     store = Path(args.store) if args.store else Path(Path(args.config).stem + ".zarr")
-    if not args.dry_run:  # a store the scan cannot use is refused before anything is said
-        check_store(store, cfg, overwrite=args.overwrite)
+    # a store the scan cannot use is refused before anything is said, by a dry run too
+    check_store(store, cfg, overwrite=args.overwrite)
     cost = check_size(cfg, args.max_core_hours, args.max_store_gb)
     grid = " x ".join(f"{STORAGE_NAMES[k]}[{len(cfg.values(k))}]" for k in cfg.swept)
     print(f"scan {args.config}: task {cfg.task} over {grid} "
@@ -71,7 +71,7 @@ def register(sub: Any) -> None:
                    help="start again in an existing store")
     p.add_argument("--retries", type=count(0), default=2, help="retries of a failing task")
     p.add_argument("--dry-run", action="store_true",
-                   help="validate the configuration, print the estimated cost, stop")
+                   help="check the configuration and the store, print the estimated cost, stop")
     p.add_argument("--max-core-hours", type=real(positive=True), default=100.0,
                    help="refuse scans estimated above this CPU time (default 100)")
     p.add_argument("--max-store-gb", type=real(positive=True), default=50.0,
