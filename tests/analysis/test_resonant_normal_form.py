@@ -179,3 +179,28 @@ def test_stable_and_unstable_angles_match_the_torus_route():
         chain = ResonantChain(body, 1.0, 0.0, row, Section("g", 0.0, 1))
         for mine, theirs in ((nf.stable_angle, chain.psi_s), (nf.unstable_angle, chain.psi_u)):
             assert abs(math.remainder(float(mine) - theirs, 2 * math.pi)) < 1e-6
+
+
+def test_the_resonance_predictions_scale_to_the_largest_levels_without_overflow():
+    """At mu = 0 both routes scale exactly: the action and G like sqrt(h), the
+    rotation number not at all. Up to the largest level taken (|G| <= 1e100), with no
+    overflow on the way: |G|^4 (the sum of squares of two energies) and I^k at degree 8
+    overflowed near |G| = 1e77 before, and the normal form's root search then failed
+    with NaN."""
+    import warnings
+
+    from andoyer.analysis.resonance import resonance_widths
+
+    free = RigidBody(2.2, 1.0, 2.0, mu=0.0, r=(0.6, 0.48, 0.64))
+    near = resonant_normal_form(free, 1.0, 0.0, "2:1")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        far = resonant_normal_form(free, 1e180, 0.0, "2:1")
+        far_widths = resonance_widths(free, 1e180, 0.0)
+    assert float(far.action) == pytest.approx(float(near.action) * 1e90, rel=1e-12)
+    assert float(far.G_action) == pytest.approx(float(near.G_action) * 1e90, rel=1e-12)
+    near_widths = resonance_widths(free, 1.0, 0.0)
+    assert near_widths.sizes == far_widths.sizes
+    np.testing.assert_allclose(far_widths.G_action, near_widths.G_action * 1e90, rtol=1e-12)
+    np.testing.assert_allclose(far_widths.rotation_number_g_section,
+                               near_widths.rotation_number_g_section, rtol=1e-12)

@@ -112,13 +112,15 @@ class _Level:
         self.hstar, self.c, self.h, self.gc = hstar, c, h, g_centre
         self.k = np.arange(1, c.size + 1)
 
+    # G^(2-k) I^k written G^2 (I/G)^k (and so on): I^k alone overflows for |G| near 1e77
+    # at degree 8, where every term of the form is an energy ~G^2.
     def energy(self, I: float, G: float) -> float:
-        return float(self.hstar * G * G + np.sum(self.c * G ** (2 - self.k) * I ** self.k))
+        return float(G * G * (self.hstar + np.sum(self.c * (I / G) ** self.k)))
 
     def omegas(self, I: float, G: float) -> tuple[float, float]:
-        k, c = self.k, self.c
-        wl = float(np.sum(k * c * G ** (2 - k) * I ** (k - 1)))
-        wg = float(2 * self.hstar * G + np.sum((2 - k) * c * G ** (1 - k) * I ** k))
+        k, c, x = self.k, self.c, I / G
+        wl = float(G * np.sum(k * c * x ** (k - 1)))
+        wg = float(G * (2 * self.hstar + np.sum((2 - k) * c * x ** k)))
         return wl, wg
 
     def G_of(self, I: float) -> float:

@@ -457,8 +457,8 @@ class ResonantChain:
         dHdG = S * G
         dHdl = (b.a - b.b) * sc * (G * G - L * L)
         dHdL = (b.c - S) * L
-        n2 = dHdl**2 + dHdL**2
-        return -dHdG * dHdl / n2, -dHdG * dHdL / n2
+        n = np.hypot(dHdl, dHdL)  # not the sum of squares: ~|G|^4 overflows near 1e77
+        return -(dHdG / n) * (dHdl / n), -(dHdG / n) * (dHdL / n)
 
     def curves(self, n: int) -> dict[str, NDArray[np.float64]]:
         phi = np.linspace(0.0, 2 * math.pi, n)
