@@ -375,6 +375,11 @@ def meta(mode: str, args: dict[str, Any]) -> dict[str, Any]:
             "simd_size": int(heyoka.recommended_simd_size())}
 
 
+#: W2 theta2 = 0 on the default engine (heyoka) when issue 26 was filed (full run of
+#: 2026-11-25, commit 0791664): its target is half of it.
+THETA2_BEFORE_S = 0.4324
+
+
 def targets(rows: list[Row]) -> list[dict[str, Any]]:
     """The issue's targets, each with the measured ratio and whether it is met."""
     def get(wl: str, case_start: str, runner: str) -> Row | None:
@@ -427,6 +432,36 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
         ratio(f"W2 {sec}: andoyer taylor / andoyer default <= 1.2",
               get("W2", f"of {sec} ", "andoyer taylor"), get("W2", f"of {sec} ", DEFAULT),
               1.2, False)
+    # Issue 26, the rest of its targets table.
+    ratio("W3 FLI map: andoyer taylor / andoyer default <= 1.2",
+          get("W3", "FLI map", "andoyer taylor"), get("W3", "FLI map", DEFAULT), 1.2, False)
+    theta2 = get("W2", "of theta2 ", DEFAULT)
+    if theta2 is not None:
+        fastest = min((r for r in rows if r.workload == "W2" and "of theta2 " in r.case
+                       and r.runner.startswith("andoyer")), key=lambda r: r.wall_s)
+        out.append({"target": "W2 theta2: fastest andoyer engine <= 0.5 x the default's "
+                              f"{THETA2_BEFORE_S * 1e3:.0f} ms before issue 26 "
+                              f"({fastest.runner})",
+                    "value": fastest.wall_s / THETA2_BEFORE_S, "limit": 0.5,
+                    "met": bool(fastest.wall_s <= 0.5 * THETA2_BEFORE_S)})
+    for r in rows:
+        if r.workload == "W2" and r.runner.startswith("andoyer") and "limit" in r.extra:
+            x = r.wall_s / r.extra["limit"]["limit_s"]
+            out.append({"target": f"W2 {r.case.split('of ')[-1].split(' ')[0]}: {r.runner} "
+                                  "within 2x its machine limit", "value": x, "limit": 2.0,
+                        "met": bool(x <= 2.0)})
+    for wl, case in dict.fromkeys((r.workload, r.case) for r in rows
+                                  if r.workload in ("W1", "W2", "W3")):
+        t, d = get(wl, case, "andoyer taylor"), get(wl, case, DEFAULT)
+        if t is None or d is None or not (t.error_max >= 0 and d.error_max >= 0):
+            continue
+        # 1.5x, as for the hand-tuned peer: correct integrators' errors over long runs
+        # at tol 1e-12 vary that much with their step sequences.
+        out.append({"target": f"{wl} {case}: taylor's error within 1.5x of the default's "
+                              "(median, max)", "value": [t.error_median, t.error_max],
+                    "limit": [d.error_median, d.error_max],
+                    "met": bool(t.error_median <= 1.5 * d.error_median
+                                and t.error_max <= 1.5 * d.error_max)})
     big = [r for r in rows if r.workload == "W3" and r.note == "timed once"]
     if len(big) == 2:
         ratio(f"W3 {big[0].case}: andoyer default / hand-written heyoka ensemble <= 1",
@@ -436,6 +471,11 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
         out.append({"target": "W5: andoyer paper, warm caches, <= 20 s", "value": paper.wall_s,
                     "limit": 20.0, "met": bool(paper.wall_s <= 20.0)})
     for r in rows:
+        if r.workload == "W4" and r.extra.get("caches") == "cold" and \
+                r.runner.startswith("andoyer"):
+            first = r.extra["first_s"]
+            out.append({"target": f"W4: {r.runner}, cold first call <= 5 s", "value": first,
+                        "limit": 5.0, "met": bool(first <= 5.0)})
         if r.workload == "W4" and r.extra.get("caches") == "warm" and \
                 r.runner.startswith("andoyer"):
             paid = r.extra["compile_paid_s"]
@@ -568,7 +608,38 @@ def summary(result: dict[str, Any]) -> str:
     if paper is not None:
         lines += ["", f"`andoyer paper` (the main job), fresh process, warm caches: "
                       f"{_fmt(paper.wall_s, 's')}."]
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + engine_advice(rows)) + "\n"
+
+
+def engine_advice(rows: list[Row]) -> list[str]:
+    """**Which engine for what**, from the measurements: per workload, the fastest of
+    andoyer's engines (wall time) with heyoka installed and without it, and by how much."""
+    engines = {"andoyer heyoka": "heyoka", "andoyer taylor": "taylor",
+               "andoyer numba": "numba", "andoyer scipy": "scipy"}
+    out = ["", "**Which engine for what** (generated from the rows above: the fastest of "
+           "andoyer's engines by wall time, the next one's time over it):", "",
+           "| workload | with heyoka installed | without heyoka |", "|---|---|---|"]
+    cases = dict.fromkeys((r.workload, r.case) for r in rows if r.workload in ("W1", "W2", "W3")
+                          and r.note != "timed once")
+
+    def pick(cands: list[Row]) -> str:
+        cands = sorted((r for r in cands if math.isfinite(r.wall_s)
+                        and "extrapolated" not in r.note), key=lambda r: r.wall_s)
+        if not cands:
+            return "–"
+        best = engines[cands[0].runner]
+        if len(cands) == 1:
+            return f"{best} (only one measured)"
+        return (f"{best} ({engines[cands[1].runner]} takes "
+                f"{cands[1].wall_s / cands[0].wall_s:.2f}x)")
+
+    for wl, case in cases:
+        mine = [r for r in rows if (r.workload, r.case) == (wl, case) and r.runner in engines]
+        if not mine:
+            continue
+        out.append(f"| {wl}: {case} | {pick(mine)} | "
+                   f"{pick([r for r in mine if r.runner != 'andoyer heyoka'])} |")
+    return out if len(out) > 5 else []
 
 
 def update_readme(text: str, path: Path) -> bool:

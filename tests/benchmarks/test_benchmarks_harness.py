@@ -145,6 +145,38 @@ def test_targets_and_table_from_rows() -> None:
     assert "| W1: andoyer default / plain heyoka <= 1.2 | 2.00 | 1.2 | **no** |" in text
 
 
+def test_issue_26_targets_and_the_engine_advice_from_rows() -> None:
+    """The taylor rows' targets (speed, error, cold start) and the generated "which engine
+    for what" table: the fastest engine with heyoka and without it."""
+    def row(wl: str, case: str, runner: str, wall: float, err: float = 1e-10,
+            **extra: object) -> harness.Row:
+        return harness.Row(wl, case, runner, wall, wall, [wall], err, err, extra=extra)
+
+    g3 = "50 orbits x 1000 crossings of G3 = 0 (upward)"
+    th = "50 orbits x 1000 crossings of theta2 = 0 (upward)"
+    fli = "FLI map 64 x 64, t = 1000"
+    rows = [row("W2", g3, "andoyer heyoka", 1.0, limit={"limit_s": 0.4}),
+            row("W2", g3, "andoyer taylor", 1.5, 2e-10),
+            row("W2", g3, "andoyer numba", 4.0),
+            row("W2", th, "andoyer heyoka", 0.4), row("W2", th, "andoyer taylor", 0.2),
+            row("W3", fli, "andoyer heyoka", 2.0), row("W3", fli, "andoyer taylor", 2.2),
+            row("W4", "fresh process, cold on-disk caches", "andoyer taylor", 6.0,
+                first_s=6.0, second_s=0.5, caches="cold")]
+    t = {x["target"]: x for x in harness.targets(rows)}
+    assert not t["W2 G3: andoyer taylor / andoyer default <= 1.2"]["met"]
+    assert t["W3 FLI map: andoyer taylor / andoyer default <= 1.2"]["met"]
+    assert math.isclose(t["W2 G3: andoyer heyoka within 2x its machine limit"]["value"], 2.5)
+    assert not t[f"W2 {g3}: taylor's error within 1.5x of the default's (median, max)"]["met"]
+    assert t[f"W2 {th}: taylor's error within 1.5x of the default's (median, max)"]["met"]
+    half = next(x for x in t.values() if x["target"].startswith("W2 theta2: fastest"))
+    assert "andoyer taylor" in half["target"] and half["met"]  # 0.2 s <= 0.5 x 0.432 s
+    assert not t["W4: andoyer taylor, cold first call <= 5 s"]["met"]
+    advice = "\n".join(harness.engine_advice(rows))
+    assert f"| W2: {g3} | heyoka (taylor takes 1.50x) | taylor (numba takes 2.67x) |" in advice
+    assert f"| W2: {th} | taylor (heyoka takes 2.00x) | taylor (only one measured) |" in advice
+    assert f"| W3: {fli} | heyoka (taylor takes 1.10x) | taylor (only one measured) |" in advice
+
+
 @pytest.mark.parametrize("engine", ["heyoka", "numba"])
 def test_machine_limit_counts_the_engines_steps(engine) -> None:
     from benchmarks import limits
