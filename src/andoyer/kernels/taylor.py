@@ -23,6 +23,22 @@ tangent vectors, :math:`\rho` is the least over the state and each vector, each 
 with its own ``m``, so a growing tangent vector never loosens the state's accuracy.
 There is no rejected step.
 
+While it looks for crossings, the section function's jet counts in the step as well,
+as in heyoka, whose step norms run over the state and the event functions: where the
+last two coefficients of ``f`` exceed the state's, :math:`\rho` is also least over ``f``
+as a block of scale :math:`m = \max(1, \|x^{[0]}\|_\infty, \sqrt{f^2 + w^2})` (``w``
+the margin: the section's amplitude, which a root does not zero; heyoka takes one scale
+:math:`\max(1, \|x^{[0]}\|_\infty, |f|)` for both, which can lengthen the state's step
+where :math:`|f| > \|x^{[0]}\|_\infty`). The step is never longer than the state's own
+rule -- a section of a state component (``G3 = 0``) steps exactly as :func:`propagate`
+-- and never shorter than :data:`~andoyer.kernels.taylor_jets.SECTION_STEP_FLOOR` of
+it (near ``G = 0`` an angle's section function has unbounded jets). On the angle
+sections this is what makes the crossings as accurate as heyoka's: the error of a
+crossing is the integration's global error there, and the angle's jets shorten the
+steps by some 12 % (W2, ``theta2 = 0``, 1000 crossings: median error 2.0e-11 without,
+5.5e-12 with, heyoka 6.1e-12, against the extended-precision reference of the
+benchmarks).
+
 Tangent vectors. The variational equations :math:`\dot w = J(x) w` are linear in
 ``w`` and bilinear in the jets: a state of ``6 + 6 k`` floats carries ``k`` tangent
 vectors (``z = (y, w_1, ..., w_k)``), their jets follow the state's (generated
@@ -80,6 +96,7 @@ from andoyer.kernels.taylor_jets import (
     fill_constants,
     horner,
     load,
+    section_step_size,
     state_jets,
     step_size,
     tangent_jets,
@@ -201,6 +218,18 @@ class Orbits(NamedTuple):
     crossings_orbit: Any
 
 
+@kernel_jit
+def _step_to(t, t_end, h):
+    """``(status, t1, h)`` of a step of size ``h`` from ``t``; ``t1 <= t_end``."""
+    min_step = 10.0 * (np.nextafter(t, np.inf) - t)
+    if not h >= min_step:  # also NaN (a non-finite state)
+        return STEP_TOO_SMALL, t, 0.0
+    t1 = t + h
+    if t1 >= t_end:
+        t1 = t_end
+    return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
+
+
 def make_orbits(jets: Any) -> Orbits:
     """The orbit loops for states whose jets ``jets(X, order, q)`` computes (the state
     alone, or with tangent vectors): closures over ``jets``, so a call compiles only the
@@ -217,15 +246,17 @@ def make_orbits(jets: Any) -> Orbits:
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
         info[3] += 1
-        h = step_size(X, order)
-        min_step = 10.0 * (np.nextafter(t, np.inf) - t)
-        if not h >= min_step:  # also NaN (a non-finite state)
-            return STEP_TOO_SMALL, t, 0.0
-        t1 = t + h
-        if t1 >= t_end:
-            t1 = t_end
-        return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
+        return _step_to(t, t_end, step_size(X, order))
 
+    @kernel_jit
+    def take_section_step(t, t_end, X, order, q, info, ftape, fC, wtape, wC, u, v):
+        """:func:`take_step` with the section function's jet (left in ``u``) in the step
+        size (:func:`~andoyer.kernels.taylor_jets.section_step_size`; ``v`` its scratch)."""
+        jets(X, order, q)
+        info[3] += 1
+        tape_jet(ftape, fC, X[0], order, u)
+        return _step_to(t, t_end, section_step_size(X, order, u[ftape.shape[0] - 1], wtape,
+                                                    wC, v))
 
     @kernel_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
@@ -305,6 +336,7 @@ def make_orbits(jets: Any) -> Orbits:
         n = order + 1
         a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
         u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
+        uw = np.empty((wtape.shape[0], 1))  # the margin's tape at a step's start
         last = ftape.shape[0] - 1
         ytmp = np.empty(width)
         P = np.empty((X.shape[0], 2, _N))
@@ -333,18 +365,11 @@ def make_orbits(jets: Any) -> Orbits:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
                 return count
-            status, t1, h = take_step(t, t_max, X, order, q, info)
+            status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, wtape,
+                                              wC, u, uw)
             if status != SUCCESS:
                 info[0] = status
                 return count
-            # f at the step's end state, the next step's start value (carried over).
-            for i in range(_N):
-                v = X[0, order, i]
-                for k in range(order - 1, -1, -1):
-                    v = v * h + X[0, k, i]
-                Y[0, i] = v
-            fb = tape_value(ftape, fC, Y, u)
-            tape_jet(ftape, fC, X[0], order, u)
             hk = 1.0
             bound = 0.0
             for k in range(n):
@@ -352,6 +377,13 @@ def make_orbits(jets: Any) -> Orbits:
                 if k > 0:
                     bound += abs(a[k])
                 hk *= h
+            # f at the step's end state, the next step's start value (carried over).
+            for i in range(_N):
+                v = X[0, order, i]
+                for k in range(order - 1, -1, -1):
+                    v = v * h + X[0, k, i]
+                Y[0, i] = v
+            fb = tape_value(ftape, fC, Y, u)
             maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
                 abs(a[0]) > 1.000001 * bound and (a[0] > 0.0) == (fa > 0.0))
             if maybe:

@@ -20,13 +20,18 @@ import math
 import numpy as np
 
 from andoyer.kernels import taylor_generated
-from andoyer.kernels.taylor_sections import kernel_jit
+from andoyer.kernels.taylor_sections import kernel_jit, tape_jet
 
 __all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
-           "radius", "step_size", "horner", "advance", "load"]
+           "radius", "step_size", "section_step_size", "SECTION_STEP_FLOOR", "horner",
+           "advance", "load"]
 
 #: Floats of the Euler-Poisson state: one block of the jets.
 N_STATE = 6
+#: Least fraction of the state's step that a section function's jet may leave
+#: (:func:`section_step_size`): near ``G = 0`` an angle's section function has jets
+#: growing without bound (its ``|G|`` factor), where it is undefined anyway.
+SECTION_STEP_FLOOR = 1.0 / 16.0
 
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
@@ -104,6 +109,38 @@ def step_size(X, order):
         if rho != rho:
             return rho
     return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+
+
+@kernel_jit
+def section_step_size(X, order, f, wtape, wC, v):
+    """:func:`step_size` with a section function's jet ``f`` (order + 1,) as one more
+    block, where its last two coefficients exceed the state's (elsewhere, and for every
+    section of a state component, the step is :func:`step_size`'s). Its scale ``m`` is
+    the larger of the state's and the section's amplitude ``sqrt(f^2 + w^2)`` (``w``
+    the margin, tape ``wtape, wC``, evaluated into ``v`` (rows, 1)). The step is never
+    longer than :func:`step_size`'s, nor shorter than :data:`SECTION_STEP_FLOOR` of it
+    (see :mod:`andoyer.kernels.taylor`'s notes)."""
+    h = step_size(X, order)
+    m = 0.0
+    n1 = 0.0
+    n2 = 0.0
+    for i in range(N_STATE):
+        m = max(m, abs(X[0, 0, i]))
+        n1 = max(n1, abs(X[0, order - 1, i]))
+        n2 = max(n2, abs(X[0, order, i]))
+    a1 = abs(f[order - 1])
+    a2 = abs(f[order])
+    if not (a1 > n1 or a2 > n2):  # also NaN (f undefined: G = 0 on an angle section)
+        return h
+    tape_jet(wtape, wC, X[0], v.shape[1] - 1, v)  # order 0 (not a literal: see _ZERO)
+    m = max(1.0, m, math.sqrt(f[0] * f[0] + v[wtape.shape[0] - 1, 0] ** 2))
+    rho = (m / a1) ** (1.0 / (order - 1)) if a1 > 0.0 else np.inf
+    if a2 > 0.0:
+        rho = min(rho, (m / a2) ** (1.0 / order))
+    hf = rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+    if hf < h:  # False for NaN: the state's step
+        h = max(hf, SECTION_STEP_FLOOR * h)
+    return h
 
 
 @kernel_jit
