@@ -62,6 +62,17 @@ def test_same_numbers_as_committed(regenerated: ModuleType) -> None:
         committed.ep_taylor_tangent_jet(x0, w0, 8, q0)
         regenerated.ep_taylor_tangent_jet(x1, w1, 8, q1)
         np.testing.assert_array_equal(w0, w1)
+        # the lane jets (plain Python here: andoyer.kernels.simd's fallbacks)
+        X0 = rng.normal(size=(9, 6, 8))
+        W0 = rng.normal(size=(9, 6, 8))
+        X1, W1 = X0.copy(), W0.copy()
+        m = np.empty((committed.LANE_PRODUCTS, 8))
+        committed.ep_taylor_jet_lanes(X0, 8, q0, m)
+        committed.ep_taylor_tangent_jet_lanes(X0, W0, 8, q0, m)
+        regenerated.ep_taylor_jet_lanes(X1, 8, q1, m)
+        regenerated.ep_taylor_tangent_jet_lanes(X1, W1, 8, q1, m)
+        np.testing.assert_array_equal(X0, X1)
+        np.testing.assert_array_equal(W0, W1)
     assert committed.SECTION_TAPES == regenerated.SECTION_TAPES
     assert committed.MARGIN_TAPES == regenerated.MARGIN_TAPES
     for kind in range(len(committed.SECTION_TAPES)):

@@ -7,12 +7,16 @@ Plain loops on float arrays, compiled by Numba in andoyer.kernels.taylor.
 
 from math import cos, sin
 
+from andoyer.kernels.simd import cauchy, combine
+
 SYMPY_VERSION = '1.14.0'
 #: Number of body-dependent coefficients returned by ep_taylor_constants.
 N_CONSTANTS = 12
 #: Most nodes and constants of a section tape.
 TAPE_NODES = 33
 TAPE_CONSTANTS = 9
+#: Scratch rows of the lane jets (one per Cauchy product).
+LANE_PRODUCTS = 18
 
 def ep_taylor_constants(a, b, c, mu, e1, e2, e3):
     """The body-dependent coefficients ``q`` of the jets (folded constants)."""
@@ -167,6 +171,46 @@ def ep_taylor_attitude_jet(x, w, order, q):
         w[k + 1, 1] = (-q9 * m3 + q10 * m4 - q11 * m5) / (k + 1)
         w[k + 1, 2] = (q9 * m6 - q10 * m7 - q11 * m8) / (k + 1)
         w[k + 1, 3] = (-q9 * m9 - q10 * m10 + q11 * m11) / (k + 1)
+
+
+def ep_taylor_jet_lanes(x, order, q, m):
+    """ep_taylor_jet of LANES orbits: ``x[k, i, lane]``; ``m`` scratch (LANE_PRODUCTS, LANES)."""
+    q0 = q[0]
+    q1 = q[1]
+    q2 = q[2]
+    q3 = q[3]
+    q4 = q[4]
+    q5 = q[5]
+    q6 = q[6]
+    q7 = q[7]
+    q8 = q[8]
+    q9 = q[9]
+    q10 = q[10]
+    q11 = q[11]
+    c = (q0, q1, q2, q3, -q1, q4, -q3, -q0, q5, q6, q7, -q6, q8, -q7, -q8,)
+    for k in range(order):
+        cauchy(m, x, x, k, (0, 1, 2, 1, 0, 2, 2, 0, 1, 3, 2, 4, 4, 1, 5, 5, 2, 3, 6, 0, 5, 7, 1, 3, 8, 0, 4))
+        combine(x, m, k, c, (0, 1, 5, 0, 0, 1, 4, 1, 0, 0, 0, 2, 1, 1, 5, 3, 1, 1, 3, 4, 1, 0, 1, 5, 2, 1, 4, 6, 2, 1, 3, 7, 2, 0, 2, 8, 3, 0, 3, 9, 3, 0, 4, 10, 4, 0, 5, 11, 4, 0, 6, 12, 5, 0, 7, 13, 5, 0, 8, 14))
+
+
+def ep_taylor_tangent_jet_lanes(x, w, order, q, m):
+    """ep_taylor_tangent_jet of LANES orbits: ``w[k, i, lane]`` along ``x[k, i, lane]``; ``m`` as ep_taylor_jet_lanes."""
+    q0 = q[0]
+    q1 = q[1]
+    q2 = q[2]
+    q3 = q[3]
+    q4 = q[4]
+    q5 = q[5]
+    q6 = q[6]
+    q7 = q[7]
+    q8 = q[8]
+    q9 = q[9]
+    q10 = q[10]
+    q11 = q[11]
+    c = (q0, q1, q2, q3, -q1, q4, -q3, -q0, q5, q7, q6, q8, -q6, -q8, -q7,)
+    for k in range(order):
+        cauchy(m, x, w, k, (0, 2, 1, 1, 1, 2, 2, 2, 0, 3, 0, 2, 4, 1, 0, 5, 0, 1, 6, 5, 1, 7, 4, 2, 8, 2, 4, 9, 1, 5, 10, 5, 0, 11, 3, 2, 12, 2, 3, 13, 0, 5, 14, 4, 0, 15, 3, 1, 16, 1, 3, 17, 0, 4))
+        combine(w, m, k, c, (0, 1, 5, 0, 0, 1, 4, 1, 0, 0, 0, 2, 0, 0, 1, 2, 1, 1, 5, 3, 1, 1, 3, 4, 1, 0, 2, 5, 1, 0, 3, 5, 2, 1, 4, 6, 2, 1, 3, 7, 2, 0, 4, 8, 2, 0, 5, 8, 3, 0, 6, 9, 3, 0, 7, 10, 3, 0, 8, 10, 3, 0, 9, 9, 4, 0, 10, 11, 4, 0, 11, 12, 4, 0, 12, 12, 4, 0, 13, 11, 5, 0, 14, 13, 5, 0, 15, 14, 5, 0, 16, 14, 5, 0, 17, 13))
 
 
 #: Section functions f, one tape per section kind: rows (op, a, b, ca, cb, cc), ops

@@ -104,10 +104,13 @@ def step_size(X, order):
     """Jorba-Zou step of :mod:`andoyer.kernels.taylor`'s notes (least over the state
     and tangent vectors)."""
     rho = radius(X[0], order)
+    if rho != rho:
+        return rho
     for i in range(1, X.shape[0]):
-        rho = min(rho, radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
-        if rho != rho:
-            return rho
+        r = radius(X[i], order)
+        if r != r:  # a non-finite vector (Numba's min(rho, NaN) would be rho)
+            return r
+        rho = min(rho, r)
     return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
 
 

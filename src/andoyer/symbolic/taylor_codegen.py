@@ -138,6 +138,41 @@ def _poly_jet_body(rows: list[list[tuple[tuple[int, ...], sp.Expr]]], access: Se
     return lines
 
 
+def _lane_jet_body(rows: list[list[tuple[tuple[int, ...], sp.Expr]]], arrays: Sequence[str],
+                   out: str, q: _Constants) -> tuple[list[str], int]:
+    """:func:`_poly_jet_body` over ``LANES`` orbits (``x[k, i, lane]``): each Cauchy
+    product is a row ``m[product]`` of one call of :func:`andoyer.kernels.simd.cauchy`
+    per order, the new coefficients one call of :func:`andoyer.kernels.simd.combine`
+    (both vector code). ``arrays[i]`` names the array of variable ``i`` (its component
+    ``i % 6``); ``out`` the array written."""
+    products: list[tuple[int, int]] = []
+    for row in rows:
+        for exps, _ in row:
+            mono = _monomial(exps)
+            if len(mono) == 2 and mono not in products:
+                products.append((mono[0], mono[1]))
+    n = len(S.y)
+    if len({(arrays[a], arrays[b]) for a, b in products}) != 1:
+        raise ValueError("the products of a lane jet multiply one pair of arrays")
+    u, v = arrays[products[0][0]], arrays[products[0][1]]
+    triples = ", ".join(f"{i}, {a % n}, {b % n}" for i, (a, b) in enumerate(products))
+    lines = ["    for k in range(order):", f"        cauchy(m, {u}, {v}, k, ({triples}))"]
+    coefs: list[str] = []
+    terms: list[int] = []
+    for i, row in enumerate(rows):
+        for exps, coeff in row:
+            mono = _monomial(exps)
+            c = q.ref(coeff)
+            if c not in coefs:
+                coefs.append(c)
+            source = ((0, products.index((mono[0], mono[1]))) if len(mono) == 2
+                      else (1, mono[0] % n))
+            terms += [i, *source, coefs.index(c)]
+    lines.insert(0, f"    c = ({', '.join(coefs)},)")
+    lines.append(f"        combine({out}, m, k, c, ({', '.join(map(str, terms))}))")
+    return lines, len(products)
+
+
 def _sum(terms: Sequence[tuple[str, str]]) -> str:
     """Code of ``sum(c * v)`` for ``(c, v)`` code pairs, without ``1.0 *`` or ``+ -``."""
     out = ""
@@ -298,6 +333,16 @@ def generate_taylor_source() -> str:
                 'scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet '
                 '``x``."""']
     attitude_loop = _poly_jet_body(attitude_terms(), q_access, "w[k + 1, {i}]", q)
+    lane_field, n_field = _lane_jet_body(field_terms(), ["x"] * len(S.y), "x", q)
+    lane_tangent, n_tangent = _lane_jet_body(tangent_terms(),
+                                             ["x"] * len(S.y) + ["w"] * len(S.y), "w", q)
+    lanes = ["def ep_taylor_jet_lanes(x, order, q, m):",
+             '    """ep_taylor_jet of LANES orbits: ``x[k, i, lane]``; ``m`` scratch '
+             '(LANE_PRODUCTS, LANES)."""', *_unpack(q), *lane_field]
+    lanes_w = ["def ep_taylor_tangent_jet_lanes(x, w, order, q, m):",
+               '    """ep_taylor_tangent_jet of LANES orbits: ``w[k, i, lane]`` along '
+               '``x[k, i, lane]``; ``m`` as ep_taylor_jet_lanes."""', *_unpack(q),
+               *lane_tangent]
     field += _unpack(q) + field_loop
     tangent += _unpack(q) + tangent_loop
     attitude += _unpack(q) + attitude_loop
@@ -319,14 +364,18 @@ def generate_taylor_source() -> str:
         "#: Most nodes and constants of a section tape.",
         f"TAPE_NODES = {max(nodes, m_nodes)}",
         f"TAPE_CONSTANTS = {max(n_consts, m_consts)}",
+        "#: Scratch rows of the lane jets (one per Cauchy product).",
+        f"LANE_PRODUCTS = {max(n_field, n_tangent)}",
         "",
         "",
     ]
     body = [_constants_source(q), "\n".join(field) + "\n", "\n".join(tangent) + "\n",
-            "\n".join(attitude) + "\n", section, margin]
+            "\n".join(attitude) + "\n", "\n".join(lanes) + "\n", "\n".join(lanes_w) + "\n",
+            section, margin]
     text = "\n\n".join(body)
     used = [f for f in ("cos", "sin", "sqrt") if f"{f}(" in text]
-    imports = f"from math import {', '.join(used)}" if used else ""
+    imports = f"from math import {', '.join(used)}\n\n" if used else ""
+    imports += "from andoyer.kernels.simd import cauchy, combine"
     return "\n".join(head).replace("{imports}", imports) + text
 
 

@@ -1,0 +1,339 @@
+r"""The Taylor method of :mod:`andoyer.kernels.taylor` on ``LANES`` orbits at once (SIMD).
+
+The scalar kernel computes the jet of one orbit at a time: every Cauchy product of
+the recurrences of the field (1) is a scalar multiply-add, so the machine's vector
+units (AVX-512: 8 doubles) idle. Here the jets of :data:`LANES` orbits are one array
+``X[block, k, i, lane]`` with the lane index innermost and a compile-time trip count,
+and the generated lane recurrences (``ep_taylor_jet_lanes``,
+``ep_taylor_tangent_jet_lanes`` of :mod:`andoyer.kernels.taylor_generated`, written
+by :mod:`andoyer.symbolic.taylor_codegen` from the same SymPy field as the scalar
+ones) do every multiply-add for all lanes with one vector instruction -- heyoka's
+batch mode, without heyoka.
+
+Design (each choice measured, see ``/work/notes/26-lanes.md`` and the numbers below):
+
+* **Each lane steps on its own.** A lane has its own time, its own Jorba-Zou step
+  (:func:`lane_steps`: the rule of :func:`andoyer.kernels.taylor_jets.step_size`,
+  lane by lane) and its own next output time; output times inside a step are the
+  step's polynomial there (Horner per lane), exactly as the scalar kernel does, so a
+  lane takes the scalar kernel's steps and its results agree with it to round-off
+  (the jets' sums are the same; only the compiler's vector code may contract them
+  differently). Lanes never wait for each other: only the jets are shared work.
+* **Lanes are refilled from a queue.** Orbits take different numbers of steps; a
+  lane whose orbit ends (all output times reached, or a failure) takes the next orbit
+  of its block at once. Lanes left without an orbit at the block's end carry a zero
+  state (zero jets, no floating-point exceptions) until the block ends.
+* **Failures per orbit**, with the scalar kernel's statuses and ``info`` columns
+  (:data:`andoyer.kernels.stepper.INFO`): a non-finite state or a step below ten
+  units in the last place of ``t`` gives ``STEP_TOO_SMALL``, ``max_steps`` steps
+  ``MAX_STEPS``; rows of ``out`` not reached are left as they were.
+* **Threads over blocks of orbits** (:func:`andoyer.kernels.threads.over_orbits`),
+  each block a queue for its own lanes.
+
+States of ``6 + 6 k`` floats (the state and ``k`` tangent vectors, not renormalised,
+as :func:`andoyer.kernels.taylor.propagate`).
+
+Entry point: :func:`propagate` (cached machine code, keyed by :data:`LANES_STAMP`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from andoyer.kernels import simd, taylor_generated, taylor_jets, taylor_sections
+from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.dop853 import source_stamp
+from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
+from andoyer.kernels.taylor_jets import N_STATE, fill_constants
+from andoyer.kernels.taylor_sections import kernel_jit
+from andoyer.kernels.threads import over_orbits
+
+__all__ = ["LANES", "LANES_STAMP", "INFO", "SUCCESS", "STEP_TOO_SMALL", "MAX_STEPS",
+           "STATUS_MESSAGES", "propagate", "lanes_block", "block_size"]
+
+#: Orbits advanced together (the vector width of the generated lane jets).
+LANES = simd.LANES
+_L = LANES
+_N = N_STATE
+_P = taylor_generated.LANE_PRODUCTS
+
+#: Hash of every source the compiled entry point depends on (its cache key).
+LANES_STAMP = source_stamp(taylor_generated.__file__ or "", __file__, simd.__file__ or "",
+                           taylor_sections.__file__ or "", taylor_jets.__file__ or "")
+
+_jet = kernel_jit(taylor_generated.ep_taylor_jet_lanes)
+_tangent_jet = kernel_jit(taylor_generated.ep_taylor_tangent_jet_lanes)
+
+
+@kernel_jit
+def lane_jets(X, order, q, m):
+    """Jets to ``order`` of the state ``X[0]`` and the tangent vectors ``X[1:]`` of every
+    lane (rows ``X[:, 0]`` are the current values); ``m`` scratch (LANE_PRODUCTS, LANES)."""
+    _jet(X[0], order, q, m)
+    for b in range(1, X.shape[0]):
+        _tangent_jet(X[0], X[b], order, q, m)
+
+
+@kernel_jit
+def lane_steps(X, order, h, a1, a2, tot):
+    """``h[lane]``: the Jorba-Zou step of :func:`andoyer.kernels.taylor_jets.step_size`
+    for every lane (NaN where a value or coefficient is not finite). ``a1, a2, tot``
+    scratch (LANES,): the least ``m / |x^[p-1]|``, ``m / |x^[p]|`` over the blocks (the
+    powers are monotonic, so the least radius is the radius of the least ratio)."""
+    for lane in range(_L):
+        a1[lane] = np.inf
+        a2[lane] = np.inf
+        tot[lane] = 0.0
+    for b in range(X.shape[0]):
+        for lane in range(_L):
+            m = 0.0
+            n1 = 0.0
+            n2 = 0.0
+            for i in range(_N):
+                v0 = abs(X[b, 0, i, lane])
+                v1 = abs(X[b, order - 1, i, lane])
+                v2 = abs(X[b, order, i, lane])
+                m = max(m, v0)
+                n1 = max(n1, v1)
+                n2 = max(n2, v2)
+                tot[lane] += v0 + v1 + v2
+            m = max(1.0, m)
+            if n1 > 0.0:
+                a1[lane] = min(a1[lane], m / n1)
+            if n2 > 0.0:
+                a2[lane] = min(a2[lane], m / n2)
+    c = math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+    for lane in range(_L):
+        rho = np.inf
+        if a1[lane] < np.inf:
+            rho = a1[lane] ** (1.0 / (order - 1))
+        if a2[lane] < np.inf:
+            rho = min(rho, a2[lane] ** (1.0 / order))
+        h[lane] = rho * c if tot[lane] < np.inf else np.nan
+
+
+@kernel_jit
+def lane_advance(X, order, h):
+    """Rows 0 of every lane's jets = the values at ``t0 + h[lane]``."""
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            for lane in range(_L):
+                v = X[b, order, i, lane]
+                for k in range(order - 1, -1, -1):
+                    v = v * h[lane] + X[b, k, i, lane]
+                X[b, 0, i, lane] = v
+
+
+@kernel_jit
+def lane_horner(X, order, lane, tau, out):
+    """``out[6 b + i]`` = block ``b`` of ``lane`` at ``t0 + tau``."""
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            v = X[b, order, i, lane]
+            for k in range(order - 1, -1, -1):
+                v = v * tau + X[b, k, i, lane]
+            out[_N * b + i] = v
+
+
+@kernel_jit
+def lane_load(X, lane, z):
+    """Rows 0 of ``lane``'s jets = the state ``z`` (zeros when ``z`` is empty: an idle
+    lane)."""
+    for b in range(X.shape[0]):
+        for i in range(_N):
+            X[b, 0, i, lane] = z[_N * b + i] if z.shape[0] else 0.0
+
+
+@kernel_jit
+def take_orbit(z0, t_out, max_steps, X, lane, nxt, out, info, nothing):
+    """Load the next orbit of the queue (from ``nxt``) that needs a step into ``lane``;
+    orbits that need none (one output time, repeated initial times, ``max_steps`` 0)
+    are finished here as the scalar kernel finishes them. Returns ``(orbit, j, next)``:
+    the orbit (-1: none left, the lane is zeroed by the empty ``nothing``), its next
+    output index, the queue's next orbit."""
+    k = t_out.shape[0]
+    while nxt < z0.shape[0]:
+        i = nxt
+        nxt += 1
+        for c in range(z0.shape[1]):
+            out[i, 0, c] = z0[i, c]
+        if k == 1:
+            continue
+        j = 1
+        while j < k and t_out[j] <= t_out[0]:  # repeated initial times
+            for c in range(z0.shape[1]):
+                out[i, j, c] = z0[i, c]
+            j += 1
+        if j >= k:
+            continue
+        if info[i, 1] >= max_steps:
+            info[i, 0] = MAX_STEPS
+            continue
+        lane_load(X, lane, z0[i])
+        return i, j, nxt
+    lane_load(X, lane, nothing)
+    return -1, 0, nxt
+
+
+@kernel_jit
+def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
+    """The orbits ``z0`` (n, 6 + 6 k) to the output times ``t_out``: ``out[i, j]`` and
+    ``info[i]`` as :func:`andoyer.kernels.taylor.propagate` (see the module notes)."""
+    k = t_out.shape[0]
+    t_end = t_out[k - 1]
+    X = np.zeros((z0.shape[1] // _N, order + 1, _N, _L))
+    m = np.empty((_P, _L))
+    h = np.empty(_L)
+    hs = np.zeros(_L)
+    a1 = np.empty(_L)
+    a2 = np.empty(_L)
+    tot = np.empty(_L)
+    t = np.zeros(_L)
+    t1 = np.zeros(_L)
+    j = np.zeros(_L, dtype=np.int64)
+    orbit = np.full(_L, -1, dtype=np.int64)
+    nothing = np.empty(0)
+    nxt = 0
+    busy = 0
+    for lane in range(_L):
+        orbit[lane], j[lane], nxt = take_orbit(z0, t_out, max_steps, X, lane, nxt, out,
+                                               info, nothing)
+        t[lane] = t_out[0]
+        if orbit[lane] >= 0:
+            busy += 1
+    while busy > 0:
+        lane_jets(X, order, q, m)
+        lane_steps(X, order, h, a1, a2, tot)
+        for lane in range(_L):  # the step of each lane, its output times inside it
+            i = orbit[lane]
+            hs[lane] = 0.0
+            if i < 0:
+                continue
+            info[i, 3] += 1
+            tl = t[lane]
+            if not h[lane] >= 10.0 * (np.nextafter(tl, np.inf) - tl):  # also NaN
+                info[i, 0] = STEP_TOO_SMALL
+                orbit[lane] = -2  # ended: refilled below
+                continue
+            e = tl + h[lane]
+            if e >= t_end:
+                e = t_end
+            hl = e - tl  # h such that t + h = t1 in floating point
+            jl = j[lane]
+            while jl < k and t_out[jl] <= e:
+                lane_horner(X, order, lane, t_out[jl] - tl if t_out[jl] < e else hl,
+                            out[i, jl])
+                jl += 1
+            j[lane] = jl
+            t1[lane] = e
+            hs[lane] = hl
+        lane_advance(X, order, hs)
+        for lane in range(_L):  # ended orbits give their lane to the next one
+            i = orbit[lane]
+            if i == -1:
+                continue
+            if i >= 0:
+                info[i, 1] += 1
+                t[lane] = t1[lane]
+                if j[lane] < k:
+                    if info[i, 1] < max_steps:
+                        continue
+                    info[i, 0] = MAX_STEPS
+            orbit[lane], j[lane], nxt = take_orbit(z0, t_out, max_steps, X, lane, nxt,
+                                                   out, info, nothing)
+            t[lane] = t_out[0]
+            if orbit[lane] < 0:
+                busy -= 1
+
+
+def _build(stamp: str) -> Any:
+    """The cached entry point (the closure over ``stamp`` keys the cache, as in
+    :func:`andoyer.kernels.taylor._build`)."""
+
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    def lanes_block(z0, t, p, order, max_steps, out, info):
+        """:func:`propagate` of a block of orbits on the calling thread."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        fill_constants(p, q)
+        lanes_orbits(z0, t, q, order, max_steps, out, info)
+
+    return lanes_block
+
+
+lanes_block = _build(LANES_STAMP)
+
+
+def block_size(n: int, threads: int) -> int:
+    """Orbits per block handed to a thread: four blocks per thread, at least two
+    orbits per lane (a block's last orbits run with idle lanes beside them).
+
+    Parameters
+    ----------
+    n : int
+        Orbits.
+    threads : int
+        Threads.
+
+    Examples
+    --------
+    >>> block_size(984, 2)
+    123
+    >>> block_size(10, 2)
+    16
+    """
+    return max(2 * _L, -(-n // (4 * max(1, threads))))
+
+
+def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_steps: int, *,
+              block: int | None = None, threads: int | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`andoyer.kernels.taylor.propagate` with :data:`LANES` orbits per vector step.
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, 6 + 6 k)
+        Initial states ``(y, w_1 .. w_k)`` at ``t[0]`` (C-contiguous floats).
+    t : ndarray, shape (m,)
+        Output times, non-decreasing.
+    p : ndarray, shape (8,)
+        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+    order : int
+        The Taylor order (:func:`andoyer.kernels.taylor.order_for` of the tolerance).
+    max_steps : int
+        Maximum steps per orbit.
+    block : int, optional
+        Orbits per block (default :func:`block_size`).
+    threads : int, optional
+        Threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    z : ndarray, shape (n, m, 6 + 6 k)
+        NaN after a failure (see ``info``).
+    info : ndarray of int64, shape (n, 4)
+        Columns :data:`INFO` (``rejected`` is always 0; ``nfev`` counts jets).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from andoyer import RigidBody
+    >>> z0 = np.array([[0.3, 1.1, 0.2, 0.6, 0.0, 0.8]] * 9)
+    >>> z, info = propagate(z0, np.array([0.0, 1.0]), RigidBody.paper().engine_params,
+    ...                     15, 10**6)
+    >>> z.shape, bool(np.all(info[:, 0] == SUCCESS))
+    ((9, 2, 6), True)
+    """
+    import numba
+
+    n = z0.shape[0]
+    out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    m = numba.get_num_threads() if threads is None else int(threads)
+    size = block_size(n, m) if block is None else int(block)
+    over_orbits(lanes_block, n, (z0,), (out, info), (t, p, int(order), int(max_steps)),
+                block=size, threads=m)
+    return out, info

@@ -1,0 +1,169 @@
+"""The SIMD-lane Taylor kernel (:mod:`andoyer.kernels.taylor_lanes`) against the scalar one.
+
+* the lane jets (generated ``ep_taylor_jet_lanes``/``ep_taylor_tangent_jet_lanes``,
+  compiled with the vector intrinsics of :mod:`andoyer.kernels.simd`) equal the scalar
+  jets of :func:`andoyer.kernels.taylor.jet` lane by lane, to round-off, on random
+  states and states near the Andoyer chart's singular sets;
+* orbits: every orbit of a lane run takes the scalar kernel's steps (``info`` equal,
+  row by row) and reaches the same states to round-off; against the Numba DOP853 to
+  the tolerance's level; threads and blocks change no bit;
+* failures are per orbit, with the scalar kernel's statuses: a non-finite state
+  (``STEP_TOO_SMALL``), ``max_steps`` (``MAX_STEPS``) beside orbits that succeed;
+* queue edge cases: fewer orbits than lanes, none, one output time, repeated initial
+  times.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+from andoyer import RigidBody, from_andoyer
+from andoyer.kernels import dop853, simd
+from andoyer.kernels import taylor as T
+from andoyer.kernels import taylor_lanes as TL
+from andoyer.kernels.taylor_jets import fill_constants
+
+L = TL.LANES
+ORDER = 15  # order_for(1e-12)
+
+
+@pytest.fixture(scope="module")
+def body() -> RigidBody:
+    return RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
+
+
+def states(n: int, seed: int) -> NDArray[np.float64]:
+    """Random states, a third of them near the chart's singular sets (|L| = G, |H| = G)."""
+    rng = np.random.default_rng(seed)
+    G = rng.uniform(0.5, 2.0, n)
+    P = np.stack([rng.uniform(-3, 3, n), rng.uniform(-3, 3, n), G * rng.uniform(-0.9, 0.9, n),
+                  G, G * rng.uniform(-0.9, 0.9, n)], axis=-1)
+    near = rng.choice([1 - 1e-12, -(1 - 1e-12), 1 - 1e-7], size=n)
+    P[: n // 6, 2] = G[: n // 6] * near[: n // 6]
+    P[n // 6: n // 3, 4] = G[n // 6: n // 3] * near[n // 6: n // 3]
+    return np.ascontiguousarray(from_andoyer(P))
+
+
+@numba.njit
+def _lane_jets(X, p, order):  # noqa: ANN001, ANN202 - a compiled test helper
+    q = np.empty(12)
+    fill_constants(p, q)
+    m = np.empty((TL._P, TL.LANES))
+    TL.lane_jets(X, order, q, m)
+
+
+def test_lane_jets_equal_the_scalar_jets(body: RigidBody) -> None:
+    p = np.asarray(body.engine_params, dtype=float)
+    rng = np.random.default_rng(3)
+    worst = 0.0
+    for k in (0, 1, 2):
+        y = states(L, 10 + k)
+        z = np.concatenate([y, rng.normal(size=(L, 6 * k))], axis=1)
+        X = np.zeros((1 + k, ORDER + 1, 6, L))
+        X[:, 0] = z.reshape(L, 1 + k, 6).transpose(1, 2, 0)
+        _lane_jets(X, p, ORDER)
+        for lane in range(L):
+            ref = T.jet(np.ascontiguousarray(z[lane]), p, ORDER)
+            got = X[..., lane]
+            scale = np.max(np.abs(ref), axis=2, keepdims=True)  # per block and order
+            worst = max(worst, float(np.max(np.abs(got - ref) / scale)))
+    assert worst < 1e-14, worst
+
+
+def test_simd_fallbacks_equal_the_compiled_intrinsics() -> None:
+    rng = np.random.default_rng(4)
+    u = rng.normal(size=(6, 6, L))
+    v = rng.normal(size=(6, 6, L))
+    products = (0, 1, 2, 1, 5, 0, 2, 3, 3)
+
+    @numba.njit
+    def compiled(m, u, v, k):  # noqa: ANN001, ANN202
+        simd.cauchy(m, u, v, k, (0, 1, 2, 1, 5, 0, 2, 3, 3))
+        simd.combine(u, m, k, (2.0, -0.5),
+                     (0, 0, 0, 0, 0, 1, 5, 1, 1, 0, 1, 1, 2, 0, 2, 0, 3, 1, 3, 0, 4, 1, 4, 1,
+                      5, 1, 0, 0))
+
+    for k in range(5):
+        m0 = np.zeros((3, L))
+        m1 = np.zeros((3, L))
+        u1 = u.copy()
+        compiled(m0, u, v, k)
+        simd.cauchy(m1, u1, v, k, products)
+        simd.combine(u1, m1, k, (2.0, -0.5), (0, 0, 0, 0, 0, 1, 5, 1, 1, 0, 1, 1, 2, 0, 2, 0,
+                                               3, 1, 3, 0, 4, 1, 4, 1, 5, 1, 0, 0))
+        np.testing.assert_allclose(m0, m1, rtol=1e-14, atol=1e-14)
+        np.testing.assert_allclose(u, u1, rtol=1e-14, atol=1e-14)
+        assert m0[1, 3] == pytest.approx(sum(u[j, 5, 3] * v[k - j, 0, 3] for j in range(k + 1)))
+
+
+@pytest.mark.parametrize("k", [0, 1])
+def test_orbits_take_the_scalar_steps(body: RigidBody, k: int) -> None:
+    p = np.asarray(body.engine_params, dtype=float)
+    n = 3 * L + 5  # lanes refilled, a partial last round
+    y = states(n, 20 + k)
+    z = np.ascontiguousarray(np.concatenate(
+        [y, np.random.default_rng(5).normal(size=(n, 6 * k))], axis=1))
+    t = np.linspace(0.0, 30.0, 7)
+    ref, ref_info = T.propagate(z, t, p, 1e-12, 10**6)
+    got, info = TL.propagate(z, t, p, ORDER, 10**6, threads=1)
+    np.testing.assert_array_equal(info, ref_info)
+    scale = 1.0 + np.abs(ref)
+    assert np.max(np.abs(got - ref) / scale) < 1e-11
+    # blocks and threads change nothing
+    again, info2 = TL.propagate(z, t, p, ORDER, 10**6, block=L + 3, threads=2)
+    np.testing.assert_array_equal(again, got)
+    np.testing.assert_array_equal(info2, info)
+
+
+def test_orbits_agree_with_dop853(body: RigidBody) -> None:
+    p = np.asarray(body.engine_params, dtype=float)
+    y = states(2 * L + 1, 30)
+    t = np.linspace(0.0, 10.0, 5)
+    got, info = TL.propagate(y, t, p, ORDER, 10**6)
+    assert np.all(info[:, 0] == TL.SUCCESS)
+    ref, ref_info = dop853.propagate(y, t, p, 1e-13, 1e-13, 10**7)
+    assert np.all(ref_info[:, 0] == dop853.SUCCESS)
+    assert np.max(np.abs(got - ref) / (1.0 + np.abs(ref))) < 1e-9
+
+
+def test_failures_are_per_orbit(body: RigidBody) -> None:
+    p = np.asarray(body.engine_params, dtype=float)
+    n = 2 * L + 3
+    z = np.ascontiguousarray(np.concatenate(
+        [states(n, 40), np.random.default_rng(6).normal(size=(n, 6))], axis=1))
+    z[3, 0] = np.nan
+    z[L + 4, 7] = np.inf  # a tangent vector
+    t = np.linspace(0.0, 20.0, 5)
+    ref, ref_info = T.propagate(z, t, p, 1e-12, 10**6)
+    got, info = TL.propagate(z, t, p, ORDER, 10**6, threads=1)
+    np.testing.assert_array_equal(info, ref_info)
+    assert info[3, 0] == info[L + 4, 0] == TL.STEP_TOO_SMALL
+    assert np.sum(info[:, 0] != TL.SUCCESS) == 2
+    np.testing.assert_array_equal(np.isnan(got), np.isnan(ref))
+    # max_steps: orbits needing more steps than allowed fail, the others do not
+    limit = int(np.median(ref_info[:, 1]))
+    ref, ref_info = T.propagate(z, t, p, 1e-12, limit)
+    got, info = TL.propagate(z, t, p, ORDER, limit, threads=1)
+    np.testing.assert_array_equal(info, ref_info)
+    assert np.any(info[:, 0] == TL.MAX_STEPS) and np.any(info[:, 0] == TL.SUCCESS)
+    ok = info[:, 0] == TL.SUCCESS
+    assert np.max(np.abs(got[ok] - ref[ok]) / (1.0 + np.abs(ref[ok]))) < 1e-11
+    np.testing.assert_array_equal(np.isnan(got), np.isnan(ref))
+    # no step at all allowed
+    _, info = TL.propagate(z, t, p, ORDER, 0)
+    assert np.all(info[:, 0] == TL.MAX_STEPS)
+
+
+@pytest.mark.parametrize("n", [0, 1, L - 1, L])
+def test_queue_edges(body: RigidBody, n: int) -> None:
+    p = np.asarray(body.engine_params, dtype=float)
+    y = states(max(n, 1), 50)[:n]
+    for t in (np.array([0.0]), np.array([0.0, 0.0, 0.0]), np.array([0.0, 0.0, 2.0, 2.0, 5.0])):
+        ref, ref_info = T.propagate(y, t, p, 1e-12, 10**6)
+        got, info = TL.propagate(y, t, p, ORDER, 10**6)
+        np.testing.assert_array_equal(info, ref_info)
+        assert got.shape == ref.shape
+        np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12)
