@@ -30,7 +30,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
-__all__ = ["LANES", "cauchy", "combine"]
+__all__ = ["LANES", "cauchy", "combine", "advance"]
 
 #: Orbits per vector (one AVX-512 register of doubles; two AVX2 ones).
 LANES = 8
@@ -58,7 +58,7 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
     >>> x = np.ones((3, 6, LANES))
     >>> m = np.zeros((2, LANES))
     >>> cauchy(m, x, x, 2, (0, 1, 2, 1, 0, 0))
-    >>> m[0, 0], m[1, 7]
+    >>> float(m[0, 0]), float(m[1, 7])
     (3.0, 3.0)
     """
     for i in range(0, len(products), 3):
@@ -69,8 +69,7 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
         m[r] = s
 
 
-@intrinsic
-def _cauchy(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
+def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
     """The vector code of :func:`cauchy` (arguments as there): one loop over ``j``, one
     vector accumulator per product (independent chains of fused multiply-adds: a single
     chain waits out the multiply-add's latency at every ``j``, measured 5x slower)."""
@@ -119,6 +118,9 @@ def _cauchy(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> An
     return sig, codegen
 
 
+_cauchy: Any = intrinsic(_cauchy_typer)
+
+
 def combine(y: Any, m: Any, k: int, c: tuple[float, ...], terms: tuple[int, ...]) -> None:
     """``y[k + 1, i, :] = sum c[ci] * s / (k + 1)`` over the terms ``(i, kind, idx, ci)``
     of output component ``i``, ``s`` = ``m[idx]`` (``kind`` 0) or ``y[k, idx]`` (1).
@@ -143,7 +145,7 @@ def combine(y: Any, m: Any, k: int, c: tuple[float, ...], terms: tuple[int, ...]
     >>> m = np.full((1, LANES), 3.0)
     >>> combine(y, m, 0, (2.0,), (0, 0, 0, 0, 0, 1, 5, 0) + tuple(
     ...     v for i in range(1, 6) for v in (i, 1, i, 0)))
-    >>> y[1, 0, 0], y[1, 5, 3]
+    >>> float(y[1, 0, 0]), float(y[1, 5, 3])
     (8.0, 2.0)
     """
     rows: dict[int, Any] = {}
@@ -247,5 +249,93 @@ def _cauchy_overload(m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
 
     def impl(m: Any, u: Any, v: Any, k: Any, products: Any) -> None:
         _cauchy(m, u, v, k, products)
+
+    return impl
+
+
+def advance(X: Any, order: int, h: Any) -> None:
+    """Rows 0 of the lane jets ``X[b, k, i, lane]`` = their polynomials at ``h[lane]``
+    (Horner: ``v = v h + X[b, k]`` from ``k = order``).
+
+    Parameters
+    ----------
+    X : ndarray, shape (blocks, order + 1, 6, LANES)
+        Lane jets (C-contiguous).
+    order : int
+        Their order.
+    h : ndarray, shape (LANES,)
+        The step of each lane.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> X = np.ones((1, 3, 6, LANES))
+    >>> advance(X, 2, np.full(LANES, 2.0))
+    >>> float(X[0, 0, 5, 7])
+    7.0
+    """
+    for b in range(X.shape[0]):
+        v = X[b, order].copy()
+        for k in range(order - 1, -1, -1):
+            v = v * h + X[b, k]
+        X[b, 0] = v
+
+
+def _advance_typer(typingctx: Any, X: Any, order: Any, h: Any) -> Any:
+    """The vector code of :func:`advance`: the six components of a block as six
+    independent chains of fused multiply-adds."""
+    sig = types.void(X, order, h)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        xt, ot, ht = signature.args
+        x_, o_, h_ = args
+        intp = context.get_value_type(types.intp)
+        vec = ir.VectorType(ir.DoubleType(), LANES)
+        fma = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        arr = context.make_array(xt)(context, builder, x_)
+        shape = cgutils.unpack_tuple(builder, arr.shape)
+        strides = cgutils.unpack_tuple(builder, arr.strides)
+        harr = context.make_array(ht)(context, builder, h_)
+        order_i = context.cast(builder, o_, ot, types.intp)
+        zero = ir.Constant(intp, 0)
+
+        def pointer(b: Any, k: Any, i: int) -> Any:
+            p = cgutils.get_item_pointer2(context, builder, data=arr.data, shape=shape,
+                                          strides=strides, layout=xt.layout,
+                                          inds=[b, k, ir.Constant(intp, i), zero])
+            return builder.bitcast(p, vec.as_pointer())
+
+        hv = builder.load(builder.bitcast(harr.data, vec.as_pointer()), align=8)
+        accs = [cgutils.alloca_once(builder, vec) for _ in range(6)]
+        with cgutils.for_range(builder, shape[0], intp=intp) as block:
+            b = block.index
+            for i in range(6):
+                builder.store(builder.load(pointer(b, order_i, i), align=8), accs[i])
+            with cgutils.for_range(builder, order_i, intp=intp) as loop:
+                k = builder.sub(builder.sub(order_i, loop.index), ir.Constant(intp, 1))
+                for i in range(6):
+                    term = builder.load(pointer(b, k, i), align=8)
+                    builder.store(builder.call(fma, [builder.load(accs[i]), hv, term]), accs[i])
+            for i in range(6):
+                builder.store(builder.load(accs[i]), pointer(b, zero, i), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_advance: Any = intrinsic(_advance_typer)
+
+
+@overload(advance, jit_options={"nogil": True})
+def _advance_overload(X: Any, order: Any, h: Any) -> Any:
+    """Compiled :func:`advance`: the intrinsic (C-contiguous float64 arrays only)."""
+    for ary in (X, h):
+        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
+                and ary.layout == "C"):
+            return None
+
+    def impl(X: Any, order: Any, h: Any) -> None:
+        _advance(X, order, h)
 
     return impl
