@@ -255,6 +255,16 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     rows = [Row("W3", case, DEFAULT, wall, cpu, walls, float(np.median(err)),
                 float(np.max(err)), "|FLI - FLI_ref| over the accessible points",
                 extra={"points": int(ok.sum()), "limit": asdict(limit)})]
+    if "andoyer taylor" in runners:
+        # The Taylor engine in Numba (SIMD lanes, kernels.taylor_lanes), same map.
+        _say("W3 andoyer taylor ...")
+        wall, cpu, walls, dt = timed(lambda: chaos_map(
+            b, h, 0.0, ("theta2", 0.0), grid,
+            IndicatorRun("fli", t_end=sizes.w3_t_end, tol=sizes.tol), engine="taylor",
+            progress=False), max(1, sizes.repeat // 2 + 1))
+        e = np.abs(np.asarray(dt.fli.values) - fli_ref)[ok]
+        rows.append(Row("W3", case, "andoyer taylor", wall, cpu, walls, float(np.median(e)),
+                        float(np.max(e)), "|FLI - FLI_ref| over the accessible points"))
     if "heyoka hand-tuned" in runners:
         _say("W3 heyoka hand-tuned (state + 1 tangent vector, SIMD batch, threads) ...")
         y0, w0, t_out = fli_heyoka.inputs(ds, b, sizes.w3_t_end)

@@ -37,8 +37,8 @@ LANES = 8
 
 
 def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
-    """``m[r, :] = sum_j u[j, a, :] * v[k - j, b, :]`` (``j = 0 .. k``, lane vectors)
-    for each triple ``(r, a, b)`` of ``products`` (laid end to end).
+    """The Cauchy products ``m[r, :] = sum_j u[j, a, :] * v[k - j, b, :]`` over
+    ``0 <= j <= k`` (lane vectors), for each triple ``(r, a, b)`` of ``products``.
 
     Parameters
     ----------
