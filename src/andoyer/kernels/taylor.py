@@ -249,14 +249,13 @@ def make_orbits(jets: Any) -> Orbits:
         return _step_to(t, t_end, step_size(X, order))
 
     @kernel_jit
-    def take_section_step(t, t_end, X, order, q, info, ftape, fC, wtape, wC, u, v):
-        """:func:`take_step` with the section function's jet (left in ``u``) in the step
-        size (:func:`~andoyer.kernels.taylor_jets.section_step_size`; ``v`` its scratch)."""
+    def take_section_step(t, t_end, X, order, q, info, ftape, fC, u):
+        """:func:`take_step` with the section function's jets (left in ``u``) in the step
+        size (:func:`~andoyer.kernels.taylor_jets.section_step_size`)."""
         jets(X, order, q)
         info[3] += 1
         tape_jet(ftape, fC, X[0], order, u)
-        return _step_to(t, t_end, section_step_size(X, order, u[ftape.shape[0] - 1], wtape,
-                                                    wC, v))
+        return _step_to(t, t_end, section_step_size(X, order, ftape, u))
 
     @kernel_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
@@ -336,7 +335,6 @@ def make_orbits(jets: Any) -> Orbits:
         n = order + 1
         a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
         u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
-        uw = np.empty((wtape.shape[0], 1))  # the margin's tape at a step's start
         last = ftape.shape[0] - 1
         ytmp = np.empty(width)
         P = np.empty((X.shape[0], 2, _N))
@@ -365,8 +363,7 @@ def make_orbits(jets: Any) -> Orbits:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
                 return count
-            status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, wtape,
-                                              wC, u, uw)
+            status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, u)
             if status != SUCCESS:
                 info[0] = status
                 return count

@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from andoyer.kernels import taylor_generated
-from andoyer.kernels.taylor_sections import kernel_jit, tape_jet
+from andoyer.kernels.taylor_sections import kernel_jit
 
 __all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
            "radius", "step_size", "section_step_size", "SECTION_STEP_FLOOR", "horner",
@@ -115,35 +115,55 @@ def step_size(X, order):
 
 
 @kernel_jit
-def section_step_size(X, order, f, wtape, wC, v):
-    """:func:`step_size` with a section function's jet ``f`` (order + 1,) as one more
-    block, where its last two coefficients exceed the state's (elsewhere, and for every
-    section of a state component, the step is :func:`step_size`'s). Its scale ``m`` is
-    the larger of the state's and the section's amplitude ``sqrt(f^2 + w^2)`` (``w``
-    the margin, tape ``wtape, wC``, evaluated into ``v`` (rows, 1)). The step is never
-    longer than :func:`step_size`'s, nor shorter than :data:`SECTION_STEP_FLOOR` of it
-    (see :mod:`andoyer.kernels.taylor`'s notes)."""
-    h = step_size(X, order)
+def section_step_size(X, order, tape, u):
+    """:func:`step_size` with the jet ``u[-1]`` of a section function ``f`` (the jets
+    ``u`` of its tape ``tape``, :func:`~andoyer.kernels.taylor_sections.tape_jet`) as one
+    more block, where its last two coefficients exceed the state's (elsewhere, and for
+    every section of a state component, the step is :func:`step_size`'s). Its scale
+    ``m`` is the larger of the state's and the size of the two terms that ``f``'s last
+    node sums (an angle section's pair ``(k sin, k cos)`` rotated by the value: its
+    amplitude ``k = sqrt(f^2 + w^2)``, ``w`` the margin). The step is never longer than
+    :func:`step_size`'s, nor shorter than :data:`SECTION_STEP_FLOOR` of the state's (see
+    :mod:`andoyer.kernels.taylor`'s notes)."""
+    last = tape.shape[0] - 1
+    a1 = abs(u[last, order - 1])
+    a2 = abs(u[last, order])
     m = 0.0
     n1 = 0.0
     n2 = 0.0
+    total = 0.0  # NaN or inf if any coefficient is (max() would drop a NaN)
     for i in range(N_STATE):
         m = max(m, abs(X[0, 0, i]))
         n1 = max(n1, abs(X[0, order - 1, i]))
         n2 = max(n2, abs(X[0, order, i]))
-    a1 = abs(f[order - 1])
-    a2 = abs(f[order])
-    if not (a1 > n1 or a2 > n2):  # also NaN (f undefined: G = 0 on an angle section)
-        return h
-    tape_jet(wtape, wC, X[0], v.shape[1] - 1, v)  # order 0 (not a literal: see _ZERO)
-    m = max(1.0, m, math.sqrt(f[0] * f[0] + v[wtape.shape[0] - 1, 0] ** 2))
-    rho = (m / a1) ** (1.0 / (order - 1)) if a1 > 0.0 else np.inf
-    if a2 > 0.0:
-        rho = min(rho, (m / a2) ** (1.0 / order))
-    hf = rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
-    if hf < h:  # False for NaN: the state's step
-        h = max(hf, SECTION_STEP_FLOOR * h)
-    return h
+        total += abs(X[0, 0, i]) + abs(X[0, order - 1, i]) + abs(X[0, order, i])
+    if not (a1 > n1 or a2 > n2) or not total < np.inf:  # also NaN (f undefined: G = 0
+        return step_size(X, order)  # on an angle section); a non-finite state: NaN
+    a = tape[last, 1]
+    b = tape[last, 2]
+    scale = abs(u[a, 0]) if b < 0 else math.sqrt(u[a, 0] * u[a, 0] + u[b, 0] * u[b, 0])
+    m = max(1.0, m)
+    # f's block at the state's scale m (its radius unchanged: (M / a)^(1/k) with
+    # a -> a m / M), merged into the state's norms, capped so that the radius shrinks
+    # at most 1 / SECTION_STEP_FLOOR times.
+    c = m / max(m, scale)
+    cap = 1.0
+    for _ in range(order - 1):
+        cap /= SECTION_STEP_FLOOR
+    if a1 * c > n1:
+        n1 = min(a1 * c, n1 * cap)
+    if a2 * c > n2:
+        n2 = min(a2 * c, n2 * cap / SECTION_STEP_FLOOR)
+    rho = np.inf
+    if n1 > 0.0:
+        rho = (m / n1) ** (1.0 / (order - 1))
+    if n2 > 0.0:
+        rho = min(rho, (m / n2) ** (1.0 / order))
+    for i in range(1, X.shape[0]):
+        rho = min(rho, radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
+        if rho != rho:
+            return rho
+    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
 
 
 @kernel_jit
