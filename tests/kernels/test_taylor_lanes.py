@@ -167,3 +167,52 @@ def test_queue_edges(body: RigidBody, n: int) -> None:
         np.testing.assert_array_equal(info, ref_info)
         assert got.shape == ref.shape
         np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12)
+
+
+def test_the_taylor_engine_runs_many_orbits_on_lanes(body: RigidBody,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    """The engine's routes (``propagate``; ``tangent`` without renormalisation, the FLI
+    map's) on lanes agree per orbit with the same engine on the scalar kernel and with
+    the numba engine; a failed orbit is flagged alone."""
+    from andoyer.integrate.engines import taylor_engine as TE
+    from andoyer.integrate.engines.base import Tolerance
+    from andoyer.integrate.engines.numba_engine import NumbaEngine
+
+    calls: list[int] = []
+    real = TL.propagate
+
+    def spy(z0: NDArray[np.float64], *args: object, **kw: object) -> object:
+        calls.append(z0.shape[0])
+        return real(z0, *args, **kw)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(TL, "propagate", spy)
+    p = body.engine_params
+    tol = Tolerance(1e-12, 1e-12)
+    n = L + 5
+    y = states(n, 60)
+    w = np.random.default_rng(7).normal(size=(n, 1, 6))
+    t = np.linspace(0.0, 10.0, 6)
+    eng = TE.TaylorEngine()
+    lanes_y = eng.propagate(y, t, p, tol)
+    lanes_w = eng.tangent(y, w, p, tol, t=t, renormalise=False)
+    assert calls == [n, n]
+    monkeypatch.setattr(TE, "LANES_FROM", 10**9)
+    scalar_y = eng.propagate(y, t, p, tol)
+    scalar_w = eng.tangent(y, w, p, tol, t=t, renormalise=False)
+    assert calls == [n, n]  # the scalar kernel this time
+    np.testing.assert_allclose(lanes_y, scalar_y, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(lanes_w.rho, scalar_w.rho, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(lanes_w.u, scalar_w.u, rtol=1e-11, atol=1e-11)
+    other = NumbaEngine().tangent(y, w, p, tol, t=t, renormalise=False)
+    np.testing.assert_allclose(lanes_w.y, other.y, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(lanes_w.rho, other.rho, rtol=1e-8, atol=1e-8)
+    # failures per orbit: a step budget that some orbits need more than
+    monkeypatch.setattr(TE, "LANES_FROM", 8)
+    z0 = np.ascontiguousarray(np.concatenate([y, w[:, 0]], axis=1))
+    _, info = real(z0, t, eng._kernel_params(np.asarray(p, float)), 15, 10**6)
+    limit = int(np.median(info[:, 1]))
+    flow = TE.TaylorEngine(max_steps=limit).tangent(y, w, p, tol, t=t, renormalise=False)
+    assert calls[-1] == n
+    np.testing.assert_array_equal(flow.ok, info[:, 1] <= limit)
+    assert flow.ok.any() and not flow.ok.all()
+    assert np.all(np.isnan(flow.y[~flow.ok])) and np.all(np.isfinite(flow.y[flow.ok]))
