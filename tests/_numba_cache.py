@@ -34,3 +34,31 @@ def fresh_process_cache_stats(module: str, calls: dict[str, str]) -> dict[str, o
                          check=True, timeout=300)
     out: dict[str, object] = json.loads(run.stdout.strip().splitlines()[-1])
     return out
+
+
+def fresh_process_compiles(statements: str, env: dict[str, str] | None = None) -> list[str]:
+    """Run ``statements`` (source text; ``np`` is imported) in a new interpreter and
+    return the qualified names of the functions Numba compiled there, in order (its
+    ``numba:compile`` events: a function loaded from the on-disk cache is not compiled,
+    so a process whose caches are warm returns ``[]``)."""
+    script = textwrap.dedent("""
+        import json
+        import numpy as np
+        from numba.core import event
+        compiled = []
+
+        class Count(event.Listener):
+            def on_start(self, ev):
+                compiled.append(ev.data["dispatcher"].py_func.__qualname__)
+
+            def on_end(self, ev):
+                pass
+
+        event.register("numba:compile", Count())
+    """) + textwrap.dedent(statements) + textwrap.dedent("""
+        print(json.dumps(compiled))
+    """)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True, timeout=300, env=env)
+    names: list[str] = json.loads(run.stdout.strip().splitlines()[-1])
+    return names

@@ -23,7 +23,7 @@ import pytest
 import sympy as sp
 from numpy.typing import NDArray
 
-from _numba_cache import fresh_process_cache_stats
+from _numba_cache import fresh_process_cache_stats, fresh_process_compiles
 from andoyer import RigidBody, from_andoyer
 from andoyer.kernels import dop853, generated
 from andoyer.kernels import tangent as DT
@@ -291,6 +291,26 @@ def test_second_process_loads_from_the_cache() -> None:
         "locate_crossings_block": f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, "
                                   f"1, 1, 50.0, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
+
+
+W4_CALLS = """
+from andoyer import RigidBody, from_andoyer
+from andoyer.integrate import Section, poincare, propagate
+body = RigidBody.paper()
+y0 = from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4], [1.0, 2.0, 0.5, 0.8, 0.3]])
+propagate(body, y0[0], np.linspace(0.0, 50.0, 11), engine="taylor", progress=False)
+poincare(body, y0, Section("G3", 0.0, 1), 3, engine="taylor", progress=False)
+"""
+
+
+def test_a_second_process_compiles_nothing() -> None:
+    # W4's second process (the start-up target: <= 0.5 s): with the on-disk cache warm,
+    # a process's first propagate and poincare on taylor load machine code and compile
+    # nothing at all -- no entry point (the test above), and nothing else on the way: a
+    # Numba function called from Python without a cache, an entry point whose cache key
+    # changes with each process, a helper compiled on its own.
+    exec(W4_CALLS, {"np": np})  # this process warms the cache (or already has)
+    assert fresh_process_compiles(W4_CALLS) == []
 
 
 def test_kernel_helpers_compile_once_and_refuse_python_calls() -> None:

@@ -22,6 +22,7 @@ from numba.core.registry import CPUDispatcher
 
 from andoyer.kernels import taylor_generated
 from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.link_only import link_only_options
 
 __all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
            "ROOT_MAXITER", "tape_jet",
@@ -50,16 +51,20 @@ class _KernelOnly(CPUDispatcher):
 
 
 def kernel_jit(function: Callable[..., Any]) -> Any:
-    """``fast_jit`` without the Python and C-callback wrappers (``no_cpython_wrapper``,
-    ``no_cfunc_wrapper``), for helpers that only compiled code calls.
+    """``fast_jit`` compiled into its callers only: no Python or C-callback wrapper
+    (``no_cpython_wrapper``, ``no_cfunc_wrapper``) and, through
+    :class:`~andoyer.kernels.link_only.LinkOnlyCompiler`, no optimisation or machine
+    code of its own (its module is optimised once, inside each entry point that calls
+    it), for helpers that only compiled code calls.
 
-    Numba writes, optimises and emits both wrappers for every function it compiles,
-    although a helper is only ever linked into its callers. Measured on a cold first
-    call (fresh process, empty cache; 2 shared cores, CPU time, median of 3): the first
-    ``poincare`` after a ``propagate`` 5.34 -> 4.37 s, the first ``propagate`` 3.39 ->
-    3.02 s. The machine code of the kernels is unchanged (bit-identical results). A call
-    from Python raises TypeError (``_KernelOnly``) instead of reaching the missing
-    wrapper.
+    Numba writes, optimises and emits both wrappers, and the function itself, for every
+    function it compiles, although a helper only ever runs as the copy linked into its
+    callers. Measured on a cold first call (fresh process, empty cache; 2 shared cores,
+    CPU time, median of 3): without the wrappers the first ``poincare`` after a
+    ``propagate`` 5.34 -> 4.37 s, the first ``propagate`` 3.39 -> 3.02 s; link-only,
+    W4's first ``propagate`` + ``poincare`` 5.1 -> 3.8 s. The kernels give the same
+    floats, bit for bit (:mod:`andoyer.kernels.link_only`). A call from Python raises
+    TypeError (``_KernelOnly``) instead of reaching the missing wrapper.
 
     Parameters
     ----------
@@ -71,9 +76,7 @@ def kernel_jit(function: Callable[..., Any]) -> Any:
     numba.core.registry.CPUDispatcher
         Its dispatcher (the function itself under ``NUMBA_DISABLE_JIT``).
     """
-    # Target options of Numba's CPU target that its stubs do not list.
-    options: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
-    dispatcher = numba.njit(nogil=True, fastmath=FASTMATH, **options)(function)
+    dispatcher = numba.njit(nogil=True, fastmath=FASTMATH, **link_only_options())(function)
     if isinstance(dispatcher, CPUDispatcher):  # not under NUMBA_DISABLE_JIT
         dispatcher.__class__ = _KernelOnly
     return dispatcher
