@@ -55,10 +55,10 @@ two roots inside one step -- the orbit dipping through the section and back -- a
 found down to a separation of 1e-13 of the step), then each root is solved by a
 safeguarded Newton iteration on ``P`` and polished by one Newton step in time on the
 section function itself: :math:`dt = -f(y)/\dot f`, :math:`y \mathrel{+}= dt\, F(y)`
-(:math:`\dot f = P'` and ``F`` the field (1); the tangent vectors get ``dt J w``). The
-end values of ``P`` are replaced by ``f`` at the step's end states, so a root on a step
-boundary is counted in exactly one step. A step whose polynomial cannot reach zero
-(:math:`|f^{[0]}| > \sum_{k \ge 1} |f^{[k]}| h^k`) skips the isolation. As in every
+(:math:`\dot f = P'` and ``F`` the field (1); the tangent vectors get ``dt J w``). One
+pass of ``f`` per step; its end value is the next step's start value, so a root on a step
+boundary is counted once; a state component's jet is the state's column
+(:mod:`~andoyer.kernels.taylor_sections`' notes). As in every
 engine, a crossing is kept when its direction is wanted, the margin ``w`` of the
 section is positive there (an angle section's antipode is not a crossing) and its time
 exceeds :data:`andoyer.kernels.constants.T_START`.
@@ -93,6 +93,7 @@ from andoyer.kernels.taylor_jets import (
     N_STATE,
     advance,
     attitude_jets,
+    block_at,
     fill_constants,
     horner,
     load,
@@ -102,14 +103,18 @@ from andoyer.kernels.taylor_jets import (
     tangent_jets,
 )
 from andoyer.kernels.taylor_sections import (
-    bernstein,
+    bernstein_weights,
     casteljau,
+    column_polynomial,
+    jet_polynomial,
     kernel_jit,
+    linear_component,
     poly_d,
     section_jet,
     section_tape,
     sign_changes,
     solve_root,
+    step_bernstein,
     tape_jet,
     tape_value,
 )
@@ -335,7 +340,6 @@ def make_orbits(jets: Any) -> Orbits:
         n = order + 1
         a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
         u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
-        last = ftape.shape[0] - 1
         ytmp = np.empty(width)
         P = np.empty((X.shape[0], 2, _N))
         Y = np.empty((1, _N))
@@ -343,60 +347,37 @@ def make_orbits(jets: Any) -> Orbits:
         lo_s = np.empty(_MAX_DEPTH + 2)
         hi_s = np.empty(_MAX_DEPTH + 2)
         left = np.empty(n)
-        W = np.zeros((n, n))  # Pascal's triangle (exact), then C(i, k) / C(p, k)
-        for i in range(n):
-            W[i, 0] = 1.0
-            for k in range(1, i + 1):
-                W[i, k] = W[i - 1, k - 1] + (W[i - 1, k] if k < i else 0.0)
-        for i in range(n - 1):
-            for k in range(i + 1):
-                W[i, k] /= W[order, k]
-        for k in range(n):
-            W[order, k] = 1.0
+        W = bernstein_weights(order)
         load(X, z0)
         for i in range(_N):
             Y[0, i] = z0[i]
         fa = tape_value(ftape, fC, Y, u)
+        component, ca, cc = linear_component(ftape, fC)
         t = 0.0
         count = _ZERO
         while count < n_crossings and t < t_max:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
                 return count
-            status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, u)
+            if component >= 0:  # |f^[k]| <= the state's: the state's step (as below)
+                status, t1, h = take_step(t, t_max, X, order, q, info)
+            else:
+                status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, u)
             if status != SUCCESS:
                 info[0] = status
                 return count
-            hk = 1.0
-            bound = 0.0
-            for k in range(n):
-                a[k] = u[last, k] * hk
-                if k > 0:
-                    bound += abs(a[k])
-                hk *= h
-            # f at the step's end state, the next step's start value (carried over).
-            for i in range(_N):
-                v = X[0, order, i]
-                for k in range(order - 1, -1, -1):
-                    v = v * h + X[0, k, i]
-                Y[0, i] = v
-            fb = tape_value(ftape, fC, Y, u)
+            if component >= 0:  # fb: f at the end (the next fa); bound: of |P - P(0)|
+                fb, bound = column_polynomial(X[0], component, ca, cc, order, h, a)
+            else:  # the tape's jet (in u); fb = f at the step's end state, not P(h)
+                fb, bound = jet_polynomial(u[ftape.shape[0] - 1], order, h, a)
+                y_end = block_at(X[0], order, h)
+                for i in range(_N):
+                    Y[0, i] = y_end[i]
+                fb = tape_value(ftape, fC, Y, u)
             maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
-                abs(a[0]) > 1.000001 * bound and (a[0] > 0.0) == (fa > 0.0))
+                abs(fa) > 1.000001 * (bound + abs(fa - a[0])))
             if maybe:
-                bernstein(a, order, W, stack[0])
-                stack[0, 0] = fa
-                stack[0, order] = fb
-                if fa == 0.0:  # a root at the start belongs to the previous step
-                    for i in range(1, n):
-                        if stack[0, i] != 0.0:
-                            stack[0, 0] = 1e-300 * (1.0 if stack[0, i] > 0.0 else -1.0)
-                            break
-                if fb == 0.0:  # a root at the end belongs to this step
-                    for i in range(order - 1, -1, -1):
-                        if stack[0, i] != 0.0:
-                            stack[0, order] = -1e-300 * (1.0 if stack[0, i] > 0.0 else -1.0)
-                            break
+                step_bernstein(a, order, h, W, fa, fb, stack[0])
                 lo_s[0] = 0.0
                 hi_s[0] = 1.0
                 top = 1
