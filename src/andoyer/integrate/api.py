@@ -334,7 +334,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     budget.check("propagate", steps=budget.estimate_steps(body, y, times[-1] - times[0],
                                                           tolerance.rtol),
                  memory=budget.DATASET_BYTES * y.shape[0] * times.size)
-    eng = resolve_engine(engine, Capability.PROPAGATE)
+    eng = resolve_engine(engine, Capability.PROPAGATE, workload="orbit")
     name = eng.name
     params = body.engine_params
     parts = _run_chunks(lambda sl: eng.propagate(y[sl], times, params, tolerance),
@@ -424,7 +424,8 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     budget.check("poincare",
                  steps=0.0 if t_max is None else budget.estimate_steps(body, y, t_end, rtol),
                  memory=budget.DATASET_BYTES * y.shape[0] * int(n_crossings))
-    eng = resolve_engine(engine, Capability.CROSSINGS)
+    eng = resolve_engine(engine, Capability.CROSSINGS,
+                         workload="angle_section" if sec.is_angle else "component_section")
     name = eng.name
     params = body.engine_params
     scale = momentum_bound(body, y)

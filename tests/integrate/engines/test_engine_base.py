@@ -54,3 +54,44 @@ def test_every_engine_has_a_repr_of_its_options() -> None:
     for name in ENGINES:
         cls = engine_class(name)
         assert set(cls.repr_options) <= set(cls.__init__.__code__.co_varnames), name
+
+
+def test_measured_defaults_pick_the_engine_per_workload(monkeypatch):
+    """Where heyoka is installed, a workload listed in MEASURED_DEFAULTS runs on the
+    engine measured faster there, and every other workload on heyoka; ``poincare`` names
+    its workload by the section (an angle, or a state component)."""
+    import numpy as np
+
+    from andoyer import RigidBody
+    from andoyer.integrate import Section, engines, poincare
+    from andoyer.integrate.engines import default_engine_name, resolve_engine
+    from andoyer.integrate.engines.base import Capability
+
+    monkeypatch.setattr(engines, "heyoka_available", lambda: True)
+    monkeypatch.setattr(engines, "MEASURED_DEFAULTS", {"angle_section": "numba"})
+    assert default_engine_name(Capability.CROSSINGS, workload="angle_section") == "numba"
+    assert default_engine_name(Capability.CROSSINGS, workload="component_section") == "heyoka"
+    assert default_engine_name(Capability.CROSSINGS) == "heyoka"
+    # an engine without the capability asked for is not taken
+    monkeypatch.setattr(engines, "MEASURED_DEFAULTS", {"tangent": "scipy"})
+    assert default_engine_name(Capability.TANGENT_CROSSINGS, workload="tangent") == "heyoka"
+    with pytest.raises(ValueError, match="workload must be one of"):
+        default_engine_name(workload="W2")
+    monkeypatch.setattr(engines, "MEASURED_DEFAULTS", {"angle_section": "numba",
+                                                       "component_section": "scipy"})
+    seen = []
+    real = engines.resolve_engine
+
+    def spy(*args, **kwargs):
+        eng = real(*args, **kwargs)
+        seen.append(eng.name)
+        return eng
+
+    monkeypatch.setattr("andoyer.integrate.api.resolve_engine", spy)
+    body = RigidBody.paper()
+    y0 = np.array([[0.3, 0.0, 0.3, 1.0, 0.0]])
+    poincare(body, y0, Section("theta2", 0.0), 2, chart="andoyer", progress=False)
+    poincare(body, y0, Section("G3", 0.0), 2, chart="andoyer", progress=False)
+    assert seen == ["numba", "scipy"]
+    assert resolve_engine("scipy", Capability.CROSSINGS, workload="angle_section").name == \
+        "scipy"  # a named engine is the engine named

@@ -25,9 +25,9 @@ from typing import Any
 from andoyer.integrate.engines.base import Capability, EngineBase
 from andoyer.integrate.engines.lazy import heyoka_available
 
-__all__ = ["ENGINES", "FALLBACK_DEFAULTS", "get_engine", "resolve_engine", "available_engines",
-           "default_engine_name", "engine_class", "engines_with", "capability_table",
-           "EngineLike", "PACKAGES", "installed"]
+__all__ = ["ENGINES", "FALLBACK_DEFAULTS", "MEASURED_DEFAULTS", "WORKLOADS", "get_engine",
+           "resolve_engine", "available_engines", "default_engine_name", "engine_class",
+           "engines_with", "capability_table", "EngineLike", "PACKAGES", "installed"]
 
 #: Engine name -> (module, class). The one list of engines: CLI choices, scan configs and
 #: the contract tests are derived from it.
@@ -101,15 +101,29 @@ def available_engines() -> list[str]:
 #: DOP853 is the portable fallback).
 FALLBACK_DEFAULTS = ("taylor", "numba")
 
+#: The workloads a caller may name to :func:`default_engine_name`: an orbit at output
+#: times, sections whose function is a state component (``G3 = c``, ``gamma1 = c``: W2
+#: G3 of the benchmarks) or an angle (``theta2 = c``, ``g = c``: W2 theta2), tangent flows.
+WORKLOADS = ("orbit", "component_section", "angle_section", "tangent")
 
-def default_engine_name(*capabilities: Capability) -> str:
-    """``"heyoka"`` where installed, else the first of :data:`FALLBACK_DEFAULTS` that
-    declares every capability asked for.
+#: Where heyoka is installed, the workloads that another engine was measured to run
+#: faster (wall time, both cores, tol 1e-12, in ``python -m benchmarks``: the table
+#: "Which engine for what" of ``benchmarks/SUMMARY.md``), and that engine. Decided from
+#: the benchmark table, not at run time; every workload not listed runs on heyoka.
+MEASURED_DEFAULTS: dict[str, str] = {}
+
+
+def default_engine_name(*capabilities: Capability, workload: str | None = None) -> str:
+    """``"heyoka"`` where installed (or the engine :data:`MEASURED_DEFAULTS` gives the
+    ``workload``), else the first of :data:`FALLBACK_DEFAULTS` that declares every
+    capability asked for.
 
     Parameters
     ----------
     *capabilities : Capability
         Capabilities the engine must declare (none: any engine).
+    workload : str, optional
+        One of :data:`WORKLOADS`: what the caller runs, for :data:`MEASURED_DEFAULTS`.
 
     Examples
     --------
@@ -118,7 +132,12 @@ def default_engine_name(*capabilities: Capability) -> str:
     >>> default_engine_name(Capability.TANGENT) in ("heyoka", "taylor")
     True
     """
+    if workload is not None and workload not in WORKLOADS:
+        raise ValueError(f"workload must be one of {', '.join(WORKLOADS)}, got {workload!r}")
     if heyoka_available():
+        measured = MEASURED_DEFAULTS.get(workload or "")
+        if measured is not None and set(capabilities) <= engine_class(measured).capabilities:
+            return measured
         return "heyoka"
     for name in FALLBACK_DEFAULTS:
         if set(capabilities) <= engine_class(name).capabilities:
@@ -150,7 +169,7 @@ def get_engine(name: str | None = None) -> EngineBase:
 
 
 def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
-                   **options: Any) -> EngineBase:
+                   workload: str | None = None, **options: Any) -> EngineBase:
     """The one resolver of ``engine=`` arguments: a name, an engine instance, or None.
 
     Parameters
@@ -159,6 +178,9 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
         None: :func:`default_engine_name` of ``capabilities``.
     *capabilities : Capability
         What the caller needs; ``ValueError`` naming the engines that have it otherwise.
+    workload : str, optional
+        What the caller runs (:data:`WORKLOADS`), for the default engine
+        (:func:`default_engine_name`).
     **options
         Keyword arguments of the engine's class (``batch_size=``, ``n_threads=`` ...);
         options that are None are ignored, and an option the engine does not take is
@@ -173,7 +195,8 @@ def resolve_engine(engine: EngineLike = None, *capabilities: Capability,
     if isinstance(engine, EngineBase):
         eng = engine
     elif engine is None or isinstance(engine, str):
-        eng = get_engine(default_engine_name(*capabilities) if engine is None else engine)
+        eng = get_engine(default_engine_name(*capabilities, workload=workload)
+                         if engine is None else engine)
         given = {k: v for k, v in options.items() if v is not None}
         if given:
             accepted = inspect.signature(type(eng)).parameters
