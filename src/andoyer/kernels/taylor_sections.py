@@ -63,6 +63,10 @@ __all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
 
 VAR, LIN, MUL = 0, 1, 2  # ops of a section tape (SQRT = 3), see taylor_codegen
 ROOT_MAXITER = 200
+#: Bracket width (relative) at which :func:`solve_root` stops: 4 eps, a float the
+#: compiled code reads as a constant (``np.finfo`` in the kernel compiled Numba's finfo
+#: machinery on every cold start: 0.2 s of CPU). 4 eps is exact: the same comparisons.
+_ROOT_XTOL = 4.0 * float(np.finfo(np.float64).eps)
 
 #: LLVM fast-math flags of the helpers: contraction (FMA), reassociation and reciprocals
 #: (not nnan/ninf: non-finite states are caught by comparisons). Measured on the W1/W2
@@ -320,7 +324,7 @@ def solve_root(a, order, lo, hi, flo):
             lo = s
         else:
             hi = s
-        if hi - lo <= 4.0 * np.finfo(np.float64).eps * max(1.0, abs(s)):
+        if hi - lo <= _ROOT_XTOL * max(1.0, abs(s)):
             break
         nxt = s - v / d if d != 0.0 else 0.5 * (lo + hi)
         if not (lo < nxt < hi):
