@@ -25,7 +25,7 @@ vectors (``6 + 6 k`` floats: the FLI map's route).
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
 renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor_lanes`: the jets of 8
 orbits in one vector instruction, each orbit with its own steps (the scalar kernel's),
-2.4-2.7x less CPU per orbit-step than the scalar kernel (measured there).
+3.2-3.8x less CPU per orbit-step than the scalar kernel (measured there).
 
 The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
 a machine compiles what it calls (a few seconds), later processes load it.
