@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer
 from andoyer.kernels import dop853, simd
 from andoyer.kernels import taylor as T
@@ -155,6 +156,20 @@ def test_failures_are_per_orbit(body: RigidBody) -> None:
     # no step at all allowed
     _, info = TL.propagate(z, t, p, ORDER, 0)
     assert np.all(info[:, 0] == TL.MAX_STEPS)
+
+
+def test_a_second_process_loads_the_lane_kernel(body: RigidBody) -> None:
+    """After this process compiled (or loaded) it, a new process pays no compile, for
+    states alone and with a tangent vector alike (one specialisation)."""
+    p = np.asarray(body.engine_params, dtype=float).tolist()
+    TL.propagate(states(L, 70), np.array([0.0, 1.0]), np.array(p), ORDER, 10**6)
+    y = states(L, 70).tolist()
+    z = np.concatenate([states(L, 70), np.ones((L, 6))], axis=1).tolist()
+    out = fresh_process_cache_stats("andoyer.kernels.taylor_lanes", {
+        "lanes_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
+                       f"{ORDER}, 10**6); m.propagate(np.array({z}), np.array([0.0, 1.0]), "
+                       f"np.array({p}), {ORDER}, 10**6)"})
+    assert out["misses"] == [0] and out["hits"] == [1]
 
 
 @pytest.mark.parametrize("n", [0, 1, L - 1, L])
