@@ -100,7 +100,7 @@ def test_simd_fallbacks_equal_the_compiled_intrinsics() -> None:
         assert m0[1, 3] == pytest.approx(sum(u[j, 5, 3] * v[k - j, 0, 3] for j in range(k + 1)))
 
 
-@pytest.mark.parametrize("k", [0, 1])
+@pytest.mark.parametrize("k", [0, 1, 2])
 def test_orbits_take_the_scalar_steps(body: RigidBody, k: int) -> None:
     p = np.asarray(body.engine_params, dtype=float)
     n = 3 * L + 5  # lanes refilled, a partial last round
