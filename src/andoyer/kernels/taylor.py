@@ -104,17 +104,15 @@ from andoyer.kernels.taylor_jets import (
 )
 from andoyer.kernels.taylor_sections import (
     bernstein_weights,
-    casteljau,
     column_polynomial,
+    isolate,
+    isolation_space,
     jet_polynomial,
     kernel_jit,
     linear_component,
     poly_d,
     section_jet,
     section_tape,
-    sign_changes,
-    solve_root,
-    step_bernstein,
     tape_jet,
     tape_value,
 )
@@ -153,8 +151,6 @@ __all__ = [
 MAX_ORDER = 40
 MIN_ORDER = 4
 _N = N_STATE  # the Euler-Poisson state
-_MAX_DEPTH = 60  # bisections of a step in the root isolation
-_MIN_WIDTH = 1e-13  # narrowest isolating interval (fraction of the step)
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka's engine)
 #: A counter's start, typed int64: a literal 0 (or 1) passed to a compiled helper makes
 #: Numba compile a second specialisation of it for ``Literal[int](0)`` (measured on a
@@ -343,10 +339,7 @@ def make_orbits(jets: Any) -> Orbits:
         ytmp = np.empty(width)
         P = np.empty((X.shape[0], 2, _N))
         Y = np.empty((1, _N))
-        stack = np.empty((_MAX_DEPTH + 2, n))
-        lo_s = np.empty(_MAX_DEPTH + 2)
-        hi_s = np.empty(_MAX_DEPTH + 2)
-        left = np.empty(n)
+        stack, lo_s, hi_s, left, roots = isolation_space(order)
         W = bernstein_weights(order)
         load(X, z0)
         for i in range(_N):
@@ -377,43 +370,12 @@ def make_orbits(jets: Any) -> Orbits:
             maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
                 abs(fa) > 1.000001 * (bound + abs(fa - a[0])))
             if maybe:
-                step_bernstein(a, order, h, W, fa, fb, stack[0])
-                lo_s[0] = 0.0
-                hi_s[0] = 1.0
-                top = 1
-                while top > 0 and count < n_crossings:
-                    top -= 1
-                    B = stack[top]
-                    lo = lo_s[top]
-                    hi = hi_s[top]
-                    v = sign_changes(B, n)
-                    if v == 0:
-                        continue
-                    if v >= 2 and hi - lo > _MIN_WIDTH and top + 2 <= _MAX_DEPTH:
-                        # Split: right half pushed first, so the left one (earlier) comes out
-                        # first and crossings are found in time order.
-                        casteljau(B, n, left, stack[top + 1])
-                        for i in range(n):
-                            B[i] = stack[top + 1, i]  # right half, in place
-                        for i in range(n):
-                            stack[top + 1, i] = left[i]
-                        mid = 0.5 * (lo + hi)
-                        lo_s[top] = mid
-                        hi_s[top] = hi
-                        lo_s[top + 1] = lo
-                        hi_s[top + 1] = mid
-                        top += 2
-                        continue
-                    flo = B[0]
-                    fhi = B[order]
-                    if flo == 0.0 or fhi == 0.0 or (flo > 0.0) == (fhi > 0.0):
-                        continue  # an even number of roots too close to tell apart
-                    up = flo < 0.0
-                    if (up and direction < 0) or (not up and direction > 0):
-                        continue
-                    sr = solve_root(a, order, lo, hi, flo)
-                    count = record(X, order, q, t, h, sr, ftape, fC, wtape, wC, a, tc, zc,
-                                    count, ytmp, P, Y, u)
+                found = isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left,
+                                roots)
+                for r in range(found):
+                    if count < n_crossings:
+                        count = record(X, order, q, t, h, roots[r], ftape, fC, wtape, wC, a,
+                                       tc, zc, count, ytmp, P, Y, u)
             advance(X, order, h)
             info[1] += 1
             fa = fb

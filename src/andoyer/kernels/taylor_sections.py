@@ -58,6 +58,7 @@ __all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
            "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
            "bernstein_weights", "step_bernstein",
+           "MAX_DEPTH", "MIN_WIDTH", "isolation_space", "isolate",
            "tape_value", "bernstein", "sign_changes", "poly", "poly_d", "solve_root",
            "casteljau", "section_jet", "section_tape"]
 
@@ -267,6 +268,69 @@ def step_bernstein(a, order, h, W, fa, fb, B):
             if B[i] != 0.0:
                 B[order] = -1e-300 * (1.0 if B[i] > 0.0 else -1.0)
                 break
+
+
+#: Bisections of a step in the root isolation, and the narrowest isolating interval
+#: (a fraction of the step): two roots closer than that are taken for none.
+MAX_DEPTH = 60
+MIN_WIDTH = 1e-13
+
+
+@kernel_jit
+def isolation_space(order):
+    """Work space of :func:`isolate` for polynomials of ``order``: the stack of Bernstein
+    coefficients, its intervals' ends, de Casteljau's left half, the roots."""
+    n = order + 1
+    return (np.empty((MAX_DEPTH + 2, n)), np.empty(MAX_DEPTH + 2), np.empty(MAX_DEPTH + 2),
+            np.empty(n), np.empty(n))
+
+
+@kernel_jit
+def isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left, roots):
+    """The roots in ``[0, 1]`` of one step's polynomial ``a`` (the section function's
+    jet; ``fa``, ``fb`` its carried end values, see :func:`step_bernstein`) crossed in
+    ``direction`` (+1 upward, -1 downward, 0 both), in time order: ``roots[:found]``,
+    returns ``found``. An interval whose Bernstein coefficients change sign more than
+    once is halved (right half pushed first, so the left one comes out first), down to
+    :data:`MIN_WIDTH` of the step; one change is one root, solved by :func:`solve_root`.
+    Work space from :func:`isolation_space`."""
+    n = order + 1
+    step_bernstein(a, order, h, W, fa, fb, stack[0])
+    lo_s[0] = 0.0
+    hi_s[0] = 1.0
+    top = 1
+    found = 0
+    while top > 0 and found < roots.shape[0]:
+        top -= 1
+        B = stack[top]
+        lo = lo_s[top]
+        hi = hi_s[top]
+        v = sign_changes(B, n)
+        if v == 0:
+            continue
+        if v >= 2 and hi - lo > MIN_WIDTH and top + 2 <= MAX_DEPTH:
+            casteljau(B, n, left, stack[top + 1])
+            for i in range(n):
+                B[i] = stack[top + 1, i]  # right half, in place
+            for i in range(n):
+                stack[top + 1, i] = left[i]
+            mid = 0.5 * (lo + hi)
+            lo_s[top] = mid
+            hi_s[top] = hi
+            lo_s[top + 1] = lo
+            hi_s[top + 1] = mid
+            top += 2
+            continue
+        flo = B[0]
+        fhi = B[order]
+        if flo == 0.0 or fhi == 0.0 or (flo > 0.0) == (fhi > 0.0):
+            continue  # an even number of roots too close to tell apart
+        up = flo < 0.0
+        if (up and direction < 0) or (not up and direction > 0):
+            continue
+        roots[found] = solve_root(a, order, lo, hi, flo)
+        found += 1
+    return found
 
 
 @kernel_jit

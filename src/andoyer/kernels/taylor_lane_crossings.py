@@ -1,0 +1,297 @@
+r"""Section crossings on SIMD lanes: :func:`andoyer.kernels.taylor.locate_crossings` of
+many orbits (states alone) for the section of a state component (``G3 = c``,
+``gamma_i = c``, ``L = c``, ...), the jets of :data:`~andoyer.kernels.taylor_lanes.LANES`
+orbits in one vector instruction.
+
+The steps are those of :mod:`andoyer.kernels.taylor_lanes` (each lane its own Jorba-Zou
+step and time, lanes refilled from the block's queue of orbits, the generated lane jets
+and the vector step end); the section search is the scalar kernel's, lane by lane:
+
+* the section's jet is the lane's column of the state's jet, its end value ``P(h)`` and
+  root bound from :func:`~andoyer.kernels.taylor_sections.end_and_bound` (the scalar
+  kernel's arithmetic, so a lane's section values are the scalar ones for the same
+  step), the end value carried over to the lane's next step;
+* a step whose polynomial may reach zero (a few % of steps) runs the scalar root
+  isolation (:func:`~andoyer.kernels.taylor_sections.isolate`, the boundary rules of
+  :func:`~andoyer.kernels.taylor_sections.step_bernstein`) and, for each root, the
+  scalar kernel's ``record`` (the polish by one Newton step in time, the margin and
+  ``T_START`` tests) on a copy of that lane's jets.
+
+So a lane takes the steps of :mod:`andoyer.kernels.taylor_lanes` (the scalar kernel's to
+round-off: its vector code may contract the jets' sums differently) and finds the
+crossings the scalar kernel finds on them. Sections that are not a state component
+(their jets from a tape, and a step size that counts them) and states with tangent
+vectors stay on the scalar kernel.
+
+Measured (W2: 50 orbits x 1000 upward crossings of G3 = 0, paper's body, tol 1e-12,
+one thread, CPU): see :func:`locate_crossings`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from andoyer.kernels import (
+    simd,
+    taylor,
+    taylor_generated,
+    taylor_jets,
+    taylor_lanes,
+    taylor_sections,
+)
+from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.dop853 import source_stamp
+from andoyer.kernels.stepper import INFO, MAX_STEPS, STEP_TOO_SMALL
+from andoyer.kernels.taylor_jets import N_STATE, fill_constants
+from andoyer.kernels.taylor_lanes import LANES, lane_advance, lane_jets, lane_load, lane_steps
+from andoyer.kernels.taylor_sections import (
+    bernstein_weights,
+    end_and_bound,
+    isolate,
+    isolation_space,
+    kernel_jit,
+    linear_component,
+    section_tape,
+)
+from andoyer.kernels.threads import over_orbits
+
+__all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossings_block"]
+
+_L = LANES
+_N = N_STATE
+_record = taylor.STATE.record
+
+#: Hash of every source the compiled entry point depends on (its cache key).
+LANE_CROSSINGS_STAMP = source_stamp(
+    taylor_generated.__file__ or "", taylor.__file__ or "", taylor_sections.__file__ or "",
+    taylor_jets.__file__ or "", taylor_lanes.__file__ or "", simd.__file__ or "", __file__)
+
+
+def component(kind: int, phi0: float, value: float) -> int:
+    """The state component whose value is the section ``kind = value`` (``f = c_a y_i +
+    c_c``, :func:`~andoyer.kernels.taylor_sections.linear_component`), or -1.
+
+    Parameters
+    ----------
+    kind : int
+        Index into the section kinds.
+    phi0 : float
+        The body's ``phi0``.
+    value : float
+        The section value.
+
+    Examples
+    --------
+    >>> component(2, 0.0, 0.0), component(13, 0.0, 0.0)  # G3, theta2
+    (2, -1)
+    """
+    tape, C = section_tape(kind, phi0, value)
+    test = getattr(linear_component, "py_func", linear_component)
+    return int(test(tape, C)[0])
+
+
+@kernel_jit
+def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
+    """The next orbit of the queue (from ``nxt``) that needs a step, loaded into
+    ``lane``: ``(orbit, next)``, orbit -1 (the lane zeroed) when none is left."""
+    while nxt < z0.shape[0]:
+        i = nxt
+        nxt += 1
+        if n_crossings == 0 or t_max <= 0.0:
+            continue
+        if info[i, 1] >= max_steps:
+            info[i, 0] = MAX_STEPS
+            continue
+        lane_load(X, lane, z0[i])
+        return i, nxt
+    lane_load(X, lane, nothing)
+    return -1, nxt
+
+
+@kernel_jit
+def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc, zc,
+                   count, info):
+    """The first ``tc.shape[1]`` crossings in ``(0, t_max]`` of the orbits ``z0`` (n, 6)
+    of a state component's section (tapes ``ftape, fC`` and margin ``wtape, wC``), as
+    :func:`andoyer.kernels.taylor.locate_crossings` (see the module notes)."""
+    n_crossings = tc.shape[1]
+    n = order + 1
+    comp, ca, cc = linear_component(ftape, fC)
+    X = np.zeros((1, n, _N, _L))
+    m = np.empty((taylor_generated.LANE_PRODUCTS, _L))
+    h = np.empty(_L)
+    hs = np.zeros(_L)
+    a1 = np.empty(_L)
+    a2 = np.empty(_L)
+    tot = np.empty(_L)
+    t = np.zeros(_L)
+    t1 = np.zeros(_L)
+    fa = np.zeros(_L)
+    orbit = np.full(_L, -1, dtype=np.int64)
+    # the scalar section search's work space (one lane at a time)
+    Xs = np.empty((1, n, _N))
+    a = np.empty(n)
+    u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
+    ytmp = np.empty(_N)
+    P = np.empty((1, 2, _N))
+    Y = np.empty((1, _N))
+    W = bernstein_weights(order)
+    stack, lo_s, hi_s, left, roots = isolation_space(order)
+    nothing = np.empty(0)
+    nxt = 0
+    busy = 0
+    for lane in range(_L):
+        orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                       info, nothing)
+        fa[lane] = ca * X[0, 0, comp, lane] + cc
+        if orbit[lane] >= 0:
+            busy += 1
+    while busy > 0:
+        lane_jets(X, order, q, m)
+        lane_steps(X, order, h, a1, a2, tot)
+        for lane in range(_L):
+            i = orbit[lane]
+            hs[lane] = 0.0
+            if i < 0:
+                continue
+            info[i, 3] += 1
+            tl = t[lane]
+            if not h[lane] >= 10.0 * (np.nextafter(tl, np.inf) - tl):  # also NaN
+                info[i, 0] = STEP_TOO_SMALL
+                orbit[lane] = -2  # ended: refilled below
+                continue
+            e = tl + h[lane]
+            if e >= t_max:
+                e = t_max
+            hl = e - tl  # h such that t + h = t1 in floating point
+            for k in range(n):  # the section's jet: the lane's column (column_polynomial)
+                a[k] = ca * X[0, k, comp, lane]
+            a[0] += cc
+            fb, bound = end_and_bound(a, order, hl)
+            f0 = fa[lane]
+            if not ((f0 > 0.0 and fb > 0.0) or (f0 < 0.0 and fb < 0.0)) or not (
+                    abs(f0) > 1.000001 * (bound + abs(f0 - a[0]))):
+                found = isolate(a, order, hl, W, f0, fb, direction, stack, lo_s, hi_s, left,
+                                roots)
+                if found > 0:
+                    for k in range(n):
+                        for c in range(_N):
+                            Xs[0, k, c] = X[0, k, c, lane]
+                for r in range(found):
+                    if count[i] < n_crossings:
+                        count[i] = _record(Xs, order, q, tl, hl, roots[r], ftape, fC, wtape,
+                                           wC, a, tc[i], zc[i], count[i], ytmp, P, Y, u)
+            fa[lane] = fb
+            t1[lane] = e
+            hs[lane] = hl
+        lane_advance(X, order, hs)
+        for lane in range(_L):  # ended orbits give their lane to the next one
+            i = orbit[lane]
+            if i == -1:
+                continue
+            if i >= 0:
+                info[i, 1] += 1
+                t[lane] = t1[lane]
+                if count[i] < n_crossings and t[lane] < t_max:
+                    if info[i, 1] < max_steps:
+                        continue
+                    info[i, 0] = MAX_STEPS
+            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                           info, nothing)
+            t[lane] = 0.0
+            fa[lane] = ca * X[0, 0, comp, lane] + cc
+            if orbit[lane] < 0:
+                busy -= 1
+
+
+def _build(stamp: str) -> Any:
+    """The cached entry point (the closure over ``stamp`` keys the cache, as in
+    :func:`andoyer.kernels.taylor._build`)."""
+
+    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    def lane_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
+                             tc, zc, count, info):
+        """:func:`locate_crossings` of a block of orbits on the calling thread."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(taylor_generated.N_CONSTANTS)
+        fill_constants(p, q)
+        lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
+                       zc, count, info)
+
+    return lane_crossings_block
+
+
+lane_crossings_block = _build(LANE_CROSSINGS_STAMP)
+
+
+def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, direction: int,
+                     n_crossings: int, t_max: float, tol: float, max_steps: int, *,
+                     block: int | None = None, threads: int | None = None
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`andoyer.kernels.taylor.locate_crossings` of states alone (n, 6) on SIMD
+    lanes, for a section whose :func:`component` is not -1 (else ValueError).
+
+    Measured (W2: 50 orbits x 1000 upward crossings of G3 = 0, tol 1e-12, one thread,
+    interleaved pairs, CPU): see the notes of issue 26 (``26-g3.md``).
+
+    Parameters
+    ----------
+    z0 : ndarray, shape (n, 6)
+        Initial states (C-contiguous floats).
+    p : ndarray
+        Kernel parameters.
+    kind : int
+        Index into the section kinds.
+    value : float
+        The section value.
+    direction : int
+        +1: f increasing, -1: decreasing, 0: both.
+    n_crossings : int
+        Stop an orbit after this many crossings.
+    t_max : float
+        Stop an orbit at this time.
+    tol : float
+        The Taylor method's tolerance.
+    max_steps : int
+        Maximum steps per orbit.
+    block : int, optional
+        Orbits per block (default :func:`andoyer.kernels.taylor_lanes.block_size`).
+    threads : int, optional
+        Threads (:func:`andoyer.kernels.threads.over_orbits`).
+
+    Returns
+    -------
+    t, z, count, info :
+        As :func:`andoyer.kernels.taylor.locate_crossings`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from andoyer import RigidBody
+    >>> p = RigidBody.paper().engine_params
+    >>> z0 = np.array([[0.3, 1.1, 0.2, 0.6, 0.0, 0.8]] * 9)
+    >>> t, z, count, info = locate_crossings(z0, p, 2, 0.0, 0, 3, 1000.0, 1e-12, 10**6)
+    >>> count.tolist() == [3] * 9, bool(np.all(np.abs(z[:, :, 2]) < 1e-14))
+    (True, True)
+    """
+    import numba
+
+    if z0.ndim != 2 or z0.shape[1] != _N:
+        raise ValueError(f"z0 must have shape (n, {_N}) (states alone), got {z0.shape}")
+    if component(int(kind), float(p[7]), float(value)) < 0:
+        raise ValueError(f"the section kind {kind} is not a state component")
+    n = z0.shape[0]
+    tc = np.full((n, int(n_crossings)), np.nan)
+    zc = np.full((n, int(n_crossings), _N), np.nan)
+    count = np.zeros(n, dtype=np.int64)
+    info = np.zeros((n, len(INFO)), dtype=np.int64)
+    ftape, fC = section_tape(int(kind), float(p[7]), float(value))
+    wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
+    m = numba.get_num_threads() if threads is None else int(threads)
+    size = taylor_lanes.block_size(n, m) if block is None else int(block)
+    over_orbits(lane_crossings_block, n, (z0,), (tc, zc, count, info),
+                (p, taylor.order_for(tol), ftape, fC, wtape, wC, int(direction),
+                 float(t_max), int(max_steps)), block=size, threads=m)
+    return tc, zc, count, info

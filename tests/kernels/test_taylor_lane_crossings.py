@@ -1,0 +1,144 @@
+"""Section crossings on SIMD lanes (:mod:`andoyer.kernels.taylor_lane_crossings`) against
+the scalar Taylor kernel and the DOP853 kernel.
+
+* random states of two bodies, state-component sections (G3, gamma_i, L) in both
+  directions: the scalar kernel's counts, step counts and crossings (to round-off: the
+  lanes' vector jets may contract sums differently) and DOP853's to 1e-9;
+* the queue: orbit counts that are not a multiple of the lanes, orbits of very
+  different lengths, no crossing asked, ``t_max`` reached;
+* statuses per orbit: ``max_steps`` and a non-finite state end that orbit only, with
+  the scalar kernel's ``info``;
+* the engine runs many orbits of a component section on the lanes (spied), and only
+  those;
+* other sections and tangent states are refused.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+from andoyer import RigidBody
+from andoyer.integrate.engines.base import SectionEvent, Tolerance
+from andoyer.integrate.engines.taylor_engine import TaylorEngine
+from andoyer.kernels import dop853, generated
+from andoyer.kernels import taylor as T
+from andoyer.kernels import taylor_lane_crossings as LC
+from andoyer.kernels.taylor_lanes import LANES
+
+MAX_STEPS = 10**7
+KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS)}
+GENERAL = RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
+
+
+def params(body: RigidBody) -> NDArray[np.float64]:
+    return np.asarray(body.engine_params, dtype=float)
+
+
+def random_states(n: int, rng: np.random.Generator) -> NDArray[np.float64]:
+    gamma = rng.normal(size=(n, 3))
+    gamma /= np.linalg.norm(gamma, axis=1, keepdims=True)
+    return np.ascontiguousarray(np.hstack([rng.normal(size=(n, 3)), gamma]))
+
+
+@pytest.mark.parametrize("body,t_max", [(RigidBody.paper(), 400.0), (GENERAL, 40.0)],
+                         ids=["paper", "general"])
+def test_lanes_give_the_scalar_kernels_crossings(body: RigidBody, t_max: float) -> None:
+    """(The general body's orbits are chaotic: over a short time only, where round-off
+    differences of the steps have not grown.)"""
+    p = params(body)
+    y0 = random_states(2 * LANES + 3, np.random.default_rng(7))
+    for name, value in (("G3", 0.0), ("gamma3", -0.2), ("gamma1", 0.1), ("L", 0.3)):
+        for direction in (1, -1, 0):
+            what = f"{name} = {value}, direction {direction}"
+            a = LC.locate_crossings(y0, p, KIND[name], value, direction, 12, t_max, 1e-12,
+                                    MAX_STEPS, threads=1)
+            b = T.locate_crossings(y0, p, KIND[name], value, direction, 12, t_max, 1e-12,
+                                   MAX_STEPS)
+            np.testing.assert_array_equal(a[2], b[2], err_msg=what)
+            np.testing.assert_array_equal(a[3], b[3], err_msg=what)  # statuses and steps
+            assert a[2].sum() > 20, what
+            assert np.nanmax(np.abs(a[0] - b[0]), initial=0.0) < 1e-11, what
+            assert np.nanmax(np.abs(a[1] - b[1]), initial=0.0) < 1e-11, what
+            np.testing.assert_array_equal(np.isnan(a[0]), np.isnan(b[0]))
+            r = dop853.locate_crossings(y0, p, KIND[name], value, direction, 12, t_max, 1e-14,
+                                        1e-14, MAX_STEPS)
+            np.testing.assert_array_equal(a[2], r[2], err_msg=what)
+            assert np.nanmax(np.abs(a[0] - r[0]), initial=0.0) < 1e-9, what
+
+
+def test_the_queue_refills_lanes_with_orbits_of_any_length() -> None:
+    """Orbits that end after 1, 2 or 40 crossings (t_max per orbit is one number, so
+    lengths differ by the section's period), 3 blocks of lanes and a remainder, several
+    threads: each orbit's crossings are the scalar kernel's."""
+    p = params(RigidBody.paper())
+    base = random_states(4, np.random.default_rng(11))
+    y0 = np.ascontiguousarray(np.repeat(base, 7, axis=0)[:3 * LANES + 5])
+    y0[::3, 2] *= 0.01  # some orbits hug the section
+    for n_crossings, t_max in ((40, 300.0), (1, 300.0), (40, 7.5), (0, 10.0), (5, -1.0)):
+        a = LC.locate_crossings(y0, p, KIND["G3"], 0.0, 0, n_crossings, t_max, 1e-12,
+                                MAX_STEPS, block=LANES + 3, threads=2)
+        b = T.locate_crossings(y0, p, KIND["G3"], 0.0, 0, n_crossings, t_max, 1e-12,
+                               MAX_STEPS)
+        np.testing.assert_array_equal(a[2], b[2])
+        np.testing.assert_array_equal(a[3], b[3])
+        assert np.nanmax(np.abs(a[0] - b[0]), initial=0.0) < 1e-11
+    assert len(set(b[2].tolist())) >= 1
+
+
+def test_failures_end_their_orbit_only() -> None:
+    p = params(RigidBody.paper())
+    y0 = random_states(LANES + 2, np.random.default_rng(3))
+    y0[2, 4] = np.nan
+    y0[LANES + 1, 0] = np.inf
+    for max_steps in (300, MAX_STEPS):
+        a = LC.locate_crossings(y0, p, KIND["gamma2"], 0.0, 0, 50, 1e3, 1e-12, max_steps)
+        b = T.locate_crossings(y0, p, KIND["gamma2"], 0.0, 0, 50, 1e3, 1e-12, max_steps)
+        np.testing.assert_array_equal(a[3], b[3])
+        np.testing.assert_array_equal(a[2], b[2])
+        assert np.nanmax(np.abs(a[0] - b[0])) < 1e-11
+        assert a[3][2, 0] == a[3][LANES + 1, 0] == T.STEP_TOO_SMALL
+        ok = np.ones(LANES + 2, dtype=bool)
+        ok[[2, LANES + 1]] = False
+        short = a[2][ok] < 50
+        if max_steps == 300:  # orbits short of 50 crossings stop at 300 steps
+            assert short.any() and (a[3][ok, 0] == np.where(short, T.MAX_STEPS, 0)).all()
+            assert (a[3][ok, 1][short] == 300).all()
+        else:
+            assert (a[3][ok, 0] == T.SUCCESS).all()
+
+
+def test_the_engine_runs_many_orbits_of_a_component_section_on_lanes(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[int] = []
+    original = LC.locate_crossings
+
+    def spy(z0: NDArray[np.float64], *args: object, **kwargs: object) -> object:
+        calls.append(z0.shape[0])
+        return original(z0, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(LC, "locate_crossings", spy)
+    p = tuple(RigidBody.paper().engine_params)
+    tol = Tolerance(1e-12, 1e-12)
+    y0 = random_states(LANES + 1, np.random.default_rng(5))
+    engine = TaylorEngine()
+    c = engine.crossings(y0, p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
+    assert calls == [LANES + 1]
+    one = engine.crossings(y0[:1], p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
+    engine.crossings(y0, p, SectionEvent("theta2", 0.0, 1), 5, 100.0, tol)
+    assert calls == [LANES + 1]  # one orbit, and an angle section: the scalar kernel
+    assert c.count[0] == one.count[0] >= 1
+    assert np.nanmax(np.abs(c.t[0] - one.t[0])) < 1e-11
+
+
+def test_other_sections_and_tangent_states_are_refused() -> None:
+    p = params(RigidBody.paper())
+    y0 = random_states(LANES, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="not a state component"):
+        LC.locate_crossings(y0, p, KIND["theta2"], 0.0, 0, 3, 10.0, 1e-12, MAX_STEPS)
+    with pytest.raises(ValueError, match="states alone"):
+        LC.locate_crossings(np.hstack([y0, y0]), p, KIND["G3"], 0.0, 0, 3, 10.0, 1e-12,
+                            MAX_STEPS)
+    assert LC.component(KIND["gamma2"], 0.0, 0.3) == 4
+    assert LC.component(KIND["G"], 0.0, 1.0) == -1
