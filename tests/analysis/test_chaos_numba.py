@@ -78,7 +78,7 @@ def test_indicators_agree_with_the_heyoka_engine(case: str) -> None:
 
 
 def test_numba_is_the_default_without_heyoka(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities: "numba")
+    monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities, **_: "numba")
     ds = indicators(PAPER, TORUS, 10.0, chart="andoyer", n_times=3)
     assert ds.attrs["engine"] == "numba" and "heyoka_version" not in ds.attrs
     with pytest.raises(ValueError, match="cannot integrate the variational equations"):

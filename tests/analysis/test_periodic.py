@@ -93,7 +93,7 @@ def test_section_jacobian_matches_finite_differences(engine, monkeypatch):
     the default engine, and on numba as where heyoka is missing)."""
     if engine == "numba":
 
-        monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities: "numba")
+        monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities, **_: "numba")
     h = rotation_energy(GENERAL)
     sec = RotationSection(0.4, -1)
     x0 = np.array([0.01, 0.15])

@@ -41,7 +41,7 @@ GENERAL = RigidBody(2.5, 2.0, 2.2, 0.05, (0.3, 0.5, 0.8), "general")
 @pytest.fixture
 def numba_default(monkeypatch: pytest.MonkeyPatch) -> None:
     """The section map as where heyoka is missing."""
-    monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities: "numba")
+    monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities, **_: "numba")
 
 
 @pytest.mark.parametrize("mu", [0.0, 0.1])
@@ -111,7 +111,7 @@ def test_periodic_orbit_and_splitting_agree_with_heyoka(
     body = RigidBody.hess(2.5, 1.0, 1.6, name="rho~1")
     out = {}
     for engine in ("heyoka", "numba"):
-        monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities, e=engine: e)
+        monkeypatch.setattr(engines, "default_engine_name", lambda *capabilities, e=engine, **_: e)
         orb = rotation_orbit(GENERAL, rotation_energy(GENERAL), -0.3, RotationSection(0.4, 1))
         out[engine] = (orb, separatrix_splitting(body, [0.01], n_phase=8,
                                                  branch="theta1=4phi0")["splitting"])

@@ -134,14 +134,15 @@ _ATTRS: dict[str, dict[str, str]] = {
 # ----------------------------------------------------------------------------- helpers
 
 
-def _engine(engine: EngineLike, **options: Any) -> EngineBase:
-    """The engine (name or instance; ``None``: heyoka where installed, else taylor)."""
+def _engine(engine: EngineLike, workload: str = "tangent", **options: Any) -> EngineBase:
+    """The engine (name or instance; ``None``: the default of ``workload``, heyoka where
+    installed, else taylor)."""
     able = engines_with(Capability.TANGENT)
     if not (engine is None or isinstance(engine, str | EngineBase)) \
             or (isinstance(engine, str) and engine not in able):
         raise ValueError(f"engine {engine!r} cannot integrate the variational equations; "
                          f"choose one of {', '.join(able)}")
-    return resolve_engine(engine, Capability.TANGENT, **options)
+    return resolve_engine(engine, Capability.TANGENT, workload=workload, **options)
 
 
 def _derived(flow: TangentFlow, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
@@ -363,10 +364,13 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         times over which the FLI's supremum is taken), ``tangent`` (space of the initial
         tangent vector), ``tol``.
     engine : str or Engine, optional
-        Any engine with the ``tangent`` capability. Default: heyoka (batch mode and
-        threads) where installed, else taylor (orbits in parallel); scipy is one orbit
-        at a time, for checks. heyoka's SIMD batch size and threads are options of the
-        engine: ``resolve_engine("heyoka", batch_size=4, n_threads=1)``.
+        Any engine with the ``tangent`` capability. Default for the FLI alone: taylor
+        (SIMD lanes, measured faster than heyoka on this map:
+        :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`); with MEGNO, heyoka
+        (batch mode and threads) where installed, else taylor (orbits in parallel);
+        scipy is one orbit at a time, for checks. heyoka's SIMD batch size and threads
+        are options of the engine: ``resolve_engine("heyoka", batch_size=4,
+        n_threads=1)``.
     chunk : int, default 1024
         Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
         doubles; the progress line advances per chunk.
@@ -393,7 +397,10 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     Notes
     -----
     The result depends only on the arguments (and the batch size, through round-off):
-    threads and chunks do not change it. The compiled integrator is cached per process
+    threads and chunks do not change it, except on taylor, where a chunk of fewer than
+    :data:`~andoyer.integrate.engines.taylor_engine.LANES_FROM` orbits runs on the
+    scalar kernel rather than the SIMD lanes (the same steps, another order of the
+    fused multiply-adds: round-off). The compiled integrator is cached per process
     and on disk, so repeated calls, e.g. one per point of a parameter sweep in worker
     processes, pay the compilation once.
 
@@ -405,7 +412,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     (('J1', 'theta1'), True)
     """
     spec, job, options = regroup("chaos_map", grid, run, former, stacklevel=5)
-    eng = _engine(engine, **options)
+    eng = _engine(engine, "fli_map" if job.indicator == "fli" else "tangent", **options)
     h = finite("h", h)
     M = finite("M", M)
     nx, ny = spec.n  # type: ignore[misc]

@@ -103,14 +103,19 @@ FALLBACK_DEFAULTS = ("taylor", "numba")
 
 #: The workloads a caller may name to :func:`default_engine_name`: an orbit at output
 #: times, sections whose function is a state component (``G3 = c``, ``gamma1 = c``: W2
-#: G3 of the benchmarks) or an angle (``theta2 = c``, ``g = c``: W2 theta2), tangent flows.
-WORKLOADS = ("orbit", "component_section", "angle_section", "tangent")
+#: G3 of the benchmarks) or an angle (``theta2 = c``, ``g = c``: W2 theta2), tangent flows,
+#: and a chaos map of the FLI alone (the state and one tangent vector per start: W3).
+WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map")
 
 #: Where heyoka is installed, the workloads that another engine was measured to run
 #: faster (wall time, both cores, tol 1e-12, in ``python -m benchmarks``: the table
 #: "Which engine for what" of ``benchmarks/SUMMARY.md``), and that engine. Decided from
 #: the benchmark table, not at run time; every workload not listed runs on heyoka.
-MEASURED_DEFAULTS: dict[str, str] = {}
+MEASURED_DEFAULTS: dict[str, str] = {
+    # W3, FLI map t = 1000: taylor's SIMD lanes (kernels.taylor_lanes) take 0.82x
+    # heyoka's wall time at 32^2 and 0.79x at 64^2 (interleaved pairs, 2026-11-27).
+    "fli_map": "taylor",
+}
 
 
 def default_engine_name(*capabilities: Capability, workload: str | None = None) -> str:
