@@ -28,12 +28,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import numba
-
 from andoyer.kernels import dop853, dop853_coefficients, stepper
 from andoyer.kernels import generated as _generated
 from andoyer.kernels import numba as _kernels
 from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.link_only import link_only_jit
 from andoyer.kernels.numba import attitude_field
 
 __all__ = ["DIMENSION", "ATTITUDE_STAMP", "attitude_rhs", "propagate", "propagate_block", "FLOW"]
@@ -47,7 +46,7 @@ ATTITUDE_STAMP = dop853.source_stamp(_generated.__file__ or "", _kernels.__file_
                                      dop853_coefficients.__file__ or "", __file__)
 
 
-@numba.njit(nogil=True, fastmath=dop853.FASTMATH)
+@link_only_jit(nogil=True, fastmath=dop853.FASTMATH)
 def attitude_rhs(t, z, p, out):
     """``d z/dt`` of the state ``z`` (10,) in the stepper's form ``field(t, z, p, out)``."""
     (out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8],

@@ -103,13 +103,13 @@ import hashlib
 from pathlib import Path
 from typing import Any, NamedTuple
 
-import numba
 import numpy as np
 
 from andoyer.kernels import dop853_coefficients, generated, stepper
 from andoyer.kernels import numba as _kernels
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.dop853_coefficients import INTERPOLATOR_POWER, N_STAGES, N_STAGES_EXTENDED
+from andoyer.kernels.link_only import link_only_jit
 from andoyer.kernels.numba import ep_field
 from andoyer.kernels.stepper import (
     FASTMATH,
@@ -177,7 +177,7 @@ KERNEL_STAMP = source_stamp(generated.__file__ or "", _kernels.__file__ or "",
                             stepper.__file__ or "", dop853_coefficients.__file__ or "")
 
 
-@numba.njit(nogil=True, fastmath=FASTMATH)
+@link_only_jit(nogil=True, fastmath=FASTMATH)
 def ep_rhs(t, y, p, out):
     """The field (1) in the stepper's form ``field(t, y, p, out)``: ``out = f(y)``.
 

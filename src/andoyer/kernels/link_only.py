@@ -42,9 +42,11 @@ missing: the helpers are then compiled as plain Numba functions (slower to compi
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from typing import Any
 
-__all__ = ["LinkOnlyCompiler", "LinkOnlyLibrary", "link_only_options", "supported"]
+__all__ = ["LinkOnlyCompiler", "LinkOnlyLibrary", "link_only_options", "link_only_jit",
+           "supported"]
 
 
 def _classes() -> tuple[type, type] | None:
@@ -158,3 +160,59 @@ def link_only_options() -> dict[str, Any]:
     if supported():
         options["pipeline_class"] = LinkOnlyCompiler
     return options
+
+
+def _kernel_only() -> type:
+    from numba.core.registry import CPUDispatcher
+
+    class KernelOnly(CPUDispatcher):
+        """A Numba function compiled only into other compiled code: calling it from
+        Python raises TypeError (it has no Python entry)."""
+
+        def __call__(self, *args: object, **kwargs: object) -> object:
+            raise TypeError(f"{self.py_func.__qualname__} runs inside andoyer's compiled "
+                            "kernels only (no Python entry point); call it from a Numba "
+                            "function")
+
+    return KernelOnly
+
+
+_KernelOnly = _kernel_only()
+
+
+def link_only_jit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
+    """``numba.njit(**options)`` with :func:`link_only_options`: a helper that only
+    compiled code calls, compiled into each caller only. Its dispatcher refuses a call
+    from Python (TypeError) instead of reaching the missing wrapper.
+
+    Parameters
+    ----------
+    **options
+        Options of :func:`numba.njit` (``nogil``, ``fastmath``, ...).
+
+    Returns
+    -------
+    callable
+        A decorator; under ``NUMBA_DISABLE_JIT`` the function itself.
+
+    Examples
+    --------
+    >>> @link_only_jit(nogil=True)
+    ... def twice(x):
+    ...     return 2.0 * x
+    >>> try:
+    ...     twice(1.0)
+    ... except TypeError as e:
+    ...     print(str(e)[:44])
+    twice runs inside andoyer's compiled kernels
+    """
+    import numba
+    from numba.core.registry import CPUDispatcher
+
+    def decorate(function: Callable[..., Any]) -> Any:
+        dispatcher = numba.njit(**options, **link_only_options())(function)
+        if isinstance(dispatcher, CPUDispatcher):  # not under NUMBA_DISABLE_JIT
+            dispatcher.__class__ = _KernelOnly
+        return dispatcher
+
+    return decorate

@@ -5,7 +5,13 @@ method described in :mod:`andoyer.kernels.dop853`: stages, starting step, contro
 step, dense output, one orbit to output times and one orbit's section crossings. The
 coefficients are :mod:`andoyer.kernels.dop853_coefficients`. The pieces are not cached
 themselves: cached entry points (:mod:`andoyer.kernels.dop853`,
-:mod:`andoyer.kernels.tangent`) call them, and their cache key covers this file.
+:mod:`andoyer.kernels.tangent`) call them, and their cache key covers this file. They
+are compiled into those entry points only (:func:`andoyer.kernels.link_only.link_only_jit`:
+no Python entry, no optimisation or machine code of their own; each entry point is
+optimised once, as one unit): W4's cold first ``propagate`` + ``poincare`` on the numba
+engine took 8.3-8.9 s of CPU before, 4.5 s after, with the same floats bit for bit (207
+arrays: every entry point of ``dop853``, ``tangent`` and ``attitude``, 4 orbits x 3
+bodies, every section kind both ways) and the same kernel times within 1 %.
 """
 
 from __future__ import annotations
@@ -13,7 +19,6 @@ from __future__ import annotations
 import math
 from typing import Any, NamedTuple
 
-import numba
 import numpy as np
 
 from andoyer.kernels import generated
@@ -36,6 +41,7 @@ from andoyer.kernels.dop853_coefficients import (
     C,
     D,
 )
+from andoyer.kernels.link_only import link_only_jit
 
 #: Dimension of the Euler-Poisson state (G1, G2, G3, gamma1, gamma2, gamma3): the stages
 #: of a field of this size keep their sums in registers.
@@ -54,14 +60,14 @@ STATUS_MESSAGES = {
     MAX_STEPS: "maximum number of steps reached",
 }
 
-# Helpers: compiled into the entry points that call them (not cached on their own,
-# see the module notes).
+# Helpers: compiled into the entry points that call them only (not cached on their own,
+# no Python entry; see the module notes).
 #: LLVM fast-math flags of every kernel: reassociation and contraction (FMA) let LLVM
 #: vectorise the stage sums and error norm; reciprocals replace divisions. Not
 #: ``nnan``/``ninf``: the step control relies on NaN comparisons to stop a non-finite
 #: orbit. Measured 1.3x faster steps at the same accuracy.
 FASTMATH = {"reassoc", "contract", "arcp"}
-_jit = numba.njit(nogil=True, fastmath=FASTMATH)
+_jit = link_only_jit(nogil=True, fastmath=FASTMATH)  # see kernels.link_only
 _section = _jit(generated.section)
 
 

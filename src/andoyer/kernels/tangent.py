@@ -35,12 +35,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import numba
-
 from andoyer.kernels import dop853, dop853_coefficients, stepper
 from andoyer.kernels import generated as _generated
 from andoyer.kernels import numba as _kernels
 from andoyer.kernels.cache import cached_njit
+from andoyer.kernels.link_only import link_only_jit
 from andoyer.kernels.numba import ep_field, ep_jacobian
 
 __all__ = [
@@ -133,7 +132,7 @@ def layout(k: int) -> dict[str, slice | int]:
             "megno_num": _N + 7 * k, "megno_int": _N + 7 * k + 1}
 
 
-@numba.njit(nogil=True, fastmath=dop853.FASTMATH)
+@link_only_jit(nogil=True, fastmath=dop853.FASTMATH)
 def tangent_rhs(t, z, p, out):
     """Right-hand side of the state ``z`` (:func:`layout`) at time ``t``, into ``out``."""
     a, b, c, mu, e1, e2, e3 = p[0], p[1], p[2], p[3], p[4], p[5], p[6]

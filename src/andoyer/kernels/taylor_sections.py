@@ -48,11 +48,10 @@ from typing import Any
 
 import numba
 import numpy as np
-from numba.core.registry import CPUDispatcher
 
 from andoyer.kernels import taylor_generated
 from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.link_only import link_only_options
+from andoyer.kernels.link_only import link_only_jit
 
 __all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
            "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound",
@@ -78,15 +77,6 @@ FASTMATH = {"reassoc", "contract", "arcp"}
 fast_jit = numba.njit(nogil=True, fastmath=FASTMATH)
 
 
-class _KernelOnly(CPUDispatcher):
-    """A Numba function compiled only into other compiled code (:func:`kernel_jit`):
-    calling it from Python raises TypeError (it has no Python entry)."""
-
-    def __call__(self, *args: object, **kwargs: object) -> object:
-        raise TypeError(f"{self.py_func.__qualname__} runs inside andoyer's compiled kernels "
-                        "only (no Python entry point); call it from a Numba function")
-
-
 def kernel_jit(function: Callable[..., Any]) -> Any:
     """``fast_jit`` compiled into its callers only: no Python or C-callback wrapper
     (``no_cpython_wrapper``, ``no_cfunc_wrapper``) and, through
@@ -101,7 +91,8 @@ def kernel_jit(function: Callable[..., Any]) -> Any:
     ``propagate`` 5.34 -> 4.37 s, the first ``propagate`` 3.39 -> 3.02 s; link-only,
     W4's first ``propagate`` + ``poincare`` 5.1 -> 3.8 s. The kernels give the same
     floats, bit for bit (:mod:`andoyer.kernels.link_only`). A call from Python raises
-    TypeError (``_KernelOnly``) instead of reaching the missing wrapper.
+    TypeError (:func:`~andoyer.kernels.link_only.link_only_jit`) instead of reaching the
+    missing wrapper.
 
     Parameters
     ----------
@@ -113,10 +104,7 @@ def kernel_jit(function: Callable[..., Any]) -> Any:
     numba.core.registry.CPUDispatcher
         Its dispatcher (the function itself under ``NUMBA_DISABLE_JIT``).
     """
-    dispatcher = numba.njit(nogil=True, fastmath=FASTMATH, **link_only_options())(function)
-    if isinstance(dispatcher, CPUDispatcher):  # not under NUMBA_DISABLE_JIT
-        dispatcher.__class__ = _KernelOnly
-    return dispatcher
+    return link_only_jit(nogil=True, fastmath=FASTMATH)(function)
 
 
 @kernel_jit
