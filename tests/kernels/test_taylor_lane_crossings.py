@@ -142,3 +142,24 @@ def test_other_sections_and_tangent_states_are_refused() -> None:
                             MAX_STEPS)
     assert LC.component(KIND["gamma2"], 0.0, 0.3) == 4
     assert LC.component(KIND["G"], 0.0, 1.0) == -1
+
+
+def test_grazing_roots_inside_one_lane_step_are_both_found() -> None:
+    """G3 = (its maximum on a fine grid) - 1e-9: the orbits dip through the section and
+    back within a small part of one step; every lane finds both roots, as the scalar
+    kernel does."""
+    from andoyer import from_andoyer
+
+    p = params(RigidBody.paper())
+    z = np.ascontiguousarray(from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4]]))
+    t = np.linspace(0.0, 40.0, 40001)
+    ref, _ = dop853.propagate(z, t, p, 1e-13, 1e-13, MAX_STEPS)
+    top = int(np.argmax(ref[0, :, 2]))
+    value = ref[0, top, 2] - 1e-9
+    y0 = np.ascontiguousarray(np.repeat(z, LANES + 1, axis=0))
+    a = LC.locate_crossings(y0, p, KIND["G3"], value, 0, 50, t[-1], 1e-12, MAX_STEPS)
+    b = T.locate_crossings(y0[:1], p, KIND["G3"], value, 0, 50, t[-1], 1e-12, MAX_STEPS)
+    assert (a[2] == b[2][0]).all()
+    near = np.abs(a[0] - t[top]) < 0.01
+    assert (near.sum(axis=1) == 2).all()
+    assert np.nanmax(np.abs(a[0] - b[0])) < 1e-11

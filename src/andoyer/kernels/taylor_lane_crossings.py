@@ -23,8 +23,16 @@ crossings the scalar kernel finds on them. Sections that are not a state compone
 (their jets from a tape, and a step size that counts them) and states with tangent
 vectors stay on the scalar kernel.
 
+The lanes' section values (end value and root bound of every lane's step) are one
+vector Horner loop over the lanes (:func:`_end_and_bound`), each lane's operations the
+scalar ones; only a lane whose step may hold a root leaves the vector code.
+
 Measured (W2: 50 orbits x 1000 upward crossings of G3 = 0, paper's body, tol 1e-12,
-one thread, CPU): see :func:`locate_crossings`.
+one thread, CPU, load 1.4-2.6): the scalar kernel 2.1-2.25 s (~360 ns per step, of
+which ~25 ns section work), these lanes 0.85-1.07 s, the heyoka engine 1.23-1.35 s;
+per orbit-step 138-153 ns here against 104-108 ns for the lanes' plain propagation
+(the section work ~35-45 ns: the vector Horner loop cut it from ~50-60 ns). The same
+5,945,024 steps as the scalar kernel.
 """
 
 from __future__ import annotations
@@ -48,7 +56,6 @@ from andoyer.kernels.taylor_jets import N_STATE, fill_constants
 from andoyer.kernels.taylor_lanes import LANES, lane_advance, lane_jets, lane_load, lane_steps
 from andoyer.kernels.taylor_sections import (
     bernstein_weights,
-    end_and_bound,
     isolate,
     isolation_space,
     kernel_jit,
@@ -111,6 +118,27 @@ def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
 
 
 @kernel_jit
+def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
+    """:func:`~andoyer.kernels.taylor_sections.end_and_bound` of the section ``ca y_comp +
+    cc`` on every lane at once (lane ``i``'s step ``hs[i]``): ``fb`` the end values,
+    ``bound`` the bounds. Each lane's operations are the scalar ones, in the same order;
+    the lanes run side by side (vector code: one Horner chain for all lanes, not one
+    after the other)."""
+    for lane in range(_L):
+        c = ca * X[0, order, comp, lane]
+        fb[lane] = c
+        bound[lane] = abs(c)
+    for k in range(order - 1, 0, -1):
+        for lane in range(_L):
+            c = ca * X[0, k, comp, lane]
+            fb[lane] = fb[lane] * hs[lane] + c
+            bound[lane] = bound[lane] * hs[lane] + abs(c)
+    for lane in range(_L):
+        fb[lane] = fb[lane] * hs[lane] + (ca * X[0, 0, comp, lane] + cc)
+        bound[lane] = bound[lane] * hs[lane]
+
+
+@kernel_jit
 def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc, zc,
                    count, info):
     """The first ``tc.shape[1]`` crossings in ``(0, t_max]`` of the orbits ``z0`` (n, 6)
@@ -129,6 +157,8 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
     t = np.zeros(_L)
     t1 = np.zeros(_L)
     fa = np.zeros(_L)
+    fb = np.zeros(_L)
+    bound = np.zeros(_L)
     orbit = np.full(_L, -1, dtype=np.int64)
     # the scalar section search's work space (one lane at a time)
     Xs = np.empty((1, n, _N))
@@ -151,7 +181,7 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
     while busy > 0:
         lane_jets(X, order, q, m)
         lane_steps(X, order, h, a1, a2, tot)
-        for lane in range(_L):
+        for lane in range(_L):  # each lane's step (0 on idle and ended lanes)
             i = orbit[lane]
             hs[lane] = 0.0
             if i < 0:
@@ -165,27 +195,32 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
             e = tl + h[lane]
             if e >= t_max:
                 e = t_max
-            hl = e - tl  # h such that t + h = t1 in floating point
+            t1[lane] = e
+            hs[lane] = e - tl  # h such that t + h = t1 in floating point
+        _end_and_bound(X, order, comp, ca, cc, hs, fb, bound)
+        for lane in range(_L):  # the scalar section search where a root may be
+            i = orbit[lane]
+            if i < 0:
+                continue
+            f0 = fa[lane]
+            fa[lane] = fb[lane]
+            a0 = ca * X[0, 0, comp, lane] + cc
+            if ((f0 > 0.0 and fb[lane] > 0.0) or (f0 < 0.0 and fb[lane] < 0.0)) and (
+                    abs(f0) > 1.000001 * (bound[lane] + abs(f0 - a0))):
+                continue
             for k in range(n):  # the section's jet: the lane's column (column_polynomial)
                 a[k] = ca * X[0, k, comp, lane]
             a[0] += cc
-            fb, bound = end_and_bound(a, order, hl)
-            f0 = fa[lane]
-            if not ((f0 > 0.0 and fb > 0.0) or (f0 < 0.0 and fb < 0.0)) or not (
-                    abs(f0) > 1.000001 * (bound + abs(f0 - a[0]))):
-                found = isolate(a, order, hl, W, f0, fb, direction, stack, lo_s, hi_s, left,
-                                roots)
-                if found > 0:
-                    for k in range(n):
-                        for c in range(_N):
-                            Xs[0, k, c] = X[0, k, c, lane]
-                for r in range(found):
-                    if count[i] < n_crossings:
-                        count[i] = _record(Xs, order, q, tl, hl, roots[r], ftape, fC, wtape,
-                                           wC, a, tc[i], zc[i], count[i], ytmp, P, Y, u)
-            fa[lane] = fb
-            t1[lane] = e
-            hs[lane] = hl
+            found = isolate(a, order, hs[lane], W, f0, fb[lane], direction, stack, lo_s,
+                            hi_s, left, roots)
+            if found > 0:
+                for k in range(n):
+                    for c in range(_N):
+                        Xs[0, k, c] = X[0, k, c, lane]
+            for r in range(found):
+                if count[i] < n_crossings:
+                    count[i] = _record(Xs, order, q, t[lane], hs[lane], roots[r], ftape, fC,
+                                       wtape, wC, a, tc[i], zc[i], count[i], ytmp, P, Y, u)
         lane_advance(X, order, hs)
         for lane in range(_L):  # ended orbits give their lane to the next one
             i = orbit[lane]
@@ -233,8 +268,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     """:func:`andoyer.kernels.taylor.locate_crossings` of states alone (n, 6) on SIMD
     lanes, for a section whose :func:`component` is not -1 (else ValueError).
 
-    Measured (W2: 50 orbits x 1000 upward crossings of G3 = 0, tol 1e-12, one thread,
-    interleaved pairs, CPU): see the notes of issue 26 (``26-g3.md``).
+    Measured: see the module notes.
 
     Parameters
     ----------
