@@ -89,19 +89,11 @@ def test_random_states_agree_with_numba_and_heyoka(body: RigidBody) -> None:
     others = {"numba": (get_engine("numba"), Tolerance(1e-13, 1e-13))}
     if heyoka_available():
         others["heyoka"] = (get_engine("heyoka"), tol)
+    # (One orbit of the general body passes |G| = 0.06, where the series of the tape
+    # sections, a square root of |G|^2, converge slowly: their step counts them.)
     sections = [("G3", 0.0), ("G3", 0.4), ("gamma3", -0.2), ("gamma1", 0.1), ("L", 0.3),
                 ("theta2", 0.0), ("G", 1.0)]
     for name, value in sections:
-        # On the general body one orbit passes |G| = 0.06: there the Taylor series of the
-        # tape sections (a square root of |G|^2) do not converge on the state's steps,
-        # and the kernel finds roots of the polynomial that f has not (|G| = 1 "crossed"
-        # at |G| = 0.06; a theta2 crossing 2.3e-4 off in time; numba and heyoka agree to
-        # 1e-11). Known before this test (issue 26's accuracy work): theta2 is checked
-        # by its counts only there (a step's end value from its polynomial, not from the
-        # state, would add crossings), G not at all.
-        tape_section = name in ("theta2", "G")
-        if body is GENERAL and name == "G":
-            continue
         for direction in (1, -1, 0):
             event = SectionEvent(name, value, direction)
             c = taylor.crossings(y0, p, event, 8, 60.0, tol)
@@ -109,8 +101,6 @@ def test_random_states_agree_with_numba_and_heyoka(body: RigidBody) -> None:
                 r = engine.crossings(y0, p, event, 8, 60.0, other_tol)
                 what = f"{name} = {value}, direction {direction}, against {other}"
                 np.testing.assert_array_equal(c.count, r.count, err_msg=what)
-                if body is GENERAL and tape_section:
-                    continue
                 assert np.nanmax(np.abs(c.t - r.t), initial=0.0) < 1e-8, what
                 assert np.nanmax(np.abs(c.y - r.y), initial=0.0) < 1e-8, what
 
