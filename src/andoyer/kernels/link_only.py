@@ -92,7 +92,15 @@ def _build_classes() -> tuple[type, type]:
     import llvmlite.binding as ll
 
     class _Library(jit_library):  # type: ignore[misc, valid-type]
-        """A library whose functions are linked into callers, never emitted."""
+        """A library whose functions are linked into callers, never emitted.
+
+        Parameters
+        ----------
+        codegen : numba.core.codegen.JITCPUCodegen
+            Numba's code generator of the process.
+        name : str
+            The library's name (the function's qualified name).
+        """
 
         def _finalize_final_module(self) -> None:
             # As CPUCodeLibrary._finalize_final_module, but the module handed to the JIT
@@ -124,7 +132,23 @@ def _build_classes() -> tuple[type, type]:
                                "no machine code to cache")
 
     class _Compiler(compiler):  # type: ignore[misc, valid-type]
-        """Numba's nopython pipeline into a :class:`LinkOnlyLibrary`."""
+        """Numba's nopython pipeline into a :class:`LinkOnlyLibrary`.
+
+        Parameters
+        ----------
+        typingctx, targetctx
+            Numba's typing and target contexts.
+        library : LinkOnlyLibrary or None
+            The library to compile into (None: a new one).
+        args : tuple
+            The argument types.
+        return_type
+            The return type (None: inferred).
+        flags
+            Numba's compilation flags.
+        locals : dict
+            Types of local variables.
+        """
 
         def compile_extra(self, func: Any) -> Any:
             if self.state.library is None:
