@@ -53,7 +53,13 @@ from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.dop853 import source_stamp
 from andoyer.kernels.stepper import INFO, MAX_STEPS, STEP_TOO_SMALL
 from andoyer.kernels.taylor_jets import N_STATE, fill_constants
-from andoyer.kernels.taylor_lanes import LANES, lane_advance, lane_jets, lane_load, lane_steps
+from andoyer.kernels.taylor_lanes import (
+    LANES,
+    lane_advance,
+    lane_load,
+    lane_state_jets,
+    lane_steps,
+)
 from andoyer.kernels.taylor_sections import (
     bernstein_weights,
     isolate,
@@ -179,7 +185,7 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
         if orbit[lane] >= 0:
             busy += 1
     while busy > 0:
-        lane_jets(X, order, q, m)
+        lane_state_jets(X, order, q, m)
         lane_steps(X, order, h, a1, a2, tot)
         for lane in range(_L):  # each lane's step (0 on idle and ended lanes)
             i = orbit[lane]
