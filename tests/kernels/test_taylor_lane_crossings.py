@@ -8,8 +8,8 @@ the scalar Taylor kernel and the DOP853 kernel.
   different lengths, no crossing asked, ``t_max`` reached;
 * statuses per orbit: ``max_steps`` and a non-finite state end that orbit only, with
   the scalar kernel's ``info``;
-* the engine runs many orbits of a component section on the lanes (spied), and only
-  those;
+* the engine runs many crossings of many orbits of a component section on the lanes
+  (spied), and only those;
 * other sections and tangent states are refused.
 """
 
@@ -20,6 +20,7 @@ import pytest
 from numpy.typing import NDArray
 
 from andoyer import RigidBody
+from andoyer.integrate.engines import taylor_engine
 from andoyer.integrate.engines.base import SectionEvent, Tolerance
 from andoyer.integrate.engines.taylor_engine import TaylorEngine
 from andoyer.kernels import dop853, generated
@@ -123,6 +124,9 @@ def test_the_engine_runs_many_orbits_of_a_component_section_on_lanes(
     tol = Tolerance(1e-12, 1e-12)
     y0 = random_states(LANES + 1, np.random.default_rng(5))
     engine = TaylorEngine()
+    engine.crossings(y0, p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
+    assert calls == []  # 45 crossings asked: the scalar kernel (no lane kernel to compile)
+    monkeypatch.setattr(taylor_engine, "LANE_CROSSINGS_FROM", 5 * (LANES + 1))
     c = engine.crossings(y0, p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
     assert calls == [LANES + 1]
     one = engine.crossings(y0[:1], p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)

@@ -71,6 +71,14 @@ def _lanes() -> Any:
     return taylor_lanes
 
 
+#: Crossings asked (orbits x crossings per orbit) from which a component section's
+#: crossings run on SIMD lanes (and from :data:`LANES_FROM` orbits). Below, the lanes
+#: would save under ~25 ms a call (measured ~24 us a crossing of G3 = 0 on one thread)
+#: and compiling their kernel costs ~1.8 s once (a cold first ``poincare`` of 8 orbits x
+#: 20 crossings: 4.3 s on the scalar kernel, 6.1 s on lanes).
+LANE_CROSSINGS_FROM = 1000
+
+
 def _lane_crossings() -> Any:
     from andoyer.kernels import taylor_lane_crossings  # its machine code loads here
 
@@ -171,13 +179,14 @@ class TaylorEngine(EngineBase):
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
                    event: SectionEvent, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
-        """Crossings on each step's polynomial; from :data:`LANES_FROM` orbits on, a
-        state component's section (``G3 = c`` ...) runs on SIMD lanes
+        """Crossings on each step's polynomial; from :data:`LANES_FROM` orbits and
+        :data:`LANE_CROSSINGS_FROM` crossings asked on, a state component's section
+        (``G3 = c`` ...) runs on SIMD lanes
         (:mod:`andoyer.kernels.taylor_lane_crossings`: the lanes' steps, the scalar
         kernel's section search lane by lane)."""
         p = self._kernel_params(par)
         kernels: Any = taylor
-        if y0.shape[0] >= LANES_FROM:
+        if y0.shape[0] >= LANES_FROM and y0.shape[0] * n_crossings >= LANE_CROSSINGS_FROM:
             lanes = _lane_crossings()
             if lanes.component(event.kind, float(p[7]), event.value) >= 0:
                 kernels = lanes
