@@ -112,6 +112,10 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 #: "Which engine for what" of ``benchmarks/SUMMARY.md``), and that engine. Decided from
 #: the benchmark table, not at run time; every workload not listed runs on heyoka.
 MEASURED_DEFAULTS: dict[str, str] = {
+    # W2 G3 = 0, 50 orbits x 1000 crossings: taylor (crossings on SIMD lanes,
+    # kernels.taylor_lane_crossings) takes 0.73-0.80x heyoka's CPU time on one thread,
+    # 0.78-0.82x its wall time on two (interleaved pairs, 2026-11-27).
+    "component_section": "taylor",
     # W3, FLI map t = 1000: taylor's SIMD lanes (kernels.taylor_lanes) take 0.82x
     # heyoka's wall time at 32^2 and 0.79x at 64^2 (interleaved pairs, 2026-11-27).
     "fli_map": "taylor",
