@@ -532,8 +532,10 @@ def markdown(result: dict[str, Any]) -> str:
         " |G| ~ 1 on the level of (l, g, L, G, M) = (0.3, 0, 0.3, 1, 0). Tolerance 1e-12 "
         "everywhere (rtol = atol). Wall time: median of the timed runs after one warm-up "
         "run; CPU: all threads. Errors against an extended-precision heyoka reference "
-        "(long double, tol 1e-19). **x default** = this runner's time / andoyer's default "
-        "(heyoka engine): above 1 means andoyer is that many times faster.",
+        "(long double, tol 1e-19). **x default** = this runner's time / andoyer on the "
+        "heyoka engine (the default where heyoka is installed, except the workloads of "
+        "`andoyer.integrate.engines.MEASURED_DEFAULTS`, set from these tables: see "
+        "\"Which engine for what\" in `SUMMARY.md`).",
         ""]
     for wl in ("W1", "W2", "W3", "W4", "W5"):
         sub = [r for r in rows if r.workload == wl]
@@ -607,7 +609,7 @@ def summary(result: dict[str, Any]) -> str:
     """The short table (README, user guide): one row per workload, medians, x limit."""
     m = result["meta"]
     rows = [Row(**r) for r in result["rows"]]
-    cols = [("andoyer (default: heyoka)", (DEFAULT,)), ("andoyer numba", ("andoyer numba",)),
+    cols = [("andoyer heyoka", (DEFAULT,)), ("andoyer numba", ("andoyer numba",)),
             ("andoyer taylor", ("andoyer taylor",)),
             ("heyoka plain", ("heyoka plain",)), ("heyoka hand-tuned", ("heyoka hand-tuned",)),
             ("scipy DOP853", ("scipy DOP853", "scipy DOP853 pool(2)"))]
