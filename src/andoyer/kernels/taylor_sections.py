@@ -401,10 +401,31 @@ def casteljau(B, n, left, right):
 
 @kernel_jit
 def tape_value(tape, C, Y, u):
-    """A section tape's function at the state ``Y[0]`` (a jet of order 0)."""
-    # Order len(Y) - 1 = 0, not the literal 0: a literal would compile a second
-    # tape_jet (measured 0.27 s of a cold first section).
-    tape_jet(tape, C, Y, Y.shape[0] - 1, u)
+    """A section tape's function at the state ``Y[0]``: :func:`tape_jet` at order 0, the
+    same floats (each node's one multiply-add as there), without its loops over orders.
+    Called once a step (the step's end value ``f_b``); measured on the theta2 tape (33
+    nodes): 45 ns against 110 ns for ``tape_jet`` at order 0."""
+    for n in range(tape.shape[0]):
+        op = tape[n, 0]
+        a = tape[n, 1]
+        b = tape[n, 2]
+        if op == VAR:
+            u[n, 0] = Y[0, a]
+        elif op == LIN:
+            ca = C[tape[n, 3]]
+            if b >= 0:
+                cb = C[tape[n, 4]]
+                u[n, 0] = ca * u[a, 0] + cb * u[b, 0]
+            else:
+                u[n, 0] = ca * u[a, 0]
+            if tape[n, 5] >= 0:
+                u[n, 0] += C[tape[n, 5]]
+        elif op == MUL:
+            v = 0.0  # as tape_jet's sum (0 + a b, not a b: the same zero's sign)
+            v += u[a, 0] * u[b, 0]
+            u[n, 0] = v
+        else:  # _SQRT
+            u[n, 0] = math.sqrt(u[a, 0])
     return u[tape.shape[0] - 1, 0]
 
 
