@@ -108,11 +108,52 @@ def kernel_jit(function: Callable[..., Any]) -> Any:
 
 
 @kernel_jit
+def cauchy(u, n, a, b, order):
+    """``u[n, k] = sum_{j <= k} u[a, j] u[b, k - j]`` (k = 0 .. order), four orders at a
+    time: four independent chains of multiply-adds in one loop over ``j`` (the one-order
+    loop is one dependent chain). Each order's sum runs over ``j`` in ascending order."""
+    k0 = 0
+    while k0 + 3 <= order:
+        v0 = 0.0
+        v1 = 0.0
+        v2 = 0.0
+        v3 = 0.0
+        for j in range(k0 + 1):
+            x = u[a, j]
+            v0 += x * u[b, k0 - j]
+            v1 += x * u[b, k0 + 1 - j]
+            v2 += x * u[b, k0 + 2 - j]
+            v3 += x * u[b, k0 + 3 - j]
+        x = u[a, k0 + 1]
+        v1 += x * u[b, 0]
+        v2 += x * u[b, 1]
+        v3 += x * u[b, 2]
+        x = u[a, k0 + 2]
+        v2 += x * u[b, 0]
+        v3 += x * u[b, 1]
+        v3 += u[a, k0 + 3] * u[b, 0]
+        u[n, k0] = v0
+        u[n, k0 + 1] = v1
+        u[n, k0 + 2] = v2
+        u[n, k0 + 3] = v3
+        k0 += 4
+    for k in range(k0, order + 1):
+        v = 0.0
+        for j in range(k + 1):
+            v += u[a, j] * u[b, k - j]
+        u[n, k] = v
+
+
+@kernel_jit
 def tape_jet(tape, C, x, order, u):
     """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
     state's jet ``x`` (the last node is the function): the tape interpreter (rows
     ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.taylor_generated.SECTION_TAPES`,
-    constants ``C``)."""
+    constants ``C``). Products by :func:`cauchy` (four orders at a time: W2 theta2, 50 x
+    1000 crossings, one thread, 0.96-1.05 -> 0.90-0.93 s CPU, load 1-1.4; the crossings
+    within round-off of the one-order loop's: 12 of 50 orbits differ in the last bits,
+    error at the 1000th crossing against the extended-precision reference median
+    5.5e-12, max 2.5e-11 in both)."""
     # Node by node (each node reads earlier nodes only, and the state's jet is known to
     # the full order): one dispatch per node, not per node and order.
     for n in range(tape.shape[0]):
@@ -134,11 +175,7 @@ def tape_jet(tape, C, x, order, u):
             if tape[n, 5] >= 0:
                 u[n, 0] += C[tape[n, 5]]
         elif op == MUL:
-            for k in range(order + 1):
-                v = 0.0
-                for j in range(k + 1):
-                    v += u[a, j] * u[b, k - j]
-                u[n, k] = v
+            cauchy(u, n, a, b, order)
         else:  # _SQRT
             r = math.sqrt(u[a, 0])
             u[n, 0] = r
