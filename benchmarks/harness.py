@@ -643,7 +643,9 @@ def engine_advice(rows: list[Row]) -> list[str]:
     engines = {"andoyer heyoka": "heyoka", "andoyer taylor": "taylor",
                "andoyer numba": "numba", "andoyer scipy": "scipy"}
     out = ["", "**Which engine for what** (generated from the rows above: the fastest of "
-           "andoyer's engines by wall time, the next one's time over it):", "",
+           "andoyer's engines by wall time, the next one's time over it; where heyoka is "
+           "installed a workload's default moves off heyoka only for more than 10 %: "
+           "`andoyer.integrate.engines.MEASURED_DEFAULTS`):", "",
            "| workload | with heyoka installed | without heyoka |", "|---|---|---|"]
     cases = dict.fromkeys((r.workload, r.case) for r in rows if r.workload in ("W1", "W2", "W3")
                           and r.note != "timed once")

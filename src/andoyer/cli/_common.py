@@ -375,7 +375,7 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
 
 #: The help of ``--engine``: the default is :func:`andoyer.integrate.engines.default_engine_name`'s.
 ENGINE_HELP = ("integration engine (default: heyoka where installed, except where another "
-               "engine was measured faster: taylor for G3-type sections and FLI maps; "
+               "engine was measured faster: taylor for FLI maps; "
                f"else the first of {', '.join(FALLBACK_DEFAULTS)} that can do what the "
                "command asks)")
 

@@ -363,9 +363,8 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
         heyoka where installed, else taylor
-        (:func:`~andoyer.integrate.engines.default_engine_name`); sections of a state
-        component (``G3 = c``, ``gamma1 = c``) default to taylor also where heyoka is
-        installed (measured faster: :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`).
+        (:func:`~andoyer.integrate.engines.default_engine_name`, per workload:
+        :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`).
     {tolerances}
     t_max : float, optional
         Integrate at most to this time (default ``1000 * n_crossings``); orbits with
