@@ -590,15 +590,21 @@ def markdown(result: dict[str, Any]) -> str:
     if m["mode"] == "quick":
         lines += ["Quick mode: the problems are smaller than the ones the targets are set "
                   "for (fixed costs weigh more); run the full benchmark to check them.", ""]
-    lines += ["| target | measured | limit | met |", "|---|---|---|---|"]
-    for t in result["targets"]:
+    lines += targets_table(result["targets"])
+    lines += ["", "Reproduce: `python -m benchmarks` (full, about 35 minutes on 2 cores) or "
+              "`python -m benchmarks --quick` (about 3 minutes); see `benchmarks/README.md`.", ""]
+    return "\n".join(lines)
+
+
+def targets_table(rows: list[dict[str, Any]]) -> list[str]:
+    """The targets as a markdown table: target, measured, limit, met."""
+    lines = ["| target | measured | limit | met |", "|---|---|---|---|"]
+    for t in rows:
         v, lim = t["value"], t["limit"]
         vs = ", ".join(f"{x:.2g}" for x in v) if isinstance(v, list) else f"{v:.2f}"
         ls = ", ".join(f"{x:.2g}" for x in lim) if isinstance(lim, list) else f"{lim:g}"
         lines.append(f"| {t['target']} | {vs} | {ls} | {'yes' if t['met'] else '**no**'} |")
-    lines += ["", "Reproduce: `python -m benchmarks` (full, about 35 minutes on 2 cores) or "
-              "`python -m benchmarks --quick` (about 3 minutes); see `benchmarks/README.md`.", ""]
-    return "\n".join(lines)
+    return lines
 
 
 #: Markers of the block of README.md that :func:`summary` rewrites after a full run.
@@ -634,7 +640,13 @@ def summary(result: dict[str, Any]) -> str:
     if paper is not None:
         lines += ["", f"`andoyer paper` (the main job), fresh process, warm caches: "
                       f"{_fmt(paper.wall_s, 's')}."]
-    return "\n".join(lines + engine_advice(rows)) + "\n"
+    lines += engine_advice(rows)
+    if result.get("targets"):
+        met = sum(bool(t["met"]) for t in result["targets"])
+        lines += ["", f"**Targets**: {met} of {len(result['targets'])} met (the misses are "
+                      "profiled in the user guide, \"Where the targets are missed\"):", ""]
+        lines += targets_table(result["targets"])
+    return "\n".join(lines) + "\n"
 
 
 def engine_advice(rows: list[Row]) -> list[str]:
