@@ -100,6 +100,7 @@ from andoyer.kernels.taylor_jets import (
     section_step_size,
     state_jets,
     step_size,
+    step_to,
     tangent_jets,
 )
 from andoyer.kernels.taylor_sections import (
@@ -219,18 +220,6 @@ class Orbits(NamedTuple):
     crossings_orbit: Any
 
 
-@kernel_jit
-def _step_to(t, t_end, h):
-    """``(status, t1, h)`` of a step of size ``h`` from ``t``; ``t1 <= t_end``."""
-    min_step = 10.0 * (np.nextafter(t, np.inf) - t)
-    if not h >= min_step:  # also NaN (a non-finite state)
-        return STEP_TOO_SMALL, t, 0.0
-    t1 = t + h
-    if t1 >= t_end:
-        t1 = t_end
-    return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
-
-
 def make_orbits(jets: Any) -> Orbits:
     """The orbit loops for states whose jets ``jets(X, order, q)`` computes (the state
     alone, or with tangent vectors): closures over ``jets``, so a call compiles only the
@@ -247,7 +236,7 @@ def make_orbits(jets: Any) -> Orbits:
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
         info[3] += 1
-        return _step_to(t, t_end, step_size(X, order))
+        return step_to(t, t_end, step_size(X, order))
 
     @kernel_jit
     def take_section_step(t, t_end, X, order, q, info, ftape, fC, u):
@@ -256,7 +245,7 @@ def make_orbits(jets: Any) -> Orbits:
         jets(X, order, q)
         info[3] += 1
         tape_jet(ftape, fC, X[0], order, u)
-        return _step_to(t, t_end, section_step_size(X, order, ftape, u))
+        return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
     @kernel_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):

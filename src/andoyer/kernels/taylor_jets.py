@@ -20,10 +20,11 @@ import math
 import numpy as np
 
 from andoyer.kernels import taylor_generated
+from andoyer.kernels.stepper import STEP_TOO_SMALL, SUCCESS
 from andoyer.kernels.taylor_sections import kernel_jit
 
 __all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
-           "radius", "step_size", "section_step_size", "SECTION_STEP_FLOOR", "block_at",
+           "radius", "step_size", "step_to", "section_step_size", "SECTION_STEP_FLOOR", "block_at",
            "horner", "advance", "load"]
 
 #: Floats of the Euler-Poisson state: one block of the jets.
@@ -190,6 +191,20 @@ def block_at(x, order, tau):
         v4 = v4 * tau + x[k, 4]
         v5 = v5 * tau + x[k, 5]
     return v0, v1, v2, v3, v4, v5
+
+
+@kernel_jit
+def step_to(t, t_end, h):
+    """``(status, t1, h)`` of a step of size ``h`` from ``t``; ``t1 <= t_end``: the one
+    rule of the scalar orbit loops and the SIMD lanes (a step below ten ulps of ``t``, or
+    NaN from a non-finite state, is STEP_TOO_SMALL)."""
+    min_step = 10.0 * (np.nextafter(t, np.inf) - t)
+    if not h >= min_step:  # also NaN (a non-finite state)
+        return STEP_TOO_SMALL, t, 0.0
+    t1 = t + h
+    if t1 >= t_end:
+        t1 = t_end
+    return SUCCESS, t1, t1 - t  # h such that t + h = t1 in floating point
 
 
 @kernel_jit

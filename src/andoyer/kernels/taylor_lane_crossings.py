@@ -51,8 +51,8 @@ from andoyer.kernels import (
 )
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.stepper import INFO, MAX_STEPS, STEP_TOO_SMALL
-from andoyer.kernels.taylor_jets import N_STATE, fill_constants
+from andoyer.kernels.stepper import INFO, MAX_STEPS, SUCCESS
+from andoyer.kernels.taylor_jets import N_STATE, fill_constants, step_to
 from andoyer.kernels.taylor_lanes import (
     LANES,
     lane_advance,
@@ -193,16 +193,11 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
             if i < 0:
                 continue
             info[i, 3] += 1
-            tl = t[lane]
-            if not h[lane] >= 10.0 * (np.nextafter(tl, np.inf) - tl):  # also NaN
-                info[i, 0] = STEP_TOO_SMALL
+            status, t1[lane], hs[lane] = step_to(t[lane], t_max, h[lane])
+            if status != SUCCESS:
+                info[i, 0] = status
                 orbit[lane] = -2  # ended: refilled below
                 continue
-            e = tl + h[lane]
-            if e >= t_max:
-                e = t_max
-            t1[lane] = e
-            hs[lane] = e - tl  # h such that t + h = t1 in floating point
         _end_and_bound(X, order, comp, ca, cc, hs, fb, bound)
         for lane in range(_L):  # the scalar section search where a root may be
             i = orbit[lane]

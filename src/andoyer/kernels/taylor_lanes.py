@@ -68,7 +68,7 @@ from andoyer.kernels import simd, taylor_generated, taylor_jets, taylor_sections
 from andoyer.kernels.cache import cached_njit
 from andoyer.kernels.dop853 import source_stamp
 from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
-from andoyer.kernels.taylor_jets import N_STATE, fill_constants
+from andoyer.kernels.taylor_jets import N_STATE, fill_constants, step_to
 from andoyer.kernels.taylor_sections import kernel_jit
 from andoyer.kernels.threads import over_orbits
 
@@ -248,14 +248,11 @@ def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
                 continue
             info[i, 3] += 1
             tl = t[lane]
-            if not h[lane] >= 10.0 * (np.nextafter(tl, np.inf) - tl):  # also NaN
-                info[i, 0] = STEP_TOO_SMALL
+            status, e, hl = step_to(tl, t_end, h[lane])
+            if status != SUCCESS:
+                info[i, 0] = status
                 orbit[lane] = -2  # ended: refilled below
                 continue
-            e = tl + h[lane]
-            if e >= t_end:
-                e = t_end
-            hl = e - tl  # h such that t + h = t1 in floating point
             jl = j[lane]
             while jl < k and t_out[jl] <= e:
                 lane_horner(X, order, lane, t_out[jl] - tl if t_out[jl] < e else hl,
