@@ -99,7 +99,7 @@ HESS = ["paper", "hess_minus", "hess_heavy"]
 # --------------------------------------------------------------------------- (1) itself
 @pytest.mark.parametrize("name", ["general", "paper", "lagrange"])
 def test_ep_field_is_equation_1(name):
-    """``dG/dt = G x I G + mu gamma x r``, ``dgamma/dt = gamma x I G``, typed by hand."""
+    """``dG/dt = G x I^-1 G + mu gamma x r``, ``dgamma/dt = gamma x I^-1 G``, typed by hand."""
     body = BODIES[name]
     y = ep_points(np.random.default_rng(1))
     G, gamma = y[:, :3], y[:, 3:]
@@ -264,7 +264,7 @@ def test_hess_invariant_relation_3(name):
 def test_hess_linear_law(name):
     """``d(G, r)/dt = -branch * sigma * G3 (G, r)``, ``sigma = sqrt((b - c)(c - a))``.
 
-    From (1): ``d(G, r)/dt = (G x I G, r) = G3 (e1 (c - b) G2 + e2 (a - c) G1)
+    From (1): ``d(G, r)/dt = (G x I^-1 G, r) = G3 (e1 (c - b) G2 + e2 (a - c) G1)
     = G3 e2 (a - c)/e1 (G, r)`` by (8); ``e2 (a - c)/e1 = -sigma`` on the paper's
     branch (``e2 > 0``, ``a < c``) and ``+sigma`` on the other.
     """

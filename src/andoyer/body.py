@@ -64,8 +64,8 @@ class RigidBody:
 
     Notes
     -----
-    The Hamiltonian is :math:`H = \\tfrac12 (\\mathbf G, \\mathbf I \\mathbf G) + \\mu
-    (\\mathbf r, \\boldsymbol\\gamma)` with :math:`\\mathbf I = \\mathrm{diag}(a, b, c)
+    The Hamiltonian is :math:`H = \\tfrac12 (\\mathbf G, \\mathbf I^{-1}\\mathbf G) + \\mu
+    (\\mathbf r, \\boldsymbol\\gamma)` with :math:`\\mathbf I^{-1} = \\mathrm{diag}(a, b, c)
     = \\mathrm{diag}(1/A, 1/B, 1/C)`, Eq. (1) of the paper.
 
     Examples

@@ -81,7 +81,7 @@ NOTATION: tuple[Symbol, ...] = (
     Symbol("theta1, theta2, theta3", "θ1, θ2, θ3", "2(l + φ0), g - l - φ0, m", "(14)",
            "theta1, theta2, theta3"),
     Symbol("J1, J2, J3", "J1, J2, J3", "(G + L)/2, G, M", "(14)", "J1, J2, J3"),
-    Symbol("H", "H", "Hamiltonian ½(G, IG) + μ(r, γ)", "(1), (7), (10), (13)", "H"),
+    Symbol("H", "H", "Hamiltonian ½(G, I⁻¹G) + μ(r, γ)", "(1), (7), (10), (13)", "H"),
 )
 
 

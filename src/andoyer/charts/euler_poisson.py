@@ -5,7 +5,7 @@ momentum ``G = (A p, B q, C r)`` and the upward vertical unit vector ``gamma``
 (Eq. (1) of [1]_). The chart has no singular set; the physical phase space is the
 level ``|gamma|^2 = 1`` of the geometric integral.
 
-The Hamiltonian :math:`H = \\tfrac12(\\mathbf G, \\mathbf I\\mathbf G) + \\mu(\\mathbf r,
+The Hamiltonian :math:`H = \\tfrac12(\\mathbf G, \\mathbf I^{-1}\\mathbf G) + \\mu(\\mathbf r,
 \\boldsymbol\\gamma)` is written **once**, in :func:`hamiltonian_expr`, with plain
 arithmetic so that it evaluates NumPy arrays and builds SymPy expressions alike;
 every other form of H in this package is derived from it.
@@ -45,7 +45,7 @@ STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
 
 def hamiltonian_expr(G1: Any, G2: Any, G3: Any, gamma1: Any, gamma2: Any, gamma3: Any,
                      a: Any, b: Any, c: Any, mu: Any, e1: Any, e2: Any, e3: Any) -> Any:
-    """The Hamiltonian of Eq. (1), ``H = (G, I G)/2 + mu (r, gamma)``: the one source.
+    """The Hamiltonian of Eq. (1), ``H = (G, I^-1 G)/2 + mu (r, gamma)``: the one source.
 
     Works for NumPy arrays (numeric) and SymPy symbols (derivations alike).
 
@@ -105,7 +105,7 @@ def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     Returns
     -------
     ndarray, shape (...)
-        ``H = (G, I G)/2 + mu (r, gamma)``.
+        ``H = (G, I^-1 G)/2 + mu (r, gamma)``.
 
     Examples
     --------

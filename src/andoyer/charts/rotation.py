@@ -25,7 +25,7 @@ Precession and the Andoyer-Deprit node. From the kinematics of ``z-x-z`` angles,
 cos phi - theta' sin phi``, hence
 
 .. math:: \dot\psi = \frac{\omega_1\gamma_1 + \omega_2\gamma_2}{\gamma_1^2 + \gamma_2^2},
-   \qquad \boldsymbol\omega = \mathbf I \mathbf G,
+   \qquad \boldsymbol\omega = \mathbf I^{-1} \mathbf G,
 
 singular at ``theta = 0, pi`` (``gamma1 = gamma2 = 0``). The Andoyer-Deprit chart
 writes the same rotation as ``R = Rz(m) Rx(I) Rz(g) Rx(J) Rz(l)``

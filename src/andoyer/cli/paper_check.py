@@ -25,7 +25,7 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps([asdict(r) for r in rows], indent=1))
     else:
         print("Every formula printed in the paper, checked against the derivation from "
-              "H = (G, IG)/2 + mu (r, gamma)\n"
+              "H = (G, I^-1 G)/2 + mu (r, gamma)\n"
               f"({args.points} random points each; 'holds' = agreement to 1e-9)\n")
         print(format_table(rows))
     broken = [r for r in rows if r.corrected_holds is False]

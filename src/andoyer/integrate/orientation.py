@@ -2,7 +2,7 @@
 
 :func:`attitude` integrates the Euler-Poisson state with the unit quaternion of the
 rotation body -> space on any engine with :attr:`Capability.ATTITUDE
-<andoyer.integrate.engines.base.Capability.ATTITUDE>` (``dq/dt = q (x) (0, I G) / 2``,
+<andoyer.integrate.engines.base.Capability.ATTITUDE>` (``dq/dt = q (x) (0, I^-1 G) / 2``,
 the regular route: no singular set) and returns the quaternion, the rotation matrix,
 the angular momentum in space and the Euler angles as variables of the dataset
 :func:`andoyer.integrate.propagate` returns. Conventions (stated in the dataset's
@@ -120,7 +120,7 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: Array
     the initial one is ``R(0) = Rz(precession0) Rx(theta0) Rz(phi0)`` with ``theta0, phi0`` of
     ``gamma(0)`` (:func:`andoyer.charts.rotation.quaternion_from_vertical`). The
     quaternion is integrated with the state, ``dq/dt = q (x) (0, omega) / 2``,
-    ``omega = I G`` (:mod:`andoyer.symbolic.attitude`), regular everywhere; the Euler
+    ``omega = I^-1 G`` (:mod:`andoyer.symbolic.attitude`), regular everywhere; the Euler
     angles are read off it, with the precession rate
     ``dpsi/dt = (omega1 gamma1 + omega2 gamma2) / (gamma1^2 + gamma2^2)`` implied
     (:mod:`andoyer.charts.rotation`: ``psi = m + psi(Rx(I) Rz(g) Rx(J) Rz(l))``, ``m``
@@ -184,7 +184,7 @@ def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: Array
         provenance(body, engine=eng.name, rtol=tolerance.rtol, atol=tolerance.atol,
                    initial_chart=chart,
                    equations="Euler-Poisson equations (1) with the attitude quaternion "
-                             "dq/dt = q (x) (0, I G)/2", **CONVENTIONS),
+                             "dq/dt = q (x) (0, I^-1 G)/2", **CONVENTIONS),
         attitude_variables(Q, Y[..., :3], ("orbit", "time")),
         {"component": list(QUATERNION), "space": list(SPACE_AXES), "body": list(BODY_AXES)})
     ds["precession0"] = ("orbit", np.array(psi, dtype=float))

@@ -128,7 +128,7 @@ def ep_taylor_tangent_jet(x, w, order, q):
 
 
 def ep_taylor_attitude_jet(x, w, order, q):
-    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I G)/2, scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet ``x``."""
+    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I^-1 G)/2, scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet ``x``."""
     q0 = q[0]
     q1 = q[1]
     q2 = q[2]

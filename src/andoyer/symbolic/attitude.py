@@ -10,8 +10,8 @@ them numerically):
   principal axes of the paper (``G``, ``gamma``, ``r`` have body components);
 * the vertical is fixed in space, so ``gamma = R^T e_Z``.
 
-Kinematics. With ``omega = dH/dG = I G`` the body angular velocity (``I`` =
-``diag(a, b, c)``, Eq. (1)), ``dR/dt = R [omega]_x``, which for the quaternion is
+Kinematics. With ``omega = dH/dG = I^-1 G`` the body angular velocity (``I`` the inertia tensor,
+``I^-1 = diag(a, b, c)``, Eq. (1)), ``dR/dt = R [omega]_x``, which for the quaternion is
 
 .. math:: \dot q = \tfrac12\, q \otimes (0, \boldsymbol\omega),
 

@@ -1,6 +1,6 @@
 """Every Hamiltonian and every equation of motion, derived from one H with SymPy.
 
-``H = (G, I G)/2 + mu (r, gamma)`` comes from
+``H = (G, I^-1 G)/2 + mu (r, gamma)`` comes from
 :func:`andoyer.charts.euler_poisson.hamiltonian_expr` (the one source); each chart's
 Hamiltonian is that expression composed with the chart map, and each vector field is
 obtained by differentiation:

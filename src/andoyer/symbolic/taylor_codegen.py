@@ -73,7 +73,7 @@ def tangent_terms() -> list[list[tuple[tuple[int, ...], sp.Expr]]]:
 
 
 def attitude_terms() -> list[list[tuple[tuple[int, ...], sp.Expr]]]:
-    """For each component of ``dq/dt = q (x) (0, I G) / 2``
+    """For each component of ``dq/dt = q (x) (0, I^-1 G) / 2``
     (:func:`andoyer.symbolic.attitude.attitude_field`): terms as :func:`field_terms`,
     exponents over ``(*S.y, *Q)`` (bilinear in ``(G, q)``)."""
     rows = att.attitude_field()[len(S.y):]
@@ -329,7 +329,7 @@ def generate_taylor_source() -> str:
     tangent_loop = _poly_jet_body(tangent_terms(), w_access, "w[k + 1, {i}]", q)
     q_access = [*y_access, *(f"w[{{j}}, {i}]" for i in range(len(att.Q)))]
     attitude = ["def ep_taylor_attitude_jet(x, w, order, q):",
-                '    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I G)/2, '
+                '    """Jet of the attitude quaternion ``w[:, 0:4]`` (dq/dt = q (x) (0, I^-1 G)/2, '
                 'scalar first): ``w[1 .. order, 0:4]`` from ``w[0]``, along the full jet '
                 '``x``."""']
     attitude_loop = _poly_jet_body(attitude_terms(), q_access, "w[k + 1, {i}]", q)

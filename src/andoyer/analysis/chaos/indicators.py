@@ -2,7 +2,7 @@
 
 All three come from one integration of the Euler-Poisson equations (1) with their
 first-order variational equations (:mod:`andoyer.integrate.variational`, derived from
-``H = (G, IG)/2 + mu (r, gamma)``: by heyoka's ``var_ode_sys``; for
+``H = (G, I^-1 G)/2 + mu (r, gamma)``: by heyoka's ``var_ode_sys``; for
 ``engine="taylor"``, the default where heyoka is not installed, by the Taylor jets of the
 same SymPy field in Numba; for ``engine="numba"`` by SymPy's Jacobian on the Numba
 DOP853), for a tangent vector ``w`` with ``w(0) = w0``, ``|w0| = 1``:

@@ -1,7 +1,7 @@
 """Every formula the paper prints, encoded literally and checked against the derivation.
 
 Each :class:`Formula` holds the paper's expression typed as printed (misprints
-included), the expression derived by this package from ``H = (G, IG)/2 + mu (r,
+included), the expression derived by this package from ``H = (G, I^-1 G)/2 + mu (r,
 gamma)`` (the generated kernels), and -- where the two disagree -- a corrected form
 that is itself checked against the derivation. :func:`paper_check` evaluates them at
 many random points (random bodies of the stated family, random regular states) and

@@ -15,7 +15,7 @@ angles ``z-x-z``).
   :func:`andoyer.charts.rotation.euler_angles`) or sampled too sparsely to unwrap
   ``psi`` (a step above ``pi/2``) has NaN rate and says so in its flags.
 * :func:`herpolhode`: the free top (``mu = 0``): the angular velocity in space,
-  ``R I G``, whose tip moves on the invariable plane ``(omega, L) = 2T`` with ``L = R G``
+  ``R I^-1 G``, whose tip moves on the invariable plane ``(omega, L) = 2T`` with ``L = R G``
   fixed (Poinsot); its coordinates in that plane and its distance ``2T/|L|``.
 * :func:`heteroclinic_cycle`: the Hess case at ``M = 0`` (and bodies turned off the Hess
   direction, from the separatrices of their nearest Hess body). On the Hess relation (3)
@@ -60,7 +60,7 @@ from andoyer.validation import positive as _positive
 __all__ = ["AXES", "axis_trace", "precession_nutation", "herpolhode", "heteroclinic_cycle"]
 
 #: Named body axes of :func:`axis_trace` (``centre_of_mass`` is ``r``, ``momentum`` is
-#: ``G/|G|``, ``angular_velocity`` is ``I G / |I G|``; the last two move in the body).
+#: ``G/|G|``, ``angular_velocity`` is ``I^-1 G / |I^-1 G|``; the last two move in the body).
 AXES = ("x", "y", "z", "centre_of_mass", "momentum", "angular_velocity")
 
 _STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
@@ -110,7 +110,7 @@ def axis_trace(ds: xr.Dataset, axis: str = "z") -> xr.Dataset:
         An attitude dataset (:func:`andoyer.integrate.attitude`).
     axis : {"x", "y", "z", "centre_of_mass", "momentum", "angular_velocity"}
         The body axis: a principal axis, the direction ``r`` of the centre of mass, or
-        the (moving) directions of ``G`` and of ``omega = I G``.
+        the (moving) directions of ``G`` and of ``omega = I^-1 G``.
 
     Returns
     -------
@@ -247,7 +247,7 @@ def herpolhode(ds: xr.Dataset) -> xr.Dataset:
     Returns
     -------
     xarray.Dataset
-        ``omega_space`` (``R I G``), ``polhode`` (``I G``, body frame), ``herpolhode``
+        ``omega_space`` (``R I^-1 G``), ``polhode`` (``I^-1 G``, body frame), ``herpolhode``
         (dim ``plane`` = u, v: the tip of ``R omega`` in the invariable plane, ``u``
         along ``Z x L`` or ``X`` where ``L`` is vertical, ``v = L x u / |L|``),
         ``plane_distance`` (``(R omega, L)/|L| = 2T/|L|``, constant) and

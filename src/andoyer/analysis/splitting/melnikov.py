@@ -59,7 +59,7 @@ It vanishes identically on ``theta1 = 0`` (the Hess solutions, which do not spli
 ``7.4e-5 mu`` for the paper's body (``rho = 4.564``, ``pi rho / sinh(pi rho) = 1.7e-5``).
 
 The numerical route evaluates ``{E, H1} = grad E . X_{H1}`` in the Euler-Poisson
-variables (``grad E = I G - c G``; ``X_{H1}`` the field (1) of ``mu = 1`` minus that of
+variables (``grad E = I^-1 G - c G``; ``X_{H1}`` the field (1) of ``mu = 1`` minus that of
 ``mu = 0``) along the states of :func:`~andoyer.analysis.unperturbed.separatrix.heteroclinic` and
 integrates with the trapezoidal rule on the real line, which converges geometrically for
 this integrand (analytic in a strip, decaying exponentially) [2]_; ``method="quad"``
@@ -169,7 +169,7 @@ def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
 def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     """``{E, H1}(y) = (grad E, X_{H1})`` in the Euler-Poisson variables, shape ``(...)``.
 
-    ``E = H0 - c |G|^2/2`` so ``grad_G E = I G - c G``, ``grad_gamma E = 0``;
+    ``E = H0 - c |G|^2/2`` so ``grad_G E = I^-1 G - c G``, ``grad_gamma E = 0``;
     ``X_{H1}`` is the Lie-Poisson field (1) of ``H1 = (r, gamma)``, the difference of the
     fields at ``mu = 1`` and ``mu = 0`` (the field is affine in ``mu``).
 

@@ -181,7 +181,7 @@ class PermanentRotation:
     inertia_rank : {"major", "middle", "minor"}
         Largest, middle or smallest moment of inertia.
     eigenvalues : tuple of 2 complex
-        Of the Euler equations ``dG/dt = G x I G`` linearised on the sphere
+        Of the Euler equations ``dG/dt = G x I^-1 G`` linearised on the sphere
         ``|G| = G0`` (the regular route).
     eigenvalues_closed : tuple of 2 complex
         ``+-G0 sqrt(-(I_k - I_i)(I_k - I_j))``.

@@ -59,7 +59,7 @@ and knows nothing of datasets, charts or bodies.
 ``_attitude(z0, t, par, tolerance)`` (for ``ATTITUDE``)
     ``z0`` (n, 10): the state with the attitude quaternion ``(G, gamma, q0, q1, q2, q3)``
     (scalar first, body -> space, :mod:`andoyer.charts.rotation`); integrates (1) with
-    ``dq/dt = q (x) (0, omega) / 2``, ``omega = I G`` (the SymPy field
+    ``dq/dt = q (x) (0, omega) / 2``, ``omega = I^-1 G`` (the SymPy field
     :func:`andoyer.symbolic.attitude.attitude_field`, generated as
     :func:`andoyer.kernels.generated.attitude_field`; for Taylor methods its jet,
     ``ep_taylor_attitude_jet``), ``t`` as for ``_propagate``.

@@ -263,7 +263,7 @@ def attitude_vars() -> tuple[Any, ...]:
 
 @cache
 def attitude_system() -> tuple[tuple[Any, Any], ...]:
-    """(1) with ``dq/dt = q (x) (0, I G) / 2`` as heyoka ``(variable, rhs)`` pairs, from
+    """(1) with ``dq/dt = q (x) (0, I^-1 G) / 2`` as heyoka ``(variable, rhs)`` pairs, from
     :func:`andoyer.symbolic.attitude.attitude_field` (scalar-first quaternion, body ->
     space)."""
     from andoyer.symbolic.attitude import Q, attitude_field
