@@ -94,7 +94,7 @@ RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerPoissonEquilibrium",
            "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus"}
 #: Public names that take no user input worth hunting (documented acceptance).
 NO_INPUT = {"derive_reduced_hamiltonian": "no arguments (a SymPy derivation)",
-            "paper_check": "n and seed are hunted in tests/analysis/test_paper_check.py"}
+            "paper_check": "n and seed are hunted in tests/analysis/paper/test_paper_check.py"}
 
 
 def _public_modules():

@@ -2,7 +2,7 @@
 
 Routes: by construction the free top (mu = 0, integrable) has no chaotic cell (its own
 grid is the reference); a heavy Hess body has a wide chaotic layer (as the FLI maps of
-tests/analysis/test_chaos.py show); the layer measure on synthetic masks; the Hess line
+tests/analysis/chaos/test_indicators.py show); the layer measure on synthetic masks; the Hess line
 of a turned body at 2 epsilon in its chart.
 """
 

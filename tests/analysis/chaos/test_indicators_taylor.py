@@ -25,7 +25,7 @@ from andoyer.integrate.engines.lazy import heyoka_available
 
 PAPER = RigidBody.paper()
 TORUS = [0.3, 0.0, 0.3, 1.0, 0.0]  # Andoyer chart
-#: As tests/analysis/test_chaos.py: a Hess body with a wide chaotic layer at h = mu, one
+#: As tests/analysis/chaos/test_indicators.py: a Hess body with a wide chaotic layer at h = mu, one
 #: state in the layer and one on an invariant torus (Hess chart).
 CHAOTIC_BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
 CHAOTIC = [0.2617993877991494, 0.0, 1.0103629710818451, 1.712575169922734, 0.0]
