@@ -1,6 +1,7 @@
 """``python -m benchmarks [--quick]``: run the side-by-side benchmarks.
 
-Writes ``benchmarks/results.json`` and ``benchmarks/RESULTS.md`` (or into ``--out``).
+Writes ``benchmarks/results.json``, ``RESULTS.md`` and ``SUMMARY.md`` (or into ``--out``);
+``--tables`` rewrites the tables from ``results.json`` without running.
 """
 
 from __future__ import annotations
@@ -9,7 +10,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from benchmarks.harness import run
+from benchmarks.harness import regenerate, run
 
 RUNNERS = ("andoyer heyoka", "andoyer numba", "andoyer taylor", "andoyer scipy",
            "heyoka plain",
@@ -35,7 +36,14 @@ def main(argv: list[str] | None = None) -> int:
                     help="W4: skip the cold-cache processes (Numba compiles for ~15 s)")
     ap.add_argument("--out", type=Path, default=None,
                     help="directory for results.json and RESULTS.md (default: benchmarks/)")
+    ap.add_argument("--tables", action="store_true",
+                    help="run nothing: rewrite RESULTS.md, SUMMARY.md and the README's block "
+                         "from results.json (after a change of the tables or of the "
+                         "defaults they state)")
     args = ap.parse_args(argv)
+    if args.tables:
+        regenerate(args.out)
+        return 0
     workloads = tuple(w.strip().upper() for w in args.workloads.split(",") if w.strip())
     bad = [w for w in workloads if w not in ("W1", "W2", "W3", "W4", "W5", "S")]
     runners = None

@@ -649,16 +649,55 @@ def summary(result: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: The benchmark workloads as :data:`andoyer.integrate.engines.WORKLOADS` names them.
+def workload_key(workload: str, case: str) -> str | None:
+    """The :data:`~andoyer.integrate.engines.WORKLOADS` name of a benchmark row (W1 the
+    orbit, W2 a section of a state component or of an angle, W3 the FLI map)."""
+    if workload == "W1":
+        return "orbit"
+    if workload == "W2":
+        return "angle_section" if "theta" in case or " g = " in case else "component_section"
+    if workload == "W3":
+        return "fli_map"
+    return None
+
+
+def default_engines(key: str) -> tuple[str, str]:
+    """The engine ``engine=None`` runs for workload ``key``: where heyoka is installed
+    (:data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`, else heyoka) and without it
+    (the first of :data:`~andoyer.integrate.engines.FALLBACK_DEFAULTS` with the capability
+    the workload needs), read from the library, not from the measurements."""
+    from andoyer.integrate.engines import (
+        FALLBACK_DEFAULTS,
+        MEASURED_DEFAULTS,
+        Capability,
+        engine_class,
+    )
+
+    need = {"orbit": Capability.PROPAGATE, "fli_map": Capability.TANGENT}.get(
+        key, Capability.CROSSINGS)
+    without = next((n for n in FALLBACK_DEFAULTS if need in engine_class(n).capabilities),
+                   FALLBACK_DEFAULTS[-1])
+    return MEASURED_DEFAULTS.get(key, "heyoka"), without
+
+
+#: The header of the generated table (a test of the docs finds the table by it).
+ADVICE_HEADER = ("| workload | default with heyoka | fastest with heyoka | "
+                 "default without heyoka | fastest without heyoka |")
+
+
 def engine_advice(rows: list[Row]) -> list[str]:
-    """**Which engine for what**, from the measurements: per workload, the fastest of
-    andoyer's engines (wall time) with heyoka installed and without it, and by how much."""
+    """**Which engine for what**: per workload, the engine ``engine=None`` runs (from
+    :data:`andoyer.integrate.engines.MEASURED_DEFAULTS`) beside the fastest of andoyer's
+    engines in the measurements (wall time), with heyoka installed and without it."""
     engines = {"andoyer heyoka": "heyoka", "andoyer taylor": "taylor",
                "andoyer numba": "numba", "andoyer scipy": "scipy"}
-    out = ["", "**Which engine for what** (generated from the rows above: the fastest of "
-           "andoyer's engines by wall time, the next one's time over it; where heyoka is "
-           "installed a workload's default moves off heyoka only for more than 10 %: "
-           "`andoyer.integrate.engines.MEASURED_DEFAULTS`):", "",
-           "| workload | with heyoka installed | without heyoka |", "|---|---|---|"]
+    out = ["", "**Which engine for what**: the default is what `engine=None` runs "
+           "(`andoyer.integrate.engines.MEASURED_DEFAULTS`, set from these measurements: "
+           "where heyoka is installed a workload's default moves off heyoka only when "
+           "another engine is faster by more than 10 %); the fastest is the fastest of "
+           "andoyer's engines by wall time in the rows above, with the next one's time "
+           "over it:", "", ADVICE_HEADER, "|---|---|---|---|---|"]
     cases = dict.fromkeys((r.workload, r.case) for r in rows if r.workload in ("W1", "W2", "W3")
                           and r.note != "timed once")
 
@@ -675,9 +714,11 @@ def engine_advice(rows: list[Row]) -> list[str]:
 
     for wl, case in cases:
         mine = [r for r in rows if (r.workload, r.case) == (wl, case) and r.runner in engines]
-        if not mine:
+        key = workload_key(wl, case)
+        if not mine or key is None:
             continue
-        out.append(f"| {wl}: {case} | {pick(mine)} | "
+        with_heyoka, without = default_engines(key)
+        out.append(f"| {wl}: {case} | {with_heyoka} | {pick(mine)} | {without} | "
                    f"{pick([r for r in mine if r.runner != 'andoyer heyoka'])} |")
     return out if len(out) > 5 else []
 
@@ -695,6 +736,29 @@ def update_readme(text: str, path: Path) -> bool:
     tmp.write_text(old[:i + len(README_START)] + "\n" + text + old[j:])
     tmp.replace(path)
     return True
+
+
+def regenerate(out_dir: Path | None = None) -> dict[str, Any]:
+    """Rewrite ``RESULTS.md``, ``SUMMARY.md`` (and the README's block, for the full run in
+    ``benchmarks/``) from ``results.json`` without running anything: for a change of the
+    tables' text or of the defaults they state."""
+    out_dir = Path(__file__).parent if out_dir is None else Path(out_dir)
+    result = json.loads((out_dir / "results.json").read_text())
+    write_tables(result, out_dir)
+    return result
+
+
+def write_tables(result: dict[str, Any], out_dir: Path) -> None:
+    """``RESULTS.md`` and ``SUMMARY.md`` of ``result`` into ``out_dir``; the README's block
+    too after a full run of W1-W3 into ``benchmarks/``."""
+    for name, text in (("RESULTS.md", markdown(result)), ("SUMMARY.md", summary(result))):
+        tmp = out_dir / (name + ".tmp")
+        tmp.write_text(text)
+        tmp.replace(out_dir / name)
+    workloads = set(result["meta"].get("args", {}).get("workloads", ()))
+    if result["meta"]["mode"] == "full" and out_dir == Path(__file__).parent and \
+            workloads >= {"W1", "W2", "W3"}:
+        update_readme(summary(result), out_dir.parent / "README.md")
 
 
 def run(quick: bool = False,
@@ -738,11 +802,8 @@ def run(quick: bool = False,
     out_dir.mkdir(parents=True, exist_ok=True)
     if scaling:
         S.plot(scaling, out_dir / "scaling.png")
-    for name, text in (("results.json", json.dumps(result, indent=1, default=float)),
-                       ("RESULTS.md", markdown(result)), ("SUMMARY.md", summary(result))):
-        tmp = out_dir / (name + ".tmp")
-        tmp.write_text(text)
-        tmp.replace(out_dir / name)
-    if not quick and out_dir == Path(__file__).parent and set(workloads) >= {"W1", "W2", "W3"}:
-        update_readme(summary(result), out_dir.parent / "README.md")
+    tmp = out_dir / "results.json.tmp"
+    tmp.write_text(json.dumps(result, indent=1, default=float))
+    tmp.replace(out_dir / "results.json")
+    write_tables(result, out_dir)
     return result
