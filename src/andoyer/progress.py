@@ -2,7 +2,10 @@
 
 Shown on stderr when it is a terminal (or in a notebook), hidden otherwise, unless the
 caller says ``enabled=True`` or ``False``: the ``progress=`` keyword of the public
-functions.
+functions. Asked for (``enabled=True``, as the commands do) where stderr is a pipe or a
+log file, a bar's redraws would pile up there: plain lines take its place, ``[k/n] label:
+p %, t s``, one per tenth of the work at most every few seconds, and one when it ends
+(:func:`plain_line`).
 
 Examples
 --------
@@ -24,13 +27,17 @@ from __future__ import annotations
 import importlib.util
 import sys
 import threading
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from functools import cache
 from typing import Any
 
-__all__ = ["Progress", "silenced", "close_all"]
+__all__ = ["Progress", "silenced", "close_all", "plain_line", "on_terminal"]
+
+#: Seconds between two plain lines of one bar (the last one is always printed).
+PLAIN_INTERVAL_S = 5.0
 
 #: True inside :func:`silenced`: every new bar is hidden.
 _SILENCED: ContextVar[bool] = ContextVar("andoyer_progress_silenced", default=False)
@@ -44,6 +51,35 @@ def silenced() -> Iterator[None]:
         yield
     finally:
         _SILENCED.reset(token)
+
+
+def on_terminal() -> bool:
+    """Whether a bar can redraw itself: stderr is a terminal, or this is a notebook."""
+    if "ipykernel" in sys.modules:
+        return True
+    isatty = getattr(sys.stderr, "isatty", None)
+    return bool(isatty and isatty())
+
+
+def plain_line(done: int, total: int, label: str, seconds: float) -> str:
+    """The line a bar prints in place of a redraw where stderr is no terminal.
+
+    Parameters
+    ----------
+    done, total : int
+        Units done, and in all.
+    label : str
+        What the bar counts.
+    seconds : float
+        Time since the bar started.
+
+    Examples
+    --------
+    >>> plain_line(3, 12, "chaos map", 4.25)
+    '[3/12] chaos map: 25 %, 4.2 s'
+    """
+    pct = 100.0 * done / total if total else 100.0
+    return f"[{done}/{total}] {label}: {pct:.0f} %, {seconds:.1f} s"
 
 
 @cache
@@ -81,19 +117,32 @@ class Progress:
             # andoyer need a thread lock only.
             tqdm.set_lock(threading.RLock())
         self.total, self.done = int(total), 0
+        self.label = label
         if _SILENCED.get():
             enabled = False
+        #: Plain lines instead of a bar: asked for, where stderr is a pipe or a file.
+        self.plain = enabled is True and not on_terminal()
+        if self.plain:
+            enabled = False
+        self._t0 = self._last = time.perf_counter()
+        self._tenth = 0
         # tqdm's disable=None hides the bar when the stream is not a terminal.
         self._bar: Any = tqdm(total=self.total, desc=label, file=sys.stderr, initial=initial,
                               disable=None if enabled is None else not enabled,
                               mininterval=0.5, unit="", dynamic_ncols=True,
                               postfix=postfix)
-        self.enabled = not self._bar.disable
+        self.enabled = not self._bar.disable or self.plain
 
     def update(self, k: int = 1) -> None:
         """``k`` more units done."""
         self.done += k
         self._bar.update(k)
+        if self.plain and self.total and self.done < self.total:
+            tenth = 10 * self.done // self.total
+            now = time.perf_counter()
+            if tenth > self._tenth and now - self._last >= PLAIN_INTERVAL_S:
+                self._tenth, self._last = tenth, now
+                self.write(plain_line(self.done, self.total, self.label, now - self._t0))
 
     def write(self, line: str) -> None:
         """Print ``line`` on stderr above the bar (also when the bar is hidden)."""
@@ -109,7 +158,11 @@ class Progress:
             self._bar.refresh()
 
     def close(self) -> None:
-        """End the bar (its line stays)."""
+        """End the bar (its line stays; a plain bar prints its last line once)."""
+        if self.plain:
+            self.plain = False
+            self.write(plain_line(self.done, self.total, self.label,
+                                  time.perf_counter() - self._t0))
         self._bar.close()
 
     def __enter__(self) -> Progress:

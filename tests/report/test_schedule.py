@@ -1,4 +1,4 @@
-"""The report's run: progress in report order, no stray output, no worker left behind."""
+"""The report's run: progress as items finish, no stray output, no worker left behind."""
 
 from __future__ import annotations
 
@@ -17,18 +17,37 @@ from andoyer.report.paper import ITEMS, build_paper
 ONLY = ["fig2", "heteroclinic", "paper-check"]
 
 
-def test_items_announced_in_report_order(tmp_path, capsys):
+def test_items_announced_as_they_finish(tmp_path, capsys):
     """With two processes the worker's item (fig2, the longest, started first) finishes
-    after the two short ones built here: the lines still come in report order."""
+    after the two short ones built here: each line comes as its item ends, counting the
+    items done, with its time; the report keeps its own order."""
     build_paper(tmp_path / "p", quick=True, only=ONLY, jobs=2, progress=True)
     err = capsys.readouterr().err
     lines = err.splitlines()
-    items = [line for line in lines if line.startswith("[")]
-    titles = [i.title for i in ITEMS if i.key in ONLY]
-    assert items == [f"[{k + 1}/3] {t} ... " + line.rsplit(" ... ", 1)[1]
-                     for k, (t, line) in enumerate(zip(titles, items, strict=True))]
+    items = [line for line in lines if re.match(r"\[\d/3\] ", line)]
+    titles = {i.key: i.title for i in ITEMS if i.key in ONLY}
+    assert [line[:6] for line in items] == ["[1/3] ", "[2/3] ", "[3/3] "]
+    assert all(re.search(r" \.\.\. \d+\.\d s$", line) for line in items), items
+    assert items[-1].startswith(f"[3/3] {titles['fig2']} ... "), items  # finished last
     assert "" not in lines  # no stray blank line when stderr is not a terminal
     assert lines[-1].startswith("wrote ")
+    html = (tmp_path / "p" / "index.html").read_text()
+    at = [html.find(titles[k]) for k in ONLY]
+    assert all(x >= 0 for x in at) and at == sorted(at)  # the report in its order
+
+
+def test_a_plain_line_names_the_items_running(monkeypatch):
+    """Without a terminal a line names the items still running (and for how long)."""
+    from andoyer.report import schedule
+
+    a = schedule.Announcer([i for i in ITEMS if i.key in ONLY], enabled=True)
+    try:
+        item = next(i for i in ITEMS if i.key == "fig2")
+        a.start(item)
+        line = a.heartbeat(a.running["fig2"] + 42.0)
+        assert line.startswith("[0/3] andoyer paper: running fig2 (42 s)"), line
+    finally:
+        a.close()
 
 
 def _children(pid: int) -> set[int]:
@@ -108,8 +127,8 @@ def test_sigterm_leaves_no_worker(tmp_path):
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="needs a pty")
 @pytest.mark.timeout(240)
 def test_progress_bar_in_a_terminal(tmp_path):
-    """In a terminal: the bar shows before the first item is done, item lines follow in
-    report order, and no line is blank."""
+    """In a terminal: the bar shows before the first item is done, item lines follow as
+    items finish (one process: in the order built), and no line is blank."""
     import pty
 
     cmd = [sys.executable, "-m", "andoyer", "paper", "--out", str(tmp_path / "p"),

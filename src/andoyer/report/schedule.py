@@ -2,8 +2,10 @@
 (:class:`concurrent.futures.ProcessPoolExecutor`), longest first, with one progress bar.
 
 Each worker takes the next item as it frees up and so does this process, so the
-workers' start-up (their imports, about 2 s) overlaps the first item here. Items are
-announced in the report's order whatever order they finish in. Figures are drawn on
+workers' start-up (their imports, about 2 s) overlaps the first item here. Each item is
+announced as it finishes, with its time (the report keeps its own order); on a terminal a
+bar names the items running, elsewhere (a pipe, a log) a plain line does every
+:data:`HEARTBEAT_S` while items run. Figures are drawn on
 each process's main thread (matplotlib is not thread-safe). On every way out (an error,
 Ctrl-C, SIGTERM turned into an exception) the pool is shut down with its queued items
 cancelled and its workers terminated; a worker also ends when this process dies
@@ -19,24 +21,28 @@ import sys
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Any
 
 from andoyer.processes import child_signals, children_ignore_interrupts
-from andoyer.progress import Progress, silenced
+from andoyer.progress import Progress, on_terminal, silenced
 from andoyer.report.base import Context, Item, Result
 
 __all__ = ["run_items", "Announcer"]
 
 #: Seconds between redraws of the bar while items run (its clock keeps moving).
 _TICK_S = 1.0
+#: Seconds between the plain lines naming the items still running (no terminal).
+HEARTBEAT_S = 30.0
 #: Seconds a terminated worker gets to end before it is killed.
 _GRACE_S = 5.0
 
 
 class Announcer:
-    """The report's progress: a bar of items (on a terminal) with the items running now,
-    and one line per item, in report order, on stderr.
+    """The report's progress: one line per item as it finishes (``[k/n] title ... t s``,
+    ``k`` items done so far) on stderr; on a terminal a bar of items naming those running,
+    elsewhere a plain line naming them every :data:`HEARTBEAT_S`.
 
     Parameters
     ----------
@@ -55,36 +61,46 @@ class Announcer:
         self.items = list(items)
         self.enabled = enabled
         self.bar = Progress(len(self.items), "andoyer paper",
-                            enabled=None if enabled else False)
-        self.running: list[str] = []
+                            enabled=bool(enabled and on_terminal()))
+        self.running: dict[str, float] = {}
         self.seconds: dict[str, float] = {}
-        self._next = 0
+        self.order: list[str] = []  # the items in the order they finished
+        self._t0 = time.perf_counter()
         self._stop = threading.Event()
         self._ticker = threading.Thread(target=self._tick, daemon=True)
-        if self.bar.enabled:
+        if self.bar.enabled or enabled:
             self._ticker.start()
 
     def _tick(self) -> None:
+        last = time.perf_counter()
         while not self._stop.wait(_TICK_S):
-            self.bar.refresh()
+            if self.bar.enabled:
+                self.bar.refresh()
+            elif time.perf_counter() - last >= HEARTBEAT_S and self.running:
+                last = time.perf_counter()
+                self.bar.write(self.heartbeat(last))
+
+    def heartbeat(self, now: float) -> str:
+        """The plain line naming the items running at ``now`` (perf_counter seconds)."""
+        names = ", ".join(f"{key} ({now - t:.0f} s)" for key, t in self.running.items())
+        return (f"[{len(self.seconds)}/{len(self.items)}] andoyer paper: running {names}; "
+                f"{now - self._t0:.0f} s in all")
 
     def start(self, item: Item) -> None:
         """``item`` starts."""
-        self.running.append(item.key)
+        self.running[item.key] = time.perf_counter()
         self.bar.describe(", ".join(self.running))
 
     def finish(self, item: Item, seconds: float) -> None:
-        """``item`` is done: count it; announce every item done up to the first not done."""
-        self.running.remove(item.key)
+        """``item`` is done: count it and announce it, with its time."""
+        self.running.pop(item.key, None)
         self.seconds[item.key] = seconds
+        self.order.append(item.key)
         self.bar.update(1)
         self.bar.describe(", ".join(self.running))
-        while self._next < len(self.items) and self.items[self._next].key in self.seconds:
-            done = self.items[self._next]
-            self._next += 1
-            if self.enabled:
-                self.bar.write(f"[{self._next}/{len(self.items)}] {done.title} ... "
-                               f"{self.seconds[done.key]:.1f} s")
+        if self.enabled:
+            self.bar.write(f"[{len(self.seconds)}/{len(self.items)}] {item.title} ... "
+                           f"{seconds:.1f} s")
 
     def close(self) -> None:
         """End the bar and its clock."""
@@ -149,13 +165,18 @@ def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
     announcer = Announcer(items, progress)
     out: dict[str, tuple[Result, float]] = {}
 
-    def record(item: Item, res: Result, seconds: float) -> None:
+    def here(item: Item) -> None:
+        announcer.start(item)
+        res, seconds = _build_item(item, ctx)
         out[item.key] = (res, seconds)
         announcer.finish(item, seconds)
 
-    def here(item: Item) -> None:
-        announcer.start(item)
-        record(item, *_build_item(item, ctx))
+    def announce(item: Item) -> Callable[[Future[tuple[Result, float]]], None]:
+        # a worker's item is announced when it ends, also while this process builds one
+        def done(f: Future[tuple[Result, float]]) -> None:
+            if not f.cancelled() and f.exception() is None:
+                announcer.finish(item, f.result()[1])
+        return done
 
     try:
         if jobs <= 1:
@@ -175,15 +196,17 @@ def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
             while queue or running:
                 while queue and len(running) < jobs - 1:
                     item = queue.popleft()
-                    running[pool.submit(_build_item, item, ctx)] = item
+                    future = pool.submit(_build_item, item, ctx)
+                    running[future] = item
                     announcer.start(item)
+                    future.add_done_callback(announce(item))
                 if queue:
                     here(queue.popleft())
                     finished = {f for f in running if f.done()}
                 else:
                     finished, _ = wait(running, return_when=FIRST_COMPLETED)
                 for f in finished:
-                    record(running.pop(f), *f.result())
+                    out[running.pop(f).key] = f.result()
             pool.shutdown(wait=True)
         finally:
             pool.shutdown(wait=False, cancel_futures=True)
