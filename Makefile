@@ -12,7 +12,12 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 
+# The main job needs andoyer and its dependencies only; the test tools come with `make test`.
 $(VENV)/.installed: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install -q -e .
+	touch $@
+
+$(VENV)/.test: pyproject.toml | $(VENV)/.installed
 	$(BIN)/python -m pip install -q -e ".[test]"
 	touch $@
 
@@ -21,7 +26,7 @@ install: $(VENV)/.installed
 run: install
 	$(BIN)/andoyer paper
 
-test: install
+test: $(VENV)/.test
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
 	$(BIN)/lint-imports
@@ -29,16 +34,17 @@ test: install
 
 # The documentation site (notebooks executed; any warning or failed cell fails it).
 $(VENV)/.docs: pyproject.toml | $(VENV)/.installed
-	$(BIN)/python -m pip install -q -e ".[test,docs]"
+	$(BIN)/python -m pip install -q -e ".[docs]"
 	touch $@
 
 # Offline by default (ANDOYER_DOCS_ONLINE=1 adds the links to Python, NumPy, ...). The
-# pages are read once (the doctest builder reuses the html builder's doctrees) and the
-# executed notebooks are cached in docs/_build/.jupyter_cache between builds.
+# pages are read once (the doctest builder reuses the html builder's doctrees) and
+# incrementally: a build with nothing changed reads nothing and takes seconds (the
+# executed notebooks are cached in docs/_build/.jupyter_cache, a change of andoyer's
+# sources runs them again). -q: only warnings and errors in the log.
 docs: $(VENV)/.docs
-	rm -rf docs/_build/html docs/_build/doctest docs/_build/doctrees docs/api/generated
-	$(BIN)/python -m sphinx -W --keep-going -d docs/_build/doctrees -b html docs docs/_build/html
-	$(BIN)/python -m sphinx -W --keep-going -d docs/_build/doctrees -b doctest docs docs/_build/doctest
+	$(BIN)/python -m sphinx -q -W --keep-going -d docs/_build/doctrees -b html docs docs/_build/html
+	$(BIN)/python -m sphinx -q -W --keep-going -d docs/_build/doctrees -b doctest docs docs/_build/doctest
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info docs/_build docs/api/generated .jupyter_cache

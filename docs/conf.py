@@ -47,12 +47,30 @@ nb_execution_timeout = 300
 nb_execution_show_tb = True
 
 
+# Figures: one mechanism for every notebook. Each kernel starts with
+# docs/_ext/notebook_figures.py (IPython's start-up file, in an IPython folder of the
+# build), on Agg: every figure a cell creates is shown once as a PNG, never as
+# "<Figure size ...>" text (tests/test_docs_site.py checks the built pages).
+NOTEBOOK_STARTUP = ROOT / "docs" / "_ext" / "notebook_figures.py"
+_IPYTHON_DIR = ROOT / "docs" / "_build" / ".ipython"
+(_IPYTHON_DIR / "profile_default" / "startup").mkdir(parents=True, exist_ok=True)
+_startup = _IPYTHON_DIR / "profile_default" / "startup" / "00-figures.py"
+if not _startup.exists() or _startup.read_bytes() != NOTEBOOK_STARTUP.read_bytes():
+    _startup.write_bytes(NOTEBOOK_STARTUP.read_bytes())
+# the kernels' own log (a warning per kernel about its local TCP transport) kept out
+(_IPYTHON_DIR / "profile_default" / "ipython_kernel_config.py").write_text(
+    "c.IPKernelApp.log_level = 'ERROR'\n")
+os.environ["IPYTHONDIR"] = str(_IPYTHON_DIR)
+os.environ["MPLBACKEND"] = "agg"
+
+
 def _source_stamp() -> str:
     """A hash of the andoyer sources (and pyproject.toml) the notebooks run against."""
     import hashlib
 
     digest = hashlib.sha256()
-    files = sorted((ROOT / "src" / "andoyer").rglob("*.py")) + [ROOT / "pyproject.toml"]
+    files = sorted((ROOT / "src" / "andoyer").rglob("*.py")) + [ROOT / "pyproject.toml",
+                                                                 NOTEBOOK_STARTUP]
     for path in files:
         digest.update(str(path.relative_to(ROOT)).encode())
         digest.update(path.read_bytes())
@@ -70,8 +88,16 @@ if _CACHE_ROOT.is_dir():
         if _old.is_dir() and str(_old) != nb_execution_cache_path:
             shutil.rmtree(_old, ignore_errors=True)
 
-# API reference: one page per public module, generated from the docstrings.
+# API reference: one page per public module, generated from the docstrings (rewritten
+# only when their text changes, so an incremental build re-reads none); the page of a
+# module that no longer exists is removed (its import would fail the build).
 autosummary_generate = True
+_GENERATED = ROOT / "docs" / "api" / "generated"
+for _page in _GENERATED.glob("andoyer*.rst") if _GENERATED.is_dir() else ():
+    _parts = _page.stem.split(".")
+    _path = ROOT / "src" / Path(*_parts)
+    if not (_path.with_suffix(".py").exists() or (_path / "__init__.py").exists()):
+        _page.unlink()
 autosummary_imported_members = False
 
 

@@ -267,10 +267,17 @@ class RigidBody:
         ----------
         A, B, C : float
             Principal moments with ``A > C > B``.
-        mu : float
-            Weight times distance to the centre of mass.
+        mu : float, default 0
+            Weight times distance to the centre of mass (``mu >= 0``).
         branch : {+1, -1}
             Sign choice in (2); +1 gives the paper's ``phi0`` in (0, pi/2).
+        name : str, default "hess"
+            A label carried into the provenance of results.
+
+        Examples
+        --------
+        >>> round(RigidBody.hess(A=2.5, B=2.0, C=2.2, mu=0.01).phi0, 6)
+        0.739881
         """
         A = _finite_positive("A", A)
         B = _finite_positive("B", B)
@@ -307,6 +314,22 @@ class RigidBody:
         O(epsilon^2)`` (branch +1, ``sin 2 phi0 = 2 sigma / (b - a)``), so an orbit
         started on ``(G, r) = 0`` leaves it linearly in time (``e3 != 0`` adds
         ``e3 (b - a) G1 G2``).
+
+        Parameters
+        ----------
+        A, B, C : float
+            Principal moments with ``A > C > B`` (those of the Hess body turned).
+        mu : float, default 0
+            Weight times distance to the centre of mass (``mu >= 0``).
+        epsilon : float, default 0
+            Turn of the centre of mass off the Hess direction in the (e1, e2) plane
+            (radians).
+        e3 : float, default 0
+            Component of the unit vector ``r`` along the third axis, in (-1, 1).
+        branch : {+1, -1}
+            Sign choice in (2) of the Hess body turned (:meth:`hess`).
+        name : str, default "near-hess"
+            A label carried into the provenance of results.
 
         Examples
         --------
@@ -364,28 +387,85 @@ class RigidBody:
 
     @classmethod
     def paper(cls, mu: float = 0.01) -> RigidBody:
-        """The paper's body: Hess, A = 2.5, B = 2.0, C = 2.2, mu = 0.01 (Fig. 3)."""
+        """The paper's body: Hess, A = 2.5, B = 2.0, C = 2.2, mu = 0.01 (Fig. 3).
+
+        Parameters
+        ----------
+        mu : float, default 0.01
+            Weight times distance to the centre of mass (``mu >= 0``; the paper's 0.01).
+
+        Examples
+        --------
+        >>> RigidBody.paper(mu=0.05).mu
+        0.05
+        """
         return cls.hess(2.5, 2.0, 2.2, mu, name="paper")
 
     @classmethod
     def euler_poinsot(cls, A: float, B: float, C: float) -> RigidBody:
-        """Free rigid body (``mu = 0``)."""
+        """Free rigid body (``mu = 0``): the Euler-Poinsot case.
+
+        Parameters
+        ----------
+        A, B, C : float
+            Principal moments of inertia (positive).
+
+        Examples
+        --------
+        >>> RigidBody.euler_poinsot(A=2.5, B=2.0, C=2.2).mu
+        0.0
+        """
         return cls(A, B, C, 0.0, (1.0, 0.0, 0.0), "euler_poinsot")
 
     @classmethod
     def lagrange(cls, A: float, C: float, mu: float) -> RigidBody:
-        """Lagrange top: ``A = B``, centre of mass on the symmetry axis 3."""
+        """Lagrange top: ``A = B``, centre of mass on the symmetry axis 3.
+
+        Parameters
+        ----------
+        A : float
+            Equatorial moment of inertia (``A = B``, positive).
+        C : float
+            Moment about the symmetry axis 3 (positive).
+        mu : float
+            Weight times the distance of the centre of mass from the fixed point, along
+            the symmetry axis (``mu >= 0``).
+
+        Examples
+        --------
+        >>> top = RigidBody.lagrange(A=1.0, C=0.6, mu=1.0)
+        >>> (top.A, top.B, top.C, top.r)
+        (1.0, 1.0, 0.6, (0.0, 0.0, 1.0))
+        """
         return cls(A, A, C, mu, (0.0, 0.0, 1.0), "lagrange")
 
     @classmethod
     def kovalevskaya(cls, C: float = 1.0, mu: float = 1.0) -> RigidBody:
-        """Kovalevskaya top: ``A = B = 2C``, centre of mass in the equatorial plane."""
+        """Kovalevskaya top: ``A = B = 2C``, centre of mass in the equatorial plane.
+
+        Parameters
+        ----------
+        C : float, default 1
+            Moment about the symmetry axis 3 (positive); ``A = B = 2C``.
+        mu : float, default 1
+            Weight times the distance of the centre of mass from the fixed point
+            (``mu >= 0``).
+        """
         return cls(2.0 * C, 2.0 * C, C, mu, (1.0, 0.0, 0.0), "kovalevskaya")
 
     @classmethod
     def goryachev_chaplygin(cls, C: float = 1.0, mu: float = 1.0) -> RigidBody:
         """Goryachev-Chaplygin top: ``A = B = 4C``, equatorial centre of mass (integrable
-        on the zero level of the area integral, M = 0)."""
+        on the zero level of the area integral, M = 0).
+
+        Parameters
+        ----------
+        C : float, default 1
+            Moment about the symmetry axis 3 (positive); ``A = B = 4C``.
+        mu : float, default 1
+            Weight times the distance of the centre of mass from the fixed point
+            (``mu >= 0``).
+        """
         return cls(4.0 * C, 4.0 * C, C, mu, (1.0, 0.0, 0.0), "goryachev_chaplygin")
 
 

@@ -211,7 +211,18 @@ class Section:
 
     @classmethod
     def parse(cls, text: str) -> Section:
-        """Parse ``"coord=value"`` with an optional ``":+"``, ``":-"`` or ``":0"`` direction."""
+        """Parse ``"coord=value"`` with an optional ``":+"``, ``":-"`` or ``":0"`` direction.
+
+        Parameters
+        ----------
+        text : str
+            The section as the command line writes it: ``"theta2=0"``, ``"G3=0:-"``.
+
+        Examples
+        --------
+        >>> Section.parse("theta2=1.5:-").direction
+        -1
+        """
         m = re.fullmatch(r"\s*(\w+)\s*=\s*([^:\s]+)\s*(?::\s*([+-]?[01]?|[+-]))?\s*", text)
         if not m:
             raise ValueError(f"cannot parse section {text!r}; write e.g. 'g=0', "

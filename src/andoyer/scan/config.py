@@ -352,7 +352,13 @@ class ScanConfig:
 
     @classmethod
     def from_json(cls, text: str) -> ScanConfig:
-        """The configuration recorded in a store (``attrs["scan_config"]``)."""
+        """The configuration recorded in a store (``attrs["scan_config"]``).
+
+        Parameters
+        ----------
+        text : str
+            The JSON text of a store's ``attrs["scan_config"]``.
+        """
         data = json.loads(text)
         data.pop("format", None)
         return parse_config(data, "the store's scan_config")

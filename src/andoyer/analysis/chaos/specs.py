@@ -91,6 +91,15 @@ class MapGrid:
         """``value`` itself if it is a :class:`MapGrid`, else the grid of that size (an
         integer or ``(nx, ny)``); ``ValueError`` naming ``name`` otherwise.
 
+        Parameters
+        ----------
+        value : MapGrid, int or (int, int)
+            The grid, or its size.
+        name : str, default "grid"
+            The user's argument, named in the error.
+
+        Examples
+        --------
         >>> MapGrid.of(8).n
         (8, 8)
         """

@@ -141,7 +141,15 @@ class Tolerance:
 
     @classmethod
     def single(cls, tol: Any, name: str = "tol") -> Tolerance:
-        """``rtol = atol = tol``, with errors naming the user's argument ``name``."""
+        """``rtol = atol = tol``, with errors naming the user's argument ``name``.
+
+        Parameters
+        ----------
+        tol : float
+            The one tolerance, in [1e-16, 1e-3].
+        name : str, default "tol"
+            The user's argument, named in the error.
+        """
         t = _tolerance_value(name, tol, _TOL_MIN)
         return cls(t, t)
 
@@ -203,7 +211,17 @@ class SectionEvent:
 
     @classmethod
     def from_kind(cls, kind: int, value: float = 0.0, direction: int = 0) -> SectionEvent:
-        """The event of section index ``kind`` (into :data:`ALL_KINDS`)."""
+        """The event of section index ``kind`` (into :data:`ALL_KINDS`).
+
+        Parameters
+        ----------
+        kind : int
+            Index into :data:`ALL_KINDS` (the kernels' section kind).
+        value : float, default 0
+            The section's value (``coord = value``).
+        direction : {0, +1, -1}
+            Crossings in both directions (0), upward (+1) or downward (-1).
+        """
         k = integer("kind", kind, 0, len(ALL_KINDS) - 1)
         return cls(ALL_KINDS[k], value, direction)
 
