@@ -223,10 +223,10 @@ def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
 def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     case = f"FLI map {sizes.w3_grid} x {sizes.w3_grid}, t = {sizes.w3_t_end:g}"
     try:
-        from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+        from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
     except ImportError as exc:
         return [Row("W3", case, DEFAULT, math.nan, math.nan, [],
-                    note=f"not available: andoyer.analysis.chaos.indicators.chaos_map ({exc})")]
+                    note=f"not available: andoyer.analysis.chaos.lyapunov.chaos_map ({exc})")]
     from benchmarks.peers import fli_heyoka
 
     b = W.body()
@@ -285,7 +285,7 @@ def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     """The large map, timed once each (compiled integrators are warm from W3's runs):
     andoyer against the hand-written heyoka ensemble of the variational system, their
     FLI compared point by point (no extended-precision reference at this size)."""
-    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
     from benchmarks.peers import fli_heyoka
 
     b = W.body()

@@ -43,7 +43,7 @@ CROSSINGS_PER_ORBIT, ORBITS = 100, 50
 
 def _call(series: str, engine: str, size: int) -> Any:
     """The workload of one point: a function returning the dataset."""
-    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
     from andoyer.integrate import Section, poincare
     from benchmarks import workloads as W
 

@@ -40,7 +40,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--profile", action="store_true", help="cProfile one chaos_map call")
     args = ap.parse_args(argv)
 
-    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
     from benchmarks.peers import fli_heyoka
 
     b = W.body()

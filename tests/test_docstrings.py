@@ -185,7 +185,7 @@ ENGINE_DEFAULTS = {
     "andoyer.analysis.splitting.manifolds.manifold_branch": "tangent_crossings",
     "andoyer.analysis.paper.trajectories.fig3_section": "crossings",
     "andoyer.analysis.chaos.alignment.alignment_indices": "tangent",
-    "andoyer.analysis.chaos.indicators.indicators": "tangent",
+    "andoyer.analysis.chaos.lyapunov.indicators": "tangent",
     "andoyer.analysis.hess.floquet.monodromy": "tangent",
 }
 

@@ -39,11 +39,11 @@ COMMAND_API = {
     "orbit": ("andoyer.integrate.api:propagate",),
     "animate": ("andoyer.integrate.orientation:attitude",),
     "explore": ("andoyer.explore.state:make_settings",),
-    "chaos-map": ("andoyer.analysis.chaos.indicators:chaos_map",),
+    "chaos-map": ("andoyer.analysis.chaos.lyapunov:chaos_map",),
     "manifolds": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
     "frequencies": ("andoyer.analysis.chaos.frequency:orbit_frequencies",
                     "andoyer.analysis.chaos.frequency:frequency_map"),
-    "indicators": ("andoyer.analysis.chaos.indicators:indicators",),
+    "indicators": ("andoyer.analysis.chaos.lyapunov:indicators",),
     "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
                    "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
                    "andoyer.analysis.resonance.near_centre:resonant_normal_form"),
@@ -270,7 +270,7 @@ def test_defaults_agree_with_the_api_or_say_why():
     pairs = [(cmd, COMMAND_API[cmd], {a.dest: a.default for a in _visible(p)})
              for cmd, p in commands.items() if cmd in COMMAND_API]
     scan_api = {"section": ("andoyer.integrate.fill:fill_section",),
-                "chaos_map": ("andoyer.analysis.chaos.indicators:chaos_map",),
+                "chaos_map": ("andoyer.analysis.chaos.lyapunov:chaos_map",),
                 "splitting": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
                 "chaos_border": ("andoyer.analysis.chaos.chaos_border:chaos_border",)}
     pairs += [(f"scan:{k}", paths, {n: o.default for n, o in TASKS[k].options.items()})

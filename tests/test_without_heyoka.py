@@ -26,7 +26,7 @@ SCRIPT = textwrap.dedent("""
     assert ds.attrs["engine"] == "taylor" and abs(ds.H_drift).max() < 1e-12
     ds = poincare(body, [0.3, 0, 0.3, 1, 0], "theta2=0", 3, chart="andoyer")
     assert int(ds.crossings_found[0]) == 3
-    from andoyer.analysis.chaos.indicators import indicators
+    from andoyer.analysis.chaos.lyapunov import indicators
     ds = indicators(body, [0.3, 0, 0.3, 1, 0], 5.0, chart="andoyer")
     assert ds.attrs["engine"] == "taylor" and sys.modules["heyoka"] is None
     from andoyer.analysis.chaos.alignment import alignment_indices

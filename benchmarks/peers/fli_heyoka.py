@@ -81,7 +81,7 @@ def fli_map(p: dict[str, float], y0: np.ndarray, w0: np.ndarray, t: np.ndarray, 
 
 def inputs(ds: Any, body: Any, t_end: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Initial states, tangents and output times of andoyer's map ``ds`` (setup)."""
-    from andoyer.analysis.chaos.indicators import initial_tangent
+    from andoyer.analysis.chaos.lyapunov import initial_tangent
     from andoyer.charts.hess import from_hess
 
     a = ds.attrs

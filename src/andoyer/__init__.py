@@ -45,8 +45,8 @@ _LAZY = {
     "Section": "andoyer.integrate.section",
     "fill_section": "andoyer.integrate.fill",
     "propagate_hess_manifold": "andoyer.integrate.hess_manifold",
-    "chaos_map": "andoyer.analysis.chaos.indicators",
-    "indicators": "andoyer.analysis.chaos.indicators",
+    "chaos_map": "andoyer.analysis.chaos.lyapunov",
+    "indicators": "andoyer.analysis.chaos.lyapunov",
     "MapGrid": "andoyer.analysis.chaos.specs",
     "IndicatorRun": "andoyer.analysis.chaos.specs",
 }

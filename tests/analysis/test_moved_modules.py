@@ -38,7 +38,6 @@ def test_an_old_module_path_warns_and_is_the_new_module(old: str, new: str) -> N
 
 
 @pytest.mark.parametrize(("old", "new", "name"), [
-    ("chaos", "chaos.indicators", "chaos_map"),
     ("splitting", "splitting.measure", "separatrix_splitting")])
 def test_names_of_a_module_that_became_a_package_warn(old: str, new: str, name: str) -> None:
     package = importlib.import_module(f"andoyer.analysis.{old}")

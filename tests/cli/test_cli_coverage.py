@@ -49,7 +49,7 @@ def test_epsilon_is_refused_for_bodies_that_are_not_hess(capsys):
 
 
 def test_indicators_command(tmp_path, capsys):
-    from andoyer.analysis.chaos.indicators import indicators
+    from andoyer.analysis.chaos.lyapunov import indicators
 
     out = tmp_path / "ind.nc"
     assert main(["indicators", *STATE, "--t-end", "100", "--n-times", "11",

@@ -233,7 +233,7 @@ def test_plane_view(settings: Settings) -> None:
 
 
 def test_indicators_and_underlay(settings: Settings) -> None:
-    pytest.importorskip("andoyer.analysis.chaos.indicators")
+    pytest.importorskip("andoyer.analysis.chaos.lyapunov")
     from andoyer.explore.base import underlay_image as _underlay_image
     from andoyer.explore.orbits import chaos_underlay, orbit_indicators
 

@@ -406,7 +406,7 @@ def chaos_store(tmp_path_factory) -> Path:
 
 @pytest.mark.parametrize("i", [0, 1])
 def test_chaos_map_points_are_the_public_api_result(chaos_store, i):
-    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
 
     ds = xr.open_zarr(chaos_store).isel(mu=i).load()
     direct = chaos_map(RigidBody.paper(float(ds.mu)), 0.5, 0.0, "theta2=0", (4, 3),

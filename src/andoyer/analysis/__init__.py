@@ -3,7 +3,7 @@
 Every function takes a :class:`~andoyer.body.RigidBody` and returns data (an xarray
 dataset or a small frozen dataclass) with the equations of the paper it evaluates; the
 figures are drawn by :mod:`andoyer.plot`. One sub-package per concept, one module per
-topic, imported on demand (``from andoyer.analysis.chaos.indicators import indicators``):
+topic, imported on demand (``from andoyer.analysis.chaos.lyapunov import indicators``):
 
 - :mod:`~andoyer.analysis.unperturbed`, the unperturbed system:
   :mod:`~andoyer.analysis.unperturbed.fixed_points`,
@@ -15,7 +15,7 @@ topic, imported on demand (``from andoyer.analysis.chaos.indicators import indic
   :mod:`~andoyer.analysis.hess.reduced`,
   :mod:`~andoyer.analysis.hess.hess_solution`, :mod:`~andoyer.analysis.hess.hess_periods`,
   :mod:`~andoyer.analysis.hess.pendulum`, :mod:`~andoyer.analysis.hess.floquet`;
-- :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.indicators` (FLI, MEGNO,
+- :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.lyapunov` (FLI, MEGNO,
   chaos maps), :mod:`~andoyer.analysis.chaos.alignment` (SALI, GALI),
   :mod:`~andoyer.analysis.chaos.frequency` (NAFF, frequency drift),
   :mod:`~andoyer.analysis.chaos.chaos_border`;

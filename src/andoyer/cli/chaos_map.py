@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from andoyer.analysis.chaos.registry import ALL_OF_THEM, MAP_CHOICES, MAP_INDICATORS, chosen
 from andoyer.cli._common import (
     add_body_args,
     add_level_args,
@@ -39,15 +40,15 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     matplotlib.use("Agg")
-    from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, MapGrid, chaos_map
     from andoyer.integrate.variational import warm_up
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.section import save_figure
 
     out, body, _, _, _, h = inputs_from_args(
-        args, level=True, beside=(".png",) if args.indicator != "both"
-        else ("-fli.png", "-megno.png"))
+        args, level=True, beside=(".png",) if args.indicator != ALL_OF_THEM
+        else tuple(f"-{k}.png" for k in MAP_INDICATORS))
     assert h is not None  # a level command without a state has its level
     grid = _grid(args.n)
     source, seconds = warm_up(tol=args.tol, engine=args.engine)
@@ -62,8 +63,8 @@ def run(args: argparse.Namespace) -> int:
     ds.attrs["elapsed_seconds"] = round(elapsed, 3)
     write_netcdf(ds, out)
     figures = []
-    for name in ("fli", "megno") if args.indicator == "both" else (args.indicator,):
-        png = out.with_suffix(".png") if args.indicator != "both" else \
+    for name in chosen(args.indicator):
+        png = out.with_suffix(".png") if args.indicator != ALL_OF_THEM else \
             out.with_name(f"{out.stem}-{name}.png")
         ax = plot_chaos_map(ds, indicator=name)
         fig = ax.get_figure(root=True)
@@ -71,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         figures += save_figure(fig, png)
     n_ok = int(ds.attrs["n_accessible"]) - int(ds.attrs["n_failed"])
     what = ", ".join(f"{v} in [{float(np.nanmin(ds[v])):.3g}, {float(np.nanmax(ds[v])):.3g}]"
-                     for v in ("fli", "megno") if v in ds)
+                     for v in MAP_INDICATORS if v in ds)
     print(f"{n_ok} orbits on H = {h:g}, M = {args.M:g} to t = {args.t_end:g} in "
           f"{elapsed:.1f} s; {what}; max energy error {float(ds.H_error.max()):.1e}")
     print(f"wrote {out} and {', '.join(str(f) for f in figures)}")
@@ -88,8 +89,9 @@ def register(sub: Any) -> None:
     p.add_argument("--n", default="128", help="grid: N (N x N) or NX,NY (default 128)")
     p.add_argument("--t-end", type=real(positive=True), default=1000.0,
                    help="integration time of every orbit (default 1000)")
-    p.add_argument("--indicator", choices=("fli", "megno", "both"), default="fli",
-                   help="indicator to store and draw (default fli)")
+    p.add_argument("--indicator", choices=MAP_CHOICES, default="fli",
+                   help=f"indicator to store and draw ({ALL_OF_THEM!r}: "
+                        f"{', '.join(MAP_INDICATORS)}; default fli)")
     p.add_argument("--engine", choices=tuple(ENGINES), default=None,
                    help="integrator of the variational equations, an engine with the "
                         "'tangent' capability (default taylor for the FLI alone, measured faster; "

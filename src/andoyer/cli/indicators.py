@@ -23,7 +23,8 @@ def run(args: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from andoyer.analysis.chaos.indicators import indicators
+    from andoyer.analysis.chaos.lyapunov import indicators
+    from andoyer.analysis.chaos.registry import INDICATORS, MAP_EXTRAS, PANEL_INDICATORS
     from andoyer.io import write_netcdf
     from andoyer.plot.chaos import plot_indicators
     from andoyer.plot.section import save_figure
@@ -37,10 +38,12 @@ def run(args: argparse.Namespace) -> int:
              f"{ds.attrs['engine']}, tol {args.tol:g}, tangent space {args.tangent}")
     (png,) = save_figure(plot_indicators(ds, title=title), out.with_suffix(".png"))
     end = ds.isel(orbit=0, time=-1)
+    values = ", ".join(
+        f"{INDICATORS[k].title} {float(end[k]):.4g}"
+        + (f" ({INDICATORS[k].reading})" if INDICATORS[k].reading else "")
+        for k in (*PANEL_INDICATORS, *MAP_EXTRAS))
     print(f"{body.name or 'body'}: to t = {args.t_end:g} (engine {ds.attrs['engine']}): "
-          f"FLI {float(end.fli):.4g}, MEGNO <Y> {float(end.megno):.4g} (2: regular), "
-          f"mLE {float(end.mle):.3e}; max |relative energy drift| "
-          f"{float(abs(ds.H_drift).max()):.1e}")
+          f"{values}; max |relative energy drift| {float(abs(ds.H_drift).max()):.1e}")
     print(f"wrote {out} and {png}")
     return 0
 
@@ -50,7 +53,7 @@ def register(sub: Any) -> None:
                                   "+ PNG",
                        description="Fast Lyapunov indicator, MEGNO and the maximal Lyapunov "
                                    "exponent of one orbit against time, from the "
-                                   "variational equations (andoyer.analysis.chaos.indicators."
+                                   "variational equations (andoyer.analysis.chaos."
                                    "indicators).")
     add_body_args(p)
     add_state_args(p)

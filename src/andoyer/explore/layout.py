@@ -295,7 +295,7 @@ class ExplorerLayout(ExplorerBase):
         self.w_indicator.on_click(lambda _e: self._guard(self._request_indicator))
         self.indicator = pn.pane.HTML("" if self._chaos is not None else
                                       "<small>FLI/MEGNO: not available in this version "
-                                      "(no andoyer.analysis.chaos.indicators)</small>", width=340)
+                                      "(no andoyer.analysis.chaos.lyapunov)</small>", width=340)
         self.time_pane = pn.pane.Bokeh(tfig)
         # The body in space (issue 27): the selected orbit's gyroscope in a Plotly 3D
         # scene, played in the browser (andoyer.plot.space.gyroscope_plotly).

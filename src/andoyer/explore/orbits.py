@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from andoyer.analysis.chaos.registry import MAP_EXTRAS, PANEL_INDICATORS
 from andoyer.explore.state import PlaneView, Settings, Stage, plane_coordinates
 from andoyer.validation import finite as _finite
 
@@ -114,6 +115,9 @@ def integral_drifts(ds: xr.Dataset, h: float, M: float, mu: float) -> dict[str, 
             "geometric": float(np.nanmax(np.abs(ds.geometric.values - 1.0)))}
 
 
+#: The indicators of the side panel's line (the registry's panel indicators and the MLE).
+EXPLORER_INDICATORS = (*PANEL_INDICATORS, *MAP_EXTRAS)
+
 #: Grid and integration time of the chaos-map underlay (a few seconds on two cores).
 UNDERLAY_N = 48
 UNDERLAY_T_END = 300.0
@@ -122,7 +126,7 @@ UNDERLAY_T_END = 300.0
 def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float = 1000.0
                      ) -> dict[str, float]:
     """FLI, MEGNO ``<Y>`` and the finite-time Lyapunov exponent of one orbit at ``t_end``
-    (:func:`andoyer.analysis.chaos.indicators.indicators`), and the relative energy drift.
+    (:func:`andoyer.analysis.chaos.lyapunov.indicators`), and the relative energy drift.
 
     Parameters
     ----------
@@ -133,19 +137,19 @@ def orbit_indicators(settings: Settings, y0: NDArray[np.float64], t_end: float =
     t_end : float, default 1000.0
         Integration time.
     """
-    from andoyer.analysis.chaos.indicators import indicators
+    from andoyer.analysis.chaos.lyapunov import indicators
 
     # The orbit engine's name (it must have the tangent capability: heyoka, taylor,
     # numba, scipy), or the default of tangent flows (heyoka where installed, else taylor).
     ds = indicators(settings.body, y0, _finite("t_end", t_end), engine=settings.engine,
                     tol=min(settings.rtol, settings.atol)).isel(orbit=0, time=-1)
-    return {"fli": float(ds.fli), "megno": float(ds.megno), "mle": float(ds.mle),
+    return {**{k: float(ds[k]) for k in EXPLORER_INDICATORS},
             "H_drift": float(ds.H_drift), "t_end": float(t_end)}
 
 
 def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
                    t_end: float = UNDERLAY_T_END) -> xr.Dataset:
-    """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.indicators.chaos_map`), on the
+    """FLI over the plane of ``view`` (:func:`andoyer.analysis.chaos.lyapunov.chaos_map`), on the
     same box, for the underlay of the section plane.
 
     Parameters
@@ -159,7 +163,7 @@ def chaos_underlay(settings: Settings, view: PlaneView, n: int = UNDERLAY_N,
     t_end : float, default 300.0
         Integration time of every orbit.
     """
-    from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, MapGrid, chaos_map
 
     sec = settings.section
     root: Literal["largest", "smallest"] = ("smallest" if settings.root == "smallest"

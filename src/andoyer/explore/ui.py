@@ -4,7 +4,7 @@ The page shows the section plane of :mod:`andoyer.explore.state` (accessible reg
 unperturbed separatrices), the seeded orbits' section points as they arrive, the list
 of orbits and a side panel for the selected orbit (its initial state in the three
 charts, the drift of the integrals, a time plot, its chaos indicator when
-:mod:`andoyer.analysis.chaos.indicators` provides one), and exports of what is on screen.
+:mod:`andoyer.analysis.chaos.lyapunov` provides one), and exports of what is on screen.
 
 Threads
 -------
@@ -51,6 +51,7 @@ from bokeh.events import DoubleTap, Event
 from bokeh.models.annotations.labels import Title
 from bokeh.models.tickers import FixedTicker
 
+from andoyer.analysis.chaos.registry import INDICATORS
 from andoyer.body import RigidBody
 from andoyer.explore.base import (
     ANGLE_LABELS,
@@ -69,6 +70,7 @@ from andoyer.explore.chains import (
 )
 from andoyer.explore.layout import ExplorerLayout
 from andoyer.explore.orbits import (
+    EXPLORER_INDICATORS,
     chaos_underlay,
     crossing_stages,
     integral_drifts,
@@ -486,7 +488,7 @@ class Explorer(ExplorerLayout):
     def _request_indicator(self) -> None:
         o = self.session.orbits.get(self._selected) if self._selected is not None else None
         if self._chaos is None:
-            self._status("FLI/MEGNO need andoyer.analysis.chaos.indicators", "warning")
+            self._status("FLI/MEGNO need andoyer.analysis.chaos.lyapunov", "warning")
             return
         if o is None:
             self._status("select an orbit in the table first", "warning")
@@ -496,9 +498,10 @@ class Explorer(ExplorerLayout):
 
         def job() -> None:
             ind = orbit_indicators(settings, y0, t_end)
-            text = (f"<b>orbit {oid}</b>, t = {t_end:g}: FLI = {ind['fli']:.4g}, "
-                    f"MEGNO ⟨Y⟩ = {ind['megno']:.4g} (2: regular, grows: chaotic), "
-                    f"λ ≈ {ind['mle']:.3g}")
+            text = f"<b>orbit {oid}</b>, t = {t_end:g}: " + ", ".join(
+                f"{INDICATORS[k].text} = {ind[k]:.4g}"
+                + (f" ({INDICATORS[k].reading})" if INDICATORS[k].reading else "")
+                for k in EXPLORER_INDICATORS)
 
             def show() -> None:
                 self.indicator.object = text
@@ -515,7 +518,7 @@ class Explorer(ExplorerLayout):
                 self._show_view(self._generation, self.view)
             return
         if self._chaos is None:
-            self._status("the chaos-map underlay needs andoyer.analysis.chaos.indicators",
+            self._status("the chaos-map underlay needs andoyer.analysis.chaos.lyapunov",
                          "warning")
             return
         view, gen = self.view, self._generation

@@ -16,7 +16,7 @@ by ``1/T`` resp. ``1/T^2`` with the scale ``T``:
 - ``megno_num = (1/T^2) int_0^t (s + delta) f(s) ds``,
 - ``megno_int = (1/T^2) int_0^t 2 num(s) / (s + delta) ds``, ``num = T^2 megno_num``.
 
-From them (see :mod:`andoyer.analysis.chaos.indicators`) ``ln |w(t)| = T log_norm``, the MEGNO
+From them (see :mod:`andoyer.analysis.chaos.lyapunov`) ``ln |w(t)| = T log_norm``, the MEGNO
 ``Y(t) = 2/t int_0^t s f(s) ds = ((t + delta) Y_delta - 2 delta rho) / t`` exactly,
 with ``Y_delta = 2 num / (t + delta)``, and its mean ``<Y>_delta = int_0^t Y_delta
 ds / (t + delta)`` (Cincotta & Simo 2000). The shift ``delta`` (:data:`MEGNO_DELTA`)
@@ -133,7 +133,7 @@ def propagate_variational(y0: NDArray[np.float64], w0: NDArray[np.float64],
                           n_threads: int | None = None) -> VariationalResult:
     """Integrate orbits with their tangent vectors and indicator quadratures.
 
-    Plain arrays in and out (the friendly layer is :mod:`andoyer.analysis.chaos.indicators`).
+    Plain arrays in and out (the friendly layer is :mod:`andoyer.analysis.chaos.lyapunov`).
 
     Parameters
     ----------

@@ -16,6 +16,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
+from andoyer.analysis.chaos.registry import MAP_INDICATORS
 from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, colour_bar, colour_scale, new_figure, paper_style
@@ -25,7 +26,7 @@ __all__ = ["plot_atlas", "plot_border", "border_panel", "SYMBOLS"]
 #: Storage name of a swept parameter -> its symbol (mathtext).
 SYMBOLS = {"mu": r"\mu", "epsilon": r"\epsilon", "h_level": "h", "M_level": "M", "A": "A",
            "B": "B", "C": "C"}
-_INDICATORS = ("fli", "megno")
+_INDICATORS = MAP_INDICATORS
 _ANGLES = ANGLES
 
 
@@ -55,7 +56,8 @@ def _indicator(ds: xr.Dataset, swept: list[str]) -> str:
     for key, v in ds.data_vars.items():
         if v.dtype.kind == "f" and v.ndim == len(swept) + 2:
             return str(key)
-    raise ValueError("plot_atlas: no chaos indicator (fli, megno) in the dataset")
+    raise ValueError(f"plot_atlas: no chaos indicator ({', '.join(_INDICATORS)}) in the "
+                     "dataset")
 
 
 def _panel_section(ax: Any, p: xr.Dataset, x: str, y: str, fold: bool) -> None:

@@ -1,6 +1,6 @@
 """Chaos maps: an indicator over a section's plane, drawn from a dataset (nothing computed).
 
-Takes the dataset of :func:`andoyer.analysis.chaos.indicators.chaos_map`: the indicator as an
+Takes the dataset of :func:`andoyer.analysis.chaos.lyapunov.chaos_map`: the indicator as an
 image over the plane, blank where the energy level does not meet the plane, the
 accessible region's boundary on top, a colour bar named after the indicator (colour map,
 range and label from :data:`andoyer.plot.style.SCALES`: pale regular, dark chaotic).
@@ -15,14 +15,16 @@ import xarray as xr
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from andoyer.analysis.chaos.registry import INDICATORS, PANEL_INDICATORS
 from andoyer.notation import ANGLES
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import COLOURS, SCALES, WIDTH, angle_ticks, colour_scale, paper_style
 
 __all__ = ["plot_chaos_map", "plot_indicators", "COLOUR_BAR_LABELS"]
 
-#: Indicator -> colour-bar label (from :data:`andoyer.plot.style.SCALES`).
-COLOUR_BAR_LABELS: dict[str, str] = {k: SCALES[k].label for k in ("fli", "megno", "mle")}
+#: Indicator -> colour-bar label (from :data:`andoyer.plot.style.SCALES`, the registry's
+#: colour-mapped indicators).
+COLOUR_BAR_LABELS: dict[str, str] = {k: SCALES[k].label for k in INDICATORS if k in SCALES}
 _ANGLES = ANGLES
 _SECTION_SYMBOL = {"g": "g", "theta2": r"\theta_2"}
 # FLI and the others: the colour range spans these percentiles of the data.
@@ -43,7 +45,7 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`andoyer.analysis.chaos.indicators.chaos_map` (dims ``(y, x)`` of the plane,
+        From :func:`andoyer.analysis.chaos.lyapunov.chaos_map` (dims ``(y, x)`` of the plane,
         attrs ``plane_x``, ``plane_y``, ``plane_*_min/max``).
     ax : matplotlib Axes, optional
         Draw into it; by default a new figure in andoyer's style (no pyplot).
@@ -82,7 +84,7 @@ def plot_chaos_map(ds: xr.Dataset, ax: Axes | None = None, *, indicator: str | N
     if xname not in ds.coords or yname not in ds.coords:
         raise ValueError("plot_chaos_map: the dataset lacks the plane coordinates named by "
                          f"attrs plane_x = {xname!r}, plane_y = {yname!r}; pass the dataset "
-                         "of andoyer.analysis.chaos.indicators.chaos_map")
+                         "of andoyer.analysis.chaos.lyapunov.chaos_map")
     name = indicator or str(a.get("indicator", "fli"))
     if name == "both":
         name = "fli"
@@ -155,14 +157,14 @@ def _title(a: dict[Any, Any], name: str) -> str:
             parts.append(f"${key} = {float(a[key]):.6g}$")
     if "t_end" in a:
         parts.append(f"$t = {float(a['t_end']):g}$")
-    return {"fli": "FLI", "megno": "MEGNO", "mle": "Lyapunov"}.get(name, name) + " map: " \
+    return (INDICATORS[name].title if name in INDICATORS else name) + " map: " \
         + ", ".join(parts)
 
 
 def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH, title: str | None = None
                     ) -> Figure:
     """FLI and MEGNO of each orbit against time, from
-    :func:`andoyer.analysis.chaos.indicators.indicators` (two panels; MEGNO's regular value 2
+    :func:`andoyer.analysis.chaos.lyapunov.indicators` (two panels; MEGNO's regular value 2
     dashed).
 
     Parameters
@@ -190,14 +192,17 @@ def plot_indicators(ds: xr.Dataset, *, width: float = WIDTH, title: str | None =
     from andoyer.plot.style import new_figure
 
     with paper_style():
-        fig = new_figure(1, 2, width=width, aspect=0.7)
-        for ax, name in zip(fig.axes, ("fli", "megno"), strict=True):
+        fig = new_figure(1, len(PANEL_INDICATORS), width=width, aspect=0.7)
+        for ax, name in zip(fig.axes, PANEL_INDICATORS, strict=True):
             for k in range(ds.sizes.get("orbit", 1)):
                 v = ds[name].isel(orbit=k) if "orbit" in ds[name].dims else ds[name]
                 ax.plot(ds.time.values, v.values, lw=1.0, label=f"orbit {k}")
             ax.set_xlabel("time $t$")
-            ax.set_ylabel(COLOUR_BAR_LABELS[name])
-        fig.axes[1].axhline(2.0, color="0.5", lw=0.8, ls="--", label="regular: 2")
+            ax.set_ylabel(INDICATORS[name].label)
+            regular = INDICATORS[name].regular
+            if regular is not None:
+                ax.axhline(regular, color="0.5", lw=0.8, ls="--",
+                           label=f"regular: {regular:g}")
         if ds.sizes.get("orbit", 1) > 1:
             fig.axes[0].legend(fontsize=6, frameon=False)
         fig.suptitle(title or f"chaos indicators (tangent space "

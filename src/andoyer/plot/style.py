@@ -32,6 +32,8 @@ import numpy as np
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
+from andoyer.analysis.chaos.registry import INDICATORS
+
 __all__ = ["RC", "COLOURS", "MARKERS", "WIDTH", "SCALES", "ColourScale", "colour_scale",
            "colour_bar", "paper_style", "new_figure", "angle_ticks"]
 
@@ -115,11 +117,12 @@ class ColourScale:
 
 
 #: Colour-mapped quantity (its storage name) -> its colour scale, the same in every
-#: figure, tutorial and in the explorer. Chaos runs pale (regular) to dark (chaotic).
+#: figure, tutorial and in the explorer. Chaos runs pale (regular) to dark (chaotic); the
+#: chaos indicators' scales are their rows of the registry
+#: (:data:`andoyer.analysis.chaos.registry.INDICATORS`).
 SCALES: dict[str, ColourScale] = {
-    "fli": ColourScale("magma_r", r"FLI $= \sup_{s \leq t}\, \ln\|w(s)\|$"),
-    "megno": ColourScale("magma_r", r"MEGNO $\langle Y\rangle$", 0.0, 8.0),
-    "mle": ColourScale("magma_r", r"$\ln\|w(t)\|\,/\,t$"),
+    **{k: ColourScale(s.cmap, s.label, s.vmin, s.vmax)
+       for k, s in INDICATORS.items() if s.cmap is not None},
     "log10_drift": ColourScale("magma_r", r"$\log_{10}$ frequency drift", None, 0.0),
     "chaotic_fraction": ColourScale("magma_r", "chaotic fraction", 0.0, None),
     "layer_width": ColourScale("viridis", "layer width (rad)", 0.0, None),

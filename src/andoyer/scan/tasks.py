@@ -12,7 +12,7 @@ Registered kinds (:data:`TASKS`):
     section plane at ``(h, M)``, and the first ``n_crossings`` crossings of each orbit
     are found by the engine (the computation of :func:`andoyer.integrate.poincare`).
 ``chaos_map``
-    :func:`andoyer.analysis.chaos.indicators.chaos_map` (FLI or MEGNO over a grid of the section
+    :func:`andoyer.analysis.chaos.lyapunov.chaos_map` (FLI or MEGNO over a grid of the section
     plane), enabled when that module is installed.
 ``splitting``
     :func:`andoyer.analysis.splitting.measure.separatrix_splitting` at the point's mu: the
@@ -48,6 +48,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 import xarray as xr
 
+from andoyer.analysis.chaos.registry import INDICATORS, MAP_INDICATORS
 from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH
 from andoyer.validation import integer
 
@@ -311,9 +312,9 @@ def _section_cost(options: Mapping[str, Any]) -> tuple[float, float]:
 # ---------------------------------------------------------------------- chaos map
 def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
                  integ: Integrator) -> xr.Dataset | Empty:
-    """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.indicators.chaos_map`
+    """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.lyapunov.chaos_map`
     (one thread; heyoka's tolerance ``min(rtol, atol)``)."""
-    from andoyer.analysis.chaos import indicators as chaos
+    from andoyer.analysis.chaos import lyapunov as chaos
     from andoyer.integrate.section import Section
     sec = Section.parse(options["section"])
     try:
@@ -472,11 +473,12 @@ TASKS: dict[str, TaskKind] = {
         _SECTION_OPTIONS, _section_point, _section_cost, ("orbit", "crossing"),
         validate=_needs_planar),
     "chaos_map": TaskKind(
-        "chaos_map", "chaos indicator (FLI or MEGNO) over a grid of the section plane",
+        "chaos_map", f"chaos indicator ({' or '.join(INDICATORS[k].title for k in MAP_INDICATORS)})"
+                     " over a grid of the section plane",
         {"section": Option("theta2=0", _section_text(True), "the section plane"),
          "n": Option([64, 64], _pair_of_ints, "grid [nx, ny] of the plane"),
          "t_end": Option(1000.0, _positive, "integration time of each orbit"),
-         "indicator": Option("fli", _choice("fli", "megno"), "the chaos indicator")},
+         "indicator": Option("fli", _choice(*MAP_INDICATORS), "the chaos indicator")},
         _chaos_point, _chaos_cost,
         validate=_chaos_bodies,
         static_attrs=("indicator", "tangent", "t_end", "n_samples", "nx", "ny", "plane_x",

@@ -20,7 +20,7 @@ import pytest
 
 from andoyer import RigidBody, from_andoyer
 from andoyer.analysis.chaos.alignment import alignment_indices, gali, initial_tangents, sali
-from andoyer.analysis.chaos.indicators import initial_tangent
+from andoyer.analysis.chaos.lyapunov import initial_tangent
 from andoyer.integrate.engines import engines_with
 from andoyer.integrate.engines.base import Capability
 

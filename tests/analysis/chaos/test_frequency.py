@@ -26,7 +26,7 @@ from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
 FREE = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))  # the paper's moments, mu = 0
 CHAOTIC_BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
 #: Hess-chart states on H = 1, M = 0 of CHAOTIC_BODY: in the chaotic layer, on a torus
-#: (as in tests/analysis/chaos/test_indicators.py, from a 12 x 12 FLI map).
+#: (as in tests/analysis/chaos/test_lyapunov.py, from a 12 x 12 FLI map).
 CHAOTIC = [0.2617993877991494, 0.0, 1.0103629710818451, 1.712575169922734, 0.0]
 REGULAR = [2.8797932657906435, 0.0, 0.7216878364870322, 1.3852961954031033, 0.0]
 

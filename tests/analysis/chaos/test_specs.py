@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from andoyer import IndicatorRun, MapGrid, RigidBody
-from andoyer.analysis.chaos.indicators import chaos_map
+from andoyer.analysis.chaos.lyapunov import chaos_map
 from andoyer.analysis.chaos.specs import FORMER_KEYWORDS, regroup
 from andoyer.integrate.engines import resolve_engine
 from andoyer.integrate.engines.base import Capability

@@ -1,25 +1,27 @@
-"""Chaos: indicators (FLI, MEGNO), alignment indices (SALI, GALI), the border of chaos,
-frequency analysis.
+"""Chaos: indicators (FLI, MEGNO, the Lyapunov exponent: :mod:`.lyapunov`, listed once in
+:mod:`.registry`), alignment indices (SALI, GALI), the border of chaos, frequency analysis.
 
-``andoyer.analysis.chaos`` was a module before these sub-packages; its names still
-resolve here for one release (moved to :mod:`andoyer.analysis.chaos.indicators`), with a
-``DeprecationWarning``.
+The public names of :mod:`.lyapunov` and :mod:`.specs` are names of this package too
+(``from andoyer.analysis.chaos import indicators, chaos_map``), imported on first use so
+that the light modules (:mod:`.registry`, read by the CLI's argument parser) stay light.
 """
 
 from __future__ import annotations
 
 import importlib
-import warnings
 from typing import Any
+
+#: Name -> the module of this package that defines it.
+EXPORTS = {"indicators": "lyapunov", "chaos_map": "lyapunov", "output_times": "lyapunov",
+           "initial_tangent": "tangent_space", "MapGrid": "specs", "IndicatorRun": "specs",
+           "TANGENT_SPACES": "specs", "INDICATORS": "registry", "IndicatorSpec": "registry"}
+
+__all__ = sorted(EXPORTS)
 
 
 def __getattr__(name: str) -> Any:
-    if name.startswith("__"):
-        raise AttributeError(name)
-    module = importlib.import_module("andoyer.analysis.chaos.indicators")
-    if not hasattr(module, name):
+    if name not in EXPORTS:
         raise AttributeError(f"module 'andoyer.analysis.chaos' has no attribute {name!r}")
-    warnings.warn(f"andoyer.analysis.chaos.{name} moved to andoyer.analysis.chaos.indicators."
-                  f"{name}; the old path works for one release", DeprecationWarning,
-                  stacklevel=2)
-    return getattr(module, name)
+    value = getattr(importlib.import_module(f"andoyer.analysis.chaos.{EXPORTS[name]}"), name)
+    globals()[name] = value
+    return value

@@ -53,7 +53,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.analysis.chaos.indicators import TANGENT_SPACES, Tangent, initial_tangent, output_times
+from andoyer.analysis.chaos.lyapunov import TANGENT_SPACES, Tangent, initial_tangent, output_times
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.errors import IntegrationError
@@ -179,7 +179,7 @@ def initial_tangents(body: RigidBody, y: ArrayLike, k: int,
                      tangent: Tangent = "leaf") -> NDArray[np.float64]:
     """``k`` orthonormal initial deviation vectors at Euler-Poisson states, (n, k, 6).
 
-    The first is :func:`andoyer.analysis.chaos.indicators.initial_tangent` (the vector of the FLI
+    The first is :func:`andoyer.analysis.chaos.lyapunov.initial_tangent` (the vector of the FLI
     and MEGNO); the others are fixed generic directions projected onto the same space
     (``"leaf"``: tangent to ``|gamma| = 1, (G, gamma) = M``; ``"energy"``: also to the
     energy level) and orthonormalised (Gram-Schmidt).

@@ -56,7 +56,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map
+from andoyer.analysis.chaos.lyapunov import IndicatorRun, MapGrid, chaos_map
 from andoyer.body import RigidBody, checks_body
 from andoyer.integrate.engines import resolve_engine
 from andoyer.integrate.engines.base import Capability
@@ -121,12 +121,12 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
     section : (coord, value) or str, default ("theta2", 0.0)
         The section plane, as in :func:`chaos_border`.
     n : int or (nx, ny), default 24
-        Grid of the plane (:func:`andoyer.analysis.chaos.indicators.chaos_map`).
+        Grid of the plane (:func:`andoyer.analysis.chaos.lyapunov.chaos_map`).
     t_end : float, default 300.0
         Integration time of every orbit (body time units).
     engine : str, optional
         Engine of the variational equations, as in
-        :func:`~andoyer.analysis.chaos.indicators.chaos_map` (default heyoka where
+        :func:`~andoyer.analysis.chaos.lyapunov.chaos_map` (default heyoka where
         installed, else taylor).
     tol : float, default 1e-12
         Integration tolerance.
@@ -258,13 +258,13 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
         ``theta2 = const`` (plane ``(theta1, J1)``, the layer width is measured) or
         ``g = const`` (plane ``(l, L)``; no layer width).
     n : int or (nx, ny)
-        Grid of the plane (:func:`andoyer.analysis.chaos.indicators.chaos_map`).
+        Grid of the plane (:func:`andoyer.analysis.chaos.lyapunov.chaos_map`).
     t_end : float
         Integration time of every orbit.
     margin : float
         Threshold above the regular reference (see the module notes).
     engine, tol, n_threads, progress :
-        As in :func:`~andoyer.analysis.chaos.indicators.chaos_map`.
+        As in :func:`~andoyer.analysis.chaos.lyapunov.chaos_map`.
 
     Returns
     -------

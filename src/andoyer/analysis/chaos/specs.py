@@ -1,7 +1,7 @@
 """What a chaos map computes, in two frozen objects: where its orbits start
 (:class:`MapGrid`) and what is integrated from each start (:class:`IndicatorRun`).
 
-:func:`~andoyer.analysis.chaos.indicators.chaos_map` takes the physics (body, energy
+:func:`~andoyer.analysis.chaos.lyapunov.chaos_map` takes the physics (body, energy
 level ``h``, area constant ``M``, section) as arguments, and these two objects for the
 rest, as diffrax's ``diffeqsolve`` takes a controller and an event, so that its signature
 says in three words what a map is: a grid, an indicator run, an engine. Each object checks
@@ -19,19 +19,22 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from andoyer.analysis.chaos.registry import INDICATORS, MAP_CHOICES, MAP_EXTRAS, chosen
 from andoyer.integrate.engines.base import Tolerance
 from andoyer.validation import box, choice, grid, integer, positive
 
 __all__ = ["MapGrid", "IndicatorRun", "INDICATOR_CHOICES", "TANGENT_SPACES", "ROOTS",
            "FORMER_KEYWORDS"]
 
-Indicator = Literal["fli", "megno", "both"]
+#: One of :data:`INDICATOR_CHOICES` (the registry's map indicators, or all of them).
+Indicator = str
 Tangent = Literal["energy", "leaf"]
 Root = Literal["largest", "smallest"]
 
-#: What a chaos map can hold: the FLI, the mean MEGNO, or both (one integration).
-INDICATOR_CHOICES = ("fli", "megno", "both")
-#: Admissible initial tangent spaces (see :mod:`andoyer.analysis.chaos.indicators`).
+#: What a chaos map can hold: one of the registry's map indicators (the FLI, the mean
+#: MEGNO), or all of them ("both": one integration).
+INDICATOR_CHOICES = MAP_CHOICES
+#: Admissible initial tangent spaces (see :mod:`andoyer.analysis.chaos.lyapunov`).
 TANGENT_SPACES = ("energy", "leaf")
 #: Which action where the level has several sheets above a point of the plane.
 ROOTS = ("largest", "smallest")
@@ -167,8 +170,9 @@ class IndicatorRun:
 
     @property
     def renormalised(self) -> bool:
-        """Whether the tangent vector is renormalised (MEGNO asked for)."""
-        return self.indicator != "fli"
+        """Whether the tangent vector is renormalised (an indicator that needs it asked
+        for: MEGNO)."""
+        return any(INDICATORS[k].renormalised for k in (*chosen(self.indicator), *MAP_EXTRAS))
 
 
 #: Former keywords of ``chaos_map`` (previous release) -> the object that holds them now.

@@ -1,4 +1,4 @@
-"""The initial tangent vectors of the chaos indicators (see :mod:`.indicators`, "The
+"""The initial tangent vectors of the chaos indicators (see :mod:`.lyapunov`, "The
 tangent space"): unit vectors tangent to the symplectic leaf, or to the energy level
 within it, at Euler-Poisson states.
 

@@ -62,7 +62,7 @@ def chaos(ctx: Context) -> Result:
     """
     import numpy as np
 
-    from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
     from andoyer.analysis.unperturbed.separatrix import separatrix_energy
     from andoyer.plot.chaos import plot_chaos_map
     from andoyer.plot.style import new_figure, paper_style

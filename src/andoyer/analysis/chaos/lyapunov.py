@@ -70,6 +70,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.analysis.chaos.registry import INDICATORS, MAP_EXTRAS, chosen
 from andoyer.analysis.chaos.specs import (
     TANGENT_SPACES,
     IndicatorRun,
@@ -105,8 +106,6 @@ ARGUMENT_NAMES = {"w0": "w0 (initial tangent direction)"}
 __all__ = ["indicators", "chaos_map", "MapGrid", "IndicatorRun", "initial_tangent",
            "output_times", "INDICATORS", "TANGENT_SPACES"]
 
-#: Indicators a chaos map can hold.
-INDICATORS = ("fli", "megno")
 #: chaos_map's default grid and run (frozen: one object shared by every call).
 DEFAULT_GRID = MapGrid()
 DEFAULT_RUN = IndicatorRun()
@@ -114,22 +113,6 @@ DEFAULT_RUN = IndicatorRun()
 #: ln|w| beyond which a tangent vector integrated without renormalisation is integrated
 #: again renormalised (``|w|`` overflows a double at ln|w| ~ 709).
 _OVERFLOW_LOG = 600.0
-
-_ATTRS: dict[str, dict[str, str]] = {
-    "fli": {"long_name": "fast Lyapunov indicator sup_s ln|w(s)| (sup over output times)",
-            "symbol": "FLI", "units": "1",
-            "definition": "Froeschle, Lega & Gonczi (1997); w(0) unit tangent vector"},
-    "log_norm": {"long_name": "ln of the tangent-vector norm", "symbol": "ln|w|",
-                 "units": "1"},
-    "megno": {"long_name": "mean MEGNO <Y>", "symbol": "<Y>", "units": "1",
-              "definition": "Cincotta & Simo (2000); -> 2 quasi-periodic, -> 0 stable "
-                            "periodic, ~ lambda t / 2 chaotic"},
-    "megno_y": {"long_name": "MEGNO Y", "symbol": "Y", "units": "1",
-                "definition": "Y(t) = (2/t) int_0^t s (w'.w)/(w.w) ds"},
-    "mle": {"long_name": "finite-time maximal Lyapunov exponent ln|w(t)|/t",
-            "symbol": "lambda", "units": "1 / body time unit"},
-}
-
 
 # ----------------------------------------------------------------------------- helpers
 
@@ -145,17 +128,87 @@ def _engine(engine: EngineLike, workload: str = "tangent", **options: Any) -> En
     return resolve_engine(engine, Capability.TANGENT, workload=workload, **options)
 
 
-def _derived(flow: TangentFlow, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
-    """Indicators from a tangent flow (one vector) at times ``t`` (k,)."""
-    assert flow.megno is not None
-    rho = flow.rho[..., 0]
-    num, integral = flow.megno[..., 0], flow.megno[..., 1]
+def log_norm_of_flow(flow: TangentFlow, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``ln|w(t)|`` of a tangent flow's first vector at its output times ``t``.
+
+    Parameters
+    ----------
+    flow : TangentFlow
+        A tangent flow of one vector (:meth:`~andoyer.integrate.engines.base.EngineBase.
+        tangent`).
+    t : ndarray, shape (k,)
+        Its output times.
+    """
+    return flow.rho[..., 0]
+
+
+def fli_of_flow(flow: TangentFlow, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The FLI ``sup_{s <= t} ln|w(s)|`` over the output times ``t`` (Froeschle et al.).
+
+    Parameters
+    ----------
+    flow : TangentFlow
+        A tangent flow of one vector.
+    t : ndarray, shape (k,)
+        Its output times.
+    """
+    return np.fmax.accumulate(flow.rho[..., 0], axis=-1)
+
+
+def mle_of_flow(flow: TangentFlow, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The finite-time maximal Lyapunov exponent ``ln|w(t)| / t`` (NaN at ``t = 0``).
+
+    Parameters
+    ----------
+    flow : TangentFlow
+        A tangent flow of one vector.
+    t : ndarray, shape (k,)
+        Its output times.
+    """
     with np.errstate(divide="ignore", invalid="ignore"):
-        y = np.where(t > 0.0, 2.0 * (num - MEGNO_DELTA * rho) / t, 0.0)
-        mle = np.where(t > 0.0, rho / t, np.nan)
-    mean = integral / (t + MEGNO_DELTA)
-    fli = np.fmax.accumulate(rho, axis=-1)
-    return {"log_norm": rho, "fli": fli, "megno_y": y, "megno": mean, "mle": mle}
+        out: NDArray[np.float64] = np.where(t > 0.0, flow.rho[..., 0] / t, np.nan)
+    return out
+
+
+def megno_y_of_flow(flow: TangentFlow, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """MEGNO ``Y(t) = (2/t) int_0^t s (w'.w)/(w.w) ds`` from the flow's quadratures
+    (exact: the shift ``delta`` of the weights taken out; 0 at ``t = 0``).
+
+    Parameters
+    ----------
+    flow : TangentFlow
+        A renormalised tangent flow of one vector, with its MEGNO quadratures.
+    t : ndarray, shape (k,)
+        Its output times.
+    """
+    assert flow.megno is not None
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out: NDArray[np.float64] = np.where(
+            t > 0.0, 2.0 * (flow.megno[..., 0] - MEGNO_DELTA * flow.rho[..., 0]) / t, 0.0)
+    return out
+
+
+def megno_of_flow(flow: TangentFlow, t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The mean MEGNO ``<Y>(t) = (1/t) int_0^t Y(s) ds`` (Cincotta & Simo), the weights
+    shifted by ``delta`` (a relative change ``O(delta / t)``).
+
+    Parameters
+    ----------
+    flow : TangentFlow
+        A renormalised tangent flow of one vector, with its MEGNO quadratures.
+    t : ndarray, shape (k,)
+        Its output times.
+    """
+    assert flow.megno is not None
+    out: NDArray[np.float64] = flow.megno[..., 1] / (t + MEGNO_DELTA)
+    return out
+
+
+def _derived(flow: TangentFlow, t: NDArray[np.float64],
+             names: tuple[str, ...] | None = None) -> dict[str, NDArray[np.float64]]:
+    """The indicators ``names`` (default: every one of :data:`INDICATORS`) from a
+    tangent flow (one vector) at times ``t`` (k,)."""
+    return {k: INDICATORS[k].function()(flow, t) for k in (names or tuple(INDICATORS))}
 
 
 def _fli_only(eng: EngineBase, y: NDArray[np.float64], w: NDArray[np.float64],
@@ -320,9 +373,9 @@ def _provenance(body: RigidBody, engine: EngineBase, tol: float, tangent: str, T
 
 
 def _describe(ds: xr.Dataset) -> None:
-    for name, attrs in _ATTRS.items():
+    for name, spec in INDICATORS.items():
         if name in ds:
-            ds[name].attrs.update(attrs)
+            ds[name].attrs.update(spec.attrs)
     describe_variables(ds, units=False)
 
 
@@ -464,7 +517,8 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     eng = eng.for_ensemble(idx.size)
     name = eng.name
 
-    out = {k: np.full(ny * nx, np.nan) for k in ("fli", "megno", "mle", "H_error")}
+    stored = (*chosen(indicator), *MAP_EXTRAS)
+    out = {k: np.full(ny * nx, np.nan) for k in (*stored, "H_error")}
     n_failed = 0
     renormalised = job.renormalised
     bar = Progress(idx.size, f"chaos map ({name}, {nx}x{ny}, t = {T:g})", progress)
@@ -475,13 +529,12 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         if renormalised:
             flow = eng.tangent(y, w[:, None, :], params, Tolerance.single(tol), t=times,
                                scale=T)
-            d = _derived(flow, times)
-            fli, mle, y_end, ok = d["fli"][:, -1], d["mle"][:, -1], flow.y[:, -1], flow.ok
-            out["megno"][sel] = d["megno"][:, -1]
-        else:
-            fli, mle, y_end, ok = _fli_only(eng, y, w, params, tol, times)
-        out["fli"][sel] = fli
-        out["mle"][sel] = mle
+            for k, v in _derived(flow, times, stored).items():
+                out[k][sel] = v[:, -1]
+            y_end, ok = flow.y[:, -1], flow.ok
+        else:  # the FLI alone (and the MLE): the raw tangent vector
+            out["fli"][sel], out["mle"][sel], y_end, ok = _fli_only(eng, y, w, params, tol,
+                                                                    times)
         out["H_error"][sel] = (np.abs(energy(body, y_end) - h)
                                / (max(abs(h), body.mu) or 1.0))
         n_failed += int(np.sum(~ok))
@@ -489,8 +542,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     bar.close()
 
     dims = (yname, xname)
-    keep = ("fli", "megno") if indicator == "both" else (indicator,)
-    data: dict[str, Any] = {k: (dims, out[k].reshape(ny, nx)) for k in (*keep, "mle")}
+    data: dict[str, Any] = {k: (dims, out[k].reshape(ny, nx)) for k in stored}
     data["accessible"] = (dims, acc)
     data[action] = (dims, A.reshape(ny, nx))
     data["H_error"] = (dims, out["H_error"].reshape(ny, nx))

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos.indicators import IndicatorRun, chaos_map, indicators
+from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map, indicators
 from andoyer.integrate import engines
 
 PAPER = RigidBody.paper()

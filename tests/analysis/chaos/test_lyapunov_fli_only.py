@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos import indicators as chaos
-from andoyer.analysis.chaos.indicators import IndicatorRun, MapGrid, chaos_map, initial_tangent
+from andoyer.analysis.chaos import lyapunov as chaos
+from andoyer.analysis.chaos.lyapunov import IndicatorRun, MapGrid, chaos_map, initial_tangent
 from andoyer.charts.hess import from_hess
 from andoyer.integrate.engines import resolve_engine
 from andoyer.integrate.engines.base import Capability, Tolerance

@@ -1,4 +1,4 @@
-"""The chaos indicators (:func:`andoyer.analysis.chaos.indicators.indicators`) on the taylor
+"""The chaos indicators (:func:`andoyer.analysis.chaos.lyapunov.indicators`) on the taylor
 engine against the numba engine (the Numba DOP853 on the continuously renormalised
 system: an independent method) and heyoka (skipped where it is not installed).
 
@@ -18,14 +18,14 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos.indicators import indicators
+from andoyer.analysis.chaos.lyapunov import indicators
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.base import Capability
 from andoyer.integrate.engines.lazy import heyoka_available
 
 PAPER = RigidBody.paper()
 TORUS = [0.3, 0.0, 0.3, 1.0, 0.0]  # Andoyer chart
-#: As tests/analysis/chaos/test_indicators.py: a Hess body with a wide chaotic layer at h = mu, one
+#: As tests/analysis/chaos/test_lyapunov.py: a Hess body with a wide chaotic layer at h = mu, one
 #: state in the layer and one on an invariant torus (Hess chart).
 CHAOTIC_BODY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
 CHAOTIC = [0.2617993877991494, 0.0, 1.0103629710818451, 1.712575169922734, 0.0]

@@ -29,7 +29,7 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody, from_andoyer
-from andoyer.analysis.chaos.indicators import (
+from andoyer.analysis.chaos.lyapunov import (
     IndicatorRun,
     MapGrid,
     chaos_map,
