@@ -117,7 +117,6 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "__main__.py": "test_processes.py",
     "_version.py": "test_public_api.py",
     "errors.py": "cli/test_cli_errors.py",
-    "progress.py": "scan/test_scan.py",
     "analysis/chaos/__init__.py": "analysis/chaos/test_registry.py",
     "analysis/splitting/__init__.py": "analysis/test_moved_modules.py",
     "analysis/chaos/tangent_space.py": "analysis/chaos/test_lyapunov.py",
