@@ -117,3 +117,30 @@ def test_andoyer_chain_gives_the_state_and_the_node():
 def test_bad_quaternions_are_refused_naming_the_argument(bad):
     with pytest.raises(ValueError, match="q"):
         rotation_matrix(bad)
+
+
+@pytest.mark.parametrize("R, what", [
+    (np.ones((3, 3)), "not orthogonal"),
+    (-np.eye(3), "reflection"),
+    (np.diag([1.0, 1.0, -1.0]), "reflection"),
+    (2.0 * np.eye(3), "not orthogonal"),
+    (1e-10 * np.eye(3), "not orthogonal"),
+    (np.zeros((3, 3)), "not orthogonal"),
+    (1e10 * np.eye(3), "not orthogonal"),
+])
+def test_quaternion_from_matrix_refuses_what_is_not_a_rotation(R, what):
+    """Before, np.ones((3, 3)) gave [1, 0, 0, 0] and -I (a reflection) [0, 1, 0, 0]."""
+    with pytest.raises(ValueError, match=rf"^R must hold rotation matrices.*{what}"):
+        quaternion_from_matrix(R)
+    with pytest.raises(ValueError, match=r"matrix 1 of 2"):
+        quaternion_from_matrix(np.stack([np.eye(3), R]))
+
+
+def test_quaternion_from_matrix_takes_rotations_to_the_stated_tolerance():
+    from andoyer.charts.rotation import ROTATION_RTOL
+
+    R = rotation_matrix([0.5, 0.5, -0.5, 0.5])
+    q = quaternion_from_matrix(np.round(R + 0.3 * ROTATION_RTOL, 12))
+    assert np.abs(q - [0.5, 0.5, -0.5, 0.5]).max() <= 1e-8
+    with pytest.raises(ValueError, match="not orthogonal"):
+        quaternion_from_matrix(R * (1.0 + 10 * ROTATION_RTOL))

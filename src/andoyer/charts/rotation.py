@@ -61,7 +61,8 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, as_andoyer
 from andoyer.validation import finite_array
 
-__all__ = ["QUATERNION", "SPACE_AXES", "BODY_AXES", "EULER_SINGULAR_RTOL", "EulerAngles",
+__all__ = ["QUATERNION", "SPACE_AXES", "BODY_AXES", "EULER_SINGULAR_RTOL", "ROTATION_RTOL",
+           "EulerAngles",
            "quaternion_product", "quaternion_conjugate", "rotation_matrix",
            "quaternion_from_matrix", "euler_angles", "quaternion_from_euler",
            "quaternion_from_vertical", "andoyer_rotation"]
@@ -73,6 +74,10 @@ SPACE_AXES = ("X", "Y", "Z")
 BODY_AXES = ("x", "y", "z")
 #: ``psi`` and ``phi`` are undefined (NaN, flagged) where ``sin theta`` is below this.
 EULER_SINGULAR_RTOL = SINGULAR_RTOL
+#: A matrix is taken for a rotation where ``max |R^T R - 1| <= ROTATION_RTOL max(1, |R|^2)``
+#: (``|R|`` its largest singular value: the tolerance is relative to the matrix's scale)
+#: and ``det R > 0``; a matrix read from eight significant digits passes.
+ROTATION_RTOL = 1e-8
 
 
 def _quaternions(name: str, q: ArrayLike) -> NDArray[np.float64]:
@@ -146,6 +151,26 @@ def rotation_matrix(q: ArrayLike) -> NDArray[np.float64]:
     return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
 
 
+def _check_rotations(m: NDArray[np.float64]) -> None:
+    """``ValueError`` naming ``R`` unless every matrix of ``m`` (n, 3, 3) is a rotation:
+    orthogonal to :data:`ROTATION_RTOL` relative to its scale, with ``det > 0``."""
+    if m.shape[0] == 0:
+        return
+    scale = np.maximum(np.linalg.norm(m, ord=2, axis=(1, 2)) ** 2, 1.0)
+    defect = np.abs(np.einsum("nki,nkj->nij", m, m) - np.eye(3)).max(axis=(1, 2)) / scale
+    det = np.linalg.det(m)
+    bad = np.flatnonzero((defect > ROTATION_RTOL) | (det <= 0.0))
+    if bad.size:
+        i = int(bad[0])
+        what = (f"not orthogonal (max |R^T R - 1| = {defect[i] * scale[i]:.3g}, relative "
+                f"{defect[i]:.3g} > ROTATION_RTOL = {ROTATION_RTOL:g})"
+                if defect[i] > ROTATION_RTOL else
+                f"a reflection, not a rotation (det R = {det[i]:.6g})")
+        where = f" (matrix {i} of {m.shape[0]})" if m.shape[0] > 1 else ""
+        raise ValueError(f"R must hold rotation matrices (orthogonal, det R = +1); R is "
+                         f"{what}{where}")
+
+
 def quaternion_from_matrix(R: ArrayLike) -> NDArray[np.float64]:
     """The unit quaternion with ``q0 >= 0`` of a rotation matrix, by Shepperd's method.
 
@@ -154,18 +179,30 @@ def quaternion_from_matrix(R: ArrayLike) -> NDArray[np.float64]:
     Parameters
     ----------
     R : array_like, shape (..., 3, 3)
-        Rotation matrices.
+        Rotation matrices: orthogonal to :data:`ROTATION_RTOL` relative to their scale
+        (``max |R^T R - 1| <= ROTATION_RTOL max(1, |R|^2)``) with ``det R > 0``; anything
+        else (a reflection, a scaled or a singular matrix) is refused naming ``R``.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        Unit quaternions, scalar first, ``q0 >= 0``.
 
     Examples
     --------
     >>> q = quaternion_from_matrix(rotation_matrix([0.5, 0.5, -0.5, 0.5]))
     >>> q.round(12).tolist()
     [0.5, 0.5, -0.5, 0.5]
+    >>> quaternion_from_matrix(-np.eye(3))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: R must hold rotation matrices ...; R is a reflection, ... (det R = -1)
     """
     M = finite_array("R", R)
     if M.ndim < 2 or M.shape[-2:] != (3, 3):
         raise ValueError(f"R must have shape (..., 3, 3), got {M.shape}")
     m = M.reshape(-1, 3, 3)
+    _check_rotations(m)
     tr = np.trace(m, axis1=1, axis2=2)
     diag = np.stack([tr, m[:, 0, 0], m[:, 1, 1], m[:, 2, 2]], axis=1)
     k = np.argmax(diag, axis=1)

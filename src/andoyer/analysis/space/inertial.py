@@ -8,12 +8,24 @@ angles ``z-x-z``).
 * :func:`axis_trace`: where a body axis points, ``R a / |a|`` on the unit sphere (the
   loops, cusps and waves of the heavy top's apex), with its colatitude from ``Z`` and
   its azimuth about ``Z``. For the symmetry axis ``z`` the colatitude is the nutation
-  ``theta`` and the azimuth is ``psi - pi/2``.
+  ``theta`` and the azimuth is ``psi - pi/2``. Where the axis is undefined (``G = 0``
+  for ``momentum``, ``omega = 0`` for ``angular_velocity``) the trace is NaN and flagged
+  (``undefined``), and where it is vertical its azimuth is NaN and flagged (``at_pole``),
+  as :func:`andoyer.charts.rotation.euler_angles` flags ``psi``.
 * :func:`precession_nutation`: per orbit, the nutation bounds (sampled) and the mean
   precession rate ``(psi(t_end) - psi(t_0)) / (t_end - t_0)`` of the unwrapped
   precession. An orbit through the pole (``sin theta`` below the flag of
-  :func:`andoyer.charts.rotation.euler_angles`) or sampled too sparsely to unwrap
-  ``psi`` (a step above ``pi/2``) has NaN rate and says so in its flags.
+  :func:`andoyer.charts.rotation.euler_angles`) has NaN rate and says so in its flags.
+  Aliasing is detected from the rates the states give at every sample,
+  ``dpsi/dt = (omega1 gamma1 + omega2 gamma2)/(gamma1^2 + gamma2^2)`` and
+  ``dtheta/dt = -(gamma1 omega2 - gamma2 omega1)/sin theta``. The precession is
+  resolved where every sampled step of ``psi`` (wrapped to ``(-pi, pi]``) stays below
+  ``pi/2`` and within ``pi/2`` of the trapezoidal integral of its rate (sampled every
+  1.01 precession periods, the steps look small but the rate says a turn each); the
+  nutation where every step of ``theta`` follows the integral of its rate to
+  :data:`ALIASING_RTOL` of the orbit's ``max |dtheta/dt| dt`` (about ten samples a
+  nutation period). An aliased precession has NaN rate (``undersampled``); aliased
+  nutation bounds are kept as sampled and flagged (``nutation_undersampled``).
 * :func:`herpolhode`: the free top (``mu = 0``): the angular velocity in space,
   ``R I^-1 G``, whose tip moves on the invariable plane ``(omega, L) = 2T`` with ``L = R G``
   fixed (Poinsot); its coordinates in that plane and its distance ``2T/|L|``.
@@ -39,6 +51,7 @@ from andoyer.analysis.unperturbed.separatrix import BRANCHES, heteroclinic, hete
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.rotation import (
     BODY_AXES,
+    EULER_SINGULAR_RTOL,
     QUATERNION,
     SPACE_AXES,
     quaternion_from_vertical,
@@ -57,11 +70,20 @@ from andoyer.integrate.results import (
 from andoyer.validation import MAX_ACTION, integer
 from andoyer.validation import positive as _positive
 
-__all__ = ["AXES", "axis_trace", "precession_nutation", "herpolhode", "heteroclinic_cycle"]
+__all__ = ["AXES", "ALIASING_RTOL", "axis_trace", "precession_nutation", "herpolhode",
+           "heteroclinic_cycle"]
 
 #: Named body axes of :func:`axis_trace` (``centre_of_mass`` is ``r``, ``momentum`` is
 #: ``G/|G|``, ``angular_velocity`` is ``I^-1 G / |I^-1 G|``; the last two move in the body).
 AXES = ("x", "y", "z", "centre_of_mass", "momentum", "angular_velocity")
+
+#: A sample step resolves the nutation where its sampled change agrees with the
+#: trapezoidal integral of its rate to this fraction of ``max |dtheta/dt| dt`` (a
+#: sinusoid's trapezoidal error is ``x^2/12`` of it at a phase step ``x``: about ten
+#: samples a period pass, four do not).
+ALIASING_RTOL = 0.1
+#: Changes of an angle below this (rad) are round-off, whatever the rate says.
+_ANGLE_FLOOR = 1e-10
 
 _STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
 _REQUIRED = ("rotation", "precession", "nutation", "euler_singular")
@@ -95,9 +117,16 @@ def _states(ds: xr.Dataset) -> np.ndarray:
 
 
 _TRACE_META: dict[str, VariableMeta] = {
-    "trace": ("R a", "the body axis a in space (unit vector)", "1", ""),
-    "colatitude": ("ϑ_a", "angle of the axis from the vertical Z", "rad", ""),
-    "azimuth": ("λ_a", "azimuth of the axis about Z, from X towards Y", "rad", ""),
+    "trace": ("R a", "the body axis a in space (unit vector) (NaN: where undefined)", "1",
+              ""),
+    "colatitude": ("ϑ_a", "angle of the axis from the vertical Z (NaN: where undefined)",
+                   "rad", ""),
+    "azimuth": ("λ_a", "azimuth of the axis about Z, from X towards Y (NaN: where "
+                "undefined or at the pole)", "rad", ""),
+    "undefined": ("", "the axis is undefined: a zero vector (G = 0 for momentum, ω = 0 "
+                  "for angular_velocity)", "1", ""),
+    "at_pole": ("", "the axis is vertical (sin of its colatitude <= "
+                "euler_singular_rtol): its azimuth is undefined", "1", ""),
 }
 
 
@@ -116,7 +145,9 @@ def axis_trace(ds: xr.Dataset, axis: str = "z") -> xr.Dataset:
     -------
     xarray.Dataset
         ``trace`` (dims of ``ds`` and ``space`` = X, Y, Z), ``colatitude`` (from ``Z``)
-        and ``azimuth`` (about ``Z``, in (-pi, pi]); attr ``axis``.
+        and ``azimuth`` (about ``Z``, in (-pi, pi]); the flags ``undefined`` (the axis
+        is a zero vector there: ``G = 0`` or ``omega = 0``; everything NaN) and
+        ``at_pole`` (the axis vertical: the azimuth NaN); attr ``axis``.
 
     Examples
     --------
@@ -144,13 +175,19 @@ def axis_trace(ds: xr.Dataset, axis: str = "z") -> xr.Dataset:
         body = _body_of(ds)
         a = Y[..., :3] * np.array([body.a, body.b, body.c])
     norm = np.linalg.norm(a, axis=-1, keepdims=True)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        u = np.einsum("...ij,...j->...i", R, a / norm)
+    # A zero vector has no direction (G = 0, omega = 0): NaN, flagged.
+    undefined = norm[..., 0] <= EULER_SINGULAR_RTOL * float(np.max(norm, initial=0.0))
+    safe = np.where(undefined[..., None], 1.0, norm)
+    u = np.einsum("...ij,...j->...i", R, a / safe)
+    u[undefined] = np.nan
+    horizontal = np.hypot(u[..., 0], u[..., 1])
+    at_pole = ~undefined & (horizontal <= EULER_SINGULAR_RTOL)
     dims = ds.precession.dims
     out = xr.Dataset(
         {"trace": ((*dims, "space"), u),
-         "colatitude": (dims, np.arctan2(np.hypot(u[..., 0], u[..., 1]), u[..., 2])),
-         "azimuth": (dims, np.arctan2(u[..., 1], u[..., 0]))},
+         "colatitude": (dims, np.arctan2(horizontal, u[..., 2])),
+         "azimuth": (dims, np.where(at_pole, np.nan, np.arctan2(u[..., 1], u[..., 0]))),
+         "undefined": (dims, undefined), "at_pole": (dims, at_pole)},
         coords={d: ds[d].values for d in dims if d in ds.coords} | {"space": list(SPACE_AXES)},
         attrs={**{k: v for k, v in ds.attrs.items() if k != "created"}, "axis": axis})
     return describe_variables(out, _TRACE_META)
@@ -160,13 +197,36 @@ _PN_META: dict[str, VariableMeta] = {
     "nutation_min": ("θ_min", "least sampled nutation angle", "rad", ""),
     "nutation_max": ("θ_max", "largest sampled nutation angle", "rad", ""),
     "nutation_mean": ("<θ>", "time average of the nutation (trapezoidal)", "rad", ""),
-    "precession_rate": ("<dψ/dt>", "mean precession rate (ψ(t_end) - ψ(t0)) / (t_end - t0)",
-                        "rad/body time unit", ""),
-    "precession_turns": ("Δψ/2π", "turns of the precession over the orbit", "1", ""),
+    "precession_rate": ("<dψ/dt>", "mean precession rate (ψ(t_end) - ψ(t0)) / (t_end - t0) "
+                        "(NaN: through the pole or aliased)", "rad/body time unit", ""),
+    "precession_turns": ("Δψ/2π", "turns of the precession over the orbit (NaN: through "
+                         "the pole or aliased)", "1", ""),
     "passes_pole": ("", "the orbit comes within the flag of θ = 0 or π (ψ undefined)",
                     "1", ""),
-    "undersampled": ("", "a sample step of ψ above π/2: too sparse to unwrap", "1", ""),
+    "undersampled": ("", "the precession is aliased: a sample step of ψ disagrees with its "
+                     "rate, or its change exceeds π/2 (too sparse to unwrap)", "1", ""),
+    "nutation_undersampled": ("", "the nutation is aliased: a sample step of θ disagrees "
+                              "with its rate (the sampled bounds miss the extremes)", "1",
+                              ""),
 }
+
+
+def _euler_rates(body: RigidBody, Y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(dpsi/dt, dtheta/dt)`` at every state (module notes; NaN at the poles)."""
+    w = Y[..., :3] * np.array([body.a, body.b, body.c])
+    g1, g2 = Y[..., 3], Y[..., 4]
+    s2 = g1 * g1 + g2 * g2
+    pole = np.sqrt(s2) <= EULER_SINGULAR_RTOL
+    safe = np.where(pole, 1.0, s2)
+    psi_rate = np.where(pole, np.nan, (w[..., 0] * g1 + w[..., 1] * g2) / safe)
+    theta_rate = np.where(pole, np.nan, -(g1 * w[..., 1] - g2 * w[..., 0]) / np.sqrt(safe))
+    return psi_rate, theta_rate
+
+
+def _mismatch(change: np.ndarray, rate: np.ndarray, dt: np.ndarray) -> np.ndarray:
+    """``|change - trapezoidal integral of rate|`` per sample step (NaN where a pole makes
+    the rate undefined: ``passes_pole`` says so)."""
+    return np.abs(change - 0.5 * dt * (rate[:, 1:] + rate[:, :-1]))
 
 
 def precession_nutation(ds: xr.Dataset) -> xr.Dataset:
@@ -183,7 +243,9 @@ def precession_nutation(ds: xr.Dataset) -> xr.Dataset:
         Per orbit: ``nutation_min``, ``nutation_max``, ``nutation_mean`` (rad),
         ``precession_rate`` (the mean over the whole time span; over whole nutation
         periods it is the secular rate), ``precession_turns``, and the flags
-        ``passes_pole`` and ``undersampled`` (the rate is NaN where either is set).
+        ``passes_pole``, ``undersampled`` (the precession aliased by the sampling: the
+        rate is NaN where either is set) and ``nutation_undersampled`` (the nutation
+        aliased: the sampled bounds are flagged, not exact); see the module notes.
 
     Examples
     --------
@@ -204,8 +266,16 @@ def precession_nutation(ds: xr.Dataset) -> xr.Dataset:
     psi = ds.precession.values
     pole = ds.euler_singular.values.any(axis=1)
     steps = np.angle(np.exp(1j * np.diff(np.nan_to_num(psi), axis=1)))
-    sparse = np.abs(steps).max(axis=1) > 0.5 * math.pi if psi.shape[1] > 1 else np.zeros(
-        psi.shape[0], bool)
+    psi_rate, theta_rate = _euler_rates(_body_of(ds), _states(ds))
+    dt = np.diff(t)
+    with np.errstate(invalid="ignore"):
+        # psi: the rate must pick the sampled branch (within pi/2 of its integral).
+        sparse = np.any((_mismatch(steps, psi_rate, dt) > 0.5 * math.pi)
+                        | (np.abs(steps) > 0.5 * math.pi), axis=1)
+        # theta: each step must follow the rate to ALIASING_RTOL of the orbit's reach.
+        reach = dt * np.nanmax(np.abs(theta_rate), axis=1, initial=0.0)[:, None]
+        nutation_sparse = np.any(_mismatch(np.diff(theta, axis=1), theta_rate, dt)
+                                 > ALIASING_RTOL * reach + _ANGLE_FLOOR, axis=1)
     advance = np.sum(steps, axis=1)
     bad = pole | sparse
     span = t[-1] - t[0]
@@ -217,7 +287,8 @@ def precession_nutation(ds: xr.Dataset) -> xr.Dataset:
          "nutation_mean": ("orbit", mean),
          "precession_rate": ("orbit", rate),
          "precession_turns": ("orbit", np.where(bad, np.nan, advance / (2 * math.pi))),
-         "passes_pole": ("orbit", pole), "undersampled": ("orbit", sparse)},
+         "passes_pole": ("orbit", pole), "undersampled": ("orbit", sparse),
+         "nutation_undersampled": ("orbit", nutation_sparse)},
         coords={"orbit": ds.orbit.values},
         attrs={**{k: v for k, v in ds.attrs.items() if k != "created"},
                "duration": float(span)})
@@ -251,7 +322,8 @@ def herpolhode(ds: xr.Dataset) -> xr.Dataset:
         (dim ``plane`` = u, v: the tip of ``R omega`` in the invariable plane, ``u``
         along ``Z x L`` or ``X`` where ``L`` is vertical, ``v = L x u / |L|``),
         ``plane_distance`` (``(R omega, L)/|L| = 2T/|L|``, constant) and
-        ``momentum_space`` (``L = R G``, per orbit).
+        ``momentum_space`` (``L = R G``, per orbit). An orbit with ``G = 0`` (at rest:
+        no invariable plane) is refused, naming ``ds``.
 
     Examples
     --------
@@ -275,6 +347,12 @@ def herpolhode(ds: xr.Dataset) -> xr.Dataset:
     L_t = np.einsum("...ij,...j->...i", R, Y[..., :3])
     L = L_t.mean(axis=-2, keepdims=True)
     Ln = np.linalg.norm(L, axis=-1, keepdims=True)
+    G_size = np.linalg.norm(Y[..., :3], axis=-1).max(axis=-1)
+    still = np.flatnonzero((Ln.reshape(-1) <= EULER_SINGULAR_RTOL * G_size.reshape(-1))
+                           | (G_size.reshape(-1) == 0.0))
+    if still.size:
+        raise ValueError(f"ds: G = 0 on {still.size} orbit(s) (first {int(still[0])}): a "
+                         "free top at rest has no invariable plane and no herpolhode")
     n = L / Ln
     u = np.cross([0.0, 0.0, 1.0], n)
     un = np.linalg.norm(u, axis=-1, keepdims=True)
