@@ -64,6 +64,12 @@ level, and the plane point's label is ``G + mu V / (s(l) G)`` (``dH0/dG`` at fix
 ``(l, L)``, ``s = a sin^2 l + b cos^2 l``). Together
 ``dG_label = -W (dI1 + dI1(phi)) + mu V (1/(s G) - 1/omega_g)`` (``stable_shift``).
 
+(R11) The tori are labelled, to rounding, by their gap to the separatrix
+``e = q G^2/(2h) - 1`` (:func:`free_top_at_gap`): ``W`` depends on ``G`` only through
+``2h/G^2`` and, in Carlson's forms of the elliptic integrals, only through products with
+``e`` near the separatrix, where ``W ~ pi lambda / (q ln(1/e))``. The double ``G`` of a
+torus at ``e`` misses it by ``eps/e`` relative in ``e``, ``~W^2 eps/(2 e)`` in ``W``.
+
 What first order does not give: the width of chains with ``|p| >= 2``; the ``O(mu)``
 asymmetry of the chain (the cubic term of ``K0`` and the slope of ``|V_k|`` in the action
 move the midpoint of its two separatrices off the stable point); and the chaotic layers
@@ -73,12 +79,14 @@ along the separatrices (exponentially thin in ``1/sqrt(mu)``).
 from __future__ import annotations
 
 import math
-from typing import Any
+from fractions import Fraction
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 from scipy.optimize import brentq
+from scipy.special import elliprf, elliprj
 
 from andoyer.analysis.resonance.torus import (
     MAX_FOURIER,
@@ -105,8 +113,15 @@ __all__ = ["resonant_tori", "resonance_widths", "section_rotation_number", "MAX_
 MAX_ORDER = 100
 #: Points of each chain's centre line and separatrices in the section plane.
 N_CURVE = 512
-#: Relative distance to the separatrix ``2h = q G^2`` of the closest scanned torus.
+#: The scan's geometric part starts at ``|e| = _SEP_GAP`` of the regime's extent and
+#: goes down (by factors 1e-4) until ``W`` is below the smallest fraction asked for.
 _SEP_GAP = 1e-12
+#: Smallest ``|e|`` scanned (R11 is exact to rounding there; ``W ~ 1/ln(1/e)``: 4e-3 on
+#: the paper's body).
+_MIN_GAP = 1e-120
+#: A torus's double ``G`` labels it when ``|W(G) - p/q| <= LABEL_TOLERANCE p/q``
+#: (``resolved``); nearer the separatrix ``G`` cannot hold it, the gap ``e`` does (R11).
+LABEL_TOLERANCE = 1e-13
 #: Refinement of the torus samples where the section points are bracketed.
 _FINE = 16
 
@@ -134,6 +149,90 @@ def section_rotation_number(body: RigidBody, h: float, G: float) -> float:
     return float(euler_poinsot_frequencies(body, h, G).rotation_number_g_section)
 
 
+class FreeTopTorus(NamedTuple):
+    """The free top's torus on ``H0 = h`` labelled by its gap to the separatrix (R11).
+
+    Parameters
+    ----------
+    gap : float
+        ``e = q G^2 / (2 h) - 1`` (``q`` the middle inverse moment): ``> 0`` about the axis
+        of the largest moment, ``< 0`` about that of the smallest.
+    G : float
+        ``|G| = sqrt(2 h (1 + e) / q)`` rounded to a double.
+    rotation_number : float
+        ``W = omega_l / omega_g`` of the torus ``e`` (R2).
+    omega_l, omega_g : float
+        Frequency of ``(l, L)`` and mean rate of ``g`` on the torus.
+    """
+
+    gap: float
+    G: float
+    rotation_number: float
+    omega_l: float
+    omega_g: float
+
+
+def free_top_at_gap(body: RigidBody, h: float, gap: float) -> FreeTopTorus:
+    """(R11): ``W``, ``omega_l``, ``omega_g`` of the torus ``q G^2 = 2 h (1 + gap)``,
+    computed from ``gap`` without cancellation near the separatrix.
+
+    With ``x = 2h/G^2 = q/(1 + e)`` the small quantities ``q - x = q e/(1 + e)``, the
+    complementary parameter ``1 - m`` and ``1 - n`` of the elliptic integrals are
+    products with ``e`` (never differences), and Carlson's forms take them as they are:
+    ``K = R_F(0, 1 - m, 1)``, ``Pi(n | m) = K + n R_J(0, 1 - m, 1, 1 - n) / 3``. The
+    frequency ratio ``omega_g / omega_l = 2 (x K - (q - x) n R_J / 3) / (pi lambda)``
+    (from :func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_frequencies`
+    with ``c = q``) is then exact to rounding at any ``e``, where ``W(G)`` from the
+    double ``G`` loses ``eps / e`` (relative) to the difference ``q G^2 - 2h``.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis of inertia (``c = q``); ``mu`` ignored.
+    h : float
+        Energy ``H0 = h`` (> 0).
+    gap : float
+        ``e``, non-zero, between the permanent rotations
+        (``q/p - 1 <= e <= q/r - 1``).
+
+    Returns
+    -------
+    FreeTopTorus
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> t = free_top_at_gap(RigidBody.paper(), 0.2466, 1e-14)
+    >>> round(t.rotation_number, 12), t.G == math.sqrt(2 * 0.2466 / RigidBody.paper().c)
+    (0.010782131543, False)
+    """
+    p, q, r = sorted((body.a, body.b, body.c), reverse=True)
+    e = float(gap)
+    x = q / (1.0 + e)
+    d = q * e / (1.0 + e)                                   # q - x, exact to rounding
+    if e > 0.0:
+        lam = math.sqrt((q - r) * (p - x))
+        m1 = (p - r) * d / ((q - r) * (p - x))
+        n, n1 = (x - r) / (q - r), d / (q - r)
+    else:
+        lam = math.sqrt((p - q) * (x - r))
+        m1 = -(p - r) * d / ((p - q) * (x - r))
+        n, n1 = (p - x) / (p - q), -d / (p - q)
+    K = float(elliprf(0.0, m1, 1.0))
+    ratio = 2.0 * (x * K - d * n * float(elliprj(0.0, m1, 1.0, n1)) / 3.0) / (math.pi * lam)
+    g_sep = math.sqrt(2.0 * h / q)
+    G = g_sep + g_sep * e / (1.0 + math.sqrt(1.0 + e))      # g_sep sqrt(1 + e)
+    omega_l = math.pi * G * lam / (2.0 * K)
+    return FreeTopTorus(e, G, 1.0 / ratio, omega_l, omega_l * ratio)
+
+
+def gap_of(body: RigidBody, h: float, G: float) -> float:
+    """``e = q G^2/(2h) - 1`` of the double ``G``, exactly (rational arithmetic), rounded
+    once."""
+    q = Fraction(sorted((body.a, body.b, body.c))[1])
+    return float(q * Fraction(G) ** 2 / (2 * Fraction(h)) - 1)
+
+
 def _fractions(lo: float, hi: float, max_order: int) -> list[tuple[int, int]]:
     out = []
     for q in range(1, max_order):
@@ -143,39 +242,61 @@ def _fractions(lo: float, hi: float, max_order: int) -> list[tuple[int, int]]:
     return sorted(out, key=lambda f: f[0] / f[1])
 
 
-def _scan(body: RigidBody, h: float, lo: float, hi: float, g_sep: float
-          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """W on a grid of G over ``(lo, hi)``, dense (geometric) towards the separatrix."""
-    span = hi - lo
-    near = g_sep + np.sign((lo + hi) / 2 - g_sep) * span * np.logspace(
-        math.log10(_SEP_GAP), 0.0, 241)[:-1]
-    grid = np.unique(np.concatenate([near, np.linspace(lo, hi, 201)[1:-1]]))
-    grid = grid[(grid > lo) & (grid < hi)]
-    keep, W = [], []
-    for G in grid:
-        try:
-            W.append(section_rotation_number(body, h, float(G)))
-            keep.append(G)
-        except ValueError:  # at the separatrix to rounding
-            continue
-    return np.array(keep), np.array(W)
+def _gap_range(body: RigidBody, h: float, lo: float, hi: float
+               ) -> tuple[float, float, float]:
+    """The regime ``(G_lo, G_hi)`` in the gap: ``(sign of e, |e| at the end nearer the
+    separatrix (0 there), |e| at the other end)``."""
+    g_sep = math.sqrt(2.0 * h / sorted((body.a, body.b, body.c))[1])
+    near, far = (hi, lo) if abs(hi - g_sep) < abs(lo - g_sep) else (lo, hi)
+    e_near = 0.0 if near == g_sep else abs(gap_of(body, h, near))
+    return math.copysign(1.0, far - g_sep), e_near, abs(gap_of(body, h, far))
+
+
+def _scan(body: RigidBody, h: float, side: float, e_near: float, e_far: float,
+          w_min: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``ln |e|`` and ``W`` on a grid inside the regime: uniform in ``e`` and, when the
+    regime reaches the separatrix, geometric towards it (20 points a decade) down to the
+    gap where ``W < w_min`` (the smallest fraction asked for) or :data:`_MIN_GAP`."""
+    grid = e_near + (e_far - e_near) * np.linspace(0.0, 1.0, 201)[1:-1]
+    if e_near == 0.0:
+        low = e_far * _SEP_GAP
+        while low > _MIN_GAP and free_top_at_gap(
+                body, h, side * low).rotation_number >= w_min:
+            low *= 1e-4
+        low = max(low, _MIN_GAP)
+        near = np.geomspace(low, e_far, int(20 * math.log10(e_far / low)) + 2)[:-1]
+        grid = np.concatenate([near, grid])
+    u = np.log(np.unique(grid))
+    W = np.array([free_top_at_gap(body, h, side * math.exp(v)).rotation_number for v in u])
+    return u, W
 
 
 def resonant_rows(body: RigidBody, h: float, M: float, max_order: int) -> list[dict[str, Any]]:
+    """The resonant tori (R4), (R11): per fraction ``p/q`` and sign, the torus's gap
+    ``e`` (``W(e) = p/q`` by Brent in ``ln |e|``), its ``G``, and whether that double
+    ``G`` labels the torus to :data:`LABEL_TOLERANCE` (``label_error``)."""
     rows: list[dict[str, Any]] = []
-    g_sep = math.sqrt(2.0 * h / body.c)
+    w_min = 1.0 / max(max_order - 1, 1)
     for axis, lo, hi in regimes(body, h, M):
-        Gs, Ws = _scan(body, h, lo, hi, g_sep)
-        if Gs.size < 2:
+        side, e_near, e_far = _gap_range(body, h, lo, hi)
+        us, Ws = _scan(body, h, side, e_near, e_far, w_min)
+        if us.size < 2:
             continue
         for p, q in _fractions(float(Ws.min()), float(Ws.max()), max_order):
             d = Ws - p / q
             for i in np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]:
-                G = brentq(lambda x, w=p / q: section_rotation_number(body, h, x) - w,
-                           float(Gs[i]), float(Gs[i + 1]), xtol=1e-15 * float(Gs[i]),
-                           rtol=4 * np.finfo(float).eps)
+                u = brentq(lambda v, w=p / q: free_top_at_gap(
+                    body, h, side * math.exp(v)).rotation_number - w,
+                    float(us[i]), float(us[i + 1]), xtol=1e-15,
+                    rtol=4 * np.finfo(float).eps)
+                t = free_top_at_gap(body, h, side * math.exp(u))
+                e_G = gap_of(body, h, t.G)
+                miss = (abs(free_top_at_gap(body, h, e_G).rotation_number - p / q)
+                        if e_G != 0.0 else p / q)
                 for sign in (1, -1):
-                    rows.append({"p": p, "q": q, "axis": axis, "sign": sign, "G": G,
+                    rows.append({"p": p, "q": q, "axis": axis, "sign": sign, "G": t.G,
+                                 "gap": t.gap, "torus": t, "label_error": miss,
+                                 "resolved": miss <= LABEL_TOLERANCE * p / q,
                                  "lo": lo, "hi": hi})
     return rows
 
@@ -201,6 +322,10 @@ _TORI_META = {
                  "1", "(R4)"),
     "rotation_number_g_section": ("W", "omega_l / omega_g of the resonant torus: p/q",
                                   "1", "(R2)"),
+    "separatrix_gap": ("e", "q G*^2 / (2h) - 1: the torus's gap to the separatrix, its "
+                       "label to rounding", "1", "(R11)"),
+    "label_error": ("", "|W - p/q| of the torus the double G_action labels", "1", "(R11)"),
+    "resolved": ("", "G_action labels the torus to LABEL_TOLERANCE p/q", "1", "(R11)"),
     "frequency_ratio": ("\\omega_g/\\omega_l", "omega_g / omega_l = q/p (the ratio "
                         "andoyer.analysis.chaos.frequency measures)", "1", ""),
     "label": ("q:p", "the resonance label of andoyer.analysis.chaos.frequency (frequency_ratio "
@@ -219,10 +344,17 @@ def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
     On ``H0 = h`` (``mu`` ignored) the tori are labelled by ``G``; each regime (the
     momentum about the axis of the largest or of the smallest moment) has the rotation
     number ``W(G)`` of the section map ``g = const`` (R2) between 0 (at the separatrix)
-    and its value at the permanent rotation. ``W`` is scanned on a grid of ``G``
-    (geometric towards the separatrix, to a relative gap of 1e-12) and each sign change of
-    ``W - p/q`` closed by Brent's method to rounding. Each torus is listed twice, once per
-    sign of the momentum on its axis (two copies of the chain, mirror images).
+    and its value at the permanent rotation. Each torus is found in its gap to the
+    separatrix ``e = q G^2/(2h) - 1`` (R11), where ``W(e)`` is exact to rounding: ``W`` is
+    scanned on a grid of ``ln |e|`` (geometric towards the separatrix, down to the gap
+    where ``W`` is below every fraction asked for) and each sign change of ``W - p/q``
+    closed by Brent's method, so ``W = p/q`` to rounding on every row. Near the separatrix
+    the double ``G*`` cannot hold the torus (``W`` varies like ``1/ln(1/e)``: one ulp of
+    ``G`` is a change of ``W`` of ``~W^2 eps/e``); ``label_error`` says by how much the
+    torus of the double ``G_action`` misses ``p/q`` and ``resolved`` whether that is within
+    :data:`LABEL_TOLERANCE` (relative) -- the gap ``separatrix_gap`` is the label then.
+    Each torus is listed twice, once per sign of the momentum on its axis (two copies of
+    the chain, mirror images).
 
     Parameters
     ----------
@@ -239,10 +371,12 @@ def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
     -------
     xarray.Dataset
         Dim ``resonance``, ordered by regime and ``p/q``: ``p``, ``q``, ``axis``,
-        ``sign``, ``G_action`` (``G*``), ``rotation_number_g_section`` (``W(G*)``, equal to
-        ``p/q`` to rounding), ``frequency_ratio`` ``q/p``, ``label`` ``"q:p"`` (as
-        :func:`andoyer.analysis.chaos.frequency.resonance_label` names ``frequency_ratio``),
-        ``omega_l``, ``omega_g``.
+        ``sign``, ``separatrix_gap`` (``e`` of the torus, R11), ``G_action`` (``G*``,
+        its double), ``rotation_number_g_section`` (``W(e)``, equal to ``p/q`` to
+        rounding), ``label_error`` (``|W(G_action) - p/q|``), ``resolved`` (``G_action``
+        labels the torus to :data:`LABEL_TOLERANCE`), ``frequency_ratio`` ``q/p``,
+        ``label`` ``"q:p"`` (as :func:`andoyer.analysis.chaos.frequency.resonance_label`
+        names ``frequency_ratio``), ``omega_l``, ``omega_g``.
 
     Examples
     --------
@@ -252,6 +386,11 @@ def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
     ['6:1', '7:1', '8:1', '9:1']
     >>> bool(abs(ds.rotation_number_g_section - ds.p / ds.q).max() < 1e-14)
     True
+    >>> big = resonant_tori(RigidBody.paper(), 0.2466, 0.0, max_order=100)
+    >>> bool(abs(big.rotation_number_g_section / (big.p / big.q) - 1).max() < 1e-14)
+    True
+    >>> int((~big.resolved).sum()) > 0    # the tori whose double G* misses p/q
+    True
     """
     h, M, max_order = check_level_args(body, h, M, max_order)
     return _tori_dataset(body, h, M, max_order, resonant_rows(body, h, M, max_order))
@@ -260,36 +399,44 @@ def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
 def _tori_dataset(body: RigidBody, h: float, M: float, max_order: int,
                   rows: list[dict[str, Any]]) -> xr.Dataset:
     n = len(rows)
-    freq = [euler_poinsot_frequencies(body, h, r["G"]) for r in rows]
+    tori = [r["torus"] for r in rows]
     ds = xr.Dataset(
         {"p": ("resonance", np.array([r["p"] for r in rows], dtype=np.int64)),
          "q": ("resonance", np.array([r["q"] for r in rows], dtype=np.int64)),
          "axis": ("resonance", np.array([r["axis"] for r in rows], dtype=np.int64)),
          "sign": ("resonance", np.array([r["sign"] for r in rows], dtype=np.int64)),
+         "separatrix_gap": ("resonance", np.array([t.gap for t in tori], dtype=float)),
          "G_action": ("resonance", np.array([r["G"] for r in rows], dtype=float)),
          "rotation_number_g_section": ("resonance", np.array(
-             [f.rotation_number_g_section for f in freq], dtype=float)),
-         "frequency_ratio": ("resonance", np.array([f.frequency_ratio for f in freq],
+             [t.rotation_number for t in tori], dtype=float)),
+         "label_error": ("resonance", np.array([r["label_error"] for r in rows],
+                                               dtype=float)),
+         "resolved": ("resonance", np.array([r["resolved"] for r in rows], dtype=bool)),
+         "frequency_ratio": ("resonance", np.array([1.0 / t.rotation_number for t in tori],
                                                    dtype=float)),
          "label": ("resonance", np.array([f"{r['q']}:{r['p']}" for r in rows], dtype=str)),
-         "omega_l": ("resonance", np.array([2 * math.pi / f.period for f in freq],
-                                           dtype=float)),
-         "omega_g": ("resonance", np.array([f.g_rate for f in freq], dtype=float))},
+         "omega_l": ("resonance", np.array([t.omega_l for t in tori], dtype=float)),
+         "omega_g": ("resonance", np.array([t.omega_g for t in tori], dtype=float))},
         coords={"resonance": np.arange(n)},
         attrs=provenance(body, h=h, M=M, max_order=max_order,
-                         method="W(G) = rotation_number_g_section of "
-                                "euler_poinsot_frequencies on a grid of G, sign changes of "
-                                "W - p/q closed by Brent's method",
-                         derivation="andoyer.analysis.resonance.predict (R1)-(R9)"))
+                         label_tolerance=LABEL_TOLERANCE,
+                         method="W(e) in the gap to the separatrix e = q G^2/(2h) - 1 "
+                                "(Carlson's forms, no cancellation) on a grid of ln|e|, "
+                                "sign changes of W - p/q closed by Brent's method",
+                         derivation="andoyer.analysis.resonance.predict (R1)-(R11)"))
     return describe_variables(ds, _TORI_META)
 
 
 # ------------------------------------------------------------------------ widths
-def _twist(body: RigidBody, h: float, G: float, lo: float, hi: float) -> float:
-    """``dW/dG`` along ``H0 = h`` by Richardson's 5-point central difference."""
-    d = 1e-4 * min(G - lo, hi - G)
-    w = [section_rotation_number(body, h, G + k * d) for k in (-2, -1, 1, 2)]
-    return (8.0 * (w[2] - w[1]) - (w[3] - w[0])) / (12.0 * d)
+def _twist(body: RigidBody, h: float, row: dict[str, Any]) -> float:
+    """``dW/dG`` along ``H0 = h``: Richardson's 5-point central difference in the gap
+    ``e`` (R11), step ``1e-4`` of the distance to the nearer end of the regime;
+    ``dW/dG = (dW/de) 2 (1 + e) / G``."""
+    e = row["gap"]
+    _side, e_near, e_far = _gap_range(body, h, row["lo"], row["hi"])
+    d = math.copysign(1e-4 * min(abs(e) - e_near, e_far - abs(e)), e)
+    w = [free_top_at_gap(body, h, e + k * d).rotation_number for k in (-2, -1, 1, 2)]
+    return (8.0 * (w[2] - w[1]) - (w[3] - w[0])) / (12.0 * d) * 2.0 * (1.0 + e) / row["G"]
 
 
 def _upsample(values: NDArray[np.float64], factor: int) -> NDArray[np.float64]:
@@ -327,8 +474,8 @@ class ResonantChain:
         n1 = self.torus.phi1.size
         self.n_fourier = n1
         T = self.torus
-        self.W = T.omega_l / T.omega_g
-        self.twist = _twist(body, h, row["G"], row["lo"], row["hi"])
+        self.W = row["torus"].rotation_number                          # (R11): p/q
+        self.twist = _twist(body, h, row)
         self.K0pp = -self.W * self.twist                               # (R2)
         self.beta = q * q * self.K0pp                                  # (R5)
         self.mu_order = 1 if abs(p) == 1 else 2
