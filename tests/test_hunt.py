@@ -166,6 +166,7 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "poincare": {"section": "G3=0"},
     "resonance_widths": {"section": "g=0", "max_order": 9},
     "resonant_tori": {"max_order": 9},
+    "free_top_at_gap": {"gap": 0.01},
     "free_top_phase": {"momentum": [0.3, 0.9, 0.1]},
     "elliptic_f": {"phi": 0.7},
     "measure_island": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,

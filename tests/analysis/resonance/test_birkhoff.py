@@ -131,3 +131,40 @@ def test_bad_input(kwargs, match):
         birkhoff_normal_form(PAPER, G, **args)
     with pytest.raises(ValueError, match="middle axis"):
         birkhoff_normal_form(RigidBody.lagrange(2.0, 1.0, 1.0), 1.0)
+
+
+def test_homogeneity_over_the_range_of_G_and_refusal_beyond():
+    """(B5): c_k(G) = c_k(1) G^(2-k), omega0 ~ G, H* ~ G^2, dc_k/dG = (2-k) c_k/G, over
+    G = 1e-25 .. 1e25 at order 24 (1e-100 .. 1e100 at order 8) to rounding; the Lie series
+    run at G itself agrees where its algebra holds the numbers (G = 0.01 .. 100); G = 1e120
+    at order 8 (its c_4 ~ 1e-240, dc_4/dG below the doubles) is refused, naming G."""
+    from andoyer.analysis.resonance.birkhoff import _normalise, _taylor, _to_complex
+
+    for order, Gs in ((24, np.logspace(-25, 25, 11)), (8, np.logspace(-100, 100, 9))):
+        ref = birkhoff_normal_form(PAPER, 1.0, order=order)
+        k = ref.power.values
+        for G in Gs:
+            nf = birkhoff_normal_form(PAPER, float(G), order=order)
+            np.testing.assert_allclose(nf.coefficient / G ** (2.0 - k), ref.coefficient,
+                                       rtol=1e-14)
+            odd = k != 2
+            np.testing.assert_allclose(nf.g_coefficient[odd] * G / (2.0 - k[odd])
+                                       / nf.coefficient[odd], 1.0, rtol=1e-14)
+            assert float(nf.g_coefficient[~odd][0]) == 0.0
+            assert float(nf.omega0) == pytest.approx(G * float(ref.omega0), rel=1e-15)
+            assert float(nf.H_star) == pytest.approx(G * G * float(ref.H_star), rel=1e-15)
+            f = normal_form_frequency(nf, [0.01 * G])
+            f1 = normal_form_frequency(ref, [0.01])
+            assert float(f.energy[0]) == pytest.approx(G * G * float(f1.energy[0]), rel=1e-14)
+            assert float(f.omega_l[0]) == pytest.approx(G * float(f1.omega_l[0]), rel=1e-14)
+            assert float(f.omega_g[0]) == pytest.approx(G * float(f1.omega_g[0]), rel=1e-14)
+    for G in (0.01, 0.7, 3.0, 100.0):   # the algebra at G itself
+        h = _taylor(PAPER, 0.0, G, 8)
+        poly, w0 = _to_complex(h, 8)
+        direct = _normalise(poly, w0, 8)
+        np.testing.assert_allclose(birkhoff_normal_form(PAPER, G, order=8).coefficient,
+                                   direct, rtol=1e-11)
+    with pytest.raises(ValueError, match=r"G = 1e\+120 .*order 8"):
+        birkhoff_normal_form(PAPER, 1e120)
+    with pytest.raises(ValueError, match=r"G = 1e-120"):
+        birkhoff_normal_form(PAPER, 1e-120, order=24)

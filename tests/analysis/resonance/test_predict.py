@@ -251,3 +251,61 @@ def test_stable_shift_is_first_order_and_only_on_g_sections():
     assert np.all(np.isnan(resonance_widths(WIDE, 1.0, 0.0, "theta2=0",
                                             max_order=3).stable_shift))
     assert a.stable_shift.attrs["equation"] == "(R10)"
+
+
+def _W_exact(body, h, G):
+    """W of the torus of the double G (exact rational 2h/G^2), in 40-digit arithmetic."""
+    import mpmath as mp
+
+    with mp.workdps(40):
+        p, q, r = sorted((mp.mpf(body.a), mp.mpf(body.b), mp.mpf(body.c)), reverse=True)
+        x = 2 * mp.mpf(h) / mp.mpf(G) ** 2
+        if x < q:
+            lam, m, n = mp.sqrt((q - r) * (p - x)), (p - q) * (x - r) / ((q - r) * (p - x)), \
+                (x - r) / (q - r)
+        else:
+            lam, m, n = mp.sqrt((p - q) * (x - r)), (q - r) * (p - x) / ((p - q) * (x - r)), \
+                (p - x) / (p - q)
+        K = mp.ellipk(m)
+        g1 = q + (x - q) * mp.ellippi(n, m) / K
+        return float(2 * mp.pi * lam / (4 * K * g1))
+
+
+def test_resonant_tori_to_order_100_meet_p_over_q_or_say_which_cannot():
+    """(R11) over the whole max_order = 100 table of the paper's body: every row has
+    W = p/q to rounding (a few ulps; W found in the gap e to the separatrix, exact there),
+    every fraction p + q <= 100 below the regime's W at the permanent rotation is listed
+    once per sign (the 85:1 torus, e ~ 1e-13, included), and the tori whose double
+    G_action misses p/q by more than LABEL_TOLERANCE are flagged resolved = False with
+    label_error the true miss (against 40-digit arithmetic at that double G)."""
+    from andoyer.analysis.resonance.predict import LABEL_TOLERANCE
+
+    ds = resonant_tori(PAPER, H, 0.0, max_order=100)
+    w = ds.p / ds.q
+    rel = np.abs(ds.rotation_number_g_section / w - 1.0)
+    assert float(rel.max()) < 8 * np.finfo(float).eps
+    np.testing.assert_allclose(ds.frequency_ratio * ds.rotation_number_g_section, 1.0,
+                               rtol=4e-16)
+    for axis, g_rot in ((1, math.sqrt(2 * H / PAPER.a)), (2, math.sqrt(2 * H / PAPER.b))):
+        sub = ds.where(ds.axis == axis, drop=True)
+        w_rot = euler_poinsot_frequencies(PAPER, H, g_rot).rotation_number_g_section
+        want = {(p, q) for q in range(1, 100) for p in range(1, 101 - q)
+                if math.gcd(p, q) == 1 and p / q < w_rot}
+        got = [(int(p), int(q)) for p, q in zip(sub.p.values, sub.q.values, strict=True)]
+        assert set(got) == want and len(got) == 2 * len(want)
+    assert "85:1" in set(ds.label.values.tolist())
+    # the flag: label_error is the miss of the double G_action, measured independently
+    bad = np.nonzero(~ds.resolved.values)[0]
+    assert 0 < bad.size < ds.sizes["resonance"] // 2
+    assert np.all(ds.label_error.values[bad] > LABEL_TOLERANCE * w.values[bad])
+    assert np.all(ds.label_error.values[ds.resolved.values]
+                  <= LABEL_TOLERANCE * w.values[ds.resolved.values])
+    pick = np.concatenate([bad[::25], np.nonzero(ds.resolved.values)[0][::200]])
+    for i in pick:
+        r = ds.isel(resonance=int(i))
+        miss = abs(_W_exact(PAPER, H, float(r.G_action)) - float(r.p) / float(r.q))
+        assert float(r.label_error) == pytest.approx(
+            miss, rel=1e-3, abs=4 * np.finfo(float).eps * float(r.p) / float(r.q)), str(r.label)
+    # unresolved rows sit against the separatrix (an ulp of G moves W by ~ eps/(e K));
+    # their gap is the label, and W of the gap is p/q there too
+    assert float(np.abs(ds.separatrix_gap.values[bad]).max()) < 1e-3

@@ -23,6 +23,12 @@ removes every term but the powers of the action:
      term left out is ``O(I^(N/2 + 1))`` (``N`` even), so ``omega_l`` errs by
      ``O(I^(N/2)) = O(amplitude^N)``.
 
+(B5) ``H0`` is homogeneous of degree 2 in ``(G, L)`` at fixed ``l``, and the scaling
+     ``x = alpha q``, ``y = p/alpha`` keeps ``I`` an action: the form at ``|G|`` is the form
+     at ``|G| = 1`` with ``c_k(G) = c_k(1) G^(2 - k)``, ``H* ~ G^2``, ``omega0 ~ G``; it is
+     computed at ``|G| = 1`` and rescaled (the algebra at ``|G| = 1e120`` would lose the
+     coefficients to the range of the doubles), ``dc_k/dG = (2 - k) c_k / G`` exactly.
+
 The check is the closed form (the period of the free top in elliptic integrals,
 :func:`~andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_frequencies`) and NAFF on
 integrated orbits, at growing amplitude.
@@ -179,7 +185,10 @@ def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
         Oz the middle axis of inertia (the rotations about x and y are then centres);
         ``mu`` is not used (the unperturbed system (9)).
     G : float
-        ``|G|`` (> 0).
+        ``|G|`` (> 0), within the range where every ``c_k ~ G^(2 - k)`` and
+        ``dc_k/dG`` of the order asked are normal doubles (B5) (on the paper's body: up to
+        :data:`~andoyer.validation.MAX_ACTION` to order 6, ``1e-103 .. 1e101`` at order 8,
+        ``1e-28 .. 1e27`` at 24); outside it a ValueError gives the range.
     order : int
         Degree ``N`` of the truncation in the distance to the centre (even, 2 to 24).
     lstar : float
@@ -189,8 +198,9 @@ def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
     -------
     xarray.Dataset
         ``coefficient`` (dim ``power``, ``k = 1 .. N/2``): ``c_k`` of
-        ``H_NF = H* + sum c_k I^k`` (B4); ``g_coefficient``: ``dc_k/dG`` (5-point
-        difference), with which ``omega_g(I) = dH*/dG + sum dc_k/dG I^k``; ``omega0``
+        ``H_NF = H* + sum c_k I^k`` (B4), by (B5) from the form at ``|G| = 1``;
+        ``g_coefficient``: ``dc_k/dG = (2 - k) c_k / G`` (B5), with which
+        ``omega_g(I) = dH*/dG + sum dc_k/dG I^k``; ``omega0``
         (``c_1``), ``H_star`` (``H`` at the centre), ``dH_star_dG``; attrs ``order``,
         ``lstar``, ``axis``, ``G``.
 
@@ -213,25 +223,25 @@ def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
         raise ValueError(f"lstar must be one of the centres 0, pi/2, pi, 3 pi/2, got {lstar!r}")
     ls = match[0]
 
-    def coefficients(Gv: float) -> tuple[NDArray[np.float64], float, float]:
-        h = _taylor(body, ls, Gv, N)
-        poly, w0 = _to_complex(h, N)
-        return _normalise(poly, w0, N), float(h[0, 0]), w0
-
-    c, H_star, w0 = coefficients(G)
-    d = 1e-3 * G
-    cs = [coefficients(G + k * d)[0] for k in (-2, -1, 1, 2)]
-    dc = (8.0 * (cs[2] - cs[1]) - (cs[3] - cs[0])) / (12.0 * d)
-    hs = [coefficients(G + k * d)[1] for k in (-1, 1)]
+    # (B5): the form at |G| = 1, rescaled by the homogeneity c_k(G) = c_k(1) G^(2 - k).
+    h1 = _taylor(body, ls, 1.0, N)
+    poly, w1 = _to_complex(h1, N)
+    c1 = _normalise(poly, w1, N)
+    k = np.arange(1, N // 2 + 1)
+    _check_range(G, c1, N)
+    half, half_g = G ** (1.0 - k / 2.0), G ** ((1.0 - k) / 2.0)   # two factors: no overflow
+    c = (c1 * half) * half
+    dc = ((2.0 - k) * c1 * half_g) * half_g
+    H_star, w0 = float(h1[0, 0]) * G * G, w1 * G
+    dH = 2.0 * float(h1[0, 0]) * G
     ds = xr.Dataset(
         {"coefficient": ("power", c), "g_coefficient": ("power", dc),
-         "omega0": ((), w0), "H_star": ((), H_star),
-         "dH_star_dG": ((), (hs[1] - hs[0]) / (2.0 * d))},
+         "omega0": ((), w0), "H_star": ((), H_star), "dH_star_dG": ((), dH)},
         coords={"power": np.arange(1, N // 2 + 1)},
         attrs=provenance(body, G=G, order=N, lstar=ls, axis=CENTRES[ls],
                          method="Lie series (Deprit) on the Taylor polynomial of H0 in "
                                 "z, zbar; SymPy for the expansion, NumPy for the algebra",
-                         derivation="andoyer.analysis.resonance.birkhoff (B1)-(B4)"))
+                         derivation="andoyer.analysis.resonance.birkhoff (B1)-(B5)"))
     return describe_variables(ds, {
         "coefficient": ("c_k", "coefficient of I^k in the normal form", "1", "(B4)"),
         "g_coefficient": ("\\partial c_k/\\partial G", "derivative of c_k in G", "1", "(B4)"),
@@ -240,6 +250,26 @@ def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
         "H_star": ("H^*", "energy of the centre (the permanent rotation)", "1", "(9)"),
         "dH_star_dG": ("\\partial H^*/\\partial G", "rate of g at the centre",
                        "rad/body time unit", "(9)")})
+
+
+def _check_range(G: float, c1: NDArray[np.float64], N: int) -> None:
+    """(B5): refuse a ``G`` where some ``c_k(1) G^(2-k)`` or ``(2-k) c_k(1) G^(1-k)`` (``c_k``
+    non-zero) leaves the normal doubles; the message gives the range for this order."""
+    tiny, huge = math.log(np.finfo(float).tiny), math.log(np.finfo(float).max)
+    lo, hi = -math.inf, math.inf
+    for k, ck in enumerate(c1, start=1):
+        if ck == 0.0:
+            continue
+        for power, scale in ((2 - k, abs(ck)), (1 - k, abs((2 - k) * ck))):
+            if power == 0 or scale == 0.0:
+                continue
+            # tiny <= log(scale) + power log G <= huge
+            a, b = (tiny - math.log(scale)) / power, (huge - math.log(scale)) / power
+            lo, hi = max(lo, min(a, b)), min(hi, max(a, b))
+    if not lo < math.log(G) < hi:
+        raise ValueError(f"G = {G!r} is beyond the range where the normal form of order {N} "
+                         f"holds its coefficients c_k ~ G^(2-k) in double precision: "
+                         f"G in ({math.exp(lo):.3g}, {math.exp(hi):.3g})")
 
 
 def normal_form_frequency(nf: xr.Dataset, I: ArrayLike) -> xr.Dataset:
@@ -276,13 +306,15 @@ def normal_form_frequency(nf: xr.Dataset, I: ArrayLike) -> xr.Dataset:
             or np.any(acts > G):
         raise ValueError(f"I must be actions in [0, G] = [0, {G:g}] (a number or a 1-D "
                          "array)")
-    c = nf.coefficient.values
-    dc = nf.g_coefficient.values
+    # (B5): in x = I/G with the coefficients at |G| = 1 (I^k alone overflows at large G)
     k = nf.power.values
-    powers = acts[:, None] ** k[None, :]
-    energy = float(nf.H_star) + powers @ c
-    omega_l = (acts[:, None] ** (k - 1)[None, :]) @ (k * c)
-    omega_g = float(nf.dH_star_dG) + powers @ dc
+    half = G ** (k / 2.0 - 1.0)
+    c1 = (nf.coefficient.values * half) * half
+    h1 = float(nf.H_star) / G / G
+    x = acts[:, None] / G
+    energy = G * G * (h1 + (x ** k[None, :]) @ c1)
+    omega_l = G * ((x ** (k - 1)[None, :]) @ (k * c1))
+    omega_g = G * (2.0 * h1 + (x ** k[None, :]) @ ((2.0 - k) * c1))
     return xr.Dataset({"omega_l": ("action", omega_l), "omega_g": ("action", omega_g),
                        "energy": ("action", energy)}, coords={"action": acts},
                       attrs={"order": int(nf.attrs["order"])})

@@ -103,9 +103,10 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.integrate import budget
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import Section
-from andoyer.validation import finite, integer
+from andoyer.validation import finite, integer, positive
 
-__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number", "MAX_ORDER",
+__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number", "free_top_at_gap",
+           "FreeTopTorus", "LABEL_TOLERANCE", "MAX_ORDER",
            "N_CURVE"]
 
 #: Largest order ``p + q`` asked for (the chains of higher order crowd the separatrix,
@@ -172,6 +173,7 @@ class FreeTopTorus(NamedTuple):
     omega_g: float
 
 
+@checks_body
 def free_top_at_gap(body: RigidBody, h: float, gap: float) -> FreeTopTorus:
     """(R11): ``W``, ``omega_l``, ``omega_g`` of the torus ``q G^2 = 2 h (1 + gap)``,
     computed from ``gap`` without cancellation near the separatrix.
@@ -206,8 +208,13 @@ def free_top_at_gap(body: RigidBody, h: float, gap: float) -> FreeTopTorus:
     >>> round(t.rotation_number, 12), t.G == math.sqrt(2 * 0.2466 / RigidBody.paper().c)
     (0.010782131543, False)
     """
+    h, e = positive("h", h), finite("gap", gap)
+    body.require_middle_axis("free_top_at_gap")
     p, q, r = sorted((body.a, body.b, body.c), reverse=True)
-    e = float(gap)
+    if not (q / p - 1.0 <= e <= q / r - 1.0 and e != 0.0):
+        raise ValueError(f"gap must be non-zero, between the permanent rotations "
+                         f"{q / p - 1.0!r} and {q / r - 1.0!r} (e = q G^2/(2h) - 1), got "
+                         f"{gap!r}")
     x = q / (1.0 + e)
     d = q * e / (1.0 + e)                                   # q - x, exact to rounding
     if e > 0.0:
@@ -226,7 +233,7 @@ def free_top_at_gap(body: RigidBody, h: float, gap: float) -> FreeTopTorus:
     return FreeTopTorus(e, G, 1.0 / ratio, omega_l, omega_l * ratio)
 
 
-def gap_of(body: RigidBody, h: float, G: float) -> float:
+def _gap_of(body: RigidBody, h: float, G: float) -> float:
     """``e = q G^2/(2h) - 1`` of the double ``G``, exactly (rational arithmetic), rounded
     once."""
     q = Fraction(sorted((body.a, body.b, body.c))[1])
@@ -246,18 +253,22 @@ def _gap_range(body: RigidBody, h: float, lo: float, hi: float
                ) -> tuple[float, float, float]:
     """The regime ``(G_lo, G_hi)`` in the gap: ``(sign of e, |e| at the end nearer the
     separatrix (0 there), |e| at the other end)``."""
-    g_sep = math.sqrt(2.0 * h / sorted((body.a, body.b, body.c))[1])
+    p, q, r = sorted((body.a, body.b, body.c), reverse=True)
+    g_sep = math.sqrt(2.0 * h / q)
     near, far = (hi, lo) if abs(hi - g_sep) < abs(lo - g_sep) else (lo, hi)
-    e_near = 0.0 if near == g_sep else abs(gap_of(body, h, near))
-    return math.copysign(1.0, far - g_sep), e_near, abs(gap_of(body, h, far))
+    e_near = 0.0 if near == g_sep else abs(_gap_of(body, h, near))
+    rotation = {math.sqrt(2.0 * h / p): q / p - 1.0, math.sqrt(2.0 * h / r): q / r - 1.0}
+    e_far = abs(rotation[far]) if far in rotation else abs(_gap_of(body, h, far))
+    return math.copysign(1.0, far - g_sep), e_near, e_far
 
 
 def _scan(body: RigidBody, h: float, side: float, e_near: float, e_far: float,
           w_min: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``ln |e|`` and ``W`` on a grid inside the regime: uniform in ``e`` and, when the
+    """``ln |e|`` and ``W`` on a grid over the regime, its ends included (``W`` at the
+    permanent rotation is the limit of the tori's): uniform in ``e`` and, when the
     regime reaches the separatrix, geometric towards it (20 points a decade) down to the
     gap where ``W < w_min`` (the smallest fraction asked for) or :data:`_MIN_GAP`."""
-    grid = e_near + (e_far - e_near) * np.linspace(0.0, 1.0, 201)[1:-1]
+    grid = e_near + (e_far - e_near) * np.linspace(0.0, 1.0, 201)[int(e_near == 0.0):]
     if e_near == 0.0:
         low = e_far * _SEP_GAP
         while low > _MIN_GAP and free_top_at_gap(
@@ -282,15 +293,18 @@ def resonant_rows(body: RigidBody, h: float, M: float, max_order: int) -> list[d
         us, Ws = _scan(body, h, side, e_near, e_far, w_min)
         if us.size < 2:
             continue
+        ends = Ws[[0, -1]] if e_near > 0.0 else Ws[[-1]]   # no torus at a rotation or |G| = |M|
         for p, q in _fractions(float(Ws.min()), float(Ws.max()), max_order):
+            if np.any(np.abs(ends - p / q) <= 8 * np.finfo(float).eps * p / q):
+                continue
             d = Ws - p / q
             for i in np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]:
-                u = brentq(lambda v, w=p / q: free_top_at_gap(
+                u = brentq(lambda v, w=p / q, side=side: free_top_at_gap(
                     body, h, side * math.exp(v)).rotation_number - w,
                     float(us[i]), float(us[i + 1]), xtol=1e-15,
                     rtol=4 * np.finfo(float).eps)
                 t = free_top_at_gap(body, h, side * math.exp(u))
-                e_G = gap_of(body, h, t.G)
+                e_G = _gap_of(body, h, t.G)
                 miss = (abs(free_top_at_gap(body, h, e_G).rotation_number - p / q)
                         if e_G != 0.0 else p / q)
                 for sign in (1, -1):
