@@ -15,7 +15,7 @@ import errno
 import os
 
 __all__ = ["ArgumentTypeError", "CostLimitError", "DamagedFileError", "DamagedStoreWarning",
-           "IntegrationError", "Interrupted", "ManifestWarning", "NoCacheWarning",
+           "EncoderError", "IntegrationError", "Interrupted", "ManifestWarning", "NoCacheWarning",
            "NoSpaceError", "OutputInUseError", "SingularChartWarning", "SingularPassageWarning",
            "StaleLockWarning"]
 
@@ -63,6 +63,14 @@ class IntegrationError(FloatingPointError):
     """An integrator failed (step size underflow, non-finite field, too many steps).
 
     A ``FloatingPointError``, which is what the engines raised before it existed.
+    """
+
+
+class EncoderError(RuntimeError):
+    """An external encoder (ffmpeg writing an MP4) failed.
+
+    The message names the encoder, its exit status and the last line of its error
+    output; nothing was written (files are written atomically).
     """
 
 

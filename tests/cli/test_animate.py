@@ -60,3 +60,28 @@ def test_an_interrupted_write_leaves_nothing_behind(tmp_path, capsys, monkeypatc
                   capsys)
     assert code == EXIT_CODES["interrupted"]
     assert [p for p in tmp_path.iterdir() if not p.name.endswith(".lock")] == []
+
+
+def test_a_failing_encoder_gives_one_line_and_no_file(tmp_path, capsys, monkeypatch):
+    """An encoder that fails (a fake ffmpeg exiting 3): one line naming it, its exit status
+    and the last line of its stderr; exit code 'encoder failed'; no partial file. Before:
+    exit 70 (internal error) with the raw CalledProcessError."""
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    exe = fake / "ffmpeg"
+    exe.write_text("#!/bin/sh\necho 'ffmpeg version fake' >&2\n"
+                   "echo 'Unknown encoder h264' >&2\nexit 3\n")
+    exe.chmod(0o755)
+    import os
+
+    monkeypatch.setenv("PATH", f"{fake}:{os.environ['PATH']}")
+    out = tmp_path / "films" / "top.mp4"
+    out.parent.mkdir()
+    code, err = run(["animate", *STATE, "--frames", "4", "--t-end", "1", "--out", str(out)],
+                    capsys)
+    assert code == EXIT_CODES["encoder failed"]
+    lines = [line for line in err.splitlines() if line.strip() and "%" not in line]
+    assert lines == [f"andoyer animate: error: the encoder ffmpeg failed with exit status 3: "
+                     f"Unknown encoder h264; nothing was written to {str(out)!r}"], err
+    assert not [p for p in out.parent.iterdir()
+                if not p.name.endswith(".lock") and p.name != ".andoyer-manifest.json"]

@@ -79,3 +79,64 @@ def test_space_figures_have_no_overlapping_labels(ds):
     for fig in (plot_axis_trace(axis_trace(ds, "z")), plot_precession_nutation(ds, orbit=1),
                 plot_heteroclinic_cycle(cyc, axis_trace(cyc, "z"))):
         assert overlapping_texts(fig) == []
+
+
+def test_plotly_gyroscope_refuses_a_dataset_without_attitude_naming_ds():
+    """Before: AttributeError from xarray ('Dataset' object has no attribute 'rotation')."""
+    from andoyer.integrate import propagate
+    from andoyer.plot.space import gyroscope_plotly
+
+    plain = propagate(LAGRANGE, [0.2, 0.1, 1.5, 0.0, 0.6, 0.8], [0.0, 1.0], engine="numba")
+    with pytest.raises(ValueError, match=r"^ds has no attitude"):
+        gyroscope_plotly(plain)
+    with pytest.raises(ValueError, match=r"^ds has no attitude"):
+        gyroscope_animation(plain)
+    with pytest.raises(TypeError, match=r"^ds must be an attitude dataset"):
+        gyroscope_plotly(plain.to_array())
+
+
+@pytest.mark.parametrize("orbit", [3, 2, -1, True, 1.5, "0", None])
+def test_plotly_gyroscope_refuses_an_orbit_out_of_range_naming_orbit(ds, orbit):
+    """Before: orbit=3 on a one-orbit dataset raised IndexError."""
+    from andoyer.plot.space import gyroscope_plotly
+
+    with pytest.raises(ValueError, match=r"^orbit must be an integer in \[0, 1\]"):
+        gyroscope_plotly(ds, orbit=orbit)
+    with pytest.raises(ValueError, match=r"^orbit must be"):
+        gyroscope_animation(ds, orbit=orbit)
+
+
+@pytest.mark.parametrize("frames", [1, 10**6, True, 2.5])
+def test_plotly_gyroscope_refuses_bad_frames(ds, frames):
+    from andoyer.plot.space import gyroscope_plotly
+
+    with pytest.raises(ValueError, match=r"^frames must be"):
+        gyroscope_plotly(ds, frames=frames)
+
+
+def _failing_encoder(tmp_path, monkeypatch, status=3):
+    """A fake ffmpeg first on PATH: it says two lines on stderr and exits ``status``."""
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    exe = fake / "ffmpeg"
+    exe.write_text("#!/bin/sh\necho 'ffmpeg version fake' >&2\n"
+                   "echo '[libx264 @ 0x1] no such codec' >&2\n"
+                   f"exit {status}\n")
+    exe.chmod(0o755)
+    monkeypatch.setenv("PATH", f"{fake}:{__import__('os').environ['PATH']}")
+
+
+def test_a_failing_encoder_is_named_with_its_status_and_last_line(ds, tmp_path, monkeypatch):
+    """Before: the encoder's raw CalledProcessError (and matplotlib's log of its output)."""
+    from andoyer.errors import EncoderError
+    from andoyer.plot.space import save_animation
+
+    _failing_encoder(tmp_path, monkeypatch)
+    out = tmp_path / "top.mp4"
+    anim = gyroscope_animation(ds.isel(time=slice(0, 4)))
+    with pytest.raises(EncoderError) as info:
+        save_animation(anim, out)
+    said = str(info.value)
+    assert said == (f"the encoder ffmpeg failed with exit status 3: [libx264 @ 0x1] no such "
+                    f"codec; nothing was written to {str(out)!r}")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bin"]

@@ -68,6 +68,7 @@ EXIT_CODES = {
     "out of memory": 5,
     "integration failed": 6,
     "missing dependency": 7,
+    "encoder failed": 8,
     "internal error": 70,
     "interrupted": 130,
 }
@@ -75,7 +76,7 @@ EXIT_CODES = {
 
 def _classify(exc: BaseException) -> tuple[str, str]:
     """``(class, message)`` of an exception that ends a command."""
-    from andoyer.errors import CostLimitError, IntegrationError
+    from andoyer.errors import CostLimitError, EncoderError, IntegrationError
 
     if isinstance(exc, KeyboardInterrupt):
         signame = getattr(exc, "signal", "SIGINT")
@@ -87,6 +88,8 @@ def _classify(exc: BaseException) -> tuple[str, str]:
     if isinstance(exc, MemoryError):
         return "out of memory", ("out of memory; ask for less (fewer orbits, crossings, grid "
                                  "points or output times)")
+    if isinstance(exc, EncoderError):
+        return "encoder failed", str(exc)
     if isinstance(exc, ModuleNotFoundError):
         return "missing dependency", f"{exc}; install it or choose another --engine"
     if isinstance(exc, OSError) and exc.errno == errno.ENOSPC:

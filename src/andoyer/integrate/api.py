@@ -597,7 +597,9 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     ----------
     body : RigidBody
     x0 : array_like, shape (5,)
-        One point of ``chart``: ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``.
+        One point of ``chart``: ``(l, g, L, G, M)`` or ``(theta1, theta2, J1, J2, J3)``,
+        finite, in the chart's domain and farther than ``singular_margin`` from its
+        singular set (else ``ValueError`` naming ``x0``).
     t : array_like, shape (k,)
         Output times, strictly increasing; ``t[0]`` is the initial time.
     chart : {"hess", "andoyer"}
@@ -605,8 +607,8 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     rtol, atol : float
         Tolerances of DOP853 (mixed criterion ``atol + rtol |y|``).
     singular_margin : float
-        Relative distance to the singular set (fraction of ``G`` or ``J2``) at which the
-        integration stops.
+        Relative distance to the singular set (fraction of ``G`` or ``J2``, in
+        ``(0, 0.5]``) at which the integration stops.
 
     Returns
     -------
@@ -621,10 +623,17 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
         raise ValueError(f"chart must be 'andoyer' or 'hess', got {chart!r}")
     rtol, atol = check_tolerances(rtol, atol)
     times = check_times(t)
-    x = np.asarray(x0, dtype=float)
+    margin = positive("singular_margin", singular_margin, maximum=0.5)
+    x = real_array("x0", x0)
     if x.shape != (5,):
         raise ValueError(f"x0 must be one point of the {chart} chart, shape (5,), "
                          f"got {x.shape}")
+    if not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be finite, got {x.tolist()}")
+    y = initial_states(body, x, chart, name="x0")  # the chart's domain, |G| bounded
+    budget.check("integrate_canonical",
+                 steps=budget.estimate_steps(body, y, times[-1] - times[0], rtol),
+                 memory=8 * 6 * times.size)
     names = CHARTS[chart]
 
     def rhs(_t: float, z: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -633,11 +642,15 @@ def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     def distance(_t: float, z: NDArray[np.float64]) -> float:
         if chart == "andoyer":
             G = z[3]
-            return float(min(G - abs(z[2]), G - abs(z[4])) / G - singular_margin)
+            return float(min(G - abs(z[2]), G - abs(z[4])) / G - margin)
         J1, J2, J3 = z[2], z[3], z[4]
-        return float(min(J1, J2 - J1, J2 - abs(J3)) / J2 - singular_margin)
+        return float(min(J1, J2 - J1, J2 - abs(J3)) / J2 - margin)
 
     distance.terminal = True  # type: ignore[attr-defined]
+    if not distance(0.0, x) > 0.0:
+        raise ValueError(f"x0 lies within singular_margin = {margin:g} of the singular set "
+                         f"of the {chart} chart (L = +-G or |M| = G, relative to G): the "
+                         "canonical equations are singular there; use propagate()")
     sol = solve_dop853(rhs, times, np.append(x, 0.0), rtol, atol, events=[distance])
     if sol.status == 1:
         raise ValueError(

@@ -9,7 +9,9 @@ computed here but the drawing (the sphere's shading, the wheel's rim).
 
 from __future__ import annotations
 
+import logging
 import os
+import subprocess
 from io import BytesIO
 from pathlib import Path
 from typing import Any
@@ -20,15 +22,19 @@ from matplotlib.animation import AbstractMovieWriter, FFMpegWriter, FuncAnimatio
 from matplotlib.figure import Figure
 
 from andoyer.atomic import atomic_path
+from andoyer.errors import EncoderError
 from andoyer.plot.style import COLOURS, new_figure, paper_style
+from andoyer.validation import integer
 
 __all__ = ["plot_axis_trace", "plot_precession_nutation", "plot_heteroclinic_cycle",
            "gyroscope_animation", "gyroscope_plotly", "save_animation", "ANIMATION_FORMATS",
-           "animation_writer_available"]
+           "animation_writer_available", "MAX_PLOTLY_FRAMES"]
 
 #: File suffix -> the encoder that writes it (Pillow ships with Matplotlib; MP4 needs
 #: the ffmpeg program).
 ANIMATION_FORMATS = {".gif": "pillow", ".mp4": "ffmpeg"}
+#: Most frames of :func:`gyroscope_plotly` (each is sent to the browser as JSON).
+MAX_PLOTLY_FRAMES = 2000
 
 #: Direction of the light shading the sphere (space frame).
 _LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
@@ -200,6 +206,24 @@ def _wheel(n: int = 48) -> np.ndarray:
     return np.concatenate([rim, [[np.nan] * 3], spoke])
 
 
+def _attitude_orbit(ds: Any, orbit: Any) -> xr.Dataset:
+    """One orbit of an attitude dataset, or ``ValueError`` naming ``ds`` or ``orbit``."""
+    if not isinstance(ds, xr.Dataset):
+        raise TypeError(f"ds must be an attitude dataset (andoyer.integrate.attitude), got "
+                        f"{type(ds).__name__}")
+    if "rotation" not in ds or "orbit" not in ds.dims or "time" not in ds.dims:
+        raise ValueError("ds has no attitude (no variable rotation over (orbit, time)): "
+                         "pass a dataset of andoyer.integrate.attitude, not of propagate")
+    n = ds.sizes["orbit"]
+    k = integer("orbit", orbit, 0, n - 1) if n else integer("orbit", orbit, 0)
+    if n == 0:
+        raise ValueError("ds holds no orbit")
+    one = ds.isel(orbit=k)
+    if not np.all(np.isfinite(one.rotation.values)):
+        raise ValueError(f"ds: orbit {k} has non-finite rotations (a failed integration)")
+    return one
+
+
 def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
                         tail: int | None = None) -> FuncAnimation:
     """The gyroscope moving: its axle (body axis ``z``), its wheel, and the trace of the
@@ -210,11 +234,17 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
     ds : xarray.Dataset
         An attitude dataset (:func:`andoyer.integrate.attitude`).
     orbit : int
-        Which orbit.
+        Which orbit: an index in ``[0, n_orbits)``.
     fps : int
-        Frames per second of the animation's clock.
+        Frames per second of the animation's clock, in ``[1, 60]``.
     tail : int, optional
         Frames of trace kept behind the tip (default: all).
+
+    Raises
+    ------
+    ValueError
+        Naming ``ds`` (no attitude: a dataset of ``propagate``, or a failed orbit) or
+        ``orbit`` (out of range), ``fps``, ``tail``.
 
     Returns
     -------
@@ -231,7 +261,9 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
     >>> len(list(anim.new_frame_seq()))
     5
     """
-    one = ds.isel(orbit=orbit)
+    one = _attitude_orbit(ds, orbit)
+    fps = integer("fps", fps, 1, 60)
+    tail = None if tail is None else integer("tail", tail, 0)
     R = one.rotation.transpose("time", "space", "body").values
     tip = R[:, :, 2]
     body = _wheel()
@@ -256,8 +288,7 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
         label.set_text(f"t = {t[k]:.2f}")
         return axle, wheel, trail, label
 
-    return FuncAnimation(fig, draw, frames=len(t), interval=1000.0 / max(int(fps), 1),
-                         blit=False)
+    return FuncAnimation(fig, draw, frames=len(t), interval=1000.0 / fps, blit=False)
 
 
 class _GifWriter(AbstractMovieWriter):
@@ -315,9 +346,15 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
     path : path-like
         Ends in ``.gif`` or ``.mp4``.
     fps : int
-        Frames per second of the file.
+        Frames per second of the file, in ``[1, 60]``.
     dpi : int
-        Resolution of the frames.
+        Resolution of the frames, in ``[10, 1000]``.
+
+    Raises
+    ------
+    andoyer.errors.EncoderError
+        The encoder (ffmpeg) failed: the message names it, its exit status and the last
+        line of its error output; nothing was written.
 
     Returns
     -------
@@ -339,13 +376,37 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
     if not animation_writer_available(suffix):
         raise ValueError(f"no MP4 encoder here (the ffmpeg program is not installed); write "
                          f"a .gif instead of {str(final)!r}")
-    with atomic_path(final) as tmp:
-        if suffix == ".gif":
-            writer: AbstractMovieWriter = _GifWriter(fps=fps)
-        else:
-            writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-f", "mp4"])
-        anim.save(str(tmp), writer=writer, dpi=dpi)
+    fps = integer("fps", fps, 1, 60)
+    dpi = integer("dpi", dpi, 10, 1000)
+    # Matplotlib logs the encoder's whole output as a warning when it fails; the error
+    # below says what matters in one line.
+    log = logging.getLogger("matplotlib.animation")
+    level = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        with atomic_path(final) as tmp:
+            if suffix == ".gif":
+                writer: AbstractMovieWriter = _GifWriter(fps=fps)
+            else:
+                writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-f", "mp4"])
+            anim.save(str(tmp), writer=writer, dpi=dpi)
+    except subprocess.CalledProcessError as exc:
+        raise _encoder_error(exc, final) from None
+    finally:
+        log.setLevel(level)
     return final
+
+
+def _encoder_error(exc: subprocess.CalledProcessError, final: Path) -> EncoderError:
+    """One line: the encoder, its exit status, the last line of its error output."""
+    cmd = exc.cmd if isinstance(exc.cmd, list | tuple) else str(exc.cmd).split()
+    encoder = os.path.basename(str(cmd[0])) if cmd else "the encoder"
+    err = exc.stderr.decode(errors="replace") if isinstance(exc.stderr, bytes) else (
+        exc.stderr or "")
+    lines = [line.strip() for line in str(err).splitlines() if line.strip()]
+    said = f": {lines[-1]}" if lines else " (no error output)"
+    return EncoderError(f"the encoder {encoder} failed with exit status {exc.returncode}"
+                        f"{said}; nothing was written to {str(final)!r}")
 
 
 def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any:
@@ -360,9 +421,15 @@ def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any
     ds : xarray.Dataset
         An attitude dataset (:func:`andoyer.integrate.attitude`).
     orbit : int
-        Which orbit.
+        Which orbit: an index in ``[0, n_orbits)``.
     frames : int
-        Animation frames (>= 2).
+        Animation frames, in ``[2, MAX_PLOTLY_FRAMES]``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``ds`` (no attitude: a dataset of ``propagate``, or a failed orbit),
+        ``orbit`` (out of range) or ``frames``.
 
     Returns
     -------
@@ -382,11 +449,11 @@ def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any
     """
     import plotly.graph_objects as go
 
-    one = ds.isel(orbit=orbit)
+    one = _attitude_orbit(ds, orbit)
+    n = integer("frames", frames, 2, MAX_PLOTLY_FRAMES)
     R = one.rotation.transpose("time", "space", "body").values
     t = one.time.values
     tip = R[:, :, 2]
-    n = max(2, int(frames))
     keys = np.unique(np.linspace(0, len(t) - 1, n).round().astype(int))
     wheel = _wheel(24)
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 25), np.linspace(0, np.pi, 13))

@@ -164,3 +164,17 @@ def test_naff_takes_one_1d_signal_and_numpy_scalars() -> None:
             naff(z, bad_dt)
     with pytest.raises(ValueError, match="z must"):
         naff(["x"] * 20, 0.1)
+
+
+@pytest.mark.parametrize("scale", [1e300, 1.7e308, 1e-300, 1.0])
+def test_naff_is_blind_to_the_signal_scale(scale):
+    """1e300 e^{0.3 i t}: the windowed sums overflowed and the frequency came out NaN."""
+    t = np.arange(512)
+    lines = naff(scale * np.exp(0.3j * t), 1.0)
+    assert abs(lines.frequency[0] - 0.3) <= 1e-12
+    assert abs(abs(lines.amplitude[0]) / scale - 1.0) <= 1e-10
+
+
+def test_naff_refuses_a_signal_without_a_line():
+    with pytest.raises(ValueError, match="^z is zero"):
+        naff(np.zeros(64), 1.0)

@@ -95,3 +95,47 @@ def test_measured_defaults_pick_the_engine_per_workload(monkeypatch):
     assert seen == ["numba", "scipy"]
     assert resolve_engine("scipy", Capability.CROSSINGS, workload="angle_section").name == \
         "scipy"  # a named engine is the engine named
+
+
+#: Every option of every engine's constructor, with values it must refuse naming it:
+#: beyond its range (a count the kernels' int64 cannot hold, 10**30), of the wrong type.
+ENGINE_OPTIONS = {
+    "max_steps": [10**30, 0, True, "x", 2.5, None, float("nan")],
+    "chunksize": [10**30, -1, True, "x"],
+    "n_threads": [10**6, 0, True, "x", 2.5],
+    "tolerance_factor": [True, "x", float("nan"), 0.0, 2.0, None, float("inf")],
+    "batch_size": [10**30, 0, True, "x"],
+}
+
+
+def _constructor_options(name):
+    import inspect
+
+    params = inspect.signature(engine_class(name)).parameters
+    return [p for p in params if p != "self"]
+
+
+@pytest.mark.parametrize("name", sorted(ENGINES))
+def test_every_engine_constructor_refuses_bad_options_naming_them(name) -> None:
+    """TaylorEngine(max_steps=10**30) was accepted and propagate raised OverflowError from
+    kernels/threads.py; a string tolerance_factor raised "'<' not supported"."""
+    if name == "heyoka":
+        pytest.importorskip("heyoka")
+    options = _constructor_options(name)
+    assert set(options) <= set(ENGINE_OPTIONS), set(options) - set(ENGINE_OPTIONS)
+    for option in options:
+        for bad in ENGINE_OPTIONS[option]:
+            if bad is None and option in ("n_threads", "batch_size"):
+                continue  # None means the default
+            with pytest.raises(ValueError, match=rf"^{option} must be"):
+                engine_class(name)(**{option: bad})
+
+
+@pytest.mark.parametrize("name", sorted(ENSEMBLE))
+def test_the_largest_max_steps_accepted_reaches_the_kernels(name) -> None:
+    from andoyer.integrate.engines.values import MAX_STEPS
+
+    eng = engine_class(name)(max_steps=MAX_STEPS, n_threads=1)
+    out = eng.propagate(Y0, np.array([0.0, 0.5]), RigidBody.paper().engine_params,
+                        Tolerance(1e-10, 1e-10))
+    assert np.isfinite(out).all()

@@ -131,8 +131,9 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     Raises
     ------
     ValueError
-        For fewer than 16 samples, non-finite samples or a bad ``dt``, ``n_freq`` or
-        ``window``.
+        For fewer than 16 samples, non-finite samples, a signal zero everywhere or a bad
+        ``dt``, ``n_freq`` or ``window``. The signal's scale does not matter (it is
+        analysed as ``z / max |z|``: 1e300 e^{0.3 i t} has its line at 0.3).
     """
     import nafflib
 
@@ -141,15 +142,25 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     dt = positive("dt", dt)
     n_freq = integer("n_freq", n_freq, 1, n // 4)
     window = integer("window", window, 1, MAX_WINDOW)
+    if not math.isfinite((n - 1) * dt):
+        raise ValueError(f"dt = {dt!r}: the signal length (n - 1) dt overflows")
+    # The analysis is linear in z: run it on z / max|z| (a signal of 1e300 overflows its
+    # windowed sums, one of 1e-300 underflows them) and scale the amplitudes back.
+    scale = float(np.max(np.abs(zz)))
+    if scale == 0.0:
+        raise ValueError("z is zero at every sample: it has no spectral line")
+    zz = (zz.real / scale) + 1j * (zz.imag / scale)  # not complex division: scale^2
     # nafflib analyses x - i px with tunes Q in turns per sample: omega = -2 pi Q / dt
     # and the amplitudes are conjugated.
     A, Q = nafflib.harmonics(zz.real, zz.imag, num_harmonics=int(n_freq),
                              window_order=int(window), window_type="hann")
-    if not math.isfinite((n - 1) * dt):
-        raise ValueError(f"dt = {dt!r}: the signal length (n - 1) dt overflows")
     omega = -2.0 * math.pi * np.asarray(Q, dtype=float) / dt
+    if not np.all(np.isfinite(omega)):
+        raise ValueError(f"z: no {n_freq} spectral line(s) could be resolved (the analysis "
+                         "gave non-finite frequencies)")
     omega = (omega + math.pi / dt) % (2.0 * math.pi / dt) - math.pi / dt
-    return Lines(omega, np.conj(np.asarray(A, dtype=np.complex128)), float((n - 1) * dt))
+    amplitude = (np.conj(np.asarray(A, dtype=np.complex128)) * scale).astype(np.complex128)
+    return Lines(omega, amplitude, float((n - 1) * dt))
 
 
 @checks_arguments

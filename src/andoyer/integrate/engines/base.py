@@ -103,6 +103,10 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines.values import ALL_KINDS as ALL_KINDS
 from andoyer.integrate.engines.values import ATTITUDE_REVERSAL as ATTITUDE_REVERSAL
+from andoyer.integrate.engines.values import MAX_BATCH as MAX_BATCH
+from andoyer.integrate.engines.values import MAX_CHUNK as MAX_CHUNK
+from andoyer.integrate.engines.values import MAX_STEPS as MAX_STEPS
+from andoyer.integrate.engines.values import MAX_THREADS as MAX_THREADS
 from andoyer.integrate.engines.values import PAR as PAR
 from andoyer.integrate.engines.values import PARAMETERS as PARAMETERS
 from andoyer.integrate.engines.values import REVERSAL as REVERSAL
@@ -482,11 +486,13 @@ class EngineBase:
     def _ensemble_options(self, max_steps: Any, chunksize: Any, n_threads: Any) -> None:
         """Check and keep the options of an engine that runs a Numba kernel over an
         ensemble of orbits (:mod:`andoyer.kernels.threads`): ``max_steps`` (steps allowed
-        per orbit, >= 1), ``chunksize`` (orbits handed to a thread at a time, >= 0; 0
-        splits the orbits evenly up front), ``n_threads`` (>= 1, or None: Numba's)."""
-        self.max_steps = integer("max_steps", max_steps, 1)
-        self.chunksize = integer("chunksize", chunksize, 0)
-        self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1)
+        per orbit, in ``[1, MAX_STEPS]``), ``chunksize`` (orbits handed to a thread at a
+        time, in ``[0, MAX_CHUNK]``; 0 splits the orbits evenly up front), ``n_threads``
+        (in ``[1, MAX_THREADS]``, or None: Numba's)."""
+        self.max_steps = integer("max_steps", max_steps, 1, MAX_STEPS)
+        self.chunksize = integer("chunksize", chunksize, 0, MAX_CHUNK)
+        self.n_threads = None if n_threads is None else integer("n_threads", n_threads, 1,
+                                                                MAX_THREADS)
 
     @staticmethod
     def _kernel_params(par: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -93,6 +93,8 @@ from numpy.typing import NDArray
 
 from andoyer.integrate.engines import heyoka_tangent
 from andoyer.integrate.engines.base import (
+    MAX_BATCH,
+    MAX_THREADS,
     Capability,
     Crossings,
     EngineBase,
@@ -436,9 +438,11 @@ class HeyokaEngine(EngineBase):
         least that many orbits, else 1 (scalar integrators); the 12-variable tangent flow
         of the FLI maps (``tangent(renormalise=False)``, one vector) takes
         :data:`PLAIN_SIMD_MULTIPLE` times that (two SIMD vectors per operation: measured
-        on 984 orbits of the W3 map, one thread, 0.373 -> 0.312 s CPU with AVX2).
+        on 984 orbits of the W3 map, one thread, 0.373 -> 0.312 s CPU with AVX2). At most
+        :data:`~andoyer.integrate.engines.values.MAX_BATCH`.
     n_threads : int, optional
-        Threads running independent orbits or batches; default ``os.cpu_count()``.
+        Threads running independent orbits or batches (at most
+        :data:`~andoyer.integrate.engines.values.MAX_THREADS`); default ``os.cpu_count()``.
 
     Notes
     -----
@@ -455,9 +459,10 @@ class HeyokaEngine(EngineBase):
     native_backward = frozenset({"tangent_crossings"})
 
     def __init__(self, *, batch_size: int | None = None, n_threads: int | None = None) -> None:
-        self.batch_size = None if batch_size is None else integer("batch_size", batch_size, 1)
-        self.n_threads = (integer("n_threads", n_threads, 1) if n_threads is not None
-                          else (os.cpu_count() or 1))
+        self.batch_size = (None if batch_size is None
+                           else integer("batch_size", batch_size, 1, MAX_BATCH))
+        self.n_threads = (integer("n_threads", n_threads, 1, MAX_THREADS)
+                          if n_threads is not None else (os.cpu_count() or 1))
         self._ensemble = 0  # for_ensemble: the default batch sizes are those of n orbits
 
     def versions(self) -> dict[str, str]:

@@ -84,7 +84,8 @@ class NumbaEngine(EngineBase):
     Parameters
     ----------
     max_steps : int, default 10**9
-        Accepted steps allowed per orbit before it is reported as failed.
+        Accepted steps allowed per orbit before it is reported as failed (at most
+        :data:`~andoyer.integrate.engines.values.MAX_STEPS`).
     chunksize : int, default 1
         Orbits handed to a thread at a time (:func:`andoyer.kernels.threads.over_orbits`);
         1 balances orbits of unequal cost (0 splits the orbits evenly up front).

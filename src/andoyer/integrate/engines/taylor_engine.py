@@ -97,7 +97,8 @@ class TaylorEngine(EngineBase):
     Parameters
     ----------
     max_steps : int, default 10**9
-        Steps allowed per orbit before it is reported as failed.
+        Steps allowed per orbit before it is reported as failed (at most
+        :data:`~andoyer.integrate.engines.values.MAX_STEPS`).
     chunksize : int, default 1
         Orbits handed to a thread at a time (:func:`andoyer.kernels.threads.over_orbits`).
     n_threads : int, optional

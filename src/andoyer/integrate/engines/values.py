@@ -32,6 +32,7 @@ __all__ = [
     "Capability", "SectionEvent", "Tolerance", "Crossings", "TangentFlow", "PARAMETERS",
     "PAR", "runtime_parameters", "REVERSIBLE", "REVERSAL", "ATTITUDE_REVERSAL",
     "TOLERANCE_FACTOR", "check_tolerance_factor", "Params", "ALL_KINDS", "unit_vectors",
+    "MAX_STEPS", "MAX_THREADS", "MAX_CHUNK", "MAX_BATCH",
 ]
 
 #: (a, b, c, mu, e1, e2, e3, phi0)
@@ -346,6 +347,16 @@ class TangentFlow(NamedTuple):
 TOLERANCE_FACTOR = 0.025
 
 
+#: The ranges of the engines' options, checked by their constructors: steps allowed per
+#: orbit (a step costs at least ~100 ns: 10^15 steps are three core-years; the kernels
+#: count in int64), threads, orbits handed to a thread at a time, orbits of one heyoka
+#: batch integrator (SIMD lanes; wider batches only cost memory).
+MAX_STEPS = 10**15
+MAX_THREADS = 1024
+MAX_CHUNK = 10**9
+MAX_BATCH = 64
+
+
 def check_tolerance_factor(tolerance_factor: float) -> float:
     """Validate a DOP853 engine's ``tolerance_factor`` (in (0, 1]).
 
@@ -354,9 +365,7 @@ def check_tolerance_factor(tolerance_factor: float) -> float:
     tolerance_factor : float
         Factor applied to the tolerances of a DOP853 engine (in ``(0, 1]``).
     """
-    if not 0.0 < tolerance_factor <= 1.0:
-        raise ValueError(f"tolerance_factor must be in (0, 1], got {tolerance_factor!r}")
-    return float(tolerance_factor)
+    return positive("tolerance_factor", tolerance_factor, maximum=1.0)
 
 
 
