@@ -85,3 +85,24 @@ def test_a_failing_encoder_gives_one_line_and_no_file(tmp_path, capsys, monkeypa
                      f"Unknown encoder h264; nothing was written to {str(out)!r}"], err
     assert not [p for p in out.parent.iterdir()
                 if not p.name.endswith(".lock") and p.name != ".andoyer-manifest.json"]
+
+def test_size_option_and_a_frame_without_a_blank_band(tmp_path, capsys):
+    """``--size`` sets the square frame's side in pixels; the sphere fills the frame
+    (its lowest and highest fifths are drawn on, not left blank)."""
+    import numpy as np
+
+    from andoyer.cli import animate
+
+    assert animate.ANIMATION_SIZE == space.ANIMATION_SIZE
+    out = tmp_path / "top.gif"
+    code, _ = run(["animate", *STATE, "--frames", "3", "--t-end", "1", "--size", "300",
+                   "--out", str(out)], capsys)
+    assert code == 0
+    with Image.open(out) as im:
+        assert im.size == (300, 300)
+        pixels = np.asarray(im.convert("L"), dtype=float)
+    rows = (pixels < 250).mean(axis=1)  # the share of drawn (not white) pixels per row
+    assert rows[-60:].max() > 0.2 and rows[:60].max() > 0.2, rows[::20]
+    code, err = run(["animate", *STATE, "--size", "10", "--out", str(tmp_path / "x.gif")],
+                    capsys)
+    assert code != 0 and "--size" in err

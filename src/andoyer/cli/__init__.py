@@ -264,7 +264,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
                     set_limits(steps=math.inf, memory=math.inf)
                 code = int(args.func(args))
-                if signals:  # taken, then swallowed by a library: still an interruption
+                # taken, then swallowed by a library: still an interruption -- except for
+                # a server (``serves``), whose normal stop is a signal (it says "stopped")
+                if signals and not getattr(args, "serves", False):
                     raise _interrupted(signals)
                 return code
             finally:

@@ -18,6 +18,10 @@ from andoyer.cli._common import (
     state_from_args,
 )
 
+#: The frame's side by default (andoyer.plot.space.ANIMATION_SIZE; the CLI imports no
+#: matplotlib before it runs).
+ANIMATION_SIZE = 480
+
 NAME = "animate"
 ORDER = 35
 #: Most frames of one animation (each is a rendered image kept until the file is written).
@@ -49,9 +53,10 @@ def run(args: argparse.Namespace) -> int:
     t = np.linspace(0.0, args.t_end, args.frames)
     ds = attitude(body, state, t, chart=chart, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, precession0=args.precession0, progress=True)
-    anim = gyroscope_animation(ds, fps=args.fps)
+    anim = gyroscope_animation(ds, fps=args.fps, size=args.size)
     out = save_animation(anim, out_path, fps=args.fps)
-    print(f"wrote {out}: {args.frames} frames to t = {args.t_end:g} at {args.fps} frames/s "
+    print(f"wrote {out}: {args.frames} frames of {args.size} x {args.size} px to "
+          f"t = {args.t_end:g} at {args.fps} frames/s "
           f"(engine {ds.attrs['engine']})")
     return 0
 
@@ -65,6 +70,8 @@ def register(sub: Any) -> None:
     p.add_argument("--frames", type=count(2), default=200,
                    help=f"frames, evenly spaced in time (default 200, at most {MAX_FRAMES})")
     p.add_argument("--fps", type=count(1, 60), default=20, help="frames per second (default 20)")
+    p.add_argument("--size", type=count(64, 4096), default=ANIMATION_SIZE,
+                   help=f"side of the square frame in pixels (default {ANIMATION_SIZE})")
     add_term(p, "precession0", type=real(), default=0.0)
     add_engine_args(p)
     p.add_argument("--out", default="gyroscope.gif",

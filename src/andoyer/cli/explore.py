@@ -45,9 +45,11 @@ def register(sub: Any) -> None:
     add_term(p, "n_crossings", type=count(1), default=500,
              help="crossings per orbit (default 500)")
     add_engine_args(p)
-    p.add_argument("--port", type=count(0, 65535), default=0, help="port (default 0: a free port)")
+    p.add_argument("--port", type=count(0, 65535), default=0,
+                   help="port (default 0: a free port; the address is printed at start)")
     p.add_argument("--max-sessions", type=count(1), default=8,
                    help="pages open at once; a page past it says so (default 8)")
     p.add_argument("--no-browser", action="store_true",
                    help="do not open the page in a web browser")
-    p.set_defaults(func=run)
+    # a server: Ctrl-C, SIGTERM and SIGHUP are its normal stop (exit 0, "stopped")
+    p.set_defaults(func=run, serves=True)

@@ -25,6 +25,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
 from andoyer.plot.style import COLOURS, angle_ticks, new_figure, paper_style
+from andoyer.plot.words import branch_words
 
 __all__ = ["plot_manifold_curves", "plot_splitting_phase", "plot_splitting_vs_mu",
            "plot_manifolds_summary"]
@@ -77,7 +78,8 @@ def plot_manifold_curves(unstable: xr.Dataset, stable: xr.Dataset,
     ax.set_ylabel("$G$")
     mu = unstable.attrs.get("body_mu")
     ax.set_title(title if title is not None else
-                 f"manifolds on $L = 0$, branch {unstable.attrs.get('branch', '')}, "
+                 f"manifolds on $L = 0$, branch "
+                 f"{branch_words(str(unstable.attrs.get('branch', '')))}, "
                  f"$\\mu = {float(mu):g}$" if mu is not None else "manifolds on $L = 0$")
     ax.legend(loc="best", frameon=True, framealpha=0.85, edgecolor="none")
     return ax

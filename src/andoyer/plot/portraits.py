@@ -110,7 +110,10 @@ def draw_portrait(ax: Axes, ds: xr.Dataset, *, mark_hess: bool = True,
 
 
 def _legend(ax: Axes, ds_list: list[xr.Dataset], mark_hess: bool,
-            anchor: tuple[float, float] = (0.5, -0.2)) -> None:
+            anchor: tuple[float, float] | None = (0.5, -0.2)) -> None:
+    """The portrait's legend under the axes (``anchor`` in axes coordinates), or with
+    ``anchor=None`` under the whole figure (a figure of several panels: the legend then
+    takes no room from one panel's column)."""
     handles = [Line2D([], [], color=COLOURS["separatrix"], lw=1.2, label="separatrix"),
                Line2D([], [], color=COLOURS["singular"], lw=1.4, label="singular line")]
     if mark_hess and any(bool(d.separatrix_hess.any()) for d in ds_list):
@@ -124,7 +127,10 @@ def _legend(ax: Axes, ds_list: list[xr.Dataset], mark_hess: bool,
                                   markerfacecolor=st.get("facecolors", st.get("color")),
                                   markeredgecolor=st.get("edgecolors", st.get("color")),
                                   label=kind))
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=anchor, ncol=3)
+    if anchor is None:
+        ax.get_figure(root=True).legend(handles=handles, loc="outside lower center", ncol=5)
+    else:
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=anchor, ncol=3)
 
 
 def plot_fig1(ds: xr.Dataset) -> Figure:
@@ -194,5 +200,5 @@ def plot_fig2(ds_andoyer: xr.Dataset, ds_hess: xr.Dataset) -> Figure:
         draw_portrait(ax_b, ds_hess)
         ax_a.set_title("(a) Andoyer-Deprit variables")
         ax_b.set_title("(b) variables (14)")
-        _legend(ax_a, [ds_andoyer, ds_hess], mark_hess=True, anchor=(1.1, -0.2))
+        _legend(ax_a, [ds_andoyer, ds_hess], mark_hess=True, anchor=None)
     return fig

@@ -24,6 +24,7 @@ from matplotlib.figure import Figure
 from andoyer.atomic import atomic_path
 from andoyer.errors import EncoderError
 from andoyer.plot.style import COLOURS, new_figure, paper_style
+from andoyer.plot.words import branch_words
 from andoyer.validation import integer
 
 __all__ = ["plot_axis_trace", "plot_precession_nutation", "plot_heteroclinic_cycle",
@@ -99,7 +100,7 @@ def plot_axis_trace(trace: xr.Dataset, *, orbits: Any = None, ax: Any = None) ->
         lead = [d for d in u.dims if d not in ("time", "space")]
         lines = [u] if not lead else [u.isel({lead[0]: i}) for i in range(u.sizes[lead[0]])]
         labels: list[str | None] = ([None] if not lead
-                                    else [str(v) for v in u[lead[0]].values])
+                                    else [branch_words(str(v)) for v in u[lead[0]].values])
         if orbits is not None and lead:
             keep = set(np.atleast_1d(orbits).tolist())
             pairs = [(line, lab) for line, lab in zip(lines, labels, strict=True)
@@ -112,7 +113,8 @@ def plot_axis_trace(trace: xr.Dataset, *, orbits: Any = None, ax: Any = None) ->
         ax.view_init(elev=22, azim=-60)
         ax.set_title(f"trace of the axis {trace.attrs.get('axis', '')} in space")
         if lead and len(lines) > 1:
-            ax.legend(loc="upper left", fontsize=6.5, title=lead[0])
+            ax.legend(loc="upper left", fontsize=6.5,
+                      title="separatrix branch" if lead[0] == "branch" else lead[0])
     return fig
 
 
@@ -156,8 +158,8 @@ def plot_precession_nutation(ds: xr.Dataset, orbit: int = 0) -> Figure:
         ax_n.set_ylabel(r"nutation $\theta$ (deg)")
         ax_n.set_xlabel("time")
         if bool(one.euler_singular.any()):
-            ax_p.text(0.01, 0.9, "gaps: theta = 0 or pi, psi undefined", fontsize=7,
-                      transform=ax_p.transAxes, color=COLOURS["singular"])
+            ax_p.set_title(r"gaps: $\theta = 0$ or $\pi$, where $\psi$ is undefined",
+                           fontsize=7, color=COLOURS["singular"])
     return fig
 
 
@@ -184,17 +186,22 @@ def plot_heteroclinic_cycle(cycle: xr.Dataset, trace: xr.Dataset) -> Figure:
         ax_a = fig.add_subplot(1, 2, 1)
         ax_b = fig.add_subplot(1, 2, 2, projection="3d")
         for b in cycle.branch.values:
-            ax_a.plot(cycle.time, cycle.L_over_G.sel(branch=b), label=str(b))
+            ax_a.plot(cycle.time, cycle.L_over_G.sel(branch=b), label=branch_words(str(b)))
         ax_a.axhline(1.0, color="0.7", lw=0.5)
         ax_a.axhline(-1.0, color="0.7", lw=0.5)
-        ax_a.text(0.02, 0.93, "P+ (L = G)", transform=ax_a.transAxes, fontsize=7)
-        ax_a.text(0.02, 0.03, "P- (L = -G)", transform=ax_a.transAxes, fontsize=7)
+        # the two equilibria named beside the axis, off the curves
+        ax_a.set_yticks([-1.0, -0.5, 0.0, 0.5, 1.0],
+                        [r"$P_-$: $-1$", "$-0.5$", "$0$", "$0.5$", r"$P_+$: $1$"])
         ax_a.set_xlabel("time from the middle of the branch")
         ax_a.set_ylabel("$L/G$")
         ax_a.set_title(rf"(a) $\mu = {float(cycle.attrs['body_mu']):g}$")
-        ax_a.legend(loc="center right", fontsize=6.5)
+        ax_a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2, fontsize=6.5,
+                    frameon=False, title="separatrix branch", title_fontsize=6.5)
         plot_axis_trace(trace, ax=ax_b)
-        ax_b.set_title("(b) the axis z in space")
+        if ax_b.get_legend() is not None:  # (a)'s legend names the same colours
+            ax_b.get_legend().remove()
+        ax_b.set_box_aspect((1, 1, 1), zoom=1.15)
+        ax_b.set_title("(b) the axis $z$ in space")
     return fig
 
 
@@ -224,8 +231,12 @@ def _attitude_orbit(ds: Any, orbit: Any) -> xr.Dataset:
     return one
 
 
+#: Side of an animation's frame in pixels (at :func:`save_animation`'s 100 dpi).
+ANIMATION_SIZE = 480
+
+
 def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
-                        tail: int | None = None) -> FuncAnimation:
+                        tail: int | None = None, size: int = ANIMATION_SIZE) -> FuncAnimation:
     """The gyroscope moving: its axle (body axis ``z``), its wheel, and the trace of the
     axle's tip on the sphere, one frame per time of ``ds``.
 
@@ -239,6 +250,8 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
         Frames per second of the animation's clock, in ``[1, 60]``.
     tail : int, optional
         Frames of trace kept behind the tip (default: all).
+    size : int, default 480
+        Side of the square frame in pixels (written at 100 dpi); the sphere fills it.
 
     Raises
     ------
@@ -268,15 +281,20 @@ def gyroscope_animation(ds: xr.Dataset, orbit: int = 0, *, fps: int = 20,
     tip = R[:, :, 2]
     body = _wheel()
     t = one.time.values
+    side = integer("size", size, 64, 4096) / 100.0
     with paper_style():
-        fig = new_figure(1, 1, width=3.4, aspect=1.0, projection="3d")
-        ax: Any = fig.axes[0]  # Axes3D
+        # The whole frame is the 3D axes (constrained layout would leave a blank band
+        # under a square 3D box), zoomed so that the sphere fills it.
+        fig = Figure(figsize=(side, side), dpi=100)
+        ax: Any = fig.add_axes((0.0, 0.0, 1.0, 1.0), projection="3d")
         _sphere(ax, n=32)
+        ax.set_box_aspect((1, 1, 1), zoom=1.35)
         ax.view_init(elev=18, azim=-60)
         axle, = ax.plot([], [], [], color="0.15", lw=2.0)
         wheel, = ax.plot([], [], [], color=COLOURS["separatrix"], lw=1.4)
         trail, = ax.plot([], [], [], color=COLOURS["centre"], lw=0.9)
-        label = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=7)
+        label = ax.text2D(0.03, 0.95, "", transform=ax.transAxes,
+                          fontsize=max(7.0, 7.0 * side / 3.4))
 
     def draw(k: int) -> tuple[Any, ...]:  # the lines are Line3D
         a = tip[k]

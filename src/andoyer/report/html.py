@@ -4,7 +4,7 @@
 one item (figures, what the paper says, what was corrected or added, files, table) and
 ``items/<key>.html.j2``, which extends it, holds that item's prose. Values are escaped
 by Jinja2 (autoescape); numbers are formatted in the templates with the ``fmt`` filter
-(a :func:`format` spec).
+(a :func:`format` spec; a zero is never printed with a sign, in table cells either).
 
 Examples
 --------
@@ -15,6 +15,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -23,7 +24,7 @@ from andoyer.atomic import atomic_path
 from andoyer.body import RigidBody
 from andoyer.report.base import Item, Result
 
-__all__ = ["environment", "render_item", "write_index", "DISPLAY_DPI"]
+__all__ = ["environment", "render_item", "write_index", "DISPLAY_DPI", "MATHJAX"]
 
 #: Figures are written at 200 dpi and shown at most this many CSS pixels per inch (so a
 #: 6.4 in figure is at most 960 px wide; narrower windows scale it down).
@@ -39,8 +40,24 @@ def environment() -> Any:
     env = jinja2.Environment(loader=jinja2.PackageLoader("andoyer.report", "templates"),
                              autoescape=True, undefined=jinja2.StrictUndefined,
                              keep_trailing_newline=True)
-    env.filters["fmt"] = lambda value, spec="": format(value, spec)
+    env.filters["fmt"] = lambda value, spec="": _no_negative_zero(format(value, spec))
+    env.filters["cell"] = lambda value: _no_negative_zero(str(value))
     return env
+
+
+#: A number that prints as zero with a sign (``-0``, ``-0.000``, ``+0.00e+00``).
+_SIGNED_ZERO = re.compile(r"[-+−]0(\.0*)?([eE][-+]?0+)?")
+
+
+def _no_negative_zero(text: str) -> str:
+    """``text`` with a zero printed without its sign (``-0.00e+00`` -> ``0.00e+00``).
+
+    Examples
+    --------
+    >>> _no_negative_zero("-0.00e+00"), _no_negative_zero("-0.5"), _no_negative_zero("+0.000")
+    ('0.00e+00', '-0.5', '0.000')
+    """
+    return text[1:] if _SIGNED_ZERO.fullmatch(text.strip()) else text
 
 
 def _images(result: Result) -> list[dict[str, Any]]:
@@ -98,8 +115,26 @@ def write_index(out: Path, body: RigidBody, engine: str,
     sections = [Markup(render_item(item, res, seconds, body)) for item, res, seconds in done]
     page = environment().get_template("index.html.j2").render(
         version=__version__, body=body, engine=engine, items=[i for i, _, _ in done],
-        sections=sections)
+        sections=sections, mathjax=MATHJAX)
     index = out / "index.html"
+    _copy_mathjax(out)
     with atomic_path(index) as tmp:
         tmp.write_text(page, encoding="utf-8")
     return index
+
+
+#: The report's MathJax (package data), copied beside ``index.html``: formulas render
+#: from the folder alone, offline.
+MATHJAX = "mathjax-tex-svg.js"
+
+
+def _copy_mathjax(out: Path) -> Path:
+    """``out/mathjax-tex-svg.js`` (left alone when it is already the same file)."""
+    from importlib.resources import files
+
+    source = files("andoyer.report").joinpath("mathjax", "tex-svg.js").read_bytes()
+    target = out / MATHJAX
+    if not (target.exists() and target.read_bytes() == source):
+        with atomic_path(target) as tmp:
+            tmp.write_bytes(source)
+    return target

@@ -40,9 +40,11 @@ _GRACE_S = 5.0
 
 
 class Announcer:
-    """The report's progress: one line per item as it finishes (``[k/n] title ... t s``,
-    ``k`` items done so far) on stderr; on a terminal a bar of items naming those running,
-    elsewhere a plain line naming them every :data:`HEARTBEAT_S`.
+    """The report's progress on stderr: a line per item as it finishes, with its time.
+
+    Each line reads ``[k/n] title ... t s`` (``k`` items done so far); on a terminal a bar
+    of items names those running, elsewhere a plain line names them every
+    :data:`HEARTBEAT_S`.
 
     Parameters
     ----------

@@ -80,8 +80,9 @@ def chaos(ctx: Context) -> Result:
     ]
     with paper_style():
         fig = new_figure(1, 2, width=9.0, aspect=0.85)
-        for ax, ds, label in zip(fig.axes, maps, ("(a) the paper's body, h = c/2",
-                                                  "(b) Hess body (3, 1, 2), mu = 1, h = 1"),
+        for ax, ds, label in zip(fig.axes, maps, ("(a) the paper's body, $h = c/2$",
+                                                  "(b) Hess body $(A, B, C) = (3, 1, 2)$, "
+                                                  r"$\mu = 1$, $h = 1$"),
                                  strict=True):
             plot_chaos_map(ds, ax=ax, title=label)
     files = ctx.figure(fig, "chaos-maps")

@@ -49,6 +49,7 @@ def resonances(ctx: Context) -> Result:
     from andoyer.integrate.fill import fill_section, section_roots
     from andoyer.plot.resonance import plot_resonances
     from andoyer.plot.section import plot_section
+    from andoyer.plot.words import body_words
 
     engine = ctx.engine_name(Capability.CROSSINGS)
     body = BODY
@@ -85,8 +86,10 @@ def resonances(ctx: Context) -> Result:
     whole.set_title("predicted chains over the section", fontsize=8)
     handles, names = whole.get_legend_handles_labels()
     keep = [i for i, n in enumerate(names) if not n.startswith("_")]
-    fig.legend([handles[i] for i in keep], [names[i] for i in keep], fontsize=6,
-               loc="outside right upper", title="chain (q:p)", title_fontsize=6)
+    fig.legend([handles[i] for i in keep], [names[i] for i in keep], fontsize=7.5,
+               loc="outside lower center", ncols=4, frameon=False,
+               title="predicted chains q:p (dashed: the resonant torus; o stable, x unstable "
+                     "periodic points)", title_fontsize=7.5)
     # The widest chain, around its first stable point: the separatrices against the orbits.
     first = pred.where((pred.mu_order == 1) & (pred.sign == 1), drop=True)
     k = int(np.nanargmax(first.half_width.values))
@@ -96,9 +99,15 @@ def resonances(ctx: Context) -> Result:
     span = 4.0 * float(np.hypot(r.upper_x[j] - sx, r.upper_y[j] - sy))
     zoom.set_xlim(sx - 3 * span, sx + 3 * span)
     zoom.set_ylim(sy - span, sy + span)
+    # the whole plane's ticks are multiples of pi/2: the zoom needs its own
+    from matplotlib.ticker import MaxNLocator, ScalarFormatter
+
+    zoom.xaxis.set_major_locator(MaxNLocator(5))
+    zoom.xaxis.set_major_formatter(ScalarFormatter())
     zoom.set_title(f"the {r.label.values} chain about axis {int(r.axis)}, near a stable point",
                    fontsize=8)
-    fig.suptitle("hess(3, 1, 2), mu = 1e-3, H = 1, M = 0, section g = 0", fontsize=9)
+    fig.suptitle(body_words(body.A, body.B, body.C, body.mu)
+                 + ", energy $H = 1$, $M = 0$, section $g = 0$", fontsize=9)
     files = ctx.figure(fig, "resonances")
     files.append(ctx.data(pred, "resonances"))
     rows = []

@@ -43,11 +43,11 @@ def space(ctx: Context) -> Result:
     numbers = {"hess_branch_start": float(hess[0]), "hess_branch_end": float(hess[-1]),
                "orthogonality": orth, "vertical_momentum": vertical,
                "hess_relation": relation}
-    table = Table(["branch", "L/G at -t_half", "L/G at 0", "L/G at +t_half", "least L/G",
-                   "largest L/G"],
+    table = Table(["separatrix branch", "L/G at t = −t½", "L/G at t = 0", "L/G at t = +t½",
+                   "least L/G", "largest L/G"],
                   [[str(b), f"{v[0]:+.6f}", f"{v[v.size // 2]:+.2e}", f"{v[-1]:+.6f}",
                     f"{v.min():+.6f}", f"{v.max():+.6f}"] for b, v in
-                   (("theta1=0", hess), ("theta1=4phi0", other))])
+                   (("θ₁ = 0", hess), ("θ₁ = 4φ₀", other))])
     return Result(files, numbers,
                   {**numbers, "t_half": float(cycle.attrs["t_half"]),
                    "other_min": float(other.min()), "other_max": float(other.max()),
