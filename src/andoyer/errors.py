@@ -14,10 +14,10 @@ from __future__ import annotations
 import errno
 import os
 
-__all__ = ["ArgumentTypeError", "CostLimitError", "DamagedFileError", "DamagedStoreWarning",
-           "EncoderError", "IntegrationError", "Interrupted", "ManifestWarning", "NoCacheWarning",
-           "NoSpaceError", "OutputInUseError", "SingularChartWarning", "SingularPassageWarning",
-           "StaleLockWarning"]
+__all__ = ["ArgumentTypeError", "CertificateError", "CostLimitError", "DamagedFileError",
+           "DamagedStoreWarning", "EncoderError", "IntegrationError", "Interrupted",
+           "ManifestWarning", "NoCacheWarning", "NoSpaceError", "OutputInUseError",
+           "SingularChartWarning", "SingularPassageWarning", "StaleLockWarning"]
 
 
 class ArgumentTypeError(TypeError, ValueError):
@@ -25,6 +25,11 @@ class ArgumentTypeError(TypeError, ValueError):
 
     Both a ``TypeError`` and a ``ValueError``, so that code catching either sees it.
     """
+
+
+class CertificateError(ValueError):
+    """A certificate that does not verify: not one andoyer wrote, a field missing, its
+    content altered, a claim its boxes do not prove, or another arithmetic's balls."""
 
 
 class CostLimitError(ValueError):

@@ -287,6 +287,8 @@ TERMS: tuple[Term, ...] = (
     Term("G", "level h = c G^2/2 of the rotation about the middle axis", "G"),
     Term("branch", "heteroclinic line: 'theta1=0' (the Hess separatrix) or "
          "'theta1=4phi0'", "branch"),
+    Term("sheet", "which orbit of the heteroclinic line: +1, or -1 for theta1 + 2 pi"),
+    Term("digits", "correct significant digits asked of a certified (ball) result"),
     Term("n_phase", "phases g of the splitting grid (even)", "n_phase"),
     Term("delta", "distance of the fundamental domains from the periodic orbits", "delta"),
     Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),

@@ -1,7 +1,7 @@
 """Ball arithmetic (Arb, through python-flint) for the heavy top: the body, the field (1).
 
 Every certified computation of :mod:`andoyer.integrate.validated` and of
-:mod:`andoyer.analysis.splitting.certified_melnikov` reads the body and the equations from
+:mod:`andoyer.analysis.splitting.certified` reads the body and the equations from
 here:
 
 * :class:`BodySpec` -- the body as *decimal strings* (``A = "2.5"``, ``B = "2.0"``,
@@ -347,6 +347,8 @@ def _monomials(expr: sp.Expr, y: tuple[sp.Symbol, ...]
     poly = sp.Poly(sp.expand(expr), *y)
     out = []
     for powers, coef in poly.terms():
+        if coef == 0:
+            continue
         if sum(powers) > 2:
             raise ValueError("the field (1) is quadratic; got a monomial of degree > 2")
         idx = tuple(j for j, p in enumerate(powers) for _ in range(p))

@@ -151,7 +151,7 @@ def _cauchy(a: list[Any], b: list[Any], k: int) -> Any:
 
 
 def taylor_jets(f: QuadraticField, y0: Vector, order: int) -> list[Vector]:
-    """Taylor coefficients ``y_0 .. y_order`` (per component) of the solution from ``y0``.
+    """The Taylor coefficients up to ``order`` (per component) of the solution from ``y0``.
 
     Parameters
     ----------

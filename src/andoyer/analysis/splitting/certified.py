@@ -81,6 +81,7 @@ from andoyer.integrate.validated.arithmetic import (
 )
 
 __all__ = ["CertifiedMelnikov", "MelnikovZero", "certified_melnikov", "melnikov_coefficient",
+           "heteroclinic_orbit_balls",
            "krawczyk_zero"]
 
 
@@ -189,6 +190,27 @@ def _setup(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int) -> _Setu
         return _Setup(spec=spec, branch=branch, sheet=sheet, J2=J2b, s=s, theta1=theta1,
                       phi0_hess=hess_balls.phi0, lam=2 * hess_balls.sigma * J2b,
                       omega=hess_balls.c * J2b, values=values, tail_constant=K)
+
+
+def heteroclinic_orbit_balls(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int
+                             ) -> tuple[arb, arb]:
+    """``(theta1, lambda)``: the line of the heteroclinic orbit and its rate, as balls.
+
+    Parameters
+    ----------
+    spec : BodySpec
+        The body.
+    branch : {"theta1=0", "theta1=4phi0"}
+        The line.
+    sheet : {+1, -1}
+        Which of its orbits.
+    J2 : str
+        The level.
+    bits : int
+        Working precision.
+    """
+    setup = _setup(spec, branch, sheet, J2, bits)
+    return setup.theta1, setup.lam
 
 
 def melnikov_coefficient(spec: BodySpec, *, branch: str = "theta1=4phi0", sheet: int = 1,

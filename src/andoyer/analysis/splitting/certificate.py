@@ -1,0 +1,295 @@
+"""Certificates of the first-order transversal splitting, written and verified.
+
+A certificate (JSON) states, for a body given by decimals (a Hess body or one whose centre
+of mass is turned by ``epsilon``, :class:`~andoyer.integrate.validated.arithmetic.BodySpec`),
+a separatrix line and a level ``J2 = G``:
+
+    the Melnikov function ``M(theta2_0) = Re(Z e^{i theta2_0})`` of (16) has exactly two
+    zeros on ``[0, 2 pi)``, each simple, in the boxes listed; hence (Melnikov) the stable
+    and unstable manifolds of the rotations ``P-`` and ``P+`` intersect transversally near
+    the unperturbed heteroclinic orbit for every ``mu`` in ``(0, mu*)``, some ``mu* > 0``.
+
+It records the ball of ``Z`` (the certified integral,
+:func:`~andoyer.analysis.splitting.certified.melnikov_coefficient`), every box,
+the precision, the libraries' versions and a SHA-256 digest of its content.
+:func:`verify_certificate` re-checks it without the search that produced it: the
+digest; the arithmetic (same python-flint); ``Z`` recomputed from the body and compared
+with the recorded ball; the Krawczyk test on each recorded box with the recomputed ``Z``;
+the two boxes distinct modulo ``2 pi`` (a nonzero trigonometric polynomial of degree 1 has
+exactly two zeros per period). Any altered parameter or box is rejected.
+
+The ``mu`` interval is ``(0, mu*)`` with ``mu*`` not bounded: a bound needs the validated
+manifolds of the finite-``mu`` proof (stage 3 of the issue), which this kind does not carry.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+from flint import acb, arb
+
+from andoyer.analysis.splitting.certified import (
+    certified_melnikov,
+    melnikov_coefficient,
+)
+from andoyer.errors import CertificateError
+from andoyer.integrate.validated.arithmetic import FLINT_VERSION, BodySpec, working_precision
+
+__all__ = ["FORMAT", "KIND", "prove_certificate", "write_certificate", "read_certificate",
+           "verify_certificate"]
+
+#: The ``format`` field of every andoyer certificate.
+FORMAT = "andoyer-certificate"
+#: The kind of statement this module writes and verifies.
+KIND = "melnikov-first-order-transversality"
+#: The fields a certificate must have.
+FIELDS = ("format", "version", "kind", "statement", "body", "mu_interval", "level",
+          "branch", "sheet", "precision_bits", "libraries", "heteroclinic_line",
+          "coefficient", "zeros", "digest")
+
+
+def _line_balls(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int
+                ) -> dict[str, str]:
+    """The line ``theta1`` and the rate ``lambda = 2 sigma J2`` of the heteroclinic orbit
+    (the orbit the integral runs along), as balls."""
+    from andoyer.analysis.splitting.certified import heteroclinic_orbit_balls
+
+    theta1, lam = heteroclinic_orbit_balls(spec, branch, sheet, J2, bits)
+    return {"theta1": theta1.str(30, radius=True, more=True),
+            "lambda": lam.str(30, radius=True, more=True)}
+
+
+def _digest(cert: dict[str, Any]) -> str:
+    content = {k: v for k, v in cert.items() if k != "digest"}
+    text = json.dumps(content, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def prove_certificate(body: Any, *, branch: str = "theta1=4phi0", sheet: int = 1,
+                      J2: str = "1", digits: int = 30) -> dict[str, Any]:
+    """Prove the first-order statement and return its certificate (a JSON-ready dict).
+
+    Parameters
+    ----------
+    body : RigidBody or BodySpec
+        A Hess or near-Hess body.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
+        The separatrix line.
+    sheet : {+1, -1}, default 1
+        Which of its orbits.
+    J2 : str, default "1"
+        The level ``J2 = G`` (a decimal).
+    digits : int, default 30
+        Correct digits asked of ``|Z|``.
+
+    Raises
+    ------
+    ValueError
+        When ``M`` vanishes identically (the Hess branch of a Hess body: nothing splits)
+        or the zeros are not all proved simple.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> cert = prove_certificate(RigidBody.paper(), digits=20)
+    >>> verify_certificate(cert)["zeros"]
+    2
+    """
+    from andoyer._version import __version__
+
+    res = certified_melnikov(body, branch=branch, sheet=sheet, J2=J2, digits=digits,
+                             phases=[])
+    if not res.complete or len(res.zeros) != 2:
+        raise ValueError(f"nothing to certify on branch {branch!r} of this body: the "
+                         "Melnikov function vanishes identically (no splitting at first "
+                         "order) or its zeros were not all proved simple")
+    with working_precision(res.bits):
+        Z, _, _ = melnikov_coefficient(res.body, branch=branch, sheet=sheet, J2=J2,
+                                       bits=res.bits)
+        coefficient = {"real": Z.real.str(digits + 8, radius=True, more=True),
+                       "imag": Z.imag.str(digits + 8, radius=True, more=True)}
+        line = _line_balls(res.body, branch, sheet, J2, res.bits)
+    zeros = [{"box": z.box, "zero": z.zero, "derivative": z.derivative} for z in res.zeros]
+    spec = res.body.as_dict()
+    spec.pop("mu")
+    cert: dict[str, Any] = {
+        "format": FORMAT, "version": 1, "kind": KIND,
+        "statement": (
+            f"For the body A={spec['A']}, B={spec['B']}, C={spec['C']} (branch "
+            f"{spec['branch']} of the Hess condition (2), centre of mass turned by epsilon="
+            f"{spec['epsilon']}) on the level J2=G={J2}, the Melnikov function of the "
+            f"heteroclinic line {branch} (sheet {sheet}) has exactly two zeros in [0, 2 pi), "
+            "both simple, in the boxes below; so for every mu in (0, mu*), some mu* > 0, "
+            "the stable and unstable manifolds of the rotations intersect transversally "
+            "near the unperturbed heteroclinic orbit."),
+        "body": spec,
+        "mu_interval": {"lower": "0", "upper": None, "open": True,
+                        "note": "first order in mu: mu* exists, no bound is proved"},
+        "level": {"J2": J2}, "branch": branch, "sheet": sheet,
+        "precision_bits": res.bits,
+        "libraries": {"python-flint": FLINT_VERSION, "andoyer": __version__},
+        "heteroclinic_line": line, "coefficient": coefficient, "zeros": zeros,
+    }
+    cert["digest"] = _digest(cert)
+    return cert
+
+
+def write_certificate(cert: dict[str, Any], path: str | os.PathLike[str]) -> Path:
+    """Write ``cert`` as JSON atomically (:func:`andoyer.atomic.atomic_path`).
+
+    Parameters
+    ----------
+    cert : dict
+        From :func:`prove_certificate`.
+    path : str or os.PathLike
+        The file.
+    """
+    from andoyer.atomic import atomic_path
+
+    out = Path(path)
+    with atomic_path(out) as tmp:
+        tmp.write_text(json.dumps(cert, indent=1) + "\n")
+    return out
+
+
+def read_certificate(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """Read a certificate file; :class:`~andoyer.errors.CertificateError` if not JSON.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    """
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except UnicodeDecodeError:
+        raise CertificateError(f"{str(p)!r} is not a certificate (not text)") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise CertificateError(f"{str(p)!r} is not a certificate (not JSON: {exc.msg} at "
+                               f"line {exc.lineno})") from None
+    if not isinstance(data, dict):
+        raise CertificateError(f"{str(p)!r} is not a certificate (JSON {type(data).__name__},"
+                               " not an object)")
+    return data
+
+
+def _ball(text: Any, what: str) -> arb:
+    if not isinstance(text, str):
+        raise CertificateError(f"{what} must be a ball written as a string, got {text!r}")
+    try:
+        return arb(text)
+    except (ValueError, TypeError):
+        raise CertificateError(f"{what} is not a ball: {text!r}") from None
+
+
+def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[str, Any]:
+    """Re-check a certificate independently of the search that wrote it.
+
+    Parameters
+    ----------
+    cert : dict, str or os.PathLike
+        The certificate or its file.
+
+    Returns
+    -------
+    dict
+        ``statement``, ``zeros`` (their number), ``digits`` (of ``|Z|``), ``bits``.
+
+    Raises
+    ------
+    CertificateError
+        Foreign JSON, a missing field, another python-flint, an altered content, or a
+        box the Krawczyk test does not prove (one line naming what failed).
+    """
+    data = cert if isinstance(cert, dict) else read_certificate(cert)
+    if data.get("format") != FORMAT:
+        raise CertificateError(f"not an andoyer certificate (format {data.get('format')!r}, "
+                               f"expected {FORMAT!r})")
+    missing = [k for k in FIELDS if k not in data]
+    if missing:
+        raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
+    if data["kind"] != KIND or data["version"] != 1:
+        raise CertificateError(f"unknown certificate kind {data['kind']!r} version "
+                               f"{data['version']!r} (this andoyer verifies {KIND!r} 1)")
+    libs = data["libraries"]
+    theirs = libs.get("python-flint") if isinstance(libs, dict) else None
+    if theirs != FLINT_VERSION:
+        raise CertificateError(f"the certificate's balls were computed by python-flint "
+                               f"{theirs}; this is python-flint {FLINT_VERSION}: verify it "
+                               "with the same version (pip install python-flint==" +
+                               f"{theirs})")
+    if data["digest"] != _digest(data):
+        raise CertificateError("the certificate was altered: its SHA-256 digest does not "
+                               "match its content")
+    mu = data["mu_interval"]
+    if mu != {"lower": "0", "upper": None, "open": True,
+              "note": "first order in mu: mu* exists, no bound is proved"}:
+        raise CertificateError("the mu interval of a first-order certificate is (0, mu*) "
+                               "with no bound on mu*; this one claims "
+                               f"{mu!r}")
+    try:
+        b = data["body"]
+        spec = BodySpec(b["A"], b["B"], b["C"], b["branch"], b["epsilon"], "0")
+        J2 = str(data["level"]["J2"])
+        bits = int(data["precision_bits"])
+    except (KeyError, TypeError) as exc:
+        raise CertificateError(f"the certificate's body or level lacks {exc}") from None
+    except ValueError as exc:
+        raise CertificateError(f"the certificate's body is not valid: {exc}") from None
+    if not 64 <= bits <= 4096:
+        raise CertificateError(f"precision_bits {bits} out of [64, 4096]")
+    zeros = data["zeros"]
+    if not isinstance(zeros, list) or len(zeros) != 2:
+        raise CertificateError("a first-order certificate lists exactly two zeros")
+    try:
+        Z, _, _ = melnikov_coefficient(spec, branch=data["branch"], sheet=data["sheet"],
+                                       J2=J2, bits=bits)
+    except ValueError as exc:
+        raise CertificateError(f"the certificate's branch, sheet or level: {exc}") from None
+    with working_precision(bits):
+        line = _line_balls(spec, data["branch"], data["sheet"], J2, bits)
+        rec_line = data["heteroclinic_line"]
+        for key in ("theta1", "lambda"):
+            got = rec_line.get(key) if isinstance(rec_line, dict) else None
+            if not _ball(got, f"heteroclinic_line.{key}").overlaps(arb(line[key])):
+                raise CertificateError(f"the recorded heteroclinic line's {key} does not "
+                                       "match the body, line, sheet and level")
+        rec = acb(_ball(data["coefficient"]["real"], "coefficient.real"),
+                  _ball(data["coefficient"]["imag"], "coefficient.imag"))
+        if not (rec.real.overlaps(Z.real) and rec.imag.overlaps(Z.imag)):
+            raise CertificateError("the recorded coefficient Z does not match the body, "
+                                   f"line and level: recomputed {Z.str(20, radius=True)}")
+        if abs(Z).contains(0):
+            raise CertificateError("the Melnikov function is not proved nonzero")
+        mids, rads = [], []
+        for k, z in enumerate(zeros):
+            X = _ball(z.get("box") if isinstance(z, dict) else None, f"zeros[{k}].box")
+            K = _ball(z.get("zero"), f"zeros[{k}].zero")
+            m = arb(X.mid())
+            dX = -Z.real * X.sin() - Z.imag * X.cos()
+            if dX.contains(0):
+                raise CertificateError(f"zeros[{k}]: M' is not bounded away from 0 on its box")
+            Y = 1 / arb(dX.mid())
+            Kx = m - Y * (Z.real * m.cos() - Z.imag * m.sin()) + (1 - Y * dX) * (X - m)
+            if not (Kx.lower() > X.lower() and Kx.upper() < X.upper()):
+                raise CertificateError(f"zeros[{k}]: the Krawczyk test fails on its box "
+                                       f"{z.get('box')}")
+            if not K.contains(Kx):
+                raise CertificateError(f"zeros[{k}]: the recorded zero does not enclose "
+                                       "K(box)")
+            mids.append(float(m))
+            rads.append(float(X.rad()))
+        gap = abs(math.remainder(mids[0] - mids[1], math.tau))
+        if not gap > 2 * (rads[0] + rads[1]):
+            raise CertificateError("the two zero boxes are the same zero modulo 2 pi")
+        digits = -math.log10(float(abs(Z).rad()) / float(abs(Z).mid()))
+    return {"statement": data["statement"], "zeros": len(zeros), "digits": digits,
+            "bits": bits}
