@@ -127,6 +127,9 @@ HOW: dict[str, Way] = {
     "andoyer paper --jobs 1": Way("cli", ("paper", "--jobs", "1", "--quick", "--only", "fig2"),
                                   "one item, --quick", expect=("andoyer-paper/index.html",)),
     "andoyer paper-check": Way("cli", ("paper-check", "--points", "20"), "20 points, not 200"),
+    "andoyer prove --epsilon 0.1 --branch theta1=0 --out near-hess.json": Way(
+        "cli", ("prove", "--epsilon", "0.1", "--branch", "theta1=0", "--digits", "12",
+                "--out", "near-hess.json"), "12 digits, not 30", expect=("near-hess.json",)),
     "andoyer section": Way("cli", ("section", *SMALL_SECTION), "3 orbits x 10 crossings",
                            expect=("section.nc", "section.png")),
     "andoyer section --energy 0.25 --section g=0 --n-orbits 40 --n-crossings 500 "
