@@ -257,7 +257,7 @@ def w3(sizes: W.Sizes, runners: set[str]) -> list[Row]:
                 float(np.max(err)), "|FLI - FLI_ref| over the accessible points",
                 extra={"points": int(ok.sum()), "limit": asdict(limit)})]
     if "andoyer taylor" in runners:
-        # The Taylor engine in Numba (SIMD lanes, kernels.taylor_lanes), same map.
+        # The Taylor engine in Numba (SIMD lanes, kernels.taylor.lanes), same map.
         _say("W3 andoyer taylor ...")
         wall, cpu, walls, dt = timed(lambda: chaos_map(
             b, h, 0.0, ("theta2", 0.0), grid,

@@ -14,7 +14,7 @@ polishing, datasets, threads waiting for the slowest orbit).
   stepping without events on one thread. One orbit (W1) cannot fill lanes or cores:
   its limit is its steps at the scalar cost on one core.
 * numba: accepted + rejected steps from the DOP853 kernel's ``info`` counters
-  (:func:`andoyer.kernels.dop853.propagate`, tolerances scaled as the engine scales
+  (:func:`andoyer.kernels.dop853.flow.propagate`, tolerances scaled as the engine scales
   them), the cost of a step from the same runs (the kernel is scalar: one orbit per
   core, no lanes).
 """
@@ -120,17 +120,18 @@ def numba_limit(body: Any, y0: np.ndarray, t_end: np.ndarray, tol: float, *,
                 single_orbit: bool = False) -> Limit:
     """Steps of the orbits ``y0`` to ``t_end`` with the numba engine's DOP853 kernel."""
     from andoyer.integrate.engines.base import TOLERANCE_FACTOR
-    from andoyer.kernels import dop853
+    from andoyer.kernels.common import INFO
+    from andoyer.kernels.dop853 import flow
 
     p = np.ascontiguousarray(body.engine_params, dtype=float)
     f = TOLERANCE_FACTOR
-    col = [dop853.INFO.index("accepted"), dop853.INFO.index("rejected")]
+    col = [INFO.index("accepted"), INFO.index("rejected")]
     wall = np.inf
     for _ in range(3 if single_orbit else 1):
         steps, spent = 0, 0.0
         for x, T in zip(y0, np.broadcast_to(t_end, (y0.shape[0],)), strict=True):
             t1 = time.perf_counter()
-            _, info = dop853.propagate(x[None].copy(), np.array([0.0, float(T)]), p,
+            _, info = flow.propagate(x[None].copy(), np.array([0.0, float(T)]), p,
                                        f * tol, f * tol, 10**8, threads=1)
             spent += time.perf_counter() - t1
             steps += int(info[0, col].sum())

@@ -201,7 +201,7 @@ def test_attrs_are_flat():
 def test_near_hess_turns_the_centre_of_mass_and_states_the_drift_of_the_relation():
     import numpy as np
 
-    from andoyer.kernels.generated import ep_field
+    from andoyer.kernels.generated.equations import ep_field
 
     rng = np.random.default_rng(3)
     for eps, e3 in ((0.0, 0.0), (1e-3, 0.0), (-0.05, 0.0), (0.02, 0.1)):

@@ -111,7 +111,7 @@ def test_api_list_covers_every_public_module() -> None:
                  "andoyer.analysis.chaos.frequency.orbit_frequencies",
                  "andoyer.analysis.hess.pendulum.pendulum_period",
                  "andoyer.analysis.splitting.section_map.SectionReturn",
-                 "andoyer.kernels.taylor.order_for", "andoyer.report.base.Item",
+                 "andoyer.kernels.taylor.flow.order_for", "andoyer.report.base.Item",
                  "andoyer.cli.main", "andoyer.plot.frequency.plot_orbit_frequencies",
                  "andoyer.body.RigidBody.lagrange", "andoyer.body.RigidBody.hess"):
         assert name in API, name

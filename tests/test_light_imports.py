@@ -1,7 +1,7 @@
 """``import andoyer`` and ``andoyer --version`` / ``--help`` stay light: no heavy module.
 
 What makes them slow is a heavy import: SymPy (kernels are generated only on demand,
-``andoyer.kernels.generated`` is committed), xarray (and pandas under it), heyoka, and
+``andoyer.kernels.generated.equations`` is committed), xarray (and pandas under it), heyoka, and
 Numba (importing it, and a fortiori compiling a kernel). So each case runs in a fresh
 interpreter and lists the modules it loaded; no clock is read (a time bound fails on a
 loaded machine and passes a heavy import on a fast one).

@@ -18,7 +18,7 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import as_andoyer, require_regular
 from andoyer.charts.euler_poisson import as_state
 from andoyer.charts.hess import as_hess
-from andoyer.kernels import generated as K
+from andoyer.kernels.generated import equations as K
 
 __all__ = ["CHARTS", "Chart", "hamiltonian", "vector_field", "cyclic_rate", "canonical_field"]
 

@@ -24,7 +24,7 @@ from benchmarks.peers import scipy_scripts as ss  # noqa: E402
 
 from andoyer import RigidBody, from_andoyer, to_hess  # noqa: E402
 from andoyer.integrate import Section, poincare  # noqa: E402
-from andoyer.kernels.generated import ep_field  # noqa: E402
+from andoyer.kernels.generated.equations import ep_field  # noqa: E402
 from benchmarks import harness, workloads  # noqa: E402
 from benchmarks import reference as R  # noqa: E402
 

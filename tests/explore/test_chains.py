@@ -19,7 +19,7 @@ from andoyer.explore.chains import (
 )
 from andoyer.explore.seeds import seed
 from andoyer.explore.state import Settings, default_energy
-from andoyer.kernels.generated import andoyer_hamiltonian
+from andoyer.kernels.generated.equations import andoyer_hamiltonian
 
 ORDER = 8
 

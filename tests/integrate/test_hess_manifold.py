@@ -16,8 +16,8 @@ from scipy.integrate import solve_ivp
 from andoyer import RigidBody
 from andoyer.integrate.api import propagate
 from andoyer.integrate.hess_manifold import METHOD, propagate_hess_manifold
-from andoyer.kernels.generated import ep_field
-from andoyer.kernels.numba import ep_field as ep_field_jit
+from andoyer.kernels.dop853.fields import ep_field as ep_field_jit
+from andoyer.kernels.generated.equations import ep_field
 
 STATE = ["G1", "G2", "G3", "gamma1", "gamma2", "gamma3"]
 #: A Hess-solution orbit that stays well inside the Hess chart (min(J1, J2 - J1,

@@ -44,7 +44,7 @@ from andoyer.integrate import attitude, integrate_canonical
 from andoyer.integrate.engines import engines_with, get_engine
 from andoyer.integrate.engines.base import Capability, Tolerance
 from andoyer.integrate.engines.ivp import solve_dop853
-from andoyer.kernels.generated import ep_field
+from andoyer.kernels.generated.equations import ep_field
 
 ENGINES = engines_with(Capability.ATTITUDE)
 STATE = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")

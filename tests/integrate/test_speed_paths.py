@@ -22,7 +22,7 @@ import pytest
 from andoyer import RigidBody, area_integral, energy, from_andoyer, geometric_integral
 from andoyer.integrate import Section, poincare, propagate
 from andoyer.integrate import api as api_module
-from andoyer.kernels.generated import SECTION_KINDS
+from andoyer.kernels.generated.equations import SECTION_KINDS
 
 hy = pytest.importorskip("heyoka")
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402

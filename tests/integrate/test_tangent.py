@@ -20,7 +20,7 @@ import pytest
 from andoyer import RigidBody, from_andoyer, from_hess
 from andoyer.integrate import variational as V
 from andoyer.integrate.tangent import fundamental_matrix, propagate_tangent, tangent_crossings
-from andoyer.kernels.generated import SECTION_KINDS
+from andoyer.kernels.generated.equations import SECTION_KINDS
 
 FREE = RigidBody.euler_poinsot(2.5, 2.0, 2.2)  # the paper's moments, mu = 0
 G0 = 1.0

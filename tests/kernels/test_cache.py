@@ -50,10 +50,10 @@ def test_a_fresh_process_caches_outside_the_package(tmp_path: Path) -> None:
         import json
         from pathlib import Path
         import numpy as np
-        import andoyer.kernels.numba as k
+        import andoyer.kernels.dop853.fields as k
         k.ep_hamiltonian(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 2.5, 2.2, 1.0, 0.0, 0.0, 1.0)
         print(json.dumps({"path": k.ep_hamiltonian._cache._cache_path,
-                          "package": str(Path(k.__file__).parents[1])}))
+                          "package": str(Path(k.__file__).parents[2])}))
     """)
     env = dict(os.environ, ANDOYER_CACHE_DIR=str(tmp_path))
     env.pop("NUMBA_CACHE_DIR", None)
@@ -70,16 +70,24 @@ def test_a_fresh_process_caches_outside_the_package(tmp_path: Path) -> None:
 def test_the_cache_subfolder_follows_every_kernel_source(tmp_path: Path,
                                                           monkeypatch) -> None:
     """Numba keys an entry on the defining file only: an edit of a module whose functions
-    a kernel calls (a stepper, a jet routine) must still move every kernel to a new
-    folder, or the callers load stale machine code."""
+    a kernel calls (a stepper, a jet routine, the shared definitions, a generated file),
+    in any sub-package, must still move every kernel to a new folder, or the callers
+    load stale machine code."""
     src = Path(cache.__file__).parent
     copy = tmp_path / "kernels"
-    copy.mkdir()
-    for f in src.glob("*.py"):
-        (copy / f.name).write_bytes(f.read_bytes())
+    for f in src.rglob("*.py"):
+        target = copy / f.relative_to(src)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(f.read_bytes())
     assert cache._stamp(copy) == cache.sources_stamp()
-    callee = copy / "stepper.py"
-    callee.write_bytes(callee.read_bytes() + b"\n")
+    for callee in ("dop853/stepper.py", "taylor/jets.py", "generated/recurrences.py",
+                   "common.py"):
+        source = (copy / callee).read_bytes()
+        (copy / callee).write_bytes(source + b"\n")
+        assert cache._stamp(copy) != cache.sources_stamp(), callee
+        (copy / callee).write_bytes(source)
+    assert cache._stamp(copy) == cache.sources_stamp()
+    (copy / "taylor" / "jets.py").rename(copy / "taylor" / "steps.py")  # a moved module
     assert cache._stamp(copy) != cache.sources_stamp()
     monkeypatch.setenv(cache.CACHE_ENV, str(tmp_path))
 

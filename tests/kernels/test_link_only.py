@@ -22,8 +22,10 @@ import numba
 import numpy as np
 import pytest
 
-from andoyer.kernels import attitude, dop853, link_only, stepper, tangent, taylor_jets
-from andoyer.kernels.taylor_sections import kernel_jit
+from andoyer.kernels import link_only
+from andoyer.kernels.common import kernel_jit
+from andoyer.kernels.dop853 import attitude, flow, stepper, tangent
+from andoyer.kernels.taylor import jets
 
 pytestmark = pytest.mark.skipif(not link_only.supported(),
                                 reason="this Numba lacks the internals link_only uses")
@@ -49,8 +51,8 @@ def test_a_helper_is_linked_into_its_caller_and_emits_no_code() -> None:
         helper(1.5)
 
 
-@pytest.mark.parametrize("helper", [dop853.ep_rhs, tangent.tangent_rhs, attitude.attitude_rhs,
-                                    stepper._section, taylor_jets.horner])
+@pytest.mark.parametrize("helper", [flow.ep_rhs, tangent.tangent_rhs, attitude.attitude_rhs,
+                                    stepper._section, jets.horner])
 def test_the_kernels_helpers_are_link_only(helper: object) -> None:
     # The DOP853 stepper's helpers and fields, and the Taylor helpers: compiled into the
     # entry points only (W4 cold first call on numba 8.3-8.9 -> 4.5 s CPU), no Python entry.
@@ -69,8 +71,8 @@ ORBITS = [[0.3, 1.1, 0.2, 1.0, -0.4], [1.0, 2.0, 0.5, 0.8, 0.3], [2.0, 0.9, 1.2,
 
 RUN = """
 from andoyer import RigidBody, from_andoyer
-from andoyer.kernels import dop853 as D
-from andoyer.kernels import taylor as T
+from andoyer.kernels.dop853 import flow as D
+from andoyer.kernels.taylor import flow as T
 p = np.ascontiguousarray(RigidBody.paper().engine_params, dtype=float)
 y0 = np.ascontiguousarray(from_andoyer({orbits}), dtype=float)
 if {taylor}:
@@ -94,7 +96,8 @@ def plain_pipeline_arrays(tmp_path: Path, taylor: bool) -> tuple[dict[str, objec
         import andoyer.kernels.link_only as L
         L.link_only_options = lambda: {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
     """) + run + textwrap.dedent(f"""
-        from andoyer.kernels import stepper, taylor_sections as S
+        from andoyer.kernels.dop853 import stepper
+        from andoyer.kernels.taylor import sections as S
         assert S.poly._compiler.pipeline_class is not L.LinkOnlyCompiler
         assert stepper._section._compiler.pipeline_class is not L.LinkOnlyCompiler
         np.savez({str(tmp_path / "plain.npz")!r}, **out)

@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody, from_andoyer
-from andoyer.kernels import dop853 as dop
-from andoyer.kernels import tangent as kt
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import flow as dop
+from andoyer.kernels.dop853 import tangent as kt
 from andoyer.kernels.threads import block_starts
 
 BODY = RigidBody(1.3, 1.7, 2.1, mu=0.7, r=(0.3, -0.5, 0.8))
@@ -33,8 +34,8 @@ def test_threads_change_nothing(threads: int, block: int) -> None:
 
 def test_tangent_kernels_in_threads() -> None:
     k = 2
-    L = kt.layout(k)
-    z0 = np.zeros((Y0.shape[0], kt.dimension(k)))
+    L = common.layout(k)
+    z0 = np.zeros((Y0.shape[0], common.dimension(k)))
     z0[:, L["y"]] = Y0
     z0[:, L["u"]] = np.tile(np.eye(6)[:2].ravel(), (Y0.shape[0], 1))
     t = np.linspace(0.0, 10.0, 3)

@@ -1,7 +1,7 @@
 """The committed kernels are still what the symbolic layer generates (that the import stays
 light: tests/test_light_imports.py).
 
-``andoyer.kernels.generated`` is committed so that ``import andoyer`` never runs SymPy.
+``andoyer.kernels.generated.equations`` is committed so that ``import andoyer`` never runs SymPy.
 Here it is regenerated in memory (well, in a temporary file) from
 :mod:`andoyer.symbolic` and both versions are evaluated at random points: if someone
 edits H, a chart map or the generated file by hand without regenerating, this fails.
@@ -16,7 +16,7 @@ from types import ModuleType
 import numpy as np
 import pytest
 
-from andoyer.kernels import generated as committed
+from andoyer.kernels.generated import equations as committed
 from andoyer.symbolic.codegen import KERNELS, generate_source
 
 NPTS = 100
@@ -113,7 +113,7 @@ def test_committed_section_matches_regenerated(regenerated, kind):
 @pytest.fixture(scope="module")
 def numba_kernels() -> ModuleType:
     pytest.importorskip("numba")
-    import andoyer.kernels.numba as nk
+    import andoyer.kernels.dop853.fields as nk
 
     return nk
 

@@ -1,6 +1,6 @@
 """The committed Taylor jets are still what the symbolic layer generates.
 
-``andoyer.kernels.taylor_generated`` is regenerated in memory from
+``andoyer.kernels.generated.recurrences`` is regenerated in memory from
 :mod:`andoyer.symbolic` and compared with the committed file: the text where the SymPy
 version is the one that wrote it, and always the numbers (jets of random states and
 bodies, the section tapes and their constants). The jets themselves are checked
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from andoyer.kernels import taylor_generated as committed
+from andoyer.kernels.generated import recurrences as committed
 from andoyer.symbolic import taylor_codegen
 
 

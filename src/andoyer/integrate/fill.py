@@ -48,7 +48,7 @@ from andoyer.integrate.plane_sampling import (
 )
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
-from andoyer.kernels import generated as K
+from andoyer.kernels.generated import equations as K
 from andoyer.notation import renamed
 from andoyer.validation import box, integer
 from andoyer.validation import finite as _finite

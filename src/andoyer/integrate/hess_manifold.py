@@ -43,7 +43,7 @@ from andoyer.charts.hess import as_hess, from_hess
 from andoyer.integrate.api import check_times, check_tolerances
 from andoyer.integrate.engines.ivp import solve_dop853
 from andoyer.integrate.results import provenance, states_dataset
-from andoyer.kernels.numba import ep_field
+from andoyer.kernels.dop853.fields import ep_field
 from andoyer.validation import real_array
 
 __all__ = ["propagate_hess_manifold", "THETA1_TOL", "METHOD", "G_ZERO_RTOL"]

@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.charts.andoyer_deprit import singular_distances
 from andoyer.integrate.engines.base import SectionEvent
-from andoyer.kernels.generated import SECTION_KINDS
+from andoyer.kernels.generated.equations import SECTION_KINDS
 
 __all__ = ["Section", "SectionPlane", "SECTION_PLANES", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
 

@@ -251,7 +251,7 @@ def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
     Examples
     --------
     >>> from andoyer import RigidBody
-    >>> from andoyer.kernels.generated import SECTION_KINDS
+    >>> from andoyer.kernels.generated.equations import SECTION_KINDS
     >>> body = RigidBody.paper()
     >>> c = tangent_crossings([0.2, 0.1, 0.9, 0.0, 0.6, 0.8], np.eye(6), body.engine_params,
     ...                       SECTION_KINDS.index("G3"), 0.0, 0, 2, 500.0)

@@ -19,9 +19,10 @@ by ``1/T`` resp. ``1/T^2`` with the scale ``T``:
 From them (see :mod:`andoyer.analysis.chaos.lyapunov`) ``ln |w(t)| = T log_norm``, the MEGNO
 ``Y(t) = 2/t int_0^t s f(s) ds = ((t + delta) Y_delta - 2 delta rho) / t`` exactly,
 with ``Y_delta = 2 num / (t + delta)``, and its mean ``<Y>_delta = int_0^t Y_delta
-ds / (t + delta)`` (Cincotta & Simo 2000). The shift ``delta`` (:data:`MEGNO_DELTA`)
-removes the ``1/t`` singularity of the mean at t = 0 (a Taylor integrator cannot
-evaluate ``0/0``); it changes ``<Y>`` by a relative ``O(delta / t)`` only.
+ds / (t + delta)`` (Cincotta & Simo 2000). The shift ``delta``
+(:data:`andoyer.kernels.common.MEGNO_DELTA`, every engine's) removes the ``1/t``
+singularity of the mean at t = 0 (a Taylor integrator cannot evaluate ``0/0``); it
+changes ``<Y>`` by a relative ``O(delta / t)`` only.
 
 How an engine integrates them is its own (:meth:`EngineBase.tangent
 <andoyer.integrate.engines.base.EngineBase.tangent>`): heyoka's ``var_ode_sys`` with
@@ -45,6 +46,7 @@ from andoyer.integrate.engines import (
     resolve_engine,
 )
 from andoyer.integrate.engines.base import Capability, Params, Tolerance
+from andoyer.kernels.common import MEGNO_DELTA
 from andoyer.validation import positive
 
 __all__ = [
@@ -60,9 +62,6 @@ TANGENT: tuple[str, ...] = tuple(f"w_{name}" for name in STATE)
 VARIATIONAL_STATE: tuple[str, ...] = (*STATE, *TANGENT, "log_norm", "megno_num",
                                       "megno_int")
 N_VARIATIONAL = len(VARIATIONAL_STATE)
-
-#: Time shift of the MEGNO weights (see the module docstring).
-MEGNO_DELTA = 1e-6
 
 #: Name of this formulation; change it when the meaning of the variables changes.
 FORMULATION = "unit-tangent+megno-shifted/1"

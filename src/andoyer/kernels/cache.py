@@ -23,7 +23,7 @@ routine) the callers in other modules would load stale machine code (seen here:
 tangent kernels that differed from their sources compiled fresh). The subfolder named
 after a hash of every source of :mod:`andoyer.kernels` (:func:`sources_stamp`) closes
 that hole for all kernels at once, so two installs, versions or edits never share an
-entry (the per-module keys of :mod:`andoyer.kernels.dop853` stay, as a second lock).
+entry (the per-module keys of :mod:`andoyer.kernels.dop853.flow` stay, as a second lock).
 Folders of former sources are left in place (another install may still use them);
 deleting ``cache_folder()`` is always safe.
 
@@ -84,8 +84,8 @@ def cache_folder() -> Path:
 @functools.cache
 def sources_stamp() -> str:
     """The first 16 hex digits of the SHA-256 of every ``*.py`` of
-    :mod:`andoyer.kernels` (names and bytes, in name order): the subfolder of
-    :func:`cache_folder` that :func:`cached_njit` caches in.
+    :mod:`andoyer.kernels` and its sub-packages (paths and bytes, in path order): the
+    subfolder of :func:`cache_folder` that :func:`cached_njit` caches in.
 
     Reads about 0.3 MB once per process.
 
@@ -103,10 +103,10 @@ def sources_stamp() -> str:
 
 
 def _stamp(folder: Path) -> str:
-    """:func:`sources_stamp` of the ``*.py`` files of ``folder``."""
+    """:func:`sources_stamp` of the ``*.py`` files of ``folder`` and its sub-folders."""
     h = hashlib.sha256()
-    for f in sorted(folder.glob("*.py")):
-        h.update(f.name.encode())
+    for f in sorted(folder.rglob("*.py")):
+        h.update(f.relative_to(folder).as_posix().encode())
         h.update(f.read_bytes())
     return h.hexdigest()[:16]
 

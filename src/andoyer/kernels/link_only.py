@@ -20,12 +20,12 @@ module passes optimise the entry point and everything it calls once, as one unit
 the library's *environment* globals (the word Numba writes a pointer into when it
 registers the function) go into the process's JIT engine. Such a function has no
 address: only other compiled code can use it (helpers of :func:`kernel_jit
-<andoyer.kernels.taylor_sections.kernel_jit>`, which have no Python entry anyway). A
+<andoyer.kernels.common.kernel_jit>`, which have no Python entry anyway). A
 process that loads an entry point from the cache links nothing and never needed the
 helpers' own code.
 
-Same results: the Taylor kernels (every entry point of :mod:`andoyer.kernels.taylor`
-and :mod:`andoyer.kernels.taylor_tangent`, 4 orbits x 2 bodies, all 15 section kinds x 2
+Same results: the Taylor kernels (every entry point of :mod:`andoyer.kernels.taylor.flow`
+and :mod:`andoyer.kernels.taylor.tangent`, 4 orbits x 2 bodies, all 15 section kinds x 2
 directions, tangent, renormalised, attitude and jets: 146 arrays) gave the same floats,
 bit for bit, compiled fresh and loaded from the cache, as with Numba's pipeline; the
 machine code differs in register allocation and in the copies LLVM duplicates (the same

@@ -1,7 +1,7 @@
 r"""The Cauchy product of lane jets as explicit SIMD code (one vector per lane row).
 
 The lane jets (``ep_taylor_jet_lanes`` and ``ep_taylor_tangent_jet_lanes`` of
-:mod:`andoyer.kernels.taylor_generated`) hold :data:`LANES` orbits in the last,
+:mod:`andoyer.kernels.generated.recurrences`) hold :data:`LANES` orbits in the last,
 contiguous axis of ``x[k, i, lane]``. Their work is the Cauchy products of the
 recurrences of the field (1),
 

@@ -1,7 +1,7 @@
 """Orbits in parallel: blocks of orbits handed to threads running nogil kernels.
 
-The compiled entry points of :mod:`andoyer.kernels.dop853` and
-:mod:`andoyer.kernels.tangent` integrate a block of orbits on the calling thread
+The compiled entry points of :mod:`andoyer.kernels.dop853.flow` and
+:mod:`andoyer.kernels.dop853.tangent` integrate a block of orbits on the calling thread
 (``nogil=True``) and write into output arrays they are given. :func:`over_orbits`
 splits the orbits into blocks; the calling thread and ``threads - 1`` threads of a
 pool started once per process take blocks until none is left, each writing into its

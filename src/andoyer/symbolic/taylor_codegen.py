@@ -1,7 +1,7 @@
 r"""Generate the Taylor-series jets of the field (1) and of the section functions.
 
-The output, ``andoyer/kernels/taylor_generated.py``, holds plain Python loops that
-Numba compiles (:mod:`andoyer.kernels.taylor`); it is committed, so importing andoyer
+The output, ``andoyer/kernels/generated/recurrences.py``, holds plain Python loops that
+Numba compiles (:mod:`andoyer.kernels.taylor.flow`); it is committed, so importing andoyer
 never runs SymPy, and ``tests/symbolic/test_taylor_codegen.py`` regenerates it and
 compares. Nothing in it is typed by hand: every recurrence is read off the SymPy
 expressions of :mod:`andoyer.symbolic.hamiltonian` and :mod:`andoyer.symbolic.sections`.
@@ -52,7 +52,8 @@ from andoyer.symbolic.codegen import NumbaPrinter
 __all__ = ["TAYLOR_PATH", "generate_taylor_source", "write_taylor", "field_terms",
            "tangent_terms", "attitude_terms"]
 
-TAYLOR_PATH = Path(__file__).resolve().parent.parent / "kernels" / "taylor_generated.py"
+TAYLOR_PATH = (Path(__file__).resolve().parent.parent / "kernels" / "generated"
+               / "recurrences.py")
 
 S = sym.S
 _W = sp.symbols("w1:7", real=True)  # a tangent vector, components in the order of S.y
@@ -315,7 +316,7 @@ def _tapes_source(name: str, doc: str, which: int) -> tuple[str, int, int]:
 
 
 def generate_taylor_source() -> str:
-    """The text of ``taylor_generated.py`` (runs SymPy; a few seconds)."""
+    """The text of ``generated/recurrences.py`` (runs SymPy; a few seconds)."""
     q = _Constants()
     y_access = [f"x[{{j}}, {i}]" for i in range(len(S.y))]
     field = ["def ep_taylor_jet(x, order, q):",
@@ -353,7 +354,7 @@ def generate_taylor_source() -> str:
         "and the section functions.",
         "",
         "DO NOT EDIT: regenerate with ``python -m andoyer.symbolic.taylor_codegen``.",
-        "Plain loops on float arrays, compiled by Numba in andoyer.kernels.taylor.",
+        "Plain loops on float arrays, compiled by Numba in andoyer.kernels.taylor.flow.",
         '"""',
         "",
         "{imports}",
@@ -384,7 +385,7 @@ def write_taylor(path: Path = TAYLOR_PATH) -> Path:
 
     Parameters
     ----------
-    path : pathlib.Path, default the package's ``kernels/taylor_generated.py``
+    path : pathlib.Path, default the package's ``kernels/generated/recurrences.py``
         Where to write.
     """
     src = generate_taylor_source()

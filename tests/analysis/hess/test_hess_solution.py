@@ -33,7 +33,7 @@ from andoyer.analysis.hess.hess_solution import (
 from andoyer.charts.hess import from_hess, to_hess
 from andoyer.dynamics import cyclic_rate, hamiltonian, vector_field
 from andoyer.integrate import Section, poincare, propagate, propagate_hess_manifold
-from andoyer.kernels.numba import ep_field
+from andoyer.kernels.dop853.fields import ep_field
 
 STATE = ["G1", "G2", "G3", "gamma1", "gamma2", "gamma3"]
 BODY = RigidBody.paper()  # mu = 0.01: pendulum frequency sqrt(c mu) = 0.067

@@ -43,9 +43,9 @@ from andoyer.integrate.engines.base import (
     Tolerance,
 )
 from andoyer.integrate.engines.lazy import heyoka_available
-from andoyer.kernels import generated
+from andoyer.kernels.generated import equations
 
-KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS)}
 TOL = 1e-12
 TOLERANCE = Tolerance(TOL, TOL)
 X_START = np.array([[0.3, 1.1, 0.2, 1.0, -0.4],  # (l, g, L, G, M), |G| = 1, |gamma| = 1
@@ -102,7 +102,7 @@ def ev(coord: str, value: float = 0.0, direction: int = 0) -> SectionEvent:
 
 def integrals(body: RigidBody, y: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
     G, gamma = y[..., :3], y[..., 3:]
-    return {"H": generated.ep_hamiltonian(*np.moveaxis(y, -1, 0), *body.params),
+    return {"H": equations.ep_hamiltonian(*np.moveaxis(y, -1, 0), *body.params),
             "area": np.sum(G * gamma, axis=-1),
             "geometric": np.sum(gamma * gamma, axis=-1),
             "G": np.linalg.norm(G, axis=-1)}
@@ -119,7 +119,7 @@ def drifts(body: RigidBody, y: NDArray[np.float64]) -> dict[str, float]:
 
 def section_fw(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    f, w = generated.section(kind, *np.moveaxis(y, -1, 0), params(body)[-1], value,
+    f, w = equations.section(kind, *np.moveaxis(y, -1, 0), params(body)[-1], value,
                               np.cos(value), np.sin(value))
     zero = 0.0 * y[..., 0]
     return np.asarray(f) + zero, np.asarray(w) + zero
@@ -128,7 +128,7 @@ def section_fw(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
 def dfdt(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
          ) -> NDArray[np.float64]:
     """df/dt = grad f . F(y), by a central difference along the field (1)."""
-    F = np.stack(generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
+    F = np.stack(equations.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
     d = 1e-6
     return (section_fw(body, kind, value, y + d * F)[0]
             - section_fw(body, kind, value, y - d * F)[0]) / (2 * d)

@@ -32,7 +32,7 @@ from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
 from andoyer.integrate.engines import heyoka_integrators as hi  # noqa: E402
 from andoyer.integrate.engines.base import ALL_KINDS, SectionEvent, Tolerance  # noqa: E402
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine  # noqa: E402
-from andoyer.kernels.generated import SECTION_KINDS, ep_field, section  # noqa: E402
+from andoyer.kernels.generated.equations import SECTION_KINDS, ep_field, section  # noqa: E402
 
 BODIES = {
     "paper": RigidBody.paper(),  # Hess: A=2.5, B=2.0, C=2.2, mu=0.01
@@ -304,7 +304,7 @@ def test_the_fli_system_is_the_field_and_its_jacobian(body):
         coefficient_values,
         heyoka_state_vars,
     )
-    from andoyer.kernels.generated import ep_jacobian
+    from andoyer.kernels.generated.equations import ep_jacobian
 
     values = coefficient_values(body.engine_params)
     zero = frozenset(np.flatnonzero(values == 0.0).tolist())

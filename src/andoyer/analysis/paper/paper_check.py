@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from andoyer.charts.andoyer_deprit import from_andoyer, to_andoyer
-from andoyer.kernels import generated as K
+from andoyer.kernels.generated import equations as K
 from andoyer.validation import integer
 
 __all__ = ["Formula", "CheckRow", "FORMULAS", "paper_check", "RTOL"]

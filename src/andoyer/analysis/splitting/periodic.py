@@ -104,7 +104,7 @@ from andoyer.analysis.splitting.section_map import (
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
-from andoyer.kernels.constants import T_START
+from andoyer.kernels.common import T_START
 from andoyer.validation import checks_arguments, finite_array, integer
 
 __all__ = [

@@ -117,7 +117,7 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 #: on theta2 (with 1.4x its CPU time): both stay on heyoka, whose cold start is also
 #: far cheaper (0.56 s against 4.7 s).
 MEASURED_DEFAULTS: dict[str, str] = {
-    # W3, FLI map 64^2, t = 1000: taylor's SIMD lanes (kernels.taylor_lanes) 637 ms
+    # W3, FLI map 64^2, t = 1000: taylor's SIMD lanes (kernels.taylor.lanes) 637 ms
     # against heyoka's 783 ms (0.81x wall, 0.80x CPU), 256^2 9.3 s against 11.0 s.
     "fli_map": "taylor",
 }

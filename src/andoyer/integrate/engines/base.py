@@ -34,7 +34,7 @@ and knows nothing of datasets, charts or bodies.
     (:func:`runtime_parameters`), ``tolerance`` a :class:`Tolerance`. Returns the
     states (n, m, 6); ``[:, 0]`` must equal ``y0``.
 ``_crossings(y0, par, event, n_crossings, t_max, tolerance)``
-    The first ``n_crossings`` roots after ``t = T_START`` (:mod:`andoyer.kernels.constants`)
+    The first ``n_crossings`` roots after ``t = T_START`` (:mod:`andoyer.kernels.common`)
     of the section function ``f`` of ``event`` (a :class:`SectionEvent`) in its
     direction with margin ``w > 0``, integrating at most to ``t_max > 0``; each root
     located so that ``|f| <= 1e-12`` (relative to the scale of f). If ``"crossings"``
@@ -61,7 +61,7 @@ and knows nothing of datasets, charts or bodies.
     (scalar first, body -> space, :mod:`andoyer.charts.rotation`); integrates (1) with
     ``dq/dt = q (x) (0, omega) / 2``, ``omega = I^-1 G`` (the SymPy field
     :func:`andoyer.symbolic.attitude.attitude_field`, generated as
-    :func:`andoyer.kernels.generated.attitude_field`; for Taylor methods its jet,
+    :func:`andoyer.kernels.generated.equations.attitude_field`; for Taylor methods its jet,
     ``ep_taylor_attitude_jet``), ``t`` as for ``_propagate``.
     Returns (n, m, 10) with ``[:, 0]`` equal to ``z0``; the quaternion's length is an
     integral of the flow and is not renormalised by the engine.

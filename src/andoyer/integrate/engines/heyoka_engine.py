@@ -118,7 +118,7 @@ from andoyer.integrate.engines.heyoka_symbolic import (
     section_cfunc,
 )
 from andoyer.integrate.engines.lazy import heyoka as hy
-from andoyer.kernels.constants import T_START
+from andoyer.kernels.common import T_START
 from andoyer.validation import integer
 
 # The expressions (heyoka_system, section functions, PARAMETERS) are built in

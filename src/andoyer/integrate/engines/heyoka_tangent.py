@@ -21,8 +21,9 @@ transforms of the one SymPy -> heyoka field (:func:`heyoka_system`) by
   whole state, and a large quadrature would loosen the error control of ``y``:
   ``log_norm_i = rho_i / T``, ``megno_num = (1/T^2) int_0^t (s + delta) f_1 ds``,
   ``megno_int = (1/T^2) int_0^t 2 num(s) / (s + delta) ds`` with ``num = T^2
-  megno_num`` and ``delta`` :data:`MEGNO_DELTA` (the shift removes the ``1/t``
-  singularity of the MEGNO mean at t = 0, which a Taylor integrator cannot evaluate).
+  megno_num`` and ``delta`` :data:`~andoyer.kernels.common.MEGNO_DELTA` (the shift
+  removes the ``1/t`` singularity of the MEGNO mean at t = 0, which a Taylor integrator
+  cannot evaluate).
   The engine returns them unscaled. Orbits run in blocks of ``batch_size`` lanes of
   one SIMD integrator and blocks on threads, each owning a copy of the integrator.
 * **plain** (:func:`plain_flow`), for the FLI alone over many orbits: the state and ONE
@@ -73,18 +74,16 @@ from andoyer.integrate.engines.heyoka_symbolic import (
     section_exprs,
 )
 from andoyer.integrate.engines.lazy import heyoka as hy
-from andoyer.kernels.constants import T_START
-from andoyer.kernels.generated import section
+from andoyer.kernels.common import MEGNO_DELTA, T_START
+from andoyer.kernels.generated.equations import section
 
-__all__ = ["STATE_NAMES", "MEGNO_DELTA", "variational_names", "variational_system",
+__all__ = ["STATE_NAMES", "variational_names", "variational_system",
            "renormalised_flow", "plain_flow", "matrix_flow", "matrix_crossings", "warm_up",
            "clear_memory_cache"]
 
 #: Names of the Euler-Poisson state variables (heyoka's variables are named so).
 STATE_NAMES = ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
 _N = len(STATE_NAMES)
-#: Time shift of the MEGNO weights (as :data:`andoyer.kernels.tangent.MEGNO_DELTA`).
-MEGNO_DELTA = 1e-6
 
 
 def variational_names(k: int = 1) -> tuple[str, ...]:

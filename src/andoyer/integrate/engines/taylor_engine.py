@@ -1,7 +1,7 @@
 """The taylor engine: an adaptive Taylor method compiled with Numba, events in the kernel.
 
 A thin adapter from the :class:`~andoyer.integrate.engines.base.Engine` protocol to
-:mod:`andoyer.kernels.taylor`: it checks shapes, makes the arrays contiguous floats,
+:mod:`andoyer.kernels.taylor.flow`: it checks shapes, makes the arrays contiguous floats,
 runs the ensemble kernel (blocks of orbits in Numba's number of threads,
 :mod:`andoyer.kernels.threads`) and turns a failed orbit into an exception.
 
@@ -13,21 +13,21 @@ per crossing).
 
 Tolerances: as heyoka, one tolerance :attr:`Tolerance.tol` = ``min(rtol, atol)``
 (absolute error control while ``||y||_inf <= 1``, relative above); the order is
-:func:`andoyer.kernels.taylor.order_for` (15 at 1e-12). Backward flows come from the
+:func:`andoyer.kernels.taylor.flow.order_for` (15 at 1e-12). Backward flows come from the
 base class (time reversal).
 
 Tangent flows at output times (``tangent``): renormalised, by
-:mod:`andoyer.kernels.taylor_tangent` (the vectors' jets of :mod:`andoyer.kernels.taylor`,
+:mod:`andoyer.kernels.taylor.tangent` (the vectors' jets of :mod:`andoyer.kernels.taylor.flow`,
 each vector rescaled to unit length at every step's start, the MEGNO quadratures as
 extra jet variables of the same step); without renormalisation, the linear flow's own
 vectors (``6 + 6 k`` floats: the FLI map's route).
 
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
-renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor_lanes`: the jets of 8
+renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of 8
 orbits in one vector instruction, each orbit with its own steps (the scalar kernel's),
 3.2-3.8x less CPU per orbit-step than the scalar kernel (measured there); so do the
 crossings of a state component's section (``G3 = c`` ...) of many states alone
-(:mod:`andoyer.kernels.taylor_lane_crossings`; W2 G3 on one thread: 2.25 -> 1.07 s CPU).
+(:mod:`andoyer.kernels.taylor.lane_crossings`; W2 G3 on one thread: 2.25 -> 1.07 s CPU).
 
 The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
 a machine compiles what it calls (a few seconds), later processes load it.
@@ -49,7 +49,8 @@ from andoyer.integrate.engines.base import (
     Tolerance,
     unit_vectors,
 )
-from andoyer.kernels import taylor
+from andoyer.kernels import common
+from andoyer.kernels.taylor import flow
 
 __all__ = ["TaylorEngine"]
 
@@ -57,7 +58,7 @@ _N = 6
 
 
 #: Orbits from which many-orbit propagations run on SIMD lanes
-#: (:mod:`andoyer.kernels.taylor_lanes`), one vector of lanes. Measured on one thread
+#: (:mod:`andoyer.kernels.taylor.lanes`), one vector of lanes. Measured on one thread
 #: (CPU, lanes / scalar kernel, state / with a tangent vector): 4 orbits 0.60 / 0.52,
 #: 6 orbits 0.45 / 0.37, 8 orbits 0.37 / 0.30; but fewer orbits than lanes fill one
 #: block on one thread, where the scalar kernel runs one orbit per thread, so below 8
@@ -66,9 +67,9 @@ LANES_FROM = 8
 
 
 def _lanes() -> Any:
-    from andoyer.kernels import taylor_lanes  # its machine code loads here, not at import
+    from andoyer.kernels.taylor import lanes  # its machine code loads here, not at import
 
-    return taylor_lanes
+    return lanes
 
 
 #: Crossings asked (orbits x crossings per orbit) from which a component section's
@@ -80,15 +81,15 @@ LANE_CROSSINGS_FROM = 1000
 
 
 def _lane_crossings() -> Any:
-    from andoyer.kernels import taylor_lane_crossings  # its machine code loads here
+    from andoyer.kernels.taylor import lane_crossings  # its machine code loads here
 
-    return taylor_lane_crossings
+    return lane_crossings
 
 
 def _tangent_kernels() -> Any:
-    from andoyer.kernels import taylor_tangent  # its machine code loads here, not at import
+    from andoyer.kernels.taylor import tangent  # its machine code loads here, not at import
 
-    return taylor_tangent
+    return tangent
 
 
 class TaylorEngine(EngineBase):
@@ -110,7 +111,7 @@ class TaylorEngine(EngineBase):
     linear flow's own vectors, integrated with the state (``u, rho`` split at the end).
     At output times with ``renormalise`` (chaos indicators) each vector is rescaled to
     unit length at every step's start and the MEGNO quadratures are jet variables of the
-    same step (:mod:`andoyer.kernels.taylor_tangent`).
+    same step (:mod:`andoyer.kernels.taylor.tangent`).
 
     Examples
     --------
@@ -140,41 +141,41 @@ class TaylorEngine(EngineBase):
 
     def versions(self) -> dict[str, str]:
         """Numba's version, and the Taylor kernels' own: the hash of their sources
-        (:data:`andoyer.kernels.taylor.TAYLOR_STAMP`, the key of their compiled code)."""
+        (:data:`andoyer.kernels.taylor.flow.TAYLOR_STAMP`, the key of their compiled code)."""
         import numba
 
-        return {"taylor_version": f"kernels {taylor.TAYLOR_STAMP[:12]}",
+        return {"taylor_version": f"kernels {flow.TAYLOR_STAMP[:12]}",
                 "numba_version": str(numba.__version__)}
 
     def _run(self, z0: NDArray[np.float64], t: NDArray[np.float64],
              par: NDArray[np.float64], tolerance: Tolerance
              ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
         """States (with tangent vectors, not renormalised) of ``z0`` at times ``t``: from
-        :data:`LANES_FROM` orbits on, :data:`andoyer.kernels.taylor_lanes.LANES` orbits
+        :data:`LANES_FROM` orbits on, :data:`andoyer.kernels.taylor.lanes.LANES` orbits
         per vector step (the same steps as the scalar kernel, results equal to round-off);
-        else :func:`andoyer.kernels.taylor.propagate`."""
+        else :func:`andoyer.kernels.taylor.flow.propagate`."""
         if z0.shape[0] >= LANES_FROM:
             return _lanes().propagate(z0, t, self._kernel_params(par),
-                                      taylor.order_for(tolerance.tol), self.max_steps,
+                                      flow.order_for(tolerance.tol), self.max_steps,
                                       threads=self.n_threads)
-        return taylor.propagate(z0, t, self._kernel_params(par), tolerance.tol,
+        return flow.propagate(z0, t, self._kernel_params(par), tolerance.tol,
                                 self.max_steps, block=self.chunksize, threads=self.n_threads)
 
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
                    par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """States at times ``t`` (non-decreasing): each step's Taylor polynomial there."""
         out, info = self._run(y0, t, par, tolerance)
-        self._raise_on_failure(info, taylor, "in propagate")
+        self._raise_on_failure(info, common, "in propagate")
         return out
 
     def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
                   par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """(1) with the quaternion: its jet by the generated bilinear recurrence
-        (:func:`andoyer.kernels.taylor.propagate_attitude`), one step size for both."""
-        out, info = taylor.propagate_attitude(z0, t, self._kernel_params(par), tolerance.tol,
+        (:func:`andoyer.kernels.taylor.flow.propagate_attitude`), one step size for both."""
+        out, info = flow.propagate_attitude(z0, t, self._kernel_params(par), tolerance.tol,
                                               self.max_steps, block=self.chunksize,
                                               threads=self.n_threads)
-        self._raise_on_failure(info, taylor, "integrating the attitude")
+        self._raise_on_failure(info, common, "integrating the attitude")
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
@@ -183,10 +184,10 @@ class TaylorEngine(EngineBase):
         """Crossings on each step's polynomial; from :data:`LANES_FROM` orbits and
         :data:`LANE_CROSSINGS_FROM` crossings asked on, a state component's section
         (``G3 = c`` ...) runs on SIMD lanes
-        (:mod:`andoyer.kernels.taylor_lane_crossings`: the lanes' steps, the scalar
+        (:mod:`andoyer.kernels.taylor.lane_crossings`: the lanes' steps, the scalar
         kernel's section search lane by lane)."""
         p = self._kernel_params(par)
-        kernels: Any = taylor
+        kernels: Any = flow
         if y0.shape[0] >= LANES_FROM and y0.shape[0] * n_crossings >= LANE_CROSSINGS_FROM:
             lanes = _lane_crossings()
             if lanes.component(event.kind, float(p[7]), event.value) >= 0:
@@ -194,14 +195,14 @@ class TaylorEngine(EngineBase):
         tc, yc, count, info = kernels.locate_crossings(
             y0, p, event.kind, event.value, event.direction, n_crossings, t_max,
             tolerance.tol, self.max_steps, threads=self.n_threads,
-            **({"block": self.chunksize} if kernels is taylor else {}))
-        self._raise_on_failure(info, taylor, "while locating crossings")
+            **({"block": self.chunksize} if kernels is flow else {}))
+        self._raise_on_failure(info, common, "while locating crossings")
         return Crossings(tc, yc, count)
 
     def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
                  t: NDArray[np.float64], par: NDArray[np.float64], tolerance: Tolerance,
                  renormalise: bool, scale: float) -> TangentFlow:
-        """Renormalised: :mod:`andoyer.kernels.taylor_tangent` (the quadratures unscaled,
+        """Renormalised: :mod:`andoyer.kernels.taylor.tangent` (the quadratures unscaled,
         each jet block with its own error scale, so ``scale`` is not used); else the
         linear flow's own vectors (``megno`` None; an overflow fails the orbit)."""
         n, k = w0.shape[:2]
@@ -215,7 +216,7 @@ class TaylorEngine(EngineBase):
         else:
             z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
             out, info = self._run(z0, t, par, tolerance)
-        ok = (info[:, 0] == taylor.SUCCESS) & np.all(np.isfinite(out), axis=(1, 2))
+        ok = (info[:, 0] == common.SUCCESS) & np.all(np.isfinite(out), axis=(1, 2))
         out[~ok] = np.nan
         times = np.broadcast_to(t, (n, m)).copy()
         count = np.full(n, m, dtype=np.int64)
@@ -232,10 +233,10 @@ class TaylorEngine(EngineBase):
                            extended_precision: bool) -> TangentFlow:
         n, k = w0.shape[:2]
         z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
-        tc, zc, count, info = taylor.locate_crossings(
+        tc, zc, count, info = flow.locate_crossings(
             z0, self._kernel_params(par), event.kind, event.value, event.direction,
             n_crossings, t_max, tolerance.tol, self.max_steps, block=self.chunksize,
             threads=self.n_threads)
-        ok = info[:, 0] == taylor.SUCCESS
+        ok = info[:, 0] == common.SUCCESS
         u, rho = unit_vectors(zc[..., _N:].reshape(n, n_crossings, k, _N))
         return TangentFlow(tc, zc[..., :_N], u, rho, None, count, ok)

@@ -25,7 +25,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from andoyer.kernels.generated import EXTRA_SECTION_KINDS, SECTION_KINDS
+from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
 from andoyer.validation import integer, positive
 
 __all__ = [
@@ -181,7 +181,7 @@ class SectionEvent:
     coord : str
         A name of :data:`ALL_KINDS` (``"G3"``, ``"theta2"``, ``"psi"``, ...): the
         section function ``f`` and margin ``w`` are
-        :func:`andoyer.kernels.generated.section` of that kind.
+        :func:`andoyer.kernels.generated.equations.section` of that kind.
     value : float
         The section value (an angle in rad for angle sections).
     direction : {+1, -1, 0}
@@ -324,7 +324,7 @@ class TangentFlow(NamedTuple):
     rho: NDArray[np.float64]  # (n, m, k): ln |w_i|
     #: (n, m, 2) MEGNO quadratures of the first vector, ``int_0^t (s + delta) f ds`` and
     #: ``int_0^t 2 num / (s + delta) ds`` with ``f = d rho_1/dt`` and ``delta``
-    #: :data:`andoyer.kernels.tangent.MEGNO_DELTA`; None at crossings and backward.
+    #: :data:`andoyer.kernels.common.MEGNO_DELTA`; None at crossings and backward.
     megno: NDArray[np.float64] | None
     count: NDArray[np.int64]  # type: ignore[assignment]  # (n,)
     ok: NDArray[np.bool_]  # (n,): False where the integration failed (NaN there)

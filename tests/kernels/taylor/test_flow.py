@@ -1,4 +1,4 @@
-"""The Taylor kernel (:mod:`andoyer.kernels.taylor`) against independent routes.
+"""The Taylor kernel (:mod:`andoyer.kernels.taylor.flow`) against independent routes.
 
 * jets: the order-1 coefficient is the generated field; higher orders equal the Lie
   series of the SymPy field (repeated Lie derivatives, exact rationals); tangent jets
@@ -25,14 +25,17 @@ from numpy.typing import NDArray
 
 from _numba_cache import fresh_process_cache_stats, fresh_process_compiles
 from andoyer import RigidBody, from_andoyer
-from andoyer.kernels import dop853, generated
-from andoyer.kernels import tangent as DT
-from andoyer.kernels import taylor as T
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import flow as dop853
+from andoyer.kernels.dop853 import tangent as DT
+from andoyer.kernels.generated import equations
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor import sections
 from andoyer.symbolic import hamiltonian as sym
 from andoyer.symbolic import sections as sec
 
 MAX_STEPS = 10**7
-KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS + equations.EXTRA_SECTION_KINDS)}
 
 
 def params(body: RigidBody) -> NDArray[np.float64]:
@@ -57,7 +60,7 @@ def test_order_one_coefficient_is_the_field(general: RigidBody) -> None:
     for _ in range(5):
         y = rng.normal(size=6)
         X = T.jet(y, p, 6)
-        f = np.array(generated.ep_field(*y, *p[:7]))
+        f = np.array(equations.ep_field(*y, *p[:7]))
         np.testing.assert_allclose(X[0, 1], f, rtol=1e-15, atol=1e-15)
         np.testing.assert_array_equal(X[0, 0], y)
 
@@ -100,8 +103,8 @@ def test_section_jets_are_the_taylor_coefficients_of_f(name: str, general: Rigid
     value = 0.4 if name not in ("G", "J1") else 1.2
     y = np.array([0.3, -0.7, 1.1, 0.6, 0.2, -0.8])
     x = T.jet(y, p, order)[0]
-    tape, C = T.section_tape(KIND[name], p[7], value)
-    s = T.section_jet(tape, C, np.ascontiguousarray(x), order)
+    tape, C = sections.section_tape(KIND[name], p[7], value)
+    s = sections.section_jet(tape, C, np.ascontiguousarray(x), order)
     f_expr = sec.section_function(name)[0]
     args = [*sec.SECTION_ARGS]
     fn = sp.lambdify(args, f_expr, "mpmath")
@@ -116,9 +119,9 @@ def test_section_jets_are_the_taylor_coefficients_of_f(name: str, general: Rigid
         ref = mpmath.taylor(along, 0, order)
     ref = np.array([float(r) for r in ref])
     np.testing.assert_allclose(s, ref, rtol=1e-11, atol=1e-12 * np.abs(ref).max())
-    margin, wC = T.section_tape(KIND[name], p[7], value, margin=True)
-    w = T.section_jet(margin, wC, np.ascontiguousarray(x), 0)[0]
-    assert w == pytest.approx(generated.section(KIND[name], *y, p[7], value, math.cos(value),
+    margin, wC = sections.section_tape(KIND[name], p[7], value, margin=True)
+    w = sections.section_jet(margin, wC, np.ascontiguousarray(x), 0)[0]
+    assert w == pytest.approx(equations.section(KIND[name], *y, p[7], value, math.cos(value),
                                                 math.sin(value))[1], rel=1e-14, abs=1e-15)
 
 
@@ -148,7 +151,7 @@ def test_error_is_proportional_to_the_tolerance(general: RigidBody) -> None:
     err = []
     for tol in tols:
         out, info = T.propagate(y, t, p, tol, MAX_STEPS)
-        assert info[0, 0] == T.SUCCESS
+        assert info[0, 0] == common.SUCCESS
         err.append(np.max(np.abs(out[0, -1] - ref[0, -1])))
     slope = np.polyfit(np.log(tols), np.log(err), 1)[0]
     assert 0.7 < slope < 1.3
@@ -163,7 +166,7 @@ def test_orbits_agree_with_dop853(mu: float) -> None:
     t = np.linspace(0.0, 200.0, 41)
     out, info = T.propagate(y0, t, p, 1e-12, MAX_STEPS)
     ref, _ = dop853.propagate(y0, t, p, 1e-14, 1e-14, MAX_STEPS)
-    assert (info[:, 0] == T.SUCCESS).all()
+    assert (info[:, 0] == common.SUCCESS).all()
     assert np.max(np.abs(out - ref)) < 1e-10
 
 
@@ -187,7 +190,7 @@ def test_crossings_agree_with_dop853(name: str, value: float, direction: int) ->
                                              1e-12, MAX_STEPS)
     rt, ry, rcount, _ = dop853.locate_crossings(y0, p, KIND[name], value, direction, 12, 1e4,
                                                 1e-14, 1e-14, MAX_STEPS)
-    assert (info[:, 0] == T.SUCCESS).all()
+    assert (info[:, 0] == common.SUCCESS).all()
     np.testing.assert_array_equal(count, rcount)
     if not count.any():  # the angles theta2 and g only increase here
         assert name in ("theta2", "g") and direction == -1
@@ -196,7 +199,7 @@ def test_crossings_agree_with_dop853(name: str, value: float, direction: int) ->
     assert np.nanmax(np.abs(yc - ry)) < 1e-9
     for i in range(2):
         for j in range(count[i]):
-            f, w = generated.section(KIND[name], *yc[i, j], p[7], value, math.cos(value),
+            f, w = equations.section(KIND[name], *yc[i, j], p[7], value, math.cos(value),
                                      math.sin(value))
             assert abs(f) < 1e-13 and w > 0
 
@@ -230,9 +233,9 @@ def test_tangent_flow_is_the_fundamental_matrix(general: RigidBody) -> None:
     z0 = np.concatenate([y0, np.eye(6).ravel()])[None]
     t = np.array([0.0, 5.0, 20.0])
     z, info = T.propagate(z0, t, p, 1e-13, MAX_STEPS)
-    assert info[0, 0] == T.SUCCESS
-    u0 = np.zeros(DT.dimension(6))
-    L = DT.layout(6)
+    assert info[0, 0] == common.SUCCESS
+    u0 = np.zeros(common.dimension(6))
+    L = common.layout(6)
     u0[L["y"]] = y0
     u0[L["u"]] = np.eye(6).ravel()
     ref, _ = DT.propagate(u0[None], t, p, 1e-13, 1e-13, MAX_STEPS)
@@ -260,15 +263,15 @@ def test_non_finite_state_fails() -> None:
     y0 = state(Y0)[None].copy()
     y0[0, 0] = np.nan
     out, info = T.propagate(y0, np.array([0.0, 1.0]), p, 1e-12, MAX_STEPS)
-    assert info[0, 0] == T.STEP_TOO_SMALL and np.isnan(out[0, 1]).all()
+    assert info[0, 0] == common.STEP_TOO_SMALL and np.isnan(out[0, 1]).all()
     _, _, count, info = T.locate_crossings(y0, p, 2, 0.0, 1, 3, 10.0, 1e-12, MAX_STEPS)
-    assert info[0, 0] == T.STEP_TOO_SMALL and count[0] == 0
+    assert info[0, 0] == common.STEP_TOO_SMALL and count[0] == 0
 
 
 def test_max_steps() -> None:
     p = params(RigidBody.paper())
     out, info = T.propagate(state(Y0)[None], np.array([0.0, 100.0]), p, 1e-12, 3)
-    assert info[0, 0] == T.MAX_STEPS and info[0, 1] == 3
+    assert info[0, 0] == common.MAX_STEPS and info[0, 1] == 3
 
 
 def test_order_for() -> None:
@@ -285,7 +288,7 @@ def test_second_process_loads_from_the_cache() -> None:
     T.propagate(y0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
     T.locate_crossings(y0, np.array(p), 2, 0.0, 1, 1, 50.0, 1e-12, MAX_STEPS)
     y = y0.tolist()
-    out = fresh_process_cache_stats("andoyer.kernels.taylor", {
+    out = fresh_process_cache_stats("andoyer.kernels.taylor.flow", {
         "propagate_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
                            f"1e-12, {MAX_STEPS})",
         "locate_crossings_block": f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, "
@@ -320,11 +323,11 @@ def test_kernel_helpers_compile_once_and_refuse_python_calls() -> None:
     # Literal[int](0) (0.3 s of every cold first section).
     import numba
 
-    from andoyer.kernels import taylor_sections as S
+    S = sections
 
     with pytest.raises(TypeError, match="compiled kernels only"):
         S.poly(np.ones(3), 2, 0.5)
-    tape, C = T.section_tape(2, 0.0, 0.1)
+    tape, C = sections.section_tape(2, 0.0, 0.1)
 
     @numba.njit
     def g3(tape: NDArray[np.int64], C: NDArray[np.float64], y: NDArray[np.float64]) -> float:

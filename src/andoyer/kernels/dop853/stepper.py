@@ -1,17 +1,15 @@
 """The DOP853 stepper for any right-hand side, compiled with Numba (no entry points).
 
 :func:`make_stepper` builds, for a compiled ``field(t, y, p, out)``, the pieces of the
-method described in :mod:`andoyer.kernels.dop853`: stages, starting step, controlled
-step, dense output, one orbit to output times and one orbit's section crossings. The
-coefficients are :mod:`andoyer.kernels.dop853_coefficients`. The pieces are not cached
-themselves: cached entry points (:mod:`andoyer.kernels.dop853`,
-:mod:`andoyer.kernels.tangent`) call them, and their cache key covers this file. They
-are compiled into those entry points only (:func:`andoyer.kernels.link_only.link_only_jit`:
-no Python entry, no optimisation or machine code of their own; each entry point is
-optimised once, as one unit): W4's cold first ``propagate`` + ``poincare`` on the numba
-engine took 8.3-8.9 s of CPU before, 4.5 s after, with the same floats bit for bit (207
-arrays: every entry point of ``dop853``, ``tangent`` and ``attitude``, 4 orbits x 3
-bodies, every section kind both ways) and the same kernel times within 1 %.
+method described in :mod:`andoyer.kernels.dop853.flow`: stages, starting step,
+controlled step, dense output, one orbit to output times and one orbit's section
+crossings. The coefficients are :mod:`andoyer.kernels.dop853.coefficients`. The pieces
+are not cached themselves: cached entry points (:mod:`andoyer.kernels.dop853.flow`,
+:mod:`andoyer.kernels.dop853.tangent`) call them, and their cache key covers this file.
+They are compiled into those entry points only
+(:func:`~andoyer.kernels.common.kernel_jit`: no Python entry, no optimisation or machine
+code of their own; each entry point is optimised once, as one unit; the cold compile is
+shorter and the floats the same bit for bit -- measured: benchmarks/NOTES.md#link-only).
 """
 
 from __future__ import annotations
@@ -21,9 +19,15 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from andoyer.kernels import generated
-from andoyer.kernels.constants import T_START
-from andoyer.kernels.dop853_coefficients import (
+from andoyer.kernels.common import (
+    MAX_STEPS,
+    N_STATE,
+    STEP_TOO_SMALL,
+    SUCCESS,
+    T_START,
+    kernel_jit,
+)
+from andoyer.kernels.dop853.coefficients import (
     E3,
     ER,
     ERROR_EXPONENT,
@@ -41,44 +45,27 @@ from andoyer.kernels.dop853_coefficients import (
     C,
     D,
 )
-from andoyer.kernels.link_only import link_only_jit
+from andoyer.kernels.generated import equations
 
 #: Dimension of the Euler-Poisson state (G1, G2, G3, gamma1, gamma2, gamma3): the stages
 #: of a field of this size keep their sums in registers.
-N = 6
+N = N_STATE
 
-__all__ = ["N", "make_stepper", "Stepper", "FASTMATH", "INFO", "SUCCESS", "STEP_TOO_SMALL",
-           "MAX_STEPS", "STATUS_MESSAGES", "dense_eval"]
-
-#: Columns of the ``info`` arrays returned by every entry point.
-INFO = ("status", "accepted", "rejected", "nfev")
-#: Status codes (column ``"status"`` of ``info``).
-SUCCESS, STEP_TOO_SMALL, MAX_STEPS = 0, 1, 2
-STATUS_MESSAGES = {
-    SUCCESS: "success",
-    STEP_TOO_SMALL: "step size fell below 10 ulp of t (non-finite or too stiff state)",
-    MAX_STEPS: "maximum number of steps reached",
-}
+__all__ = ["N", "make_stepper", "Stepper", "dense_eval"]
 
 # Helpers: compiled into the entry points that call them only (not cached on their own,
 # no Python entry; see the module notes).
-#: LLVM fast-math flags of every kernel: reassociation and contraction (FMA) let LLVM
-#: vectorise the stage sums and error norm; reciprocals replace divisions. Not
-#: ``nnan``/``ninf``: the step control relies on NaN comparisons to stop a non-finite
-#: orbit. Measured 1.3x faster steps at the same accuracy.
-FASTMATH = {"reassoc", "contract", "arcp"}
-_jit = link_only_jit(nogil=True, fastmath=FASTMATH)  # see kernels.link_only
-_section = _jit(generated.section)
+_section = kernel_jit(equations.section)
 
 
 
-@_jit
+@kernel_jit
 def _section_fw(y, p, kind, value, cv, sv):
     # The section reads the Euler-Poisson state, the first six components of y.
     return _section(kind, y[0], y[1], y[2], y[3], y[4], y[5], p[7], value, cv, sv)
 
 
-@_jit
+@kernel_jit
 def _error_norm(y, y1, K, h, rtol, atol):
     n = y.shape[0]
     e5 = 0.0
@@ -97,7 +84,7 @@ def _error_norm(y, y1, K, h, rtol, atol):
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
 
 
-@_jit
+@kernel_jit
 def dense_eval(F, y, x, out):
     """``y(t0 + x h)`` from the dense-output rows ``F`` of a step starting at ``y``."""
     x1 = 1.0 - x
@@ -112,13 +99,13 @@ def dense_eval(F, y, x, out):
         out[i] = y[i] + v
 
 
-@_jit
+@kernel_jit
 def _f_at(F, y, x, p, kind, value, cv, sv, ytmp):
     dense_eval(F, y, x, ytmp)
     return _section_fw(ytmp, p, kind, value, cv, sv)[0]
 
 
-@_jit
+@kernel_jit
 def _root(F, y, p, kind, value, cv, sv, xa, xb, fa, fb, ytmp):
     """Root in ``[xa, xb]`` of ``f(y(t0 + theta h))`` with ``f(xa) = fa``, ``f(xb) = fb``
     of opposite signs: Brent's method as in scipy's ``brentq``, to ``ROOT_XTOL``."""
@@ -163,7 +150,7 @@ def _root(F, y, p, kind, value, cv, sv, xa, xb, fa, fb, ytmp):
     return xcur
 
 
-@_jit
+@kernel_jit
 def _closest_approach(F, y, p, kind, value, cv, sv, sign, ytmp):
     """``(theta, f)`` where ``sign * f`` is least on the step (golden-section search,
     assuming one minimum in the step)."""
@@ -186,7 +173,7 @@ def _closest_approach(F, y, p, kind, value, cv, sv, sign, ytmp):
     return x2, sign * f2
 
 
-@_jit
+@kernel_jit
 def _record(F, y, t, h, p, kind, value, cv, sv, direction, xa, xb, fa, fb, tc, yc,
             count, ytmp):
     """Locate the root bracketed by ``[xa, xb]`` of a step and append it to ``tc, yc``
@@ -251,7 +238,7 @@ def make_stepper(field: Any) -> Stepper:
     call is static and inlined; a function passed as an argument would be a dynamic
     address, which Numba cannot cache). They are not cached themselves: bind them to
     module globals and call them from cached entry points, whose cache key must then
-    cover this module and the field's (see :func:`source_stamp`).
+    cover this module and the field's (see :func:`andoyer.kernels.common.source_stamp`).
 
     Parameters
     ----------
@@ -268,10 +255,10 @@ def make_stepper(field: Any) -> Stepper:
         output they use; ``propagate_block`` and ``crossings_block``, the same for each
         row of a block of orbits (``y0`` (n, d); ``out``, ``tc``, ``yc``, ``info`` with a
         leading dimension n; ``crossings_block`` writes the counts into ``count`` (n,)):
-        what a module's cached entry points call (:class:`andoyer.kernels.dop853.Flow`).
+        what a module's cached entry points call (:class:`andoyer.kernels.dop853.flow.Flow`).
     """
 
-    @_jit
+    @kernel_jit
     def stages(t, y, h, p, K, ytmp, first, last):
         """Stages ``first .. last-1`` into ``K`` (``K[:first]`` known); ``ytmp`` ends as the
         argument of the last stage (``y + h sum_j B_j k_j`` = y1 when ``last = 13``)."""
@@ -307,7 +294,7 @@ def make_stepper(field: Any) -> Stepper:
                 ytmp[i] = y[i] + h * ytmp[i]
             field(t + C[s] * h, ytmp, p, K[s])
 
-    @_jit
+    @kernel_jit
     def initial_step(t, y, f0, p, interval, rtol, atol, ytmp, f1):
         """Hairer's starting step (``hinit``; scipy's ``select_initial_step``, order 7)."""
         n = y.shape[0]
@@ -335,7 +322,7 @@ def make_stepper(field: Any) -> Stepper:
             h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
         return min(100.0 * h0, h1, interval)
 
-    @_jit
+    @kernel_jit
     def step(t, y, h_abs, t_end, p, rtol, atol, K, ytmp, y1, info):
         """One accepted step from ``(t, y)`` with ``K[0] = f(t, y)``, at most to ``t_end``.
 
@@ -374,7 +361,7 @@ def make_stepper(field: Any) -> Stepper:
             rejected = True
             info[2] += 1
 
-    @_jit
+    @kernel_jit
     def dense_coefficients(t, y, y1, h, p, K, ytmp, F):
         """The 7 rows ``r_1 .. r_7`` of the dense output of the step ``y -> y1`` (size h)."""
         n = y.shape[0]
@@ -390,7 +377,7 @@ def make_stepper(field: Any) -> Stepper:
                     acc += D[r, j] * K[j, i]
                 F[3 + r, i] = h * acc
 
-    @_jit
+    @kernel_jit
     def graze(y, y1, t, h, p, K, F, kind, value, cv, sv, direction, f0, tc, yc, count,
                ytmp, info):
         """Two roots inside one step (the orbit dips through the section and back): look
@@ -407,7 +394,7 @@ def make_stepper(field: Any) -> Stepper:
                             f1, tc, yc, count, ytmp)
         return count
 
-    @_jit
+    @kernel_jit
     def propagate_orbit(y0, t_out, p, rtol, atol, max_steps, out, info):
         """One orbit of ``dy/dt = field(t, y)``: ``out[j] = y(t_out[j])`` (rows not reached
         stay as they are); ``info`` (4,) counts as the columns :data:`INFO`.
@@ -463,7 +450,7 @@ def make_stepper(field: Any) -> Stepper:
                 y[i] = y1[i]
                 K[0, i] = K[N_STAGES, i]
 
-    @_jit
+    @kernel_jit
     def crossings_orbit(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
                         tc, yc, info):
         """One orbit of ``dy/dt = field(t, y)``: the first ``len(tc)`` crossings in
@@ -549,13 +536,13 @@ def make_stepper(field: Any) -> Stepper:
                 K[0, i] = K_prev[N_STAGES, i]
         return count
 
-    @_jit
+    @kernel_jit
     def propagate_block(y0, t_out, p, rtol, atol, max_steps, out, info):
         """:func:`propagate_orbit` for each orbit (row) of ``y0``."""
         for i in range(y0.shape[0]):
             propagate_orbit(y0[i], t_out, p, rtol, atol, max_steps, out[i], info[i])
 
-    @_jit
+    @kernel_jit
     def crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
                         yc, count, info):
         """:func:`crossings_orbit` for each orbit (row) of ``y0``; counts into ``count``."""

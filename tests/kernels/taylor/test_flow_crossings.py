@@ -1,10 +1,10 @@
-"""Section crossings of the Taylor kernel (:mod:`andoyer.kernels.taylor`) at their edges,
+"""Section crossings of the Taylor kernel (:mod:`andoyer.kernels.taylor.flow`) at their edges,
 against independent routes.
 
 The section search takes one pass of the section function per step: its jet (a column
 of the state's jet for ``G3 = c``, ``gamma_i = c``, ...; the tape otherwise), the end
 value ``P(h)`` carried over to the next step, and the next polynomial blended to start
-at that value (``taylor_sections.scale_polynomial``). These tests check that no crossing
+at that value (``sections.scale_polynomial``). These tests check that no crossing
 is lost or counted twice:
 
 * many random states, two bodies, state-component sections (the column path) and tape
@@ -32,12 +32,15 @@ from andoyer import RigidBody, from_andoyer
 from andoyer.integrate.engines import get_engine
 from andoyer.integrate.engines.base import SectionEvent, Tolerance
 from andoyer.integrate.engines.lazy import heyoka_available
-from andoyer.kernels import dop853, generated, taylor_generated, taylor_sections
-from andoyer.kernels import taylor as T
-from andoyer.kernels.taylor_jets import advance, fill_constants, load
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import flow as dop853
+from andoyer.kernels.generated import equations, recurrences
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor import sections
+from andoyer.kernels.taylor.jets import advance, fill_constants, load
 
 MAX_STEPS = 10**7
-KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS + equations.EXTRA_SECTION_KINDS)}
 GENERAL = RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
 
 
@@ -56,7 +59,7 @@ def random_states(n: int, rng: np.random.Generator) -> NDArray[np.float64]:
 def _step_ends(z0, p, order, n):  # pragma: no cover (compiled)
     """Times and states at the ends of the kernel's first ``n`` steps from ``z0``: the
     kernel's own ``take_step`` and ``advance`` (the steps of ``locate_crossings``)."""
-    q = np.empty(taylor_generated.N_CONSTANTS)
+    q = np.empty(recurrences.N_CONSTANTS)
     fill_constants(p, q)
     X = np.empty((1, order + 1, 6))
     load(X, z0)
@@ -76,7 +79,7 @@ def _step_ends(z0, p, order, n):  # pragma: no cover (compiled)
 
 def _theta2(y: NDArray[np.float64], phi0: float) -> float:
     """The angle theta2 of a state: f = R sin(theta2 - value) of the generated section."""
-    s7, s8 = generated.section(KIND["theta2"], *y, phi0, 0.0, 1.0, 0.0)
+    s7, s8 = equations.section(KIND["theta2"], *y, phi0, 0.0, 1.0, 0.0)
     return math.atan2(s7, s8) % (2 * math.pi)
 
 
@@ -108,7 +111,7 @@ def test_random_states_agree_with_numba_and_heyoka(body: RigidBody) -> None:
 @numba.njit
 def _scaled(a, order, h, fa):  # pragma: no cover (compiled)
     b = a.copy()
-    taylor_sections.scale_polynomial(b, order, h, fa)
+    sections.scale_polynomial(b, order, h, fa)
     return b
 
 
@@ -147,17 +150,17 @@ def test_roots_at_step_ends_are_counted_once(name: str, direction: int) -> None:
             value = _theta2(ys[k], p[7])
         kind = KIND[name]
         # which way the section is crossed there: f's rate from the jet of order 1
-        f0, _ = generated.section(kind, *ys[k], p[7], value, math.cos(value), math.sin(value))
+        f0, _ = equations.section(kind, *ys[k], p[7], value, math.cos(value), math.sin(value))
         x = T.jet(ys[k], p, 1)[0]
-        tape, C = taylor_sections.section_tape(kind, p[7], value)
-        rate = taylor_sections.section_jet(tape, C, x, 1)[1]
+        tape, C = sections.section_tape(kind, p[7], value)
+        rate = sections.section_jet(tape, C, x, 1)[1]
         assert abs(f0) < 1e-14 and abs(rate) > 1e-6
         t_max = ts[k] + 0.5 * (ts[k + 1] - ts[k])  # inside the next step
         tc, yc, count, info = T.locate_crossings(z0[None], p, kind, value, direction, 200,
                                                  t_max, 1e-12, MAX_STEPS)
         rt, ry, rcount, _ = dop853.locate_crossings(z0[None], p, kind, value, direction, 200,
                                                     t_max, 1e-14, 1e-14, MAX_STEPS)
-        assert info[0, 0] == T.SUCCESS
+        assert info[0, 0] == common.SUCCESS
         what = f"{name} = value at step end {k} (t = {ts[k]!r}), direction {direction}"
         assert count[0] == rcount[0], what
         at_end = np.flatnonzero(np.abs(tc[0, :count[0]] - ts[k]) < 1e-9)
@@ -224,7 +227,7 @@ def test_max_steps_and_non_finite_states_end_the_section_search() -> None:
     p = params(RigidBody.paper())
     z0 = np.ascontiguousarray(from_andoyer([[0.3, 1.1, 0.2, 1.0, -0.4]] * 2))
     tc, _, count, info = T.locate_crossings(z0, p, KIND["G3"], 0.0, 0, 100, 1e4, 1e-12, 500)
-    assert (info[:, 0] == T.MAX_STEPS).all() and (info[:, 1] == 500).all()
+    assert (info[:, 0] == common.MAX_STEPS).all() and (info[:, 1] == 500).all()
     full, _, fcount, _ = T.locate_crossings(z0, p, KIND["G3"], 0.0, 0, 100, 1e4, 1e-12,
                                             MAX_STEPS)
     assert 0 < count[0] < fcount[0]
@@ -232,4 +235,4 @@ def test_max_steps_and_non_finite_states_end_the_section_search() -> None:
     z0[1, 3] = np.inf
     _, _, count, info = T.locate_crossings(z0, p, KIND["theta2"], 0.0, 0, 5, 100.0, 1e-12,
                                            MAX_STEPS)
-    assert info[1, 0] == T.STEP_TOO_SMALL and count[1] == 0 and info[0, 0] == T.SUCCESS
+    assert info[1, 0] == common.STEP_TOO_SMALL and count[1] == 0 and info[0, 0] == common.SUCCESS

@@ -1,4 +1,4 @@
-"""The Numba DOP853 kernels (:mod:`andoyer.kernels.dop853`).
+"""The Numba DOP853 kernels (:mod:`andoyer.kernels.dop853.flow`).
 
 Checked against what is known exactly:
 
@@ -25,11 +25,12 @@ from scipy.integrate import solve_ivp
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, to_andoyer, to_hess
 from andoyer.charts.euler_poisson import STATE
-from andoyer.kernels import dop853 as dop
-from andoyer.kernels import dop853_coefficients as coef
-from andoyer.kernels import generated
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import coefficients as coef
+from andoyer.kernels.dop853 import flow as dop
+from andoyer.kernels.generated import equations
 
-KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS)}
 TOL = 1e-12
 MAX_STEPS = 10**8
 X_START = np.array([[0.3, 1.1, 0.2, 1.0, -0.4],  # (l, g, L, G, M), |G| = 1
@@ -166,10 +167,10 @@ def test_adaptive_matches_exact_precession_between_steps(
     t = np.concatenate([[0.0], np.sort(np.random.default_rng(0).uniform(0, 200, 500)),
                         [200.0]])
     y, info = dop.propagate(y_start, t, p, TOL, TOL, MAX_STEPS)
-    assert np.all(info[:, dop.INFO.index("status")] == dop.SUCCESS)
+    assert np.all(info[:, common.INFO.index("status")] == common.SUCCESS)
     # Output times do not shorten steps: the same steps as without them.
     _, info_ends = dop.propagate(y_start, t[[0, -1]], p, TOL, TOL, MAX_STEPS)
-    accepted = dop.INFO.index("accepted")
+    accepted = common.INFO.index("accepted")
     np.testing.assert_array_equal(info[:, accepted], info_ends[:, accepted])
     for i, y0 in enumerate(y_start):
         exact = axisymmetric_exact(free_top, y0, t)
@@ -183,13 +184,13 @@ def test_step_control_is_hairers(general_body: RigidBody,
     p = kernel_params(general_body)
 
     def fun(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.array(generated.ep_field(*y.tolist(), *general_body.params))
+        return np.array(equations.ep_field(*y.tolist(), *general_body.params))
 
     for tol in (1e-6, 1e-12):
         _, info = dop.propagate(y_start[:1], np.array([0.0, 100.0]), p, tol, tol, MAX_STEPS)
         sol = solve_ivp(fun, (0.0, 100.0), y_start[0], method="DOP853", rtol=tol, atol=tol)
-        accepted = info[0, dop.INFO.index("accepted")]
-        nfev = info[0, dop.INFO.index("nfev")]
+        accepted = info[0, common.INFO.index("accepted")]
+        nfev = info[0, common.INFO.index("nfev")]
         assert abs(accepted - (sol.t.size - 1)) <= 0.01 * accepted
         assert abs(nfev - sol.nfev) <= 0.01 * nfev
 
@@ -200,18 +201,18 @@ def test_failure_is_reported_not_hidden(general_body: RigidBody,
     y0 = y_start[:2].copy()
     y0[1, 0] = np.nan
     y, info = dop.propagate(y0, np.array([0.0, 1.0, 2.0]), p, TOL, TOL, MAX_STEPS)
-    status = info[:, dop.INFO.index("status")]
-    assert status[0] == dop.SUCCESS and status[1] == dop.STEP_TOO_SMALL
+    status = info[:, common.INFO.index("status")]
+    assert status[0] == common.SUCCESS and status[1] == common.STEP_TOO_SMALL
     assert np.all(np.isfinite(y[0])) and np.all(np.isnan(y[1, 1:]))
     _, info = dop.propagate(y0[:1], np.array([0.0, 100.0]), p, TOL, TOL, 10)
-    assert info[0, dop.INFO.index("status")] == dop.MAX_STEPS
+    assert info[0, common.INFO.index("status")] == common.MAX_STEPS
 
 
 # ------------------------------------------------------------------------ sections
 def _section_fw(body: RigidBody, kind: int, value: float,
                 y: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     phi0 = kernel_params(body)[-1]
-    f, w = generated.section(kind, *np.moveaxis(y, -1, 0), phi0, value, np.cos(value),
+    f, w = equations.section(kind, *np.moveaxis(y, -1, 0), phi0, value, np.cos(value),
                               np.sin(value))
     return np.asarray(f) + 0.0 * y[..., 0], np.asarray(w) + 0.0 * y[..., 0]
 
@@ -219,7 +220,7 @@ def _section_fw(body: RigidBody, kind: int, value: float,
 def _dfdt(body: RigidBody, kind: int, value: float, y: NDArray[np.float64]
           ) -> NDArray[np.float64]:
     """df/dt = grad f . F(y), by a central difference along the field."""
-    F = np.stack(generated.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
+    F = np.stack(equations.ep_field(*np.moveaxis(y, -1, 0), *body.params), axis=-1)
     d = 1e-6
     return (_section_fw(body, kind, value, y + d * F)[0]
             - _section_fw(body, kind, value, y - d * F)[0]) / (2 * d)
@@ -247,7 +248,7 @@ def test_crossings_lie_on_the_section_with_the_right_direction(
     kind, n = KIND[coord], 12
     tc, yc, count, info = dop.locate_crossings(y_start, kernel_params(body), kind, value,
                                                direction, n, 1e4, TOL, TOL, MAX_STEPS)
-    assert np.all(info[:, dop.INFO.index("status")] == dop.SUCCESS)
+    assert np.all(info[:, common.INFO.index("status")] == common.SUCCESS)
     assert count.max() == n  # some orbits may never reach the section
     for i, c in enumerate(count):
         assert np.all(np.diff(tc[i, :c]) > 0) and np.all(tc[i, :c] > 0)
@@ -363,7 +364,7 @@ def test_a_second_process_loads_the_compiled_kernels(
     dop.propagate(y_start[:1], np.array([0.0, 1.0]), p, TOL, TOL, MAX_STEPS)
     dop.locate_crossings(y_start[:1], p, KIND["G3"], 0.0, 1, 1, 50.0, TOL, TOL, MAX_STEPS)
     y0, pp = y_start[:1].tolist(), p.tolist()
-    out = fresh_process_cache_stats("andoyer.kernels.dop853", {
+    out = fresh_process_cache_stats("andoyer.kernels.dop853.flow", {
         "propagate_block": f"m.propagate(np.array({y0}), np.array([0.0, 1.0]), np.array({pp}), "
                      f"1e-12, 1e-12, {MAX_STEPS})",
         "locate_crossings_block": f"m.locate_crossings(np.array({y0}), np.array({pp}), "
@@ -375,4 +376,4 @@ def test_a_second_process_loads_the_compiled_kernels(
 def test_state_order_is_the_charts() -> None:
     # The kernels unpack y in this order (see dop853._field); fail loudly if it moves.
     assert STATE == ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")
-    assert generated.SECTION_KINDS[:6] == STATE
+    assert equations.SECTION_KINDS[:6] == STATE

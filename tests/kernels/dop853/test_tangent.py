@@ -1,4 +1,4 @@
-"""The variational equations on the Numba DOP853 (:mod:`andoyer.kernels.tangent`).
+"""The variational equations on the Numba DOP853 (:mod:`andoyer.kernels.dop853.tangent`).
 
 Checked against independent routes:
 
@@ -20,9 +20,11 @@ from numpy.typing import NDArray
 
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer
-from andoyer.kernels import dop853, generated
-from andoyer.kernels import tangent as T
-from andoyer.kernels.numba import ep_field, ep_jacobian
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import flow as dop853
+from andoyer.kernels.dop853 import tangent as T
+from andoyer.kernels.dop853.fields import ep_field, ep_jacobian
+from andoyer.kernels.generated import equations
 
 TOL = 1e-13
 MAX_STEPS = 10**7
@@ -33,10 +35,10 @@ def params(body: RigidBody) -> NDArray[np.float64]:
 
 
 def start(y0: NDArray[np.float64], W: NDArray[np.float64]) -> NDArray[np.float64]:
-    """A tangent state (layout of T.layout) with vectors ``W`` (k, 6), ``rho = ln|w|``."""
+    """A tangent state (layout of common.layout) with vectors ``W`` (k, 6), ``rho = ln|w|``."""
     k = W.shape[0]
-    L = T.layout(k)
-    z = np.zeros(T.dimension(k))
+    L = common.layout(k)
+    z = np.zeros(common.dimension(k))
     norms = np.linalg.norm(W, axis=1)
     z[L["y"]] = y0
     z[L["u"]] = (W / norms[:, None]).ravel()
@@ -46,7 +48,7 @@ def start(y0: NDArray[np.float64], W: NDArray[np.float64]) -> NDArray[np.float64
 
 def vectors(z: NDArray[np.float64], k: int) -> NDArray[np.float64]:
     """The tangent vectors ``w_i = exp(rho_i) u_i``, shape (..., k, 6)."""
-    L = T.layout(k)
+    L = common.layout(k)
     U = z[..., L["u"]].reshape(*z.shape[:-1], k, 6)
     return np.exp(z[..., L["rho"]])[..., None] * U
 
@@ -57,13 +59,13 @@ def y_general() -> NDArray[np.float64]:
 
 
 def test_layout_and_dimension() -> None:
-    for k in range(1, T.MAX_VECTORS + 1):
-        L = T.layout(k)
-        assert T.n_vectors(T.dimension(k)) == k
-        assert L["megno_int"] == T.dimension(k) - 1
+    for k in range(1, common.MAX_VECTORS + 1):
+        L = common.layout(k)
+        assert common.n_vectors(common.dimension(k)) == k
+        assert L["megno_int"] == common.dimension(k) - 1
         assert L["rho"].stop == L["megno_num"]
     with pytest.raises(ValueError, match="not a tangent state"):
-        T.n_vectors(16)
+        common.n_vectors(16)
 
 
 def test_jacobian_is_the_derivative_of_the_field(general_body: RigidBody) -> None:
@@ -82,7 +84,7 @@ def test_jacobian_is_the_derivative_of_the_field(general_body: RigidBody) -> Non
         # The field is quadratic: central differences are exact up to round-off.
         np.testing.assert_allclose(J, fd, rtol=0, atol=1e-11)
         # NumPy (generated) and Numba kernels agree.
-        np.testing.assert_allclose(J.ravel(), np.array(generated.ep_jacobian(*y, *p)),
+        np.testing.assert_allclose(J.ravel(), np.array(equations.ep_jacobian(*y, *p)),
                                    rtol=1e-15, atol=1e-15)
 
 
@@ -95,7 +97,7 @@ def test_fundamental_matrix_matches_finite_differences_of_orbits(
     t = np.array([0.0, 3.0, 20.0])
     z0 = np.array([start(y, np.eye(6)) for y in y_general])
     z, info = T.propagate(z0, t, p, TOL, TOL, MAX_STEPS)
-    assert np.all(info[:, 0] == dop853.SUCCESS)
+    assert np.all(info[:, 0] == common.SUCCESS)
     Phi = np.swapaxes(vectors(z, 6), -1, -2)  # columns: d y(t) / d y_j(0)
     eps = 1e-5
     for n, y in enumerate(y_general):
@@ -132,8 +134,8 @@ def test_renormalised_vectors_keep_their_invariants(general_body: RigidBody,
     z0 = np.array([start(y, w) for y, w in zip(y_general, W, strict=True)])
     t = np.linspace(0.0, 200.0, 41)
     z, info = T.propagate(z0, t, params(general_body), TOL, TOL, MAX_STEPS)
-    assert np.all(info[:, 0] == dop853.SUCCESS)
-    L = T.layout(k)
+    assert np.all(info[:, 0] == common.SUCCESS)
+    L = common.layout(k)
     U = z[..., L["u"]].reshape(*z.shape[:2], k, 6)
     assert np.abs(np.linalg.norm(U, axis=-1) - 1.0).max() < 1e-10
     # grad I(y(t)) . w(t) is constant along the linearised flow, for I = (G, gamma),
@@ -153,10 +155,10 @@ def test_megno_quadratures_follow_their_definitions(paper_body: RigidBody) -> No
     z0 = start(y0.reshape(6), np.array([[1.0, 0.5, -0.2, 0.1, 0.3, -0.4]]))[None]
     t = np.linspace(0.0, 50.0, 5001)
     z, _ = T.propagate(z0, t, params(paper_body), TOL, TOL, MAX_STEPS)
-    L = T.layout(1)
+    L = common.layout(1)
     rho = z[0, :, L["rho"]][:, 0] - z[0, 0, L["rho"]][0]
     num, integral = z[0, :, L["megno_num"]], z[0, :, L["megno_int"]]
-    s = t + T.MEGNO_DELTA
+    s = t + common.MEGNO_DELTA
     # int_0^t s f ds = t rho(t) + delta rho(t) - int_0^t rho ds (by parts), trapezoids.
     from scipy.integrate import cumulative_trapezoid
 
@@ -173,7 +175,7 @@ def test_a_second_process_loads_the_compiled_kernels(paper_body: RigidBody) -> N
     T.propagate(z0, np.array([0.0, 1.0]), p, 1e-12, 1e-12, MAX_STEPS)
     T.locate_crossings(z0, p, 2, 0.0, 1, 1, 50.0, 1e-12, 1e-12, MAX_STEPS)
     z, pp = z0.tolist(), p.tolist()
-    out = fresh_process_cache_stats("andoyer.kernels.tangent", {
+    out = fresh_process_cache_stats("andoyer.kernels.dop853.tangent", {
         "propagate_block": f"m.propagate(np.array({z}), np.array([0.0, 1.0]), np.array({pp}), "
                      f"1e-12, 1e-12, {MAX_STEPS})",
         "locate_crossings_block": f"m.locate_crossings(np.array({z}), np.array({pp}), 2, 0.0, 1, "
@@ -187,10 +189,10 @@ def test_crossings_carry_the_tangent_vectors(paper_body: RigidBody) -> None:
     p = params(paper_body)
     y0 = from_andoyer([0.3, 0.0, 0.3, 1.0, 0.0]).reshape(6)
     z0 = start(y0, np.eye(6)[:2])[None]
-    kind = generated.SECTION_KINDS.index("G3")
+    kind = equations.SECTION_KINDS.index("G3")
     tc, zc, count, info = T.locate_crossings(z0, p, kind, 0.0, 0, 3, 500.0, TOL, TOL,
                                              MAX_STEPS)
-    assert count[0] == 3 and info[0, 0] == dop853.SUCCESS
+    assert count[0] == 3 and info[0, 0] == common.SUCCESS
     assert np.abs(zc[0, :, 2]).max() < 1e-12
     plain_t, _, _, _ = dop853.locate_crossings(y0[None], p, kind, 0.0, 0, 3, 500.0, TOL,
                                                TOL, MAX_STEPS)

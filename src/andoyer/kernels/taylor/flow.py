@@ -2,7 +2,7 @@ r"""Adaptive Taylor method in Numba on the Euler-Poisson field (1), with tangent
 
 Each step expands the solution in a Taylor series of order ``p`` about the current
 state: the normalised coefficients (the *jet*) come from the Cauchy-product recurrences
-generated from the SymPy field (:mod:`andoyer.kernels.taylor_generated`, written by
+generated from the SymPy field (:mod:`andoyer.kernels.generated.recurrences`, written by
 :mod:`andoyer.symbolic.taylor_codegen`; nothing typed by hand), the step size from the
 last two coefficients, and the new state from the polynomial (Horner). The step's
 polynomial is also the dense output (output times) and the event locator (section
@@ -31,7 +31,7 @@ the margin: the section's amplitude, which a root does not zero; heyoka takes on
 :math:`\max(1, \|x^{[0]}\|_\infty, |f|)` for both, which can lengthen the state's step
 where :math:`|f| > \|x^{[0]}\|_\infty`). The step is never longer than the state's own
 rule -- a section of a state component (``G3 = 0``) steps exactly as :func:`propagate`
--- and never shorter than :data:`~andoyer.kernels.taylor_jets.SECTION_STEP_FLOOR` of
+-- and never shorter than :data:`~andoyer.kernels.taylor.jets.SECTION_STEP_FLOOR` of
 it (near ``G = 0`` an angle's section function has unbounded jets). On the angle
 sections this is what makes the crossings as accurate as heyoka's: the error of a
 crossing is the integration's global error there, and the angle's jets shorten the
@@ -46,7 +46,7 @@ vectors (``z = (y, w_1, ..., w_k)``), their jets follow the state's (generated
 flow's own vectors; an overflow stops the orbit with a failure status).
 
 Section crossings. With ``f`` a section function of
-:func:`andoyer.kernels.generated.section` and its jet along the step (generated
+:func:`andoyer.kernels.generated.equations.section` and its jet along the step (generated
 ``section_jet``), the roots of the polynomial :math:`P(\tau) = \sum_k f^{[k]} \tau^k`
 on the step are isolated in the Bernstein basis of :math:`[0, h]` (the number of sign
 changes of the Bernstein coefficients bounds the number of roots, with the same
@@ -58,16 +58,16 @@ section function itself: :math:`dt = -f(y)/\dot f`, :math:`y \mathrel{+}= dt\, F
 (:math:`\dot f = P'` and ``F`` the field (1); the tangent vectors get ``dt J w``). One
 pass of ``f`` per step; its end value is the next step's start value, so a root on a step
 boundary is counted once; a state component's jet is the state's column
-(:mod:`~andoyer.kernels.taylor_sections`' notes). As in every
+(:mod:`~andoyer.kernels.taylor.sections`' notes). As in every
 engine, a crossing is kept when its direction is wanted, the margin ``w`` of the
 section is positive there (an angle section's antipode is not a crossing) and its time
-exceeds :data:`andoyer.kernels.constants.T_START`.
+exceeds :data:`andoyer.kernels.common.T_START`.
 
 Entry points (cached, ``nogil``; blocks of orbits in threads through
 :func:`andoyer.kernels.threads.over_orbits`): :func:`propagate` and
 :func:`locate_crossings`, for states of ``6 + 6 k`` floats. ``info`` columns are
-:data:`INFO` (status, steps, 0, jets computed), status codes as in
-:mod:`andoyer.kernels.stepper`.
+:data:`~andoyer.kernels.common.INFO` (status, steps, 0, jets computed), status codes
+of :mod:`andoyer.kernels.common`.
 
 References
 ----------
@@ -84,13 +84,20 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from andoyer.kernels import taylor_generated, taylor_jets, taylor_sections
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.constants import T_START
-from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
-from andoyer.kernels.taylor_jets import (
+from andoyer.kernels import common
+from andoyer.kernels.common import (
+    INFO,
+    MAX_STEPS,
     N_STATE,
+    SUCCESS,
+    T_START,
+    exact_jit,
+    kernel_jit,
+    source_stamp,
+)
+from andoyer.kernels.generated import recurrences
+from andoyer.kernels.taylor import jets, sections
+from andoyer.kernels.taylor.jets import (
     advance,
     attitude_jets,
     block_at,
@@ -103,16 +110,14 @@ from andoyer.kernels.taylor_jets import (
     step_to,
     tangent_jets,
 )
-from andoyer.kernels.taylor_sections import (
+from andoyer.kernels.taylor.sections import (
     bernstein_weights,
     column_polynomial,
     isolate,
     isolation_space,
     jet_polynomial,
-    kernel_jit,
     linear_component,
     poly_d,
-    section_jet,
     section_tape,
     tape_jet,
     tape_value,
@@ -123,11 +128,6 @@ __all__ = [
     "MAX_ORDER",
     "MIN_ORDER",
     "TAYLOR_STAMP",
-    "INFO",
-    "SUCCESS",
-    "STEP_TOO_SMALL",
-    "MAX_STEPS",
-    "STATUS_MESSAGES",
     "order_for",
     "n_vectors",
     "propagate",
@@ -144,8 +144,6 @@ __all__ = [
     "TANGENT",
     "ATTITUDE",
     "jet",
-    "section_tape",
-    "section_jet",
 ]
 
 #: Highest and lowest Taylor orders (a tolerance of 1e-32 asks for 38).
@@ -159,8 +157,8 @@ _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka
 _ZERO = np.int64(0)
 
 #: Hash of every source the compiled entry points depend on (their cache key).
-TAYLOR_STAMP = source_stamp(taylor_generated.__file__ or "", __file__,
-                            taylor_sections.__file__ or "", taylor_jets.__file__ or "")
+TAYLOR_STAMP = source_stamp(recurrences.__file__, __file__, sections.__file__, jets.__file__,
+                            common.__file__)
 
 
 def order_for(tol: float) -> int:
@@ -223,7 +221,7 @@ class Orbits(NamedTuple):
 def make_orbits(jets: Any) -> Orbits:
     """The orbit loops for states whose jets ``jets(X, order, q)`` computes (the state
     alone, or with tangent vectors): closures over ``jets``, so a call compiles only the
-    jets it needs (see :mod:`andoyer.kernels.stepper` on closures and the cache).
+    jets it needs (see :mod:`andoyer.kernels.dop853.stepper` on closures and the cache).
 
     Parameters
     ----------
@@ -241,7 +239,7 @@ def make_orbits(jets: Any) -> Orbits:
     @kernel_jit
     def take_section_step(t, t_end, X, order, q, info, ftape, fC, u):
         """:func:`take_step` with the section function's jets (left in ``u``) in the step
-        size (:func:`~andoyer.kernels.taylor_jets.section_step_size`)."""
+        size (:func:`~andoyer.kernels.taylor.jets.section_step_size`)."""
         jets(X, order, q)
         info[3] += 1
         tape_jet(ftape, fC, X[0], order, u)
@@ -388,58 +386,58 @@ _tangent_crossings = TANGENT.crossings_orbit
 
 def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
     """The cached entry points (the closure over ``stamp`` keys the cache, as in
-    :mod:`andoyer.kernels.dop853`). They call the orbit loops as module globals: a
+    :mod:`andoyer.kernels.dop853.flow`). They call the orbit loops as module globals: a
     compiled function in a closure cell would change the cache key in every process."""
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits (states alone) on the calling thread."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((1, order + 1, _N))
         for i in range(z0.shape[0]):
             _state_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def tangent_propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits with tangent vectors."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         for i in range(z0.shape[0]):
             _tangent_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
                                max_steps, tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits (states alone)."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((1, order + 1, _N))
         for i in range(z0.shape[0]):
             count[i] = _state_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
                                         t_max, max_steps, X, tc[i], zc[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def tangent_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
                                 max_steps, tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits with tangent vectors."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         for i in range(z0.shape[0]):
             count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
                                           t_max, max_steps, X, tc[i], zc[i], info[i])
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def attitude_propagate_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate_attitude` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((2, order + 1, _N))
         for i in range(z0.shape[0]):
@@ -453,11 +451,11 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
  tangent_crossings_block, attitude_propagate_block) = _build(TAYLOR_STAMP)
 
 
-@cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+@exact_jit
 def jet(z0, p, order):
     """The jets (state, then tangent vectors) at ``z0`` (6 + 6 k,): shape
     (1 + k, order + 1, 6)."""
-    q = np.empty(taylor_generated.N_CONSTANTS)
+    q = np.empty(recurrences.N_CONSTANTS)
     fill_constants(p, q)
     X = np.empty((z0.shape[0] // _N, order + 1, _N))
     load(X, z0)
@@ -480,7 +478,7 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_step
     t : ndarray, shape (m,)
         Output times, non-decreasing.
     p : ndarray, shape (8,)
-        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+        Kernel parameters :data:`andoyer.kernels.dop853.flow.PARAMS`.
     tol : float
         Tolerance of the local error (:func:`order_for` and the module notes).
     max_steps : int
@@ -493,7 +491,8 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, tol: float, max_step
     z : ndarray, shape (n, m, 6 + 6 k)
         NaN after a failure (see ``info``).
     info : ndarray of int64, shape (n, 4)
-        Columns :data:`INFO` (``rejected`` is always 0; ``nfev`` counts jets).
+        Columns :data:`~andoyer.kernels.common.INFO` (``rejected`` is always 0; ``nfev``
+        counts jets).
     """
     n = z0.shape[0]
     out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
@@ -542,7 +541,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     """The first crossings after t = 0 of a section, for many orbits (with the tangent
     vectors there when ``z0`` has ``6 + 6 k`` columns).
 
-    Parameters as :func:`andoyer.kernels.dop853.locate_crossings`, with one ``tol``.
+    Parameters as :func:`andoyer.kernels.dop853.flow.locate_crossings`, with one ``tol``.
 
     Parameters
     ----------

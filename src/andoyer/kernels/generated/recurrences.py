@@ -2,7 +2,7 @@
 and the section functions.
 
 DO NOT EDIT: regenerate with ``python -m andoyer.symbolic.taylor_codegen``.
-Plain loops on float arrays, compiled by Numba in andoyer.kernels.taylor.
+Plain loops on float arrays, compiled by Numba in andoyer.kernels.taylor.flow.
 """
 
 from math import cos, sin

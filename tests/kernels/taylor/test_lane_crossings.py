@@ -1,4 +1,4 @@
-"""Section crossings on SIMD lanes (:mod:`andoyer.kernels.taylor_lane_crossings`) against
+"""Section crossings on SIMD lanes (:mod:`andoyer.kernels.taylor.lane_crossings`) against
 the scalar Taylor kernel and the DOP853 kernel.
 
 * random states of two bodies, state-component sections (G3, gamma_i, L) in both
@@ -23,13 +23,15 @@ from andoyer import RigidBody
 from andoyer.integrate.engines import taylor_engine
 from andoyer.integrate.engines.base import SectionEvent, Tolerance
 from andoyer.integrate.engines.taylor_engine import TaylorEngine
-from andoyer.kernels import dop853, generated
-from andoyer.kernels import taylor as T
-from andoyer.kernels import taylor_lane_crossings as LC
-from andoyer.kernels.taylor_lanes import LANES
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import flow as dop853
+from andoyer.kernels.generated import equations
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor import lane_crossings as LC
+from andoyer.kernels.taylor.lanes import LANES
 
 MAX_STEPS = 10**7
-KIND = {name: i for i, name in enumerate(generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS)}
+KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS + equations.EXTRA_SECTION_KINDS)}
 GENERAL = RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
 
 
@@ -99,15 +101,15 @@ def test_failures_end_their_orbit_only() -> None:
         np.testing.assert_array_equal(a[3], b[3])
         np.testing.assert_array_equal(a[2], b[2])
         assert np.nanmax(np.abs(a[0] - b[0])) < 1e-11
-        assert a[3][2, 0] == a[3][LANES + 1, 0] == T.STEP_TOO_SMALL
+        assert a[3][2, 0] == a[3][LANES + 1, 0] == common.STEP_TOO_SMALL
         ok = np.ones(LANES + 2, dtype=bool)
         ok[[2, LANES + 1]] = False
         short = a[2][ok] < 50
         if max_steps == 300:  # orbits short of 50 crossings stop at 300 steps
-            assert short.any() and (a[3][ok, 0] == np.where(short, T.MAX_STEPS, 0)).all()
+            assert short.any() and (a[3][ok, 0] == np.where(short, common.MAX_STEPS, 0)).all()
             assert (a[3][ok, 1][short] == 300).all()
         else:
-            assert (a[3][ok, 0] == T.SUCCESS).all()
+            assert (a[3][ok, 0] == common.SUCCESS).all()
 
 
 def test_the_engine_runs_many_orbits_of_a_component_section_on_lanes(

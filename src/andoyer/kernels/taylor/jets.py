@@ -1,6 +1,6 @@
-r"""Jets and steps of the Taylor method of :mod:`andoyer.kernels.taylor`: the Taylor
+r"""Jets and steps of the Taylor method of :mod:`andoyer.kernels.taylor.flow`: the Taylor
 coefficients of a state (alone, with tangent vectors, or with the attitude quaternion)
-from the generated recurrences of :mod:`andoyer.kernels.taylor_generated`, the
+from the generated recurrences of :mod:`andoyer.kernels.generated.recurrences`, the
 Jorba-Zou step size from the last two coefficients, and the step's polynomial evaluated
 (Horner) at an output time or at the step's end.
 
@@ -8,9 +8,10 @@ The jets of a state of ``k`` blocks are an array ``X`` of shape ``(k, order + 1,
 row ``X[b, j]`` holds the coefficients of order ``j`` of block ``b`` (the state, then
 each tangent vector or the padded quaternion), row 0 the current value.
 
-Plain Numba functions (``kernel_jit``: no Python entry) compiled into the cached entry points of
-:mod:`andoyer.kernels.taylor` that call them (their cache key,
-:data:`andoyer.kernels.taylor.TAYLOR_STAMP`, hashes this file too).
+Plain Numba functions (:func:`~andoyer.kernels.common.kernel_jit`: no Python entry)
+compiled into the cached entry points of :mod:`andoyer.kernels.taylor.flow` that call
+them (their cache key, :data:`andoyer.kernels.taylor.flow.TAYLOR_STAMP`, hashes this
+file too).
 """
 
 from __future__ import annotations
@@ -19,16 +20,13 @@ import math
 
 import numpy as np
 
-from andoyer.kernels import taylor_generated
-from andoyer.kernels.stepper import STEP_TOO_SMALL, SUCCESS
-from andoyer.kernels.taylor_sections import kernel_jit
+from andoyer.kernels.common import N_STATE, STEP_TOO_SMALL, SUCCESS, kernel_jit
+from andoyer.kernels.generated import recurrences
 
-__all__ = ["N_STATE", "fill_constants", "state_jets", "tangent_jets", "attitude_jets",
+__all__ = ["fill_constants", "state_jets", "tangent_jets", "attitude_jets",
            "radius", "step_size", "step_to", "section_step_size", "SECTION_STEP_FLOOR", "block_at",
            "horner", "advance", "load"]
 
-#: Floats of the Euler-Poisson state: one block of the jets.
-N_STATE = 6
 #: Least fraction of the state's step that a section function's jet may leave
 #: (:func:`section_step_size`): near ``G = 0`` an angle's section function has jets
 #: growing without bound (its ``|G|`` factor), where it is undefined anyway.
@@ -36,11 +34,11 @@ SECTION_STEP_FLOOR = 1.0 / 16.0
 
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
-# see andoyer.kernels.dop853's notes on the cache key).
-_constants = kernel_jit(taylor_generated.ep_taylor_constants)
-_jet = kernel_jit(taylor_generated.ep_taylor_jet)
-_tangent_jet = kernel_jit(taylor_generated.ep_taylor_tangent_jet)
-_attitude_jet = kernel_jit(taylor_generated.ep_taylor_attitude_jet)
+# see andoyer.kernels.dop853.flow's notes on the cache key).
+_constants = kernel_jit(recurrences.ep_taylor_constants)
+_jet = kernel_jit(recurrences.ep_taylor_jet)
+_tangent_jet = kernel_jit(recurrences.ep_taylor_tangent_jet)
+_attitude_jet = kernel_jit(recurrences.ep_taylor_attitude_jet)
 
 
 @kernel_jit
@@ -79,7 +77,8 @@ def attitude_jets(X, order, q):
 
 @kernel_jit
 def radius(x, order):
-    """rho of :mod:`andoyer.kernels.taylor`'s notes for one block of jets ``x`` (order + 1, 6)."""
+    """rho of :mod:`andoyer.kernels.taylor.flow`'s notes for one block of jets ``x``
+    (order + 1, 6)."""
     m = 0.0
     n1 = 0.0
     n2 = 0.0
@@ -102,7 +101,7 @@ def radius(x, order):
 
 @kernel_jit
 def step_size(X, order):
-    """Jorba-Zou step of :mod:`andoyer.kernels.taylor`'s notes (least over the state
+    """Jorba-Zou step of :mod:`andoyer.kernels.taylor.flow`'s notes (least over the state
     and tangent vectors)."""
     rho = radius(X[0], order)
     if rho != rho:
@@ -118,14 +117,14 @@ def step_size(X, order):
 @kernel_jit
 def section_step_size(X, order, tape, u):
     """:func:`step_size` with the jet ``u[-1]`` of a section function ``f`` (the jets
-    ``u`` of its tape ``tape``, :func:`~andoyer.kernels.taylor_sections.tape_jet`) as one
+    ``u`` of its tape ``tape``, :func:`~andoyer.kernels.taylor.sections.tape_jet`) as one
     more block, where its last two coefficients exceed the state's (elsewhere, and for
     every section of a state component, the step is :func:`step_size`'s). Its scale
     ``m`` is the larger of the state's and the size of the two terms that ``f``'s last
     node sums (an angle section's pair ``(k sin, k cos)`` rotated by the value: its
     amplitude ``k = sqrt(f^2 + w^2)``, ``w`` the margin). The step is never longer than
     :func:`step_size`'s, nor shorter than :data:`SECTION_STEP_FLOOR` of the state's (see
-    :mod:`andoyer.kernels.taylor`'s notes)."""
+    :mod:`andoyer.kernels.taylor.flow`'s notes)."""
     last = tape.shape[0] - 1
     a1 = abs(u[last, order - 1])
     a2 = abs(u[last, order])

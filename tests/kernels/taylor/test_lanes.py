@@ -1,8 +1,8 @@
-"""The SIMD-lane Taylor kernel (:mod:`andoyer.kernels.taylor_lanes`) against the scalar one.
+"""The SIMD-lane Taylor kernel (:mod:`andoyer.kernels.taylor.lanes`) against the scalar one.
 
 * the lane jets (generated ``ep_taylor_jet_lanes``/``ep_taylor_tangent_jet_lanes``,
-  compiled with the vector intrinsics of :mod:`andoyer.kernels.simd`) equal the scalar
-  jets of :func:`andoyer.kernels.taylor.jet` lane by lane, to round-off, on random
+  compiled with the vector intrinsics of :mod:`andoyer.kernels.taylor.simd`) equal the scalar
+  jets of :func:`andoyer.kernels.taylor.flow.jet` lane by lane, to round-off, on random
   states and states near the Andoyer chart's singular sets;
 * orbits: every orbit of a lane run takes the scalar kernel's steps (``info`` equal,
   row by row) and reaches the same states to round-off; against the Numba DOP853 to
@@ -22,10 +22,11 @@ from numpy.typing import NDArray
 
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer
-from andoyer.kernels import dop853, simd
-from andoyer.kernels import taylor as T
-from andoyer.kernels import taylor_lanes as TL
-from andoyer.kernels.taylor_jets import fill_constants
+from andoyer.kernels import common, simd
+from andoyer.kernels.dop853 import flow as dop853
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor import lanes as TL
+from andoyer.kernels.taylor.jets import fill_constants
 
 L = TL.LANES
 ORDER = 15  # order_for(1e-12)
@@ -124,9 +125,9 @@ def test_orbits_agree_with_dop853(body: RigidBody) -> None:
     y = states(2 * L + 1, 30)
     t = np.linspace(0.0, 10.0, 5)
     got, info = TL.propagate(y, t, p, ORDER, 10**6)
-    assert np.all(info[:, 0] == TL.SUCCESS)
+    assert np.all(info[:, 0] == common.SUCCESS)
     ref, ref_info = dop853.propagate(y, t, p, 1e-13, 1e-13, 10**7)
-    assert np.all(ref_info[:, 0] == dop853.SUCCESS)
+    assert np.all(ref_info[:, 0] == common.SUCCESS)
     assert np.max(np.abs(got - ref) / (1.0 + np.abs(ref))) < 1e-9
 
 
@@ -141,21 +142,21 @@ def test_failures_are_per_orbit(body: RigidBody) -> None:
     ref, ref_info = T.propagate(z, t, p, 1e-12, 10**6)
     got, info = TL.propagate(z, t, p, ORDER, 10**6, threads=1)
     np.testing.assert_array_equal(info, ref_info)
-    assert info[3, 0] == info[L + 4, 0] == TL.STEP_TOO_SMALL
-    assert np.sum(info[:, 0] != TL.SUCCESS) == 2
+    assert info[3, 0] == info[L + 4, 0] == common.STEP_TOO_SMALL
+    assert np.sum(info[:, 0] != common.SUCCESS) == 2
     np.testing.assert_array_equal(np.isnan(got), np.isnan(ref))
     # max_steps: orbits needing more steps than allowed fail, the others do not
     limit = int(np.median(ref_info[:, 1]))
     ref, ref_info = T.propagate(z, t, p, 1e-12, limit)
     got, info = TL.propagate(z, t, p, ORDER, limit, threads=1)
     np.testing.assert_array_equal(info, ref_info)
-    assert np.any(info[:, 0] == TL.MAX_STEPS) and np.any(info[:, 0] == TL.SUCCESS)
-    ok = info[:, 0] == TL.SUCCESS
+    assert np.any(info[:, 0] == common.MAX_STEPS) and np.any(info[:, 0] == common.SUCCESS)
+    ok = info[:, 0] == common.SUCCESS
     assert np.max(np.abs(got[ok] - ref[ok]) / (1.0 + np.abs(ref[ok]))) < 1e-11
     np.testing.assert_array_equal(np.isnan(got), np.isnan(ref))
     # no step at all allowed
     _, info = TL.propagate(z, t, p, ORDER, 0)
-    assert np.all(info[:, 0] == TL.MAX_STEPS)
+    assert np.all(info[:, 0] == common.MAX_STEPS)
 
 
 def test_a_second_process_loads_the_lane_kernel(body: RigidBody) -> None:
@@ -165,7 +166,7 @@ def test_a_second_process_loads_the_lane_kernel(body: RigidBody) -> None:
     TL.propagate(states(L, 70), np.array([0.0, 1.0]), np.array(p), ORDER, 10**6)
     y = states(L, 70).tolist()
     z = np.concatenate([states(L, 70), np.ones((L, 6))], axis=1).tolist()
-    out = fresh_process_cache_stats("andoyer.kernels.taylor_lanes", {
+    out = fresh_process_cache_stats("andoyer.kernels.taylor.lanes", {
         "lanes_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
                        f"{ORDER}, 10**6); m.propagate(np.array({z}), np.array([0.0, 1.0]), "
                        f"np.array({p}), {ORDER}, 10**6)"})

@@ -1,15 +1,15 @@
-"""The renormalised tangent flow of the Taylor method (:mod:`andoyer.kernels.taylor_tangent`)
+"""The renormalised tangent flow of the Taylor method (:mod:`andoyer.kernels.taylor.tangent`)
 against independent routes.
 
 * the state, unit vectors, log norms and both MEGNO quadratures against the Numba
-  DOP853's continuously renormalised system (:mod:`andoyer.kernels.tangent`, a different
+  DOP853's continuously renormalised system (:mod:`andoyer.kernels.dop853.tangent`, a different
   method and a different formulation of the same equations) at a tight tolerance;
 * the MEGNO jets against their definitions: ``L`` is the Taylor series of
   ``ln|w_1(tau)|`` (the step's polynomial, evaluated directly), ``N`` and ``I`` solve
   ``N' = (s0 + tau) L'`` and ``I' = 2 N / (s0 + tau)`` (checked at sample points by the
   polynomial's derivative);
 * the renormalisation: the log norms equal those of the linear flow's own vectors
-  (:func:`andoyer.kernels.taylor.propagate`, not renormalised) while those are finite,
+  (:func:`andoyer.kernels.taylor.flow.propagate`, not renormalised) while those are finite,
   and a chaotic orbit carried past ``ln|w| = 709`` (where ``|w|`` overflows a double)
   stays finite with unit vectors;
 * a second process loads the compiled entry point from Numba's cache.
@@ -25,9 +25,10 @@ from numpy.typing import NDArray
 
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, from_hess
-from andoyer.kernels import tangent as DT
-from andoyer.kernels import taylor as T
-from andoyer.kernels import taylor_tangent as TT
+from andoyer.kernels import common
+from andoyer.kernels.dop853 import tangent as DT
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor import tangent as TT
 
 MAX_STEPS = 10**7
 Y0 = [0.3, 1.1, 0.2, 1.0, -0.4]
@@ -50,8 +51,8 @@ def general() -> RigidBody:
 def _dop853(y0: NDArray[np.float64], W: NDArray[np.float64], t: NDArray[np.float64],
             p: NDArray[np.float64]) -> NDArray[np.float64]:
     k = W.shape[0]
-    L = DT.layout(k)
-    z = np.zeros(DT.dimension(k))
+    L = common.layout(k)
+    z = np.zeros(common.dimension(k))
     norms = np.linalg.norm(W, axis=1)
     z[L["y"]] = y0
     z[L["u"]] = (W / norms[:, None]).ravel()
@@ -75,10 +76,10 @@ def test_agrees_with_the_continuously_renormalised_dop853(general: RigidBody) ->
     W = W0 * np.array([[3.0], [0.5]])  # lengths other than 1: rho starts at ln|w0|
     t = np.array([0.0, 0.5, 3.0, 20.0, 60.0])
     z, info = TT.propagate(*_start(y0, W), t, p, 1e-14, MAX_STEPS)
-    assert info[0, 0] == T.SUCCESS and info[0, 1] > 0
+    assert info[0, 0] == common.SUCCESS and info[0, 1] > 0
     ref = _dop853(y0, W, t, p)
-    assert z.shape == (1, t.size, DT.dimension(2))  # the row of tangent.layout
-    L = DT.layout(2)
+    assert z.shape == (1, t.size, common.dimension(2))  # the row of tangent.layout
+    L = common.layout(2)
     np.testing.assert_allclose(z[0, 0, L["rho"]], np.log(np.linalg.norm(W, axis=1)),
                                rtol=0, atol=1e-15)
     # measured: y 7e-14, u 1.1e-13, rho 1e-13, the quadratures 3e-14 relative at t = 60
@@ -100,7 +101,7 @@ def test_megno_jets_solve_their_equations(general: RigidBody) -> None:
     w = W0[0] / np.linalg.norm(W0[0])
     X = np.ascontiguousarray(T.jet(np.concatenate([y0, w]), p, order))
     Q = np.zeros((5, order + 1, 1))
-    num0, int0, s0 = 0.7, 1.3, 2.0 + TT.MEGNO_DELTA
+    num0, int0, s0 = 0.7, 1.3, 2.0 + common.MEGNO_DELTA
     Q[1, 0, 0], Q[2, 0, 0] = num0, int0
     TT.megno_jets(X, order, s0, Q)
     L, N, I = (np.polynomial.Polynomial(Q[c, :, 0]) for c in range(3))
@@ -122,10 +123,10 @@ def test_log_norms_are_the_linear_flows_own(general: RigidBody) -> None:
     t = np.linspace(0.0, 100.0, 11)
     z, _ = TT.propagate(*_start(y0, W0), t, p, 1e-13, MAX_STEPS)
     plain, info = T.propagate(z0, t, p, 1e-13, MAX_STEPS)
-    assert info[0, 0] == T.SUCCESS
+    assert info[0, 0] == common.SUCCESS
     W = plain[0, :, 6:].reshape(t.size, 2, 6)
     norms = np.linalg.norm(W, axis=-1)
-    L = DT.layout(2)  # measured 2.3e-13 (rho), 3.6e-13 (u) at t <= 100, ln|w| ~ 8
+    L = common.layout(2)  # measured 2.3e-13 (rho), 3.6e-13 (u) at t <= 100, ln|w| ~ 8
     np.testing.assert_allclose(z[0, :, L["rho"]], np.log(norms), rtol=0, atol=1e-11)
     np.testing.assert_allclose(z[0, :, L["u"]].reshape(t.size, 2, 6),
                                W / norms[..., None], rtol=0, atol=1e-11)
@@ -138,15 +139,15 @@ def test_a_long_chaotic_run_stays_finite() -> None:
     y0 = from_hess(CHAOTIC_BODY, [CHAOTIC])[0]
     t = np.linspace(0.0, 20000.0, 5)
     z, info = TT.propagate(*_start(y0, W0[:1]), t, p, 1e-12, MAX_STEPS)
-    assert info[0, 0] == T.SUCCESS
+    assert info[0, 0] == common.SUCCESS
     assert np.all(np.isfinite(z))
-    L = DT.layout(1)
+    L = common.layout(1)
     rho = z[0, :, L["rho"]][:, 0]
     assert rho[-1] > 750.0  # |w| = e^rho > 1e325: beyond the largest double
     assert np.all(np.diff(rho) > 0.0)
     np.testing.assert_allclose(np.linalg.norm(z[0, :, L["u"]], axis=-1), 1.0, atol=1e-12)
     # mean MEGNO <Y> ~ lambda t / 2 on a chaotic orbit: large and finite
-    mean = z[0, -1, L["megno_int"]] / (t[-1] + TT.MEGNO_DELTA)
+    mean = z[0, -1, L["megno_int"]] / (t[-1] + common.MEGNO_DELTA)
     assert 100.0 < mean < rho[-1]
 
 
@@ -161,7 +162,7 @@ def test_second_process_loads_from_the_cache() -> None:
     z0, rho0 = _start(from_andoyer([Y0])[0], W0[:1])
     TT.propagate(z0, rho0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
     z, r = z0.tolist(), rho0.tolist()
-    out = fresh_process_cache_stats("andoyer.kernels.taylor_tangent", {
+    out = fresh_process_cache_stats("andoyer.kernels.taylor.tangent", {
         "propagate_block": f"m.propagate(np.array({z}), np.array({r}), np.array([0.0, 1.0]), "
                            f"np.array({p}), 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0] and out["hits"] == [1]

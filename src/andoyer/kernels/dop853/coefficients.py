@@ -4,8 +4,8 @@ In Hairer's notation: the nodes ``c_i`` (:data:`C`), the matrix ``a_ij`` (:data:
 weights ``b_i`` (:data:`B`), the error weights ``er_i`` (5th order, :data:`ER`) and
 ``bhh_i`` (3rd order, :data:`BHH`; :data:`E3` = ``b - bhh``) and the dense-output
 weights ``d_ij`` (:data:`D`), with the constants of the step-size controller and of the
-root search on the dense output. Used by :mod:`andoyer.kernels.stepper`; see
-:mod:`andoyer.kernels.dop853` for the method.
+root search on the dense output. Used by :mod:`andoyer.kernels.dop853.stepper`; see
+:mod:`andoyer.kernels.dop853.flow` for the method.
 
 >>> N_STAGES, N_STAGES_EXTENDED, INTERPOLATOR_POWER
 (12, 16, 7)

@@ -1,16 +1,17 @@
 r"""Section functions on Taylor polynomials, for the Taylor method of
-:mod:`andoyer.kernels.taylor`: the interpreter of a section function's tape along a state's
+:mod:`andoyer.kernels.taylor.flow`: the interpreter of a section function's tape along a state's
 jet (the jet of ``f(y(t))`` on a step), and the roots of a step's polynomial
 ``P(s) = sum_k f^[k] (s h)^k`` on ``[0, 1]`` -- Bernstein coefficients, sign changes,
 de Casteljau halving, a safeguarded Newton iteration in a bracket.
 
-Plain Numba functions (:func:`kernel_jit`: the fast-math flags :data:`FASTMATH`, no Python
-entry) compiled into the cached entry points of :mod:`andoyer.kernels.taylor` that call
-them (their cache key, :data:`andoyer.kernels.taylor.TAYLOR_STAMP`, hashes this file too);
+Plain Numba functions (:func:`~andoyer.kernels.common.kernel_jit`: the fast-math flags
+:data:`~andoyer.kernels.common.FASTMATH`, no Python entry) compiled into the cached entry
+points of :mod:`andoyer.kernels.taylor.flow` that call them (their cache key,
+:data:`andoyer.kernels.taylor.flow.TAYLOR_STAMP`, hashes this file too);
 :func:`section_jet` and :func:`section_tape` give the same to Python (tests, the engine).
 
 One pass of the section function per step. The section search of
-:mod:`andoyer.kernels.taylor` carries the section function's value at a step's end
+:mod:`andoyer.kernels.taylor.flow` carries the section function's value at a step's end
 ``f_b`` over as the next step's start value ``f_a``; both are the Bernstein end
 coefficients of their steps (:func:`step_bernstein`), so a root on a step boundary is
 counted once: at a step's start it belongs to the previous step, at its end to this one.
@@ -43,17 +44,14 @@ more per step than two helpers chosen by the caller.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any
 
-import numba
 import numpy as np
 
-from andoyer.kernels import taylor_generated
 from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.link_only import link_only_jit
+from andoyer.kernels.common import kernel_jit
+from andoyer.kernels.generated import recurrences
 
-__all__ = ["FASTMATH", "fast_jit", "kernel_jit", "VAR", "LIN", "MUL",
+__all__ = ["VAR", "LIN", "MUL",
            "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
            "bernstein_weights", "step_bernstein",
@@ -67,44 +65,6 @@ ROOT_MAXITER = 200
 #: compiled code reads as a constant (``np.finfo`` in the kernel compiled Numba's finfo
 #: machinery on every cold start: 0.2 s of CPU). 4 eps is exact: the same comparisons.
 _ROOT_XTOL = 4.0 * float(np.finfo(np.float64).eps)
-
-#: LLVM fast-math flags of the helpers: contraction (FMA), reassociation and reciprocals
-#: (not nnan/ninf: non-finite states are caught by comparisons). Measured on the W1/W2
-#: benchmarks: 10-15 % less CPU per step, the same errors against the extended-precision
-#: reference (theta2 sections, 50 orbits x 1000 crossings: median 2.01e-11 with,
-#: 2.03e-11 without; W1 2.1e-10 both).
-FASTMATH = {"reassoc", "contract", "arcp"}
-fast_jit = numba.njit(nogil=True, fastmath=FASTMATH)
-
-
-def kernel_jit(function: Callable[..., Any]) -> Any:
-    """``fast_jit`` compiled into its callers only: no Python or C-callback wrapper
-    (``no_cpython_wrapper``, ``no_cfunc_wrapper``) and, through
-    :class:`~andoyer.kernels.link_only.LinkOnlyCompiler`, no optimisation or machine
-    code of its own (its module is optimised once, inside each entry point that calls
-    it), for helpers that only compiled code calls.
-
-    Numba writes, optimises and emits both wrappers, and the function itself, for every
-    function it compiles, although a helper only ever runs as the copy linked into its
-    callers. Measured on a cold first call (fresh process, empty cache; 2 shared cores,
-    CPU time, median of 3): without the wrappers the first ``poincare`` after a
-    ``propagate`` 5.34 -> 4.37 s, the first ``propagate`` 3.39 -> 3.02 s; link-only,
-    W4's first ``propagate`` + ``poincare`` 5.1 -> 3.8 s. The kernels give the same
-    floats, bit for bit (:mod:`andoyer.kernels.link_only`). A call from Python raises
-    TypeError (:func:`~andoyer.kernels.link_only.link_only_jit`) instead of reaching the
-    missing wrapper.
-
-    Parameters
-    ----------
-    function : callable
-        The Python function to compile.
-
-    Returns
-    -------
-    numba.core.registry.CPUDispatcher
-        Its dispatcher (the function itself under ``NUMBA_DISABLE_JIT``).
-    """
-    return link_only_jit(nogil=True, fastmath=FASTMATH)(function)
 
 
 @kernel_jit
@@ -148,7 +108,7 @@ def cauchy(u, n, a, b, order):
 def tape_jet(tape, C, x, order, u):
     """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
     state's jet ``x`` (the last node is the function): the tape interpreter (rows
-    ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.taylor_generated.SECTION_TAPES`,
+    ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.generated.recurrences.SECTION_TAPES`,
     constants ``C``). Products by :func:`cauchy` (four orders at a time: W2 theta2, 50 x
     1000 crossings, one thread, 0.96-1.05 -> 0.90-0.93 s CPU, load 1-1.4; the crossings
     within round-off of the one-order loop's: 12 of 50 orbits differ in the last bits,
@@ -241,7 +201,7 @@ def scale_polynomial(a, order, h, fa):
     ``P(h)``, by the linear blend :math:`(f_a - a_0)(1 - s)`, which vanishes at the end.
     So the section function along the orbit is one continuous piecewise polynomial and a
     root on a step boundary has the same sign on both sides (counted once, see the
-    boundary rules of :mod:`andoyer.kernels.taylor`); the blend never accumulates (each
+    boundary rules of :mod:`andoyer.kernels.taylor.flow`); the blend never accumulates (each
     step's end value is its own ``P(h)``). ``fa - a_0`` is the previous polynomial's
     truncation error at its end (round-off for a linear ``f``)."""
     hk = h
@@ -479,7 +439,7 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
                  ) -> tuple[np.ndarray, np.ndarray]:
     """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
     (its margin ``w`` if ``margin``): the generated
-    :data:`~andoyer.kernels.taylor_generated.SECTION_TAPES` and ``section_constants``
+    :data:`~andoyer.kernels.generated.recurrences.SECTION_TAPES` and ``section_constants``
     (``MARGIN_TAPES``, ``margin_constants``).
 
     Parameters
@@ -493,7 +453,7 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     margin : bool, default False
         The tape of the margin ``w`` instead of ``f``.
     """
-    g = taylor_generated
+    g = recurrences
     tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
                         else (g.SECTION_TAPES, g.section_constants))
     tape = np.array(tapes[kind], dtype=np.int64)

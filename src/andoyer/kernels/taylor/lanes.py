@@ -1,11 +1,11 @@
-r"""The Taylor method of :mod:`andoyer.kernels.taylor` on ``LANES`` orbits at once (SIMD).
+r"""The Taylor method of :mod:`andoyer.kernels.taylor.flow` on ``LANES`` orbits at once (SIMD).
 
 The scalar kernel computes the jet of one orbit at a time: every Cauchy product of
 the recurrences of the field (1) is a scalar multiply-add, so the machine's vector
 units (AVX-512: 8 doubles) idle. Here the jets of :data:`LANES` orbits are one array
 ``X[block, k, i, lane]`` with the lane index innermost and a compile-time trip count,
 and the generated lane recurrences (``ep_taylor_jet_lanes``,
-``ep_taylor_tangent_jet_lanes`` of :mod:`andoyer.kernels.taylor_generated`, written
+``ep_taylor_tangent_jet_lanes`` of :mod:`andoyer.kernels.generated.recurrences`, written
 by :mod:`andoyer.symbolic.taylor_codegen` from the same SymPy field as the scalar
 ones) do every multiply-add for all lanes with one vector instruction -- heyoka's
 batch mode, without heyoka.
@@ -23,7 +23,7 @@ Design (measured on this machine, AVX-512, 2 shared cores, CPU time; numbers in
   64 bytes (:func:`aligned`). Jets of state and tangent vector: about 170 ns per
   lane-step against the scalar 680 ns per orbit-step.
 * **Each lane steps on its own.** A lane has its own time, its own Jorba-Zou step
-  (:func:`lane_steps`: the rule of :func:`andoyer.kernels.taylor_jets.step_size`,
+  (:func:`lane_steps`: the rule of :func:`andoyer.kernels.taylor.jets.step_size`,
   lane by lane) and its own next output time; output times inside a step are the
   step's polynomial there (Horner per lane), exactly as the scalar kernel does. So a
   lane takes the scalar kernel's steps (``info`` equal orbit by orbit, tested) and its
@@ -36,7 +36,7 @@ Design (measured on this machine, AVX-512, 2 shared cores, CPU time; numbers in
   of its block at once. Lanes left without an orbit at the block's end carry a zero
   state (zero jets, no floating-point exceptions) until the block ends.
 * **Failures per orbit**, with the scalar kernel's statuses and ``info`` columns
-  (:data:`andoyer.kernels.stepper.INFO`): a non-finite state or a step below ten
+  (:data:`andoyer.kernels.common.INFO`): a non-finite state or a step below ten
   units in the last place of ``t`` gives ``STEP_TOO_SMALL``, ``max_steps`` steps
   ``MAX_STEPS``; rows of ``out`` not reached are left as they were.
 * **Threads over blocks of orbits** (:func:`andoyer.kernels.threads.over_orbits`),
@@ -52,7 +52,7 @@ specialisation serves every width ``6 + 6 k``): 3.6 s CPU, loaded from the cache
 second process in 0.3 s.
 
 States of ``6 + 6 k`` floats (the state and ``k`` tangent vectors, not renormalised,
-as :func:`andoyer.kernels.taylor.propagate`).
+as :func:`andoyer.kernels.taylor.flow.propagate`).
 
 Entry point: :func:`propagate` (cached machine code, keyed by :data:`LANES_STAMP`).
 """
@@ -64,29 +64,35 @@ from typing import Any
 
 import numpy as np
 
-from andoyer.kernels import simd, taylor_generated, taylor_jets, taylor_sections
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.stepper import INFO, MAX_STEPS, STATUS_MESSAGES, STEP_TOO_SMALL, SUCCESS
-from andoyer.kernels.taylor_jets import N_STATE, fill_constants, step_to
-from andoyer.kernels.taylor_sections import kernel_jit
+from andoyer.kernels import common, simd
+from andoyer.kernels.common import (
+    INFO,
+    MAX_STEPS,
+    N_STATE,
+    SUCCESS,
+    exact_jit,
+    kernel_jit,
+    source_stamp,
+)
+from andoyer.kernels.generated import recurrences
+from andoyer.kernels.taylor import jets, sections
+from andoyer.kernels.taylor.jets import fill_constants, step_to
 from andoyer.kernels.threads import over_orbits
 
-__all__ = ["LANES", "LANES_STAMP", "INFO", "SUCCESS", "STEP_TOO_SMALL", "MAX_STEPS",
-           "STATUS_MESSAGES", "propagate", "lanes_block", "block_size"]
+__all__ = ["LANES", "LANES_STAMP", "propagate", "lanes_block", "block_size"]
 
 #: Orbits advanced together (the vector width of the generated lane jets).
 LANES = simd.LANES
 _L = LANES
 _N = N_STATE
-_P = taylor_generated.LANE_PRODUCTS
+_P = recurrences.LANE_PRODUCTS
 
 #: Hash of every source the compiled entry point depends on (its cache key).
-LANES_STAMP = source_stamp(taylor_generated.__file__ or "", __file__, simd.__file__ or "",
-                           taylor_sections.__file__ or "", taylor_jets.__file__ or "")
+LANES_STAMP = source_stamp(recurrences.__file__, __file__, simd.__file__, sections.__file__,
+                           jets.__file__, common.__file__)
 
-_jet = kernel_jit(taylor_generated.ep_taylor_jet_lanes)
-_tangent_jet = kernel_jit(taylor_generated.ep_taylor_tangent_jet_lanes)
+_jet = kernel_jit(recurrences.ep_taylor_jet_lanes)
+_tangent_jet = kernel_jit(recurrences.ep_taylor_tangent_jet_lanes)
 
 
 @kernel_jit
@@ -107,7 +113,7 @@ def lane_state_jets(X, order, q, m):
 
 @kernel_jit
 def lane_steps(X, order, h, a1, a2, tot):
-    """``h[lane]``: the Jorba-Zou step of :func:`andoyer.kernels.taylor_jets.step_size`
+    """``h[lane]``: the Jorba-Zou step of :func:`andoyer.kernels.taylor.jets.step_size`
     for every lane (NaN where a value or coefficient is not finite). ``a1, a2, tot``
     scratch (LANES,): the least ``m / |x^[p-1]|``, ``m / |x^[p]|`` over the blocks (the
     powers are monotonic, so the least radius is the radius of the least ratio)."""
@@ -214,7 +220,7 @@ def aligned(n):
 @kernel_jit
 def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
     """The orbits ``z0`` (n, 6 + 6 k) to the output times ``t_out``: ``out[i, j]`` and
-    ``info[i]`` as :func:`andoyer.kernels.taylor.propagate` (see the module notes)."""
+    ``info[i]`` as :func:`andoyer.kernels.taylor.flow.propagate` (see the module notes)."""
     k = t_out.shape[0]
     t_end = t_out[k - 1]
     nb = z0.shape[1] // _N
@@ -282,13 +288,13 @@ def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
 
 def _build(stamp: str) -> Any:
     """The cached entry point (the closure over ``stamp`` keys the cache, as in
-    :func:`andoyer.kernels.taylor._build`)."""
+    :func:`andoyer.kernels.taylor.flow._build`)."""
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def lanes_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         lanes_orbits(z0, t, q, order, max_steps, out, info)
 
@@ -322,7 +328,7 @@ def block_size(n: int, threads: int) -> int:
 def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_steps: int, *,
               block: int | None = None, threads: int | None = None
               ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`andoyer.kernels.taylor.propagate` with :data:`LANES` orbits per vector step.
+    """:func:`andoyer.kernels.taylor.flow.propagate` with :data:`LANES` orbits per vector step.
 
     Parameters
     ----------
@@ -331,9 +337,9 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_step
     t : ndarray, shape (m,)
         Output times, non-decreasing.
     p : ndarray, shape (8,)
-        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+        Kernel parameters :data:`andoyer.kernels.dop853.flow.PARAMS`.
     order : int
-        The Taylor order (:func:`andoyer.kernels.taylor.order_for` of the tolerance).
+        The Taylor order (:func:`andoyer.kernels.taylor.flow.order_for` of the tolerance).
     max_steps : int
         Maximum steps per orbit.
     block : int, optional

@@ -1,4 +1,4 @@
-"""A section tape's value and jet. ``taylor_sections.tape_value`` (the step's end value
+"""A section tape's value and jet. ``sections.tape_value`` (the step's end value
 ``f_b`` of every tape section) against the tape interpreter ``tape_jet`` at order 0: the
 same floats, bit for bit, for every section kind's function and margin tape on random
 states (a zero's sign or NaN included: compared as bits). ``tape_jet`` (its products four
@@ -6,23 +6,20 @@ orders at a time) against an extended-precision reading of the tape: round-off."
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 import pytest
 
-from andoyer.kernels import taylor_generated
-from andoyer.kernels.taylor_sections import (
-    FASTMATH,
+from andoyer.kernels.common import fast_jit
+from andoyer.kernels.generated import recurrences
+from andoyer.kernels.taylor.sections import (
     section_jet,
     section_tape,
     tape_jet,
     tape_value,
 )
 
-_jit = numba.njit(nogil=True, fastmath=FASTMATH)
 
-
-@_jit
+@fast_jit
 def _values(tape, C, states, u):  # type: ignore[no-untyped-def]
     """(tape_value, tape_jet at order 0) at each state (n, 6)."""
     out = np.empty((states.shape[0], 2))
@@ -55,7 +52,7 @@ def test_tape_value_is_tape_jet_at_order_0_for_every_kind(margin: bool) -> None:
     rng = np.random.default_rng(26)
     states = _states(rng, 200)
     checked = 0
-    for kind in range(len(taylor_generated.SECTION_TAPES)):
+    for kind in range(len(recurrences.SECTION_TAPES)):
         for phi0, value in ((0.0, 0.0), (0.7, 1.3), (-2.1, -0.4)):
             tape, C = section_tape(kind, phi0, value, margin=margin)
             u = np.empty((tape.shape[0], 1))
@@ -63,7 +60,7 @@ def test_tape_value_is_tape_jet_at_order_0_for_every_kind(margin: bool) -> None:
             assert np.array_equal(out[:, 0].view(np.int64), out[:, 1].view(np.int64)), (
                 kind, phi0, value)
             checked += int(np.isfinite(out[:, 0]).sum())
-    assert checked > 0.9 * 3 * 200 * len(taylor_generated.SECTION_TAPES)
+    assert checked > 0.9 * 3 * 200 * len(recurrences.SECTION_TAPES)
 
 
 
@@ -92,13 +89,13 @@ def _reference_jet(tape: np.ndarray, C: np.ndarray, x: np.ndarray, order: int
 
 @pytest.mark.parametrize("order", [15, 6, 2])
 def test_tape_jet_is_the_tapes_jet_to_round_off_for_every_kind(order: int) -> None:
-    """``tape_jet`` (four orders at a time in each product, ``taylor_sections.cauchy``)
+    """``tape_jet`` (four orders at a time in each product, ``sections.cauchy``)
     against the extended-precision reading of the tape: every coefficient within
     ``1e-13`` of the jet's scale ``max_k |f^[k]| r^k`` (r = 1/2: the state jets below are
     of radius about 1). Measured: at most 4e-16 of it (every kind, order 15)."""
     rng = np.random.default_rng(2026)
     worst = 0.0
-    for kind in range(len(taylor_generated.SECTION_TAPES)):
+    for kind in range(len(recurrences.SECTION_TAPES)):
         for trial in range(6):
             G = rng.normal(size=3)
             G *= rng.uniform(0.5, 2.0) / np.linalg.norm(G)

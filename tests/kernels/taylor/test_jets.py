@@ -3,9 +3,9 @@
 The error of a crossing is the integration's global error at the crossing (the root
 and its polish add nothing measurable: the kernel's dense output at the reference
 crossing times has the same transverse error). heyoka counts its event functions in
-the step size; the Taylor kernel does too (:func:`andoyer.kernels.taylor_jets.section_step_size`).
+the step size; the Taylor kernel does too (:func:`andoyer.kernels.taylor.jets.section_step_size`).
 Without it, the theta2 = 0 crossings of the benchmark's orbits were 4x less accurate
-than heyoka's (see :mod:`andoyer.kernels.taylor`'s notes).
+than heyoka's (see :mod:`andoyer.kernels.taylor.flow`'s notes).
 
 Reference: the 10th upward crossing of theta2 = 0 of the first 20 W2 orbits of the
 benchmarks (paper's body), by heyoka's Taylor integrator in extended precision (80-bit
@@ -21,9 +21,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from andoyer import RigidBody
-from andoyer.kernels import generated
-from andoyer.kernels import taylor as T
-from andoyer.kernels.taylor_jets import SECTION_STEP_FLOOR
+from andoyer.kernels import common
+from andoyer.kernels.generated import equations
+from andoyer.kernels.taylor import flow as T
+from andoyer.kernels.taylor.jets import SECTION_STEP_FLOOR
 
 K = 10  # the crossing of the reference
 REFERENCE = """
@@ -120,7 +121,7 @@ def _params() -> NDArray[np.float64]:
 
 
 def _kind(name: str) -> int:
-    return (generated.SECTION_KINDS + generated.EXTRA_SECTION_KINDS).index(name)
+    return (equations.SECTION_KINDS + equations.EXTRA_SECTION_KINDS).index(name)
 
 
 def test_theta2_crossings_are_as_accurate_as_heyokas() -> None:
@@ -130,7 +131,7 @@ def test_theta2_crossings_are_as_accurate_as_heyokas() -> None:
     y0, ref = _rows(0), _rows(1)
     tc, zc, count, info = T.locate_crossings(y0, _params(), _kind("theta2"), 0.0, 1, K,
                                              1e4, 1e-12, 10**7)
-    assert (info[:, 0] == T.SUCCESS).all() and (count == K).all()
+    assert (info[:, 0] == common.SUCCESS).all() and (count == K).all()
     err = np.abs(zc[:, K - 1] - ref).max(axis=1)
     assert np.median(err) <= 1e-14, err
     assert err.max() <= 5e-14, err
@@ -146,7 +147,7 @@ def test_the_section_shortens_the_steps_of_an_angle_never_of_a_coordinate() -> N
                         ("g", 1.0), ("l", 0.5), ("G", 1.0)]:
         _, _, count, info = T.locate_crossings(y0, p, _kind(name), value, 0, 200, t_max,
                                                1e-12, 10**7)
-        assert (info[:, 0] == T.SUCCESS).all() and (count < 200).all(), name
+        assert (info[:, 0] == common.SUCCESS).all() and (count < 200).all(), name
         steps, ref = info[:, 1], prop[:, 1]
         assert (steps >= ref).all(), name  # never longer steps than the state's rule
         assert (steps <= ref / SECTION_STEP_FLOOR).all(), name

@@ -6,10 +6,10 @@ one, step-size control as in Hairer's ``dop853.f`` / :class:`scipy.integrate.DOP
 and a dense output of order 7 that costs 3 extra stages per step where it is needed
 [1]_, [2]_. The method is written once, for any right-hand side: :func:`make_stepper`
 builds it for a compiled ``field(t, y, p, out)`` of any dimension. The entry points
-below use the generated Lie-Poisson field :func:`andoyer.kernels.numba.ep_field` of
-Eq. (1) (:func:`ep_rhs`, the stepper :data:`EP`), on states ordered as
-:data:`andoyer.charts.euler_poisson.STATE`; :mod:`andoyer.kernels.tangent` uses the
-same stepper on the variational equations.
+below use the generated Lie-Poisson field :func:`andoyer.kernels.dop853.fields.ep_field`
+of Eq. (1) (:func:`ep_rhs`, the stepper :data:`EP`), on states ordered as
+:data:`andoyer.charts.euler_poisson.STATE`; :mod:`andoyer.kernels.dop853.tangent` uses
+the same stepper on the variational equations.
 
 Everything here works on plain float arrays, ``y`` of shape ``(n_orbits, 6)`` and
 ``p`` = the 8 kernel parameters :data:`PARAMS`; there is no validation (the
@@ -20,19 +20,21 @@ Entry points (compiled with ``cache=True`` into the folder
 
 * :func:`propagate` -- states at given output times, read off the dense output;
 * :func:`locate_crossings` -- the first crossings of a section
-  ``f(y) = 0`` (from :func:`andoyer.kernels.generated.section`), each root located
+  ``f(y) = 0`` (from :func:`andoyer.kernels.generated.equations.section`), each root located
   on the dense output polynomial;
 * both run blocks of orbits in threads (:func:`andoyer.kernels.threads.over_orbits`)
   through the compiled, nogil :func:`propagate_block` and
   :func:`locate_crossings_block`: :class:`Flow`, the one driver of every field's
-  entry points (this module's, :mod:`andoyer.kernels.tangent`'s and
-  :mod:`andoyer.kernels.attitude`'s);
+  entry points (this module's, :mod:`andoyer.kernels.dop853.tangent`'s and
+  :mod:`andoyer.kernels.dop853.attitude`'s);
 * :func:`integrate_fixed`, :func:`interpolate_step` -- fixed steps without control
   and the interpolant of one step, for measuring the orders of the method.
 
 Each returns an ``info`` array of shape ``(n_orbits, 4)`` whose columns are
-:data:`INFO`: the status (:data:`SUCCESS`, :data:`STEP_TOO_SMALL`,
-:data:`MAX_STEPS`), accepted steps, rejected steps and evaluations of the field.
+:data:`~andoyer.kernels.common.INFO`: the status
+(:data:`~andoyer.kernels.common.SUCCESS`, :data:`~andoyer.kernels.common.STEP_TOO_SMALL`,
+:data:`~andoyer.kernels.common.MAX_STEPS`), accepted steps, rejected steps and
+evaluations of the field.
 
 Notes
 -----
@@ -74,9 +76,10 @@ oscillation of ``f``, not per step.
 
 Compilation cache. Numba's cache is keyed on the source of the file that defines a
 function, not on the functions it calls, so a regenerated
-:mod:`andoyer.kernels.generated` would otherwise be served stale machine code. The
+:mod:`andoyer.kernels.generated.equations` would otherwise be served stale machine code. The
 cached entry points are therefore built by a factory closing over :data:`KERNEL_STAMP`
-(a hash of the generated kernels and their Numba wrappers), which Numba hashes into
+(:func:`~andoyer.kernels.common.source_stamp` of the generated kernels, their Numba
+wrappers, the stepper and the shared definitions), which Numba hashes into
 the cache key; the helpers they call are not cached themselves (their code is part
 of each entry point's cached library). The stepper's pieces close over their field
 (:func:`make_stepper`) instead of taking it as an argument: a compiled function
@@ -99,47 +102,23 @@ References
 
 from __future__ import annotations
 
-import hashlib
-from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from andoyer.kernels import dop853_coefficients, generated, stepper
-from andoyer.kernels import numba as _kernels
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.dop853_coefficients import INTERPOLATOR_POWER, N_STAGES, N_STAGES_EXTENDED
-from andoyer.kernels.link_only import link_only_jit
-from andoyer.kernels.numba import ep_field
-from andoyer.kernels.stepper import (
-    FASTMATH,
-    INFO,
-    MAX_STEPS,
-    STATUS_MESSAGES,
-    STEP_TOO_SMALL,
-    SUCCESS,
-    N,
-    Stepper,
-    dense_eval,
-    make_stepper,
-)
+from andoyer.kernels import common
+from andoyer.kernels.common import INFO, entry_jit, kernel_jit, source_stamp
+from andoyer.kernels.dop853 import coefficients, fields, stepper
+from andoyer.kernels.dop853.coefficients import INTERPOLATOR_POWER, N_STAGES, N_STAGES_EXTENDED
+from andoyer.kernels.dop853.fields import ep_field
+from andoyer.kernels.dop853.stepper import N, dense_eval, make_stepper
+from andoyer.kernels.generated import equations
 from andoyer.kernels.threads import over_orbits
 
-# make_stepper, Stepper, FASTMATH and the status codes are
-# andoyer.kernels.stepper's, re-exported: this module is the numba engine's one door.
 __all__ = [
-    "make_stepper",
-    "Stepper",
     "EP",
     "ep_rhs",
-    "source_stamp",
-    "FASTMATH",
     "PARAMS",
-    "INFO",
-    "SUCCESS",
-    "STEP_TOO_SMALL",
-    "MAX_STEPS",
-    "STATUS_MESSAGES",
     "KERNEL_STAMP",
     "propagate",
     "locate_crossings",
@@ -154,30 +133,13 @@ __all__ = [
 #: Names of the 8 kernel parameters ``p`` (the Engine's ``params``), in order.
 PARAMS = ("a", "b", "c", "mu", "e1", "e2", "e3", "phi0")
 
+#: Hash of the generated kernels, their Numba wrappers, the stepper and the shared
+#: definitions: part of the cache key.
+KERNEL_STAMP = source_stamp(equations.__file__, fields.__file__, stepper.__file__,
+                            coefficients.__file__, common.__file__)
 
 
-def source_stamp(*files: str | Path) -> str:
-    """SHA-256 of the bytes of ``files``: a cache key for compiled entry points whose
-    helpers live in other modules (see the module notes).
-
-    Parameters
-    ----------
-    *files : str or pathlib.Path
-        The source files whose bytes make the key.
-    """
-    h = hashlib.sha256()
-    for f in files:
-        h.update(Path(f).read_bytes())
-    return h.hexdigest()
-
-
-#: Hash of the generated kernels, their Numba wrappers and the stepper: part of the
-#: cache key.
-KERNEL_STAMP = source_stamp(generated.__file__ or "", _kernels.__file__ or "",
-                            stepper.__file__ or "", dop853_coefficients.__file__ or "")
-
-
-@link_only_jit(nogil=True, fastmath=FASTMATH)
+@kernel_jit
 def ep_rhs(t, y, p, out):
     """The field (1) in the stepper's form ``field(t, y, p, out)``: ``out = f(y)``.
 
@@ -186,7 +148,6 @@ def ep_rhs(t, y, p, out):
     """
     out[0], out[1], out[2], out[3], out[4], out[5] = ep_field(
         y[0], y[1], y[2], y[3], y[4], y[5], p[0], p[1], p[2], p[3], p[4], p[5], p[6])
-
 
 
 #: The stepper of the Euler-Poisson field (1).
@@ -202,14 +163,14 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
     variable, which Numba hashes into the cache key; an ``assert`` would not do: pytest
     rewrites asserts in modules it imports, which Numba cannot compile."""
 
-    @cached_njit(nogil=True, fastmath=FASTMATH)
+    @entry_jit
     def propagate_block(y0, t, p, rtol, atol, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread, into ``out``
         (n, k, 6) and ``info`` (n, 4)."""
         _ = len(stamp)  # keys the cache, see _build
         _ep_propagate_block(y0, t, p, rtol, atol, max_steps, out, info)
 
-    @cached_njit(nogil=True, fastmath=FASTMATH)
+    @entry_jit
     def locate_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
                                tc, yc, count, info):
         """:func:`locate_crossings` of a block of orbits on the calling thread, into
@@ -218,7 +179,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
         _ep_crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
                             yc, count, info)
 
-    @cached_njit(nogil=True, fastmath=FASTMATH)
+    @entry_jit
     def integrate_fixed(y0, p, h, n_steps):
         """``n_steps`` steps of size ``h`` without error control: shape (n_steps + 1, 6)."""
         _ = len(stamp)  # keys the cache, see _build
@@ -236,7 +197,7 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any]:
             out[m + 1] = y
         return out
 
-    @cached_njit(nogil=True, fastmath=FASTMATH)
+    @entry_jit
     def interpolate_step(y0, p, h, x):
         """One step of size ``h`` from ``y0``; its dense output at ``t = x h``,
         shape (len(x), 6)."""
@@ -266,8 +227,8 @@ class Flow(NamedTuple):
     """The entry points of the DOP853 on one field (:func:`make_stepper`): its cached block
     kernels run over blocks of orbits in threads
     (:func:`andoyer.kernels.threads.over_orbits`), for states of any width ``d``
-    (:data:`EP_FLOW`: the field (1), ``d = 6``; :mod:`andoyer.kernels.tangent`,
-    :mod:`andoyer.kernels.attitude`).
+    (:data:`EP_FLOW`: the field (1), ``d = 6``; :mod:`andoyer.kernels.dop853.tangent`,
+    :mod:`andoyer.kernels.dop853.attitude`).
 
     Parameters
     ----------
@@ -308,7 +269,7 @@ class Flow(NamedTuple):
         y : ndarray, shape (n, k, d)
             ``y[i, j] = y_i(t[j])``; NaN after a failure (see ``info``).
         info : ndarray of int64, shape (n, 4)
-            Columns :data:`INFO`.
+            Columns :data:`~andoyer.kernels.common.INFO`.
 
         Examples
         --------
@@ -317,7 +278,7 @@ class Flow(NamedTuple):
         >>> p = np.array([0.5, 0.4, 0.25, 0.0, 1.0, 0.0, 0.0, 0.0])
         >>> y, info = EP_FLOW.propagate(np.array([[0.0, 0.0, 2.0, 0.0, 0.0, 1.0]]),
         ...                             np.array([0.0, 1.0]), p, 1e-12, 1e-12, 10**6)
-        >>> y.shape, y[0, -1, :3].tolist(), int(info[0, 0]) == SUCCESS
+        >>> y.shape, y[0, -1, :3].tolist(), int(info[0, 0]) == common.SUCCESS
         ((1, 2, 6), [0.0, 0.0, 2.0], True)
         """
         n = y0.shape[0]
@@ -343,7 +304,7 @@ class Flow(NamedTuple):
         p : ndarray, shape (8,)
             Kernel parameters :data:`PARAMS`.
         kind : int
-            Index into :data:`andoyer.kernels.generated.SECTION_KINDS`.
+            Index into :data:`andoyer.kernels.generated.equations.SECTION_KINDS`.
         value : float
             The section is ``SECTION_KINDS[kind] = value`` (mod 2 pi for angles).
         direction : int
@@ -368,7 +329,7 @@ class Flow(NamedTuple):
         count : ndarray of int64, shape (n,)
             Crossings found per orbit.
         info : ndarray of int64, shape (n, 4)
-            Columns :data:`INFO`.
+            Columns :data:`~andoyer.kernels.common.INFO`.
         """
         if self.locate_crossings_block is None:
             raise TypeError("this flow has no crossings entry point")

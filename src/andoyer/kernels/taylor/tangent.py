@@ -2,9 +2,9 @@ r"""Tangent flows at output times on the Taylor method: renormalised, with the M
 quadratures (the ``tangent`` capability of the taylor engine).
 
 One orbit carries ``k`` tangent vectors of the linearised flow :math:`\dot w = J(y) w`
-beside the state ``y`` of (1). The jets are those of :mod:`andoyer.kernels.taylor`
+beside the state ``y`` of (1). The jets are those of :mod:`andoyer.kernels.taylor.flow`
 (the state's by ``ep_taylor_jet``, each vector's by ``ep_taylor_tangent_jet``, through
-:func:`andoyer.kernels.taylor_jets.tangent_jets`: one owner of the variational jets);
+:func:`andoyer.kernels.taylor.jets.tangent_jets`: one owner of the variational jets);
 this module adds the renormalisation, the MEGNO quadratures and the orbit loop.
 
 Renormalisation
@@ -20,7 +20,7 @@ vector is divided by its length and ``ln|w_i|`` is added to ``rho_i``; within th
    \rho_i = \rho_i(t_0) + \ln |w_i(\tau)|,
 
 the quantities ``w_i = e^{rho_i} u_i`` of the continuous renormalisation of
-:mod:`andoyer.kernels.tangent` (:math:`\dot u = J u - f u`, :math:`\dot\rho = f`,
+:mod:`andoyer.kernels.dop853.tangent` (:math:`\dot u = J u - f u`, :math:`\dot\rho = f`,
 :math:`f = u \cdot J u / u \cdot u`), without its nonlinear term in the field. As
 ``|w_i| = 1`` at each step's start, nothing overflows however long the flight (a step
 multiplies ``|w_i|`` by a bounded factor).
@@ -28,7 +28,7 @@ multiplies ``|w_i|`` by a bounded factor).
 MEGNO quadratures: extra jet variables
 --------------------------------------
 The quadratures of the first vector (Cincotta & Simo [1]_, with the shifted weights of
-:mod:`andoyer.integrate.variational`, ``delta`` = :data:`MEGNO_DELTA`)
+:mod:`andoyer.integrate.variational`, ``delta`` = :data:`~andoyer.kernels.common.MEGNO_DELTA`)
 
 .. math::
 
@@ -69,7 +69,7 @@ steps are limited the same way), and ``L``'s guards the complex zeros of
 :math:`w \cdot w`. The quadratures are unscaled (each jet block has its own error scale,
 so their size never loosens the state's control; the engine's ``scale`` is not used).
 
-Step size: Jorba-Zou's (:mod:`andoyer.kernels.taylor`), the least radius over the state,
+Step size: Jorba-Zou's (:mod:`andoyer.kernels.taylor.flow`), the least radius over the state,
 each vector (``m = 1`` after the renormalisation: absolute error = relative error of
 ``w``), ``L`` (``m = 1``: an absolute error of ``rho``) and, while the pole of ``I`` is
 nearer than that radius (:math:`s_0 \le r`: the first steps), ``I`` (``m = max(1,
@@ -79,8 +79,8 @@ as :math:`(h / s_0)^k` with :math:`h \approx r / e^2`), so neither is measured t
 
 Entry point (cached, ``nogil``; blocks of orbits in threads,
 :func:`andoyer.kernels.threads.over_orbits`): :func:`propagate`. Its rows have the
-layout of :func:`andoyer.kernels.tangent.layout` (``y``, ``u_1 .. u_k``, ``rho_1 ..
-rho_k``, ``N``, ``I``); ``info`` columns are :data:`andoyer.kernels.taylor.INFO`.
+layout of :func:`andoyer.kernels.common.layout` (``y``, ``u_1 .. u_k``, ``rho_1 ..
+rho_k``, ``N``, ``I``); ``info`` columns are :data:`andoyer.kernels.common.INFO`.
 
 References
 ----------
@@ -96,13 +96,23 @@ from typing import Any
 
 import numpy as np
 
-from andoyer.kernels import taylor, taylor_generated, taylor_jets, taylor_sections
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.tangent import MEGNO_DELTA, dimension
-from andoyer.kernels.taylor import INFO, MAX_STEPS, STEP_TOO_SMALL, order_for
-from andoyer.kernels.taylor_jets import (
+from andoyer.kernels import common
+from andoyer.kernels.common import (
+    INFO,
+    MAX_STEPS,
+    MEGNO_DELTA,
     N_STATE,
+    STEP_TOO_SMALL,
+    dimension,
+    exact_jit,
+    fast_jit,
+    kernel_jit,
+    source_stamp,
+)
+from andoyer.kernels.generated import recurrences
+from andoyer.kernels.taylor import flow, jets, sections
+from andoyer.kernels.taylor.flow import order_for
+from andoyer.kernels.taylor.jets import (
     advance,
     fill_constants,
     horner,
@@ -110,18 +120,17 @@ from andoyer.kernels.taylor_jets import (
     radius,
     tangent_jets,
 )
-from andoyer.kernels.taylor_sections import fast_jit, kernel_jit
 from andoyer.kernels.threads import over_orbits
 
-__all__ = ["MEGNO_DELTA", "TANGENT_STAMP", "megno_jets", "renormalised_orbit",
+__all__ = ["TANGENT_STAMP", "megno_jets", "renormalised_orbit",
            "propagate_block", "propagate"]
 
 _N = N_STATE
 _N_Q = 5  # rows of the quadrature jets: L, N, I, and the work rows P, g
 
 #: Hash of every source the compiled entry point depends on (its cache key).
-TANGENT_STAMP = source_stamp(__file__, taylor.__file__ or "", taylor_generated.__file__ or "",
-                             taylor_jets.__file__ or "", taylor_sections.__file__ or "")
+TANGENT_STAMP = source_stamp(__file__, flow.__file__, recurrences.__file__, jets.__file__,
+                             sections.__file__, common.__file__)
 
 
 @fast_jit
@@ -280,13 +289,13 @@ def renormalised_orbit(z0, rho0, t_out, q, order, max_steps, X, Q, out, info):
 
 
 def _build(stamp: str) -> Any:
-    """The cached entry point, keyed on ``stamp`` (see :mod:`andoyer.kernels.dop853`)."""
+    """The cached entry point, keyed on ``stamp`` (see :mod:`andoyer.kernels.dop853.flow`)."""
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def propagate_block(z0, rho0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         X = np.empty((z0.shape[1] // _N, order + 1, _N))
         Q = np.zeros((_N_Q, order + 1, 1))
@@ -315,9 +324,9 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     t : ndarray, shape (m,)
         Output times, non-decreasing; the MEGNO weights are ``t + delta``.
     p : ndarray, shape (8,)
-        Kernel parameters :data:`andoyer.kernels.dop853.PARAMS`.
+        Kernel parameters :data:`andoyer.kernels.dop853.flow.PARAMS`.
     tol : float
-        Tolerance of the local error (:func:`andoyer.kernels.taylor.order_for`).
+        Tolerance of the local error (:func:`andoyer.kernels.taylor.flow.order_for`).
     max_steps : int
         Maximum steps per orbit.
     block, threads : int
@@ -328,7 +337,7 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     z : ndarray, shape (n, m, 6 + 7 k + 2)
         Rows ``(y, u_1 .. u_k, rho_1 .. rho_k, N, I)``; NaN after a failure.
     info : ndarray of int64, shape (n, 4)
-        Columns :data:`andoyer.kernels.taylor.INFO`.
+        Columns :data:`andoyer.kernels.common.INFO`.
 
     Examples
     --------
@@ -337,11 +346,11 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     >>> z0 = np.concatenate([y0, [[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]], axis=1)
     >>> z, info = propagate(z0, np.log([[2.0]]), np.array([0.0, 1.0]),
     ...                     np.asarray(RigidBody.paper().engine_params), 1e-12, 10**6)
-    >>> z.shape, float(z[0, 0, 12]) == float(np.log(2.0)), int(info[0, 0]) == taylor.SUCCESS
+    >>> z.shape, float(z[0, 0, 12]) == float(np.log(2.0)), int(info[0, 0]) == common.SUCCESS
     ((1, 2, 15), True, True)
     """
     n = z0.shape[0]
-    k = taylor.n_vectors(z0.shape[1])
+    k = flow.n_vectors(z0.shape[1])
     if k < 1:
         raise ValueError("z0 must carry at least one tangent vector (6 + 6 k floats, k >= 1)")
     out = np.full((n, t.shape[0], dimension(k)), np.nan)

@@ -1,23 +1,23 @@
-r"""Section crossings on SIMD lanes: :func:`andoyer.kernels.taylor.locate_crossings` of
+r"""Section crossings on SIMD lanes: :func:`andoyer.kernels.taylor.flow.locate_crossings` of
 many orbits (states alone) for the section of a state component (``G3 = c``,
-``gamma_i = c``, ``L = c``, ...), the jets of :data:`~andoyer.kernels.taylor_lanes.LANES`
+``gamma_i = c``, ``L = c``, ...), the jets of :data:`~andoyer.kernels.taylor.lanes.LANES`
 orbits in one vector instruction.
 
-The steps are those of :mod:`andoyer.kernels.taylor_lanes` (each lane its own Jorba-Zou
+The steps are those of :mod:`andoyer.kernels.taylor.lanes` (each lane its own Jorba-Zou
 step and time, lanes refilled from the block's queue of orbits, the generated lane jets
 and the vector step end); the section search is the scalar kernel's, lane by lane:
 
 * the section's jet is the lane's column of the state's jet, its end value ``P(h)`` and
-  root bound from :func:`~andoyer.kernels.taylor_sections.end_and_bound` (the scalar
+  root bound from :func:`~andoyer.kernels.taylor.sections.end_and_bound` (the scalar
   kernel's arithmetic, so a lane's section values are the scalar ones for the same
   step), the end value carried over to the lane's next step;
 * a step whose polynomial may reach zero (a few % of steps) runs the scalar root
-  isolation (:func:`~andoyer.kernels.taylor_sections.isolate`, the boundary rules of
-  :func:`~andoyer.kernels.taylor_sections.step_bernstein`) and, for each root, the
+  isolation (:func:`~andoyer.kernels.taylor.sections.isolate`, the boundary rules of
+  :func:`~andoyer.kernels.taylor.sections.step_bernstein`) and, for each root, the
   scalar kernel's ``record`` (the polish by one Newton step in time, the margin and
   ``T_START`` tests) on a copy of that lane's jets.
 
-So a lane takes the steps of :mod:`andoyer.kernels.taylor_lanes` (the scalar kernel's to
+So a lane takes the steps of :mod:`andoyer.kernels.taylor.lanes` (the scalar kernel's to
 round-off: its vector code may contract the jets' sums differently) and finds the
 crossings the scalar kernel finds on them. Sections that are not a state component
 (their jets from a tape, and a step size that counts them) and states with tangent
@@ -41,30 +41,30 @@ from typing import Any
 
 import numpy as np
 
-from andoyer.kernels import (
-    simd,
-    taylor,
-    taylor_generated,
-    taylor_jets,
-    taylor_lanes,
-    taylor_sections,
+from andoyer.kernels import common, simd
+from andoyer.kernels.common import (
+    INFO,
+    MAX_STEPS,
+    N_STATE,
+    SUCCESS,
+    exact_jit,
+    kernel_jit,
+    source_stamp,
 )
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.dop853 import source_stamp
-from andoyer.kernels.stepper import INFO, MAX_STEPS, SUCCESS
-from andoyer.kernels.taylor_jets import N_STATE, fill_constants, step_to
-from andoyer.kernels.taylor_lanes import (
+from andoyer.kernels.generated import recurrences
+from andoyer.kernels.taylor import flow, jets, lanes, sections
+from andoyer.kernels.taylor.jets import fill_constants, step_to
+from andoyer.kernels.taylor.lanes import (
     LANES,
     lane_advance,
     lane_load,
     lane_state_jets,
     lane_steps,
 )
-from andoyer.kernels.taylor_sections import (
+from andoyer.kernels.taylor.sections import (
     bernstein_weights,
     isolate,
     isolation_space,
-    kernel_jit,
     linear_component,
     section_tape,
 )
@@ -74,17 +74,17 @@ __all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossi
 
 _L = LANES
 _N = N_STATE
-_record = taylor.STATE.record
+_record = flow.STATE.record
 
 #: Hash of every source the compiled entry point depends on (its cache key).
 LANE_CROSSINGS_STAMP = source_stamp(
-    taylor_generated.__file__ or "", taylor.__file__ or "", taylor_sections.__file__ or "",
-    taylor_jets.__file__ or "", taylor_lanes.__file__ or "", simd.__file__ or "", __file__)
+    recurrences.__file__, flow.__file__, sections.__file__, jets.__file__, lanes.__file__,
+    simd.__file__, common.__file__, __file__)
 
 
 def component(kind: int, phi0: float, value: float) -> int:
     """The state component whose value is the section ``kind = value`` (``f = c_a y_i +
-    c_c``, :func:`~andoyer.kernels.taylor_sections.linear_component`), or -1.
+    c_c``, :func:`~andoyer.kernels.taylor.sections.linear_component`), or -1.
 
     Parameters
     ----------
@@ -125,7 +125,7 @@ def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
 
 @kernel_jit
 def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
-    """:func:`~andoyer.kernels.taylor_sections.end_and_bound` of the section ``ca y_comp +
+    """:func:`~andoyer.kernels.taylor.sections.end_and_bound` of the section ``ca y_comp +
     cc`` on every lane at once (lane ``i``'s step ``hs[i]``): ``fb`` the end values,
     ``bound`` the bounds. Each lane's operations are the scalar ones, in the same order;
     the lanes run side by side (vector code: one Horner chain for all lanes, not one
@@ -149,12 +149,12 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
                    count, info):
     """The first ``tc.shape[1]`` crossings in ``(0, t_max]`` of the orbits ``z0`` (n, 6)
     of a state component's section (tapes ``ftape, fC`` and margin ``wtape, wC``), as
-    :func:`andoyer.kernels.taylor.locate_crossings` (see the module notes)."""
+    :func:`andoyer.kernels.taylor.flow.locate_crossings` (see the module notes)."""
     n_crossings = tc.shape[1]
     n = order + 1
     comp, ca, cc = linear_component(ftape, fC)
     X = np.zeros((1, n, _N, _L))
-    m = np.empty((taylor_generated.LANE_PRODUCTS, _L))
+    m = np.empty((recurrences.LANE_PRODUCTS, _L))
     h = np.empty(_L)
     hs = np.zeros(_L)
     a1 = np.empty(_L)
@@ -244,14 +244,14 @@ def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_ste
 
 def _build(stamp: str) -> Any:
     """The cached entry point (the closure over ``stamp`` keys the cache, as in
-    :func:`andoyer.kernels.taylor._build`)."""
+    :func:`andoyer.kernels.taylor.flow._build`)."""
 
-    @cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+    @exact_jit
     def lane_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
                              tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits on the calling thread."""
         _ = len(stamp)  # keys the cache
-        q = np.empty(taylor_generated.N_CONSTANTS)
+        q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
         lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
                        zc, count, info)
@@ -266,7 +266,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
                      n_crossings: int, t_max: float, tol: float, max_steps: int, *,
                      block: int | None = None, threads: int | None = None
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`andoyer.kernels.taylor.locate_crossings` of states alone (n, 6) on SIMD
+    """:func:`andoyer.kernels.taylor.flow.locate_crossings` of states alone (n, 6) on SIMD
     lanes, for a section whose :func:`component` is not -1 (else ValueError).
 
     Measured: see the module notes.
@@ -292,14 +292,14 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     max_steps : int
         Maximum steps per orbit.
     block : int, optional
-        Orbits per block (default :func:`andoyer.kernels.taylor_lanes.block_size`).
+        Orbits per block (default :func:`andoyer.kernels.taylor.lanes.block_size`).
     threads : int, optional
         Threads (:func:`andoyer.kernels.threads.over_orbits`).
 
     Returns
     -------
     t, z, count, info :
-        As :func:`andoyer.kernels.taylor.locate_crossings`.
+        As :func:`andoyer.kernels.taylor.flow.locate_crossings`.
 
     Examples
     --------
@@ -325,8 +325,8 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     ftape, fC = section_tape(int(kind), float(p[7]), float(value))
     wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
     m = numba.get_num_threads() if threads is None else int(threads)
-    size = taylor_lanes.block_size(n, m) if block is None else int(block)
+    size = lanes.block_size(n, m) if block is None else int(block)
     over_orbits(lane_crossings_block, n, (z0,), (tc, zc, count, info),
-                (p, taylor.order_for(tol), ftape, fC, wtape, wC, int(direction),
+                (p, flow.order_for(tol), ftape, fC, wtape, wC, int(direction),
                  float(t_max), int(max_steps)), block=size, threads=m)
     return tc, zc, count, info

@@ -1,0 +1,15 @@
+"""The adaptive Taylor method in Numba, on the recurrences of
+:mod:`andoyer.kernels.generated.recurrences`.
+
+* :mod:`~andoyer.kernels.taylor.jets` -- jets, step size and the Horner steps;
+* :mod:`~andoyer.kernels.taylor.sections` -- section tapes, Bernstein root isolation;
+* :mod:`~andoyer.kernels.taylor.flow` -- the entry points of one orbit at a time
+  (states, tangent vectors, attitude; output times and crossings);
+* :mod:`~andoyer.kernels.taylor.tangent` -- the renormalised tangent flow with MEGNO;
+* :mod:`~andoyer.kernels.taylor.lanes`, :mod:`~andoyer.kernels.taylor.lane_crossings`
+  -- eight orbits per step on SIMD lanes (the vector intrinsics of
+  :mod:`andoyer.kernels.simd`, which the generated lane recurrences call too).
+
+Importing the package loads nothing; each module compiles (or loads) its machine code
+when it is imported.
+"""
