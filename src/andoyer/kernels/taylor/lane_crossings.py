@@ -145,8 +145,8 @@ def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
 
 
 @kernel_jit
-def lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc, zc,
-                   count, info):
+def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
+                       zc, count, info):
     """The first ``tc.shape[1]`` crossings in ``(0, t_max]`` of the orbits ``z0`` (n, 6)
     of a state component's section (tapes ``ftape, fC`` and margin ``wtape, wC``), as
     :func:`andoyer.kernels.taylor.flow.locate_crossings` (see the module notes)."""
@@ -253,8 +253,8 @@ def _build(stamp: str) -> Any:
         _ = len(stamp)  # keys the cache
         q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
-        lane_crossings(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
-                       zc, count, info)
+        crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
+                           zc, count, info)
 
     return lane_crossings_block
 
