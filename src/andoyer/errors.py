@@ -14,8 +14,9 @@ from __future__ import annotations
 import errno
 import os
 
-__all__ = ["ArgumentTypeError", "CertificateError", "CostLimitError", "DamagedFileError",
-           "DamagedStoreWarning", "EncoderError", "IntegrationError", "Interrupted",
+__all__ = ["ArgumentTypeError", "CertificateError", "CostLimitError", "DamagedCacheWarning",
+           "DamagedFileError", "DamagedStoreWarning", "EncoderError", "IntegrationError",
+           "Interrupted",
            "ManifestWarning", "NoCacheWarning", "NoSpaceError", "OutputInUseError",
            "SingularChartWarning", "SingularPassageWarning", "StaleLockWarning"]
 
@@ -138,6 +139,12 @@ class NoCacheWarning(UserWarning):
 
     Set ``ANDOYER_CACHE_DIR`` to a writable folder (see :mod:`andoyer.kernels.cache`).
     """
+
+
+class DamagedCacheWarning(UserWarning):
+    """An entry of the compiled-kernel cache was damaged (a truncated or foreign file):
+    it was removed and the kernel compiled again and cached (the folder is named; see
+    :mod:`andoyer.kernels.cache`)."""
 
 
 class DamagedStoreWarning(UserWarning):

@@ -15,6 +15,7 @@ import textwrap
 from pathlib import Path
 
 import numba
+import pytest
 
 from andoyer.kernels import cache
 
@@ -98,3 +99,94 @@ def test_the_cache_subfolder_follows_every_kernel_source(tmp_path: Path,
     assert thrice(1.0) == 3.0
     assert Path(thrice._cache._cache_path).is_relative_to(
         tmp_path / "numba" / f"kernels-{cache.sources_stamp()}")
+
+
+_TINY = '''
+from andoyer.kernels.cache import cached_njit
+
+@cached_njit(nogil=True)
+def thrice(x):
+    return 3.0 * x
+'''
+
+_RUN_TINY = textwrap.dedent("""
+    import json, sys, warnings
+    sys.path.insert(0, sys.argv[1])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        import tiny
+        value = tiny.thrice(1.5)
+    stats = tiny.thrice.stats
+    print(json.dumps({"value": value, "hits": sum(stats.cache_hits.values()),
+                      "warnings": [[w.category.__name__, str(w.message)] for w in seen]}))
+""")
+
+
+def _run_tiny(folder: Path, cache_dir: Path) -> dict:
+    env = dict(os.environ, ANDOYER_CACHE_DIR=str(cache_dir))
+    env.pop("NUMBA_CACHE_DIR", None)
+    run = subprocess.run([sys.executable, "-c", _RUN_TINY, str(folder)], capture_output=True,
+                         text=True, env=env, timeout=300)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def _damage(files: list[Path], how: str) -> None:
+    for f in files:
+        data = f.read_bytes()
+        f.write_bytes({"truncated": data[:20], "empty": b"",
+                       "foreign": b"\x80\x05not numba's" * 40}[how])
+
+
+@pytest.fixture(scope="module")
+def warm_tiny(tmp_path_factory) -> Path:
+    """A module using cached_njit, run once: its cache entry written."""
+    root = tmp_path_factory.mktemp("tiny")
+    (root / "src").mkdir()
+    (root / "src" / "tiny.py").write_text(_TINY)
+    first = _run_tiny(root / "src", root / "cache")
+    assert first["value"] == 4.5 and first["warnings"] == []
+    return root
+
+
+@pytest.mark.parametrize("what, how", [("nbi", "truncated"), ("nbc", "truncated"),
+                                       ("nbc", "foreign"), ("nbi", "empty")])
+def test_a_damaged_entry_is_rebuilt_with_one_warning_naming_the_folder(
+        warm_tiny: Path, tmp_path: Path, what, how) -> None:
+    """A truncated or overwritten index or data file of Numba's cache ended every command
+    with 'internal error (UnpicklingError ...)', naming no cache. Now: removed, compiled
+    again and cached, one DamagedCacheWarning naming the folder; the next run is quiet and
+    loads the rebuilt entry."""
+    import shutil
+
+    shutil.copytree(warm_tiny / "cache", tmp_path / "cache")
+    files = sorted((tmp_path / "cache").rglob(f"tiny.thrice-*.{what}"))
+    assert files
+    _damage(files, how)
+    second = _run_tiny(warm_tiny / "src", tmp_path / "cache")
+    assert second["value"] == 4.5
+    assert [w[0] for w in second["warnings"]] == ["DamagedCacheWarning"], second
+    assert f"in {files[0].parent} (tiny.thrice-" in second["warnings"][0][1]
+    third = _run_tiny(warm_tiny / "src", tmp_path / "cache")
+    assert third == {"value": 4.5, "hits": 1, "warnings": []}
+
+
+@pytest.mark.slow
+def test_a_command_with_a_damaged_cache_warns_once_and_succeeds(tmp_path: Path) -> None:
+    """The command line: one warning line naming the folder, exit 0, no internal error
+    (two compiles of the numba engine's propagate: a minute under load)."""
+    env = dict(os.environ, ANDOYER_CACHE_DIR=str(tmp_path / "cache"))
+    env.pop("NUMBA_CACHE_DIR", None)
+    argv = [sys.executable, "-m", "andoyer", "orbit", "--andoyer", "0.3,1,0.2,1,0",
+            "--t-end", "1", "--n-out", "3", "--engine", "numba"]
+    first = subprocess.run([*argv, "--out", str(tmp_path / "a.nc")], capture_output=True,
+                           text=True, env=env, timeout=900)
+    assert first.returncode == 0, first.stderr
+    _damage(sorted((tmp_path / "cache").rglob("*.nbi")), "truncated")
+    second = subprocess.run([*argv, "--out", str(tmp_path / "b.nc")], capture_output=True,
+                            text=True, env=env, timeout=900)
+    assert second.returncode == 0, second.stderr
+    warned = [line for line in second.stderr.splitlines() if "warning" in line]
+    assert len(warned) == 1 and "damaged entry of the compiled-kernel cache in " + str(
+        tmp_path / "cache") in warned[0], second.stderr
+    assert "internal error" not in second.stderr and "Traceback" not in second.stderr

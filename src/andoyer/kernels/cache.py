@@ -27,6 +27,12 @@ entry (the per-module keys of :mod:`andoyer.kernels.dop853.flow` stay, as a seco
 Folders of former sources are left in place (another install may still use them);
 deleting ``cache_folder()`` is always safe.
 
+A damaged entry (an index or data file truncated by a full disk or a killed process,
+or overwritten) is taken for a missing one: its files are removed, the kernel compiled
+again and cached, and the run says so once, naming the folder
+(:class:`~andoyer.errors.DamagedCacheWarning`), instead of ending in Numba's unpickling
+error.
+
 Where nothing is writable (a read-only install and a read-only home, as on many
 clusters and containers: Numba finds no folder of its own either), the kernels are
 compiled without a cache: andoyer runs, compiles in every process, and says so once
@@ -40,6 +46,7 @@ fact that it was said).
 from __future__ import annotations
 
 import functools
+import glob
 import hashlib
 import os
 import warnings
@@ -49,11 +56,12 @@ from typing import Any
 
 import numba
 import platformdirs
+from numba.core.caching import FunctionCache
 
-from andoyer.errors import NoCacheWarning
+from andoyer.errors import DamagedCacheWarning, NoCacheWarning
 
 __all__ = ["cache_folder", "cached_njit", "sources_stamp", "writable", "warn_no_cache",
-           "CACHE_ENV"]
+           "warn_damaged_cache", "CACHE_ENV"]
 
 #: Environment variable that moves andoyer's caches (Numba's under ``<dir>/numba``).
 CACHE_ENV = "ANDOYER_CACHE_DIR"
@@ -111,6 +119,35 @@ def _stamp(folder: Path) -> str:
     return h.hexdigest()[:16]
 
 
+class _RebuildingCache(FunctionCache):
+    """Numba's on-disk cache of one function, taking a damaged entry for a missing one
+    (module notes): its files are removed, the function compiled and cached again."""
+
+    def load_overload(self, sig: Any, target_context: Any) -> Any:
+        try:
+            return super().load_overload(sig, target_context)
+        except Exception as exc:  # noqa: BLE001 -- any damage: unpickling, EOF, LLVM
+            self._discard(exc)
+            return None
+
+    def save_overload(self, sig: Any, data: Any) -> None:
+        try:
+            super().save_overload(sig, data)
+        except Exception as exc:  # noqa: BLE001 -- a damaged index it cannot remove
+            self._discard(exc)
+
+    def _discard(self, exc: Exception) -> None:
+        files: Any = self._cache_file  # numba's IndexDataCacheFile
+        index = Path(files._index_path)
+        stem = index.name[: -len(".nbi")]
+        for f in [index, *index.parent.glob(glob.escape(stem) + ".*.nbc")]:
+            try:
+                f.unlink()
+            except OSError:
+                pass
+        warn_damaged_cache(index.parent, f"{stem}: {type(exc).__name__}: {exc}")
+
+
 def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
     """``numba.njit(cache=True, **options)`` caching in :func:`cache_folder`.
 
@@ -136,7 +173,9 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
         previous = config.CACHE_DIR
         config.CACHE_DIR = str(cache_folder() / f"kernels-{sources_stamp()}")
         try:
-            return numba.njit(**options)(function)
+            dispatcher = numba.njit(**options)(function)
+            dispatcher._cache = _RebuildingCache(dispatcher.py_func)  # same locator
+            return dispatcher
         except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
             if "no locator" not in str(exc):
                 raise
@@ -172,6 +211,28 @@ def writable(folder: str | os.PathLike[str]) -> bool:
             return True
     except OSError:
         return False
+
+
+_DAMAGE_REPORTED: list[bool] = []
+
+
+def warn_damaged_cache(folder: str | os.PathLike[str], what: str) -> None:
+    """Say once per process that a damaged cache entry in ``folder`` is being rebuilt.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder holding the entry.
+    what : str
+        The entry and what was wrong with it.
+    """
+    if _DAMAGE_REPORTED:
+        return
+    _DAMAGE_REPORTED.append(True)
+    warnings.warn(
+        f"damaged entry of the compiled-kernel cache in {os.fspath(folder)} ({what}): "
+        "removed; the kernels are compiled again and cached (seconds to a minute)",
+        DamagedCacheWarning, stacklevel=3)
 
 
 def warn_no_cache(tried: str) -> None:
