@@ -211,7 +211,7 @@ def test_resonances_item(tmp_path, monkeypatch):
     text = json.dumps(summary)
     assert "half_width_3:1_mu_0.001" in text
     html = (out / "index.html").read_text()
-    assert "multiplies it by 2^4.0" in html and "multiplies it by 2^8.0" in html
+    assert "multiplies it by \\(2^{ 4.0 }\\)" in html and "multiplies it by \\(2^{ 8.0 }\\)" in html
     numbers = summary["items"]["resonances"]["numbers"]
     # Birkhoff at growing amplitude (0.05 to 0.2 rad): the fitted slope is the order
     for order in (2, 4, 6, 8):

@@ -1,9 +1,11 @@
 """The report in a real browser: headless Chromium (Playwright) at two window widths.
 
-``index.html`` of a quick report is opened at 800 and 1600 CSS pixels: every figure is
+``index.html`` of a quick report is opened at 800 and 1400 CSS pixels: every figure is
 loaded, fits the window (no horizontal scrolling), is shown smaller in the narrow
 window than in the wide one (it scales with the window) and no larger than the PNG
-itself, and a click on a figure opens the PNG at full size. That labels inside the
+itself, and a click on a figure opens the PNG at full size; every table fits the page
+(its cells wrap); every formula is typeset by the MathJax copied beside the page (no
+TeX delimiter left as text, no request leaving the folder). That labels inside the
 figures do not overlap is checked on the figures themselves (tests/plot/test_layout.py).
 
 Needs Debian's ``chromium`` (``/usr/bin/chromium`` or ``$ANDOYER_CHROMIUM``): no browser
@@ -26,7 +28,7 @@ CHROMIUM = os.environ.get("ANDOYER_CHROMIUM", "/usr/bin/chromium")
 REQUIRE = os.environ.get("ANDOYER_REQUIRE_BROWSER", "") not in ("", "0")
 ARGS = ["--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
         "--disable-component-update", "--disable-sync"]
-WIDTHS = (800, 1600)
+WIDTHS = (800, 1400)
 
 pytestmark = pytest.mark.timeout(300)
 
@@ -54,9 +56,14 @@ def _sync_api() -> Any:
     return sync_api
 
 
+def inner_width(page: Any) -> float:
+    return float(page.evaluate("() => document.documentElement.clientWidth"))
+
+
 def test_report_figures_scale_with_the_window(tmp_path: Path) -> None:
     sync_api = _sync_api()
-    index, _ = build_paper(tmp_path / "paper", quick=True, only=["fig1", "fig2", "paper-check"],
+    index, _ = build_paper(tmp_path / "paper", quick=True,
+                           only=["fig1", "fig2", "heteroclinic", "paper-check"],
                            engine="numba", progress=False, jobs=1)
     shots = Path(os.environ.get("ANDOYER_SCREENSHOT_DIR", tmp_path))
     shown: dict[int, dict[str, float]] = {}
@@ -66,9 +73,28 @@ def test_report_figures_scale_with_the_window(tmp_path: Path) -> None:
             for width in WIDTHS:
                 page = browser.new_page(viewport={"width": width, "height": 1000})
                 errors: list[str] = []
+                requests: list[str] = []
                 page.on("pageerror", lambda exc, errors=errors: errors.append(str(exc)))
+                page.on("request", lambda r, requests=requests: requests.append(r.url))
                 page.goto(index.as_uri())
                 page.wait_for_load_state("load")
+                page.wait_for_function("() => window.MathJax && MathJax.startup && "
+                                       "MathJax.startup.promise", timeout=30000)
+                page.evaluate("() => MathJax.startup.promise")
+                typeset = page.evaluate("() => document.querySelectorAll('mjx-container').length")
+                raw = page.evaluate("() => [...document.querySelectorAll('p, li')]"
+                                    ".map(e => e.innerText)"
+                                    ".filter(s => s.includes('\\\\(')).length")
+                tables = page.evaluate("""() => [...document.querySelectorAll('table')].map(
+                    t => t.getBoundingClientRect().right)""")
+                assert typeset > 20 and raw == 0, (typeset, raw)
+                assert all(u.startswith("file://" + str(index.parent)) for u in requests), \
+                    [u for u in requests if not u.startswith("file://" + str(index.parent))]
+                assert tables and max(tables) <= inner_width(page), (width, tables)
+                pres = page.evaluate("""() => [...document.querySelectorAll('pre')].map(
+                    e => e.scrollWidth - e.clientWidth)""")
+                assert pres and max(pres) <= 1, (width, pres)  # text tables unscrolled
+                page.screenshot(path=str(shots / f"report-{width}-full.png"), full_page=True)
                 figures = page.evaluate(_FIGURES)
                 inner = page.evaluate("() => window.innerWidth")
                 scroll = page.evaluate("() => document.documentElement.scrollWidth")

@@ -68,6 +68,8 @@ def test_tables_print_no_negative_zero(report):
     assert cells
     bad = [c for c in cells if re.fullmatch(r"[-−]0(\.0*)?([eE][-+]?0+)?", c.strip())]
     assert not bad, bad
+    pre = " ".join(re.findall(r"<pre>(.*?)</pre>", index.read_text(), re.S))
+    assert pre and not re.findall(r"(?<![\w.])[-−]0(\.0+)?([eE][-+]?0+)?(?![\w.])", pre)
 
 
 def test_formulas_are_tex_rendered_by_a_local_mathjax(report):

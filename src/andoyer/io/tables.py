@@ -79,7 +79,7 @@ def _equilibria_table(result: EquilibriumSet) -> str:
              f"{result.body.mu:g}, r = ({', '.join(f'{v:.6g}' for v in result.body.r)})",
              f"{'name':<9} {'gamma':<34} {'type':<15} eigenvalues on the leaf"]
     for e in result.equilibria:
-        g = "(" + ", ".join(f"{v:.6g}" for v in e.y[3:]) + ")"
+        g = "(" + ", ".join(f"{v + 0.0:.6g}" for v in e.y[3:]) + ")"  # + 0.0: no "-0"
         lines.append(f"{e.name:<9} {g:<34} {e.linear_type:<15} "
                      f"{eigenvalue_text(e.eigenvalues)}")
     return "\n".join(lines)

@@ -41,12 +41,33 @@ def environment() -> Any:
                              autoescape=True, undefined=jinja2.StrictUndefined,
                              keep_trailing_newline=True)
     env.filters["fmt"] = lambda value, spec="": _no_negative_zero(format(value, spec))
-    env.filters["cell"] = lambda value: _no_negative_zero(str(value))
+    env.filters["cell"] = lambda value: _symbols(_no_negative_zero(str(value)))
     return env
 
 
 #: A number that prints as zero with a sign (``-0``, ``-0.000``, ``+0.00e+00``).
 _SIGNED_ZERO = re.compile(r"[-+−]0(\.0*)?([eE][-+]?0+)?")
+
+
+#: The paper's symbols as the code spells them -> as a reader reads them (table cells).
+_SYMBOLS = {"theta1": "θ₁", "theta2": "θ₂", "phi0": "φ₀", "mu": "μ", "epsilon": "ε",
+            "Delta": "Δ", "sigma": "σ", "kappa": "κ", "gamma": "γ", "rho": "ρ", "lambda": "λ",
+            "omega": "ω", "psi": "ψ", "J1": "J₁", "J2": "J₂", "G0": "G₀", "H0": "H₀"}
+_SYMBOL = re.compile(r"(?<![A-Za-z_])(" + "|".join(sorted(_SYMBOLS, key=len, reverse=True))
+                     + r")(?![A-Za-z0-9_])")
+
+
+def _symbols(text: str) -> str:
+    """A table cell with the paper's symbols in place of their ASCII names
+    (``theta1=4phi0`` -> ``θ₁ = 4φ₀``).
+
+    Examples
+    --------
+    >>> _symbols("theta1=4phi0"), _symbols("max |Delta G| at mu = 0.01"), _symbols("must")
+    ('θ₁ = 4φ₀', 'max |Δ G| at μ = 0.01', 'must')
+    """
+    out = _SYMBOL.sub(lambda m: _SYMBOLS[m.group(1)], text)
+    return re.sub(r"(?<=[₀-₉])=(?=\S)", " = ", out)
 
 
 def _no_negative_zero(text: str) -> str:
