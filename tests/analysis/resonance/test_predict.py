@@ -309,3 +309,28 @@ def test_resonant_tori_to_order_100_meet_p_over_q_or_say_which_cannot():
     # unresolved rows sit against the separatrix (an ulp of G moves W by ~ eps/(e K));
     # their gap is the label, and W of the gap is p/q there too
     assert float(np.abs(ds.separatrix_gap.values[bad]).max()) < 1e-3
+
+
+def test_next_order_of_the_stable_point_is_second_order_and_flags_thin_chains():
+    """(R12): the estimate of the O(mu^2) term scales like mu^2 (the first-order offset
+    like mu); the mean V_00 vanishes at M = 0 on every torus (why the paper's thin chains
+    are decided at second order) but not at M != 0; the flag says whether the estimate is
+    below the half-width: yes on Hess(3, 1, 2) at mu = 1e-3, no for the paper's 8:1 chains
+    at mu = 0.01 (estimate 2.2e-4 about axis 2, 18 half-widths)."""
+    a = resonance_widths(WIDE.with_mu(1e-4), 1.0, 0.0, max_order=5)
+    b = resonance_widths(WIDE.with_mu(1e-3), 1.0, 0.0, max_order=5)
+    first = a.mu_order.values == 1
+    np.testing.assert_allclose(b.stable_shift_next_order[first],
+                               100 * a.stable_shift_next_order[first], rtol=1e-6)
+    assert np.all(a.stable_shift_next_order.values[first] > 0)
+    assert np.all(np.isnan(a.stable_shift_next_order.values[~first]))
+    three = (b.label.values == "3:1") & (b.axis.values == 1)
+    assert b.stable_shift_holds.values[three].all()
+    assert float(b.stable_shift_next_order[three][0]) == pytest.approx(0.76e-6, rel=0.02)
+    for M, zero in ((0.0, True), (0.3, False)):
+        _t, Vk = converged_torus(PAPER, H, 1.0, M, 1)
+        assert (abs(Vk[0, 0]) < 1e-15) == zero, M
+    paper = resonance_widths(PAPER.with_mu(0.01), H, 0.0, max_order=9)
+    eight = paper.where((paper.label == "8:1") & (paper.axis == 2), drop=True)
+    assert not eight.stable_shift_holds.values.any()
+    assert float(eight.stable_shift_next_order[0]) > 10 * float(eight.half_width[0])

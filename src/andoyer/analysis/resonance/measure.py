@@ -188,7 +188,10 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         ``s_outer``, ``centre_offset`` (the locked interval's midpoint), ``stable_s``
         (the measured stable periodic orbit: least libration of ``psi``, by bounded
         Brent inside the locked interval) with ``stable_span``, ``predicted_stable_s``
-        (R10 of :mod:`~andoyer.analysis.resonance.predict`), ``libration_frequency``; ``seed_s``,
+        (R10 of :mod:`~andoyer.analysis.resonance.predict`) with
+        ``predicted_stable_s_next_order`` (R12: the estimated size of its ``O(mu^2)`` term)
+        and ``predicted_stable_s_holds`` (that estimate below the half-width),
+        ``libration_frequency``; ``seed_s``,
         ``seed_locked``, ``seed_drift`` per orbit run (dim ``seed``).
 
     Examples
@@ -298,6 +301,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                              options={"xatol": 1e-7 * (s_out - s_in),
                                       "maxiter": _STABLE_EVALUATIONS})
     predicted_stable = float(chain.stable_shift(np.array([probe.phase]))[0])
+    next_order = abs(chain.second_order_mean_shift())
     ds = xr.Dataset(
         {"predicted_half_width": ((), dG), "measured_half_width": ((), measured),
          "half_width_error": ((), measured - dG), "edge_uncertainty": ((), unc),
@@ -306,6 +310,8 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
          "libration_frequency": ((), chain.Omega),
          "stable_s": ((), float(stable.x)), "stable_span": ((), float(stable.fun)),
          "predicted_stable_s": ((), predicted_stable),
+         "predicted_stable_s_next_order": ((), next_order),
+         "predicted_stable_s_holds": ((), bool(next_order < dG)),
          "seed_s": ("seed", np.array(log_s)), "seed_locked": ("seed", np.array(log_l)),
          "seed_drift": ("seed", np.array(log_d))},
         attrs=provenance(body, h=h, M=M, resonance=resonance, axis=int(chain.row["axis"]),
@@ -334,6 +340,11 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                         ""),
         "predicted_stable_s": ("\\delta G", "first-order offset of the stable point (R10)",
                                "1", "(R10)"),
+        "predicted_stable_s_next_order": ("", "estimated size of the O(mu^2) term of "
+                                          "predicted_stable_s", "1", "(R12)"),
+        "predicted_stable_s_holds": ("", "the estimate is below the predicted half-width: "
+                                     "the first-order stable point lies inside the island",
+                                     "1", "(R12)"),
         "seed_s": ("s", "seed position on the line (G units)", "1", ""),
         "seed_locked": ("", "the orbit librates in the chain", "1", ""),
         "seed_drift": ("", "mean change of psi per return", "rad", "")})

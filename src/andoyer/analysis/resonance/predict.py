@@ -64,6 +64,25 @@ level, and the plane point's label is ``G + mu V / (s(l) G)`` (``dH0/dG`` at fix
 ``(l, L)``, ``s = a sin^2 l + b cos^2 l``). Together
 ``dG_label = -W (dI1 + dI1(phi)) + mu V (1/(s G) - 1/omega_g)`` (``stable_shift``).
 
+(R12) Where (R10) holds: its error is ``O(mu^2)`` (measured on Hess(3, 1, 2), the 3:1
+chain about axis 1 at ``M = 0``: ``stable_s - stable_shift = -0.55 mu^2`` over
+``mu = 1e-4 .. 3e-3``, fitted slope 2.0), while the half-width grows like
+``sqrt(mu |V_k|)``: the first-order point lies inside the island only for
+``mu^(3/2) < ~sqrt(|V_k|)``. At ``M = 0`` the mean ``V_00 = (r, <gamma>)`` vanishes on every
+torus (``<gamma>`` over ``g`` is ``M G / G^2``), so on thin chains (``|V_k| ~ 1e-8``, the
+paper's body) the first-order offset is only the slope of the tiny resonant harmonic and
+the ``O(mu^2)`` terms decide the position: the first-order point is theory-limited there,
+not wrong. The estimate of the next order (``stable_shift_next_order``) is the mean part
+of the second-order Lie-Deprit normal form of ``K``: with ``K2 = -G2`` the ``mu^2`` term of
+``-G`` solving ``H = h``, ``G2 = V V_G / omega_g^2 - (d omega_g/dG) V^2 / (2 omega_g^3)``
+(derivatives at fixed ``I1``: ``d/dG|_I = d/dG|_h + omega_g d/dh|_G``, from tori off the
+level), and ``S = sum k1 |K1_k|^2 / (k1 W + k2)`` over the non-resonant harmonics,
+``Kbar2 = <K2> + W (dS/dG) / 2`` and the centre moves by ``mu^2 W (dKbar2/dG) / (dW/dG)``.
+The oscillating second-order terms at the section point are of the same size and are not
+included (on the Hess chain the mean part is ``+0.76 mu^2`` against the measured
+``-0.55 mu^2``): the estimate is a size, not a correction. ``stable_shift_holds`` says
+whether it is below the half-width.
+
 (R11) The tori are labelled, to rounding, by their gap to the separatrix
 ``e = q G^2/(2h) - 1`` (:func:`free_top_at_gap`): ``W`` depends on ``G`` only through
 ``2h/G^2`` and, in Carlson's forms of the elliptic integrals, only through products with
@@ -476,6 +495,36 @@ def trig_interpolate(torus: Torus, values: NDArray[np.float64], phi: NDArray[np.
     return np.asarray(2.0 * (e @ c).real - c[0].real)
 
 
+def _second_order_mean(body: RigidBody, h: float, G: float, M: float, sign: int, n: int,
+                       p: int, q: int) -> tuple[float, float, float]:
+    """(R12) on the torus ``(h, G)``: ``<K2>``, ``S = sum k1 |K1_k|^2 / (k1 W + k2)``
+    (non-resonant ``k``, ``k1 != 0``) and ``W``; derivatives at fixed ``I1`` from tori
+    off the level, ``d/dG|_I = d/dG|_h + omega_g d/dh|_G``."""
+    from andoyer.analysis.resonance.torus import fourier_coefficients, sample_torus
+
+    def at(hh: float, GG: float) -> tuple[Torus, NDArray[np.complex128]]:
+        t = sample_torus(body, hh, GG, M, sign, n)
+        return t, fourier_coefficients(body, t)
+
+    T, V = at(h, G)
+    wg, W = T.omega_g, T.omega_l / T.omega_g
+    dh, dG = 1e-5 * h, 1e-5 * G
+    (tp, vp), (tm, vm) = at(h + dh, G), at(h - dh, G)
+    (gp, wp), (gm, wm) = at(h, G + dG), at(h, G - dG)
+    V_G = (wp - wm) / (2 * dG) + wg * (vp - vm) / (2 * dh)            # at fixed I1
+    H0_GG = ((gp.omega_g - gm.omega_g) / (2 * dG)
+             + wg * (tp.omega_g - tm.omega_g) / (2 * dh))
+    K2 = (-float(np.sum((V * np.conj(V_G)).real)) / wg**2
+          + H0_GG * float(np.sum(np.abs(V) ** 2)) / (2 * wg**3))
+    n1, n2 = V.shape
+    k1 = np.fft.fftfreq(n1, 1.0 / n1)[:, None]
+    k2 = np.fft.fftfreq(n2, 1.0 / n2)[None, :]
+    skip = (k1 * p + k2 * q == 0) | (k1 == 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        S = np.where(skip, 0.0, k1 * np.abs(V / wg) ** 2 / (k1 * W + k2))
+    return K2, float(np.sum(S)), W
+
+
 class ResonantChain:
     """One resonant torus with its pendulum (R5)-(R8) and its place in a section."""
 
@@ -538,6 +587,24 @@ class ResonantChain:
         V = np.real(np.sum(self.Vk[None] * e, axis=(1, 2)))
         S = body.a * np.sin(l) ** 2 + body.b * np.cos(l) ** 2
         return np.asarray(-W * (shift + deform) + mu * V * (1.0 / (S * T.G) - 1.0 / T.omega_g))
+
+    def second_order_mean_shift(self) -> float:
+        """(R12): the ``O(mu^2)`` shift in ``G`` of the chain's centre from the mean part of
+        the second-order normal form, ``mu^2 W (d Kbar2/dG) / (dW/dG)`` (NaN where
+        :attr:`mu_order` is not 1 or off ``g`` sections)."""
+        if self.section.coord != "g" or self.mu_order != 1:
+            return math.nan
+        T, G = self.torus, self.torus.G
+        d = 1e-3 * min(G - self.row["lo"], self.row["hi"] - G)
+        parts = [_second_order_mean(self.body, self.h, G + j * d, self.M, T.sign,
+                                    T.phi1.size, self.p, self.q) for j in (-2, -1, 0, 1, 2)]
+        K2 = np.array([x[0] for x in parts])
+        S = np.array([x[1] for x in parts])
+        W = np.array([x[2] for x in parts])
+        dS = (S[2:] - S[:-2]) / (2.0 * d)                    # at G - d, G, G + d
+        Kbar2 = K2[1:4] + 0.5 * W[1:4] * dS                  # (R12)
+        return float(self.body.mu ** 2 * self.W * (Kbar2[2] - Kbar2[0]) / (2.0 * d)
+                     / self.twist)
 
     # ------------------------------------------------------------ section geometry
     def section_g(self, phi1: NDArray[np.float64], l: NDArray[np.float64]
@@ -677,6 +744,11 @@ _WIDTH_META = {
     "stable_phase": ("\\varphi_1", "free-top phase phi1 of the stable points", "rad", "(R9)"),
     "stable_shift": ("\\delta G", "O(mu) offset of the stable points in the free-top label G "
                      "of the plane (g sections; NaN otherwise)", "1", "(R10)"),
+    "stable_shift_next_order": ("", "estimated size of the O(mu^2) term of stable_shift: the "
+                                "mean part of the second-order normal form (g sections)",
+                                "1", "(R12)"),
+    "stable_shift_holds": ("", "stable_shift_next_order < half_width: the first-order "
+                           "stable point lies inside the island", "1", "(R12)"),
     "unstable_phase": ("\\varphi_1", "free-top phase phi1 of the unstable points", "rad",
                        "(R9)"),
     "centre_x": ("", "section-plane x of the chain's centre line (the resonant torus)", "",
@@ -725,7 +797,10 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
         ``libration_frequency``, ``residue_stable``, ``residue_unstable``,
         ``n_fourier``; per island (dim ``island``, NaN-padded) ``stable_x``,
         ``stable_y``, ``unstable_x``, ``unstable_y`` and their phases, ``stable_shift``
-        (R10: the stable points' ``O(mu)`` offset in ``G``, ``g`` sections); per point of the
+        (R10: the stable points' ``O(mu)`` offset in ``G``, ``g`` sections) with, per
+        resonance, ``stable_shift_next_order`` (R12: the estimated size of its ``O(mu^2)``
+        term) and ``stable_shift_holds`` (that estimate below the half-width: the
+        first-order stable point lies inside the island); per point of the
         curves (dim ``point``) ``centre_x``, ``centre_y``, ``upper_x``, ``upper_y``,
         ``lower_x``, ``lower_y``. Attrs ``plane_x``, ``plane_y`` name the plane.
 
@@ -772,6 +847,7 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
                     arrs["stable_shift"][i, :ph.size] = c.stable_shift(ph)
         for k, v in c.curves(N_CURVE).items():
             curves[k][i] = v
+    next_order = [abs(c.second_order_mean_shift()) for c in chains]
     ds = base.assign({
         **{k: (("resonance", "island"), v) for k, v in arrs.items()},
         **{k: (("resonance", "point"), v) for k, v in curves.items()}})
@@ -787,7 +863,10 @@ def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", 
             [math.sin(math.pi * c.q * c.Omega) ** 2 for c in chains], dtype=float)),
         residue_unstable=("resonance", np.array(
             [-math.sinh(math.pi * c.q * c.Omega) ** 2 for c in chains], dtype=float)),
-        n_fourier=("resonance", np.array([c.n_fourier for c in chains], dtype=np.int64)))
+        n_fourier=("resonance", np.array([c.n_fourier for c in chains], dtype=np.int64)),
+        stable_shift_next_order=("resonance", np.array(next_order, dtype=float)),
+        stable_shift_holds=("resonance", np.array(next_order, dtype=float)
+                            < np.array([c.dG for c in chains], dtype=float)))
     ds.attrs.update(section=section, **sec.attrs(), plane_x=plane.x, plane_y=plane.y,
                     order_in_mu=1)
     describe_variables(ds, _WIDTH_META)
