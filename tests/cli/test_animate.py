@@ -106,3 +106,13 @@ def test_size_option_and_a_frame_without_a_blank_band(tmp_path, capsys):
     code, err = run(["animate", *STATE, "--size", "10", "--out", str(tmp_path / "x.gif")],
                     capsys)
     assert code != 0 and "--size" in err
+
+
+def test_animate_in_a_pipe_prints_plain_progress_lines(tmp_path, capsys):
+    """stderr no terminal (captured): the integration and the frames each end with a
+    plain ``[n/n] label: 100 %, t s`` line, no bar redraws."""
+    out = tmp_path / "top.gif"
+    code, err = run(["animate", *STATE, "--frames", "6", "--t-end", "1", "--out", str(out)],
+                    capsys)
+    assert code == 0 and "\r" not in err
+    assert "[6/6] frames of top.gif: 100 %" in err, err

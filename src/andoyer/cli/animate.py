@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     ds = attitude(body, state, t, chart=chart, engine=args.engine, rtol=args.rtol,
                   atol=args.atol, precession0=args.precession0, progress=True)
     anim = gyroscope_animation(ds, fps=args.fps, size=args.size)
-    out = save_animation(anim, out_path, fps=args.fps)
+    out = save_animation(anim, out_path, fps=args.fps, progress=True)
     print(f"wrote {out}: {args.frames} frames of {args.size} x {args.size} px to "
           f"t = {args.t_end:g} at {args.fps} frames/s "
           f"(engine {ds.attrs['engine']})")

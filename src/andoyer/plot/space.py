@@ -25,6 +25,7 @@ from andoyer.atomic import atomic_path
 from andoyer.errors import EncoderError
 from andoyer.plot.style import COLOURS, new_figure, paper_style
 from andoyer.plot.words import branch_words
+from andoyer.progress import Progress
 from andoyer.validation import integer
 
 __all__ = ["plot_axis_trace", "plot_precession_nutation", "plot_heteroclinic_cycle",
@@ -353,7 +354,7 @@ def animation_writer_available(suffix: str) -> bool:
 
 
 def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: int = 20,
-                   dpi: int = 100) -> Path:
+                   dpi: int = 100, progress: bool | None = None) -> Path:
     """Write ``anim`` as GIF (Pillow) or MP4 (ffmpeg, H.264) atomically: a temporary file
     in the same folder, renamed when complete (nothing left behind if interrupted).
 
@@ -367,6 +368,9 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
         Frames per second of the file, in ``[1, 60]``.
     dpi : int
         Resolution of the frames, in ``[10, 1000]``.
+    progress : bool, optional
+        A bar of the frames drawn (:class:`andoyer.progress.Progress`; default: on a
+        terminal; plain lines where ``True`` and stderr is no terminal).
 
     Raises
     ------
@@ -407,7 +411,18 @@ def save_animation(anim: FuncAnimation, path: str | os.PathLike[str], *, fps: in
                 writer: AbstractMovieWriter = _GifWriter(fps=fps)
             else:
                 writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-f", "mp4"])
-            anim.save(str(tmp), writer=writer, dpi=dpi)
+            bars: list[Progress] = []
+
+            def drawn(k: int, n: int) -> None:
+                if not bars:
+                    bars.append(Progress(n, f"frames of {final.name}", progress))
+                bars[0].update(1)
+
+            try:
+                anim.save(str(tmp), writer=writer, dpi=dpi, progress_callback=drawn)
+            finally:
+                for bar in bars:
+                    bar.close()
     except subprocess.CalledProcessError as exc:
         raise _encoder_error(exc, final) from None
     finally:
