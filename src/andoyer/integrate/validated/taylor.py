@@ -319,6 +319,25 @@ def _step_size(f: QuadraticField, m: Vector, order: int, h_max: float, tol: floa
     return min(h_max, rho * tol ** (1.0 / order) if math.isfinite(rho) else h_max)
 
 
+#: Steps are multiples of 2**-QUANTUM, so that step times add up exactly in floats.
+QUANTUM = 30
+
+
+def _exact_step(h: float, t: float, t_end: float) -> float:
+    """A step ``<= h`` with ``t + step`` exact in binary floating point: ``t_end - t`` if that
+    is at most ``h`` and exact, else ``h`` rounded down to a multiple of ``2**-QUANTUM``
+    (``t`` is one, and sums of such numbers below ``2**22`` are exact)."""
+    from fractions import Fraction
+
+    last = t_end - t
+    if last <= h and Fraction(t) + Fraction(last) == Fraction(t_end):
+        return last
+    q = math.floor(min(h, last) * 2.0**QUANTUM) / 2.0**QUANTUM
+    if q <= 0.0:
+        raise ArithmeticError(f"the step at t = {t} fell below 2**-{QUANTUM}")
+    return q
+
+
 def _qr_frame(A: arb_mat, r: Vector) -> tuple[arb_mat, arb_mat]:
     """Lohner's frame: ``Q`` of ``mid(A)`` (columns by length x width of ``r``), ``Q^-1``."""
     n = A.nrows()
@@ -352,7 +371,8 @@ class ValidatedOrbit:
     Attributes
     ----------
     times : tuple of float
-        Step times (exact binary numbers), ``times[0] = 0``.
+        Step times, ``times[0] = 0`` (exact: each the exact sum of the steps taken,
+        multiples of ``2**-QUANTUM`` but for the last).
     states : tuple of tuple of str
         The hull of the enclosure of the set at each time (six balls).
     mid, rad : numpy.ndarray, shape (k, 6)
@@ -487,8 +507,8 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
     """
     start = time.perf_counter()
     t_end = float(t_end)
-    if not (math.isfinite(t_end) and t_end > 0.0):
-        raise ValueError(f"t_end must be a finite time > 0, got {t_end!r}")
+    if not (math.isfinite(t_end) and 0.0 < t_end <= 1e6):
+        raise ValueError(f"t_end must be a time in (0, 1e6], got {t_end!r}")
     if isinstance(order, bool) or not isinstance(order, int) or not 4 <= order <= 60:
         raise ValueError(f"order must be an integer in [4, 60], got {order!r}")
     with working_precision(bits):
@@ -507,13 +527,13 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
         while t < t_end:
             if steps >= max_steps:
                 raise ArithmeticError(f"max_steps={max_steps} reached at t = {t}")
-            h = min(_step_size(f, m, order, h_max, tol), t_end - t)
+            h = _exact_step(_step_size(f, m, order, h_max, tol), t, t_end)
             st = None
             for _ in range(12):
                 st = _step(f, m, hull, h, order)
                 if st is not None:
                     break
-                h /= 2
+                h = max(math.floor(h / 2 * 2.0**QUANTUM), 1) / 2.0**QUANTUM
             if st is None:
                 raise ArithmeticError(f"no a priori enclosure at t = {t} (the enclosure "
                                       f"blew up: widths {max(float(x.rad()) for x in hull)})")
@@ -646,6 +666,8 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
     start = time.perf_counter()
     if direction not in (1, -1):
         raise ValueError(f"direction must be +1 or -1, got {direction!r}")
+    if not (math.isfinite(t_max) and 0.0 < t_max <= 1e6):
+        raise ValueError(f"t_max must be a time in (0, 1e6], got {t_max!r}")
     if len(weights) != 6:
         raise ValueError("weights must hold 6 numbers")
     with working_precision(bits):
@@ -663,13 +685,13 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
             return sum((w[i] * y[i] for i in range(n)), arb(0)) - c
 
         while t < t_max:
-            h = min(_step_size(f, m, order, h_max, tol), t_max - t)
+            h = _exact_step(_step_size(f, m, order, h_max, tol), t, t_max)
             st = None
             for _ in range(12):
                 st = _step(f, m, hull, h, order)
                 if st is not None:
                     break
-                h /= 2
+                h = max(math.floor(h / 2 * 2.0**QUANTUM), 1) / 2.0**QUANTUM
             if st is None:
                 raise ArithmeticError(f"no a priori enclosure at t = {t}")
             sB = s_of(st.By)
