@@ -99,18 +99,6 @@ for _page in _GENERATED.glob("andoyer*.rst") if _GENERATED.is_dir() else ():
     if not (_path.with_suffix(".py").exists() or (_path / "__init__.py").exists()):
         _page.unlink()
 autosummary_imported_members = False
-
-
-def _moved_modules() -> list[str]:
-    """The deprecated flat paths of ``andoyer.analysis`` (each hands out the module that
-    moved into a sub-package): left out of the API reference, which lists the new paths."""
-    folder = ROOT / "src" / "andoyer" / "analysis"
-    return sorted(f"andoyer.analysis.{path.stem}" for path in folder.glob("*.py")
-                  if "sys.modules[__name__] = importlib.import_module" in path.read_text())
-
-
-templates_path = ["_templates"]  # _templates/autosummary/module.rst skips moved_modules
-autosummary_context = {"moved_modules": _moved_modules()}
 autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": False}
 autodoc_typehints = "none"
 numpydoc_show_class_members = False

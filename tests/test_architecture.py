@@ -6,6 +6,7 @@ its own package. ``andoyer._version`` is the one private module open to every la
 """
 
 import ast
+import re
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "andoyer"
@@ -117,8 +118,6 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "__main__.py": "test_processes.py",
     "_version.py": "test_public_api.py",
     "errors.py": "cli/test_cli_errors.py",
-    "analysis/chaos/__init__.py": "analysis/chaos/test_registry.py",
-    "analysis/splitting/__init__.py": "analysis/test_moved_modules.py",
     "analysis/chaos/tangent_space.py": "analysis/chaos/test_lyapunov.py",
     "analysis/hess/hess_periods.py": "doctest",
     "analysis/hess/reduced.py": "analysis/hess/test_hess_solution.py",
@@ -150,7 +149,6 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "explore/server.py": "explore/test_explore_e2e.py",
     "explore/state.py": "explore/test_explore.py",
     "explore/ui.py": "explore/test_explore.py",
-    "integrate/__init__.py": "test_light_imports.py",
     "integrate/budget.py": "test_guards.py",
     "integrate/plane_sampling.py": "integrate/test_fill.py",
     "integrate/section.py": "integrate/test_api.py",
@@ -195,23 +193,28 @@ COVERED_BY_FOLDER: dict[str, str] = {
 }
 
 
+#: What a package ``__init__.py`` that only re-exports may hold besides imports: the names
+#: of its table of lazy re-exports and the module functions that serve it.
+REEXPORT_NAMES = {"__all__", "EXPORTS", "_LAZY"}
+REEXPORT_FUNCTIONS = {"__getattr__", "__dir__"}
+
+
 def _only_reexports(path: Path) -> bool:
     for node in ast.parse(path.read_text(encoding="utf-8")).body:
         if isinstance(node, ast.Import | ast.ImportFrom):
             continue
         if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant):
             continue  # the docstring
+        if isinstance(node, ast.If) and getattr(node.test, "id", "") == "TYPE_CHECKING":
+            continue
+        if isinstance(node, ast.FunctionDef) and node.name in REEXPORT_FUNCTIONS:
+            continue
         targets = (node.targets if isinstance(node, ast.Assign)
                    else [node.target] if isinstance(node, ast.AnnAssign) else [])
-        if targets and all(getattr(t, "id", "") == "__all__" for t in targets):
+        if targets and all(getattr(t, "id", "") in REEXPORT_NAMES for t in targets):
             continue
         return False
     return True
-
-
-def _is_redirect(path: Path) -> bool:
-    # TODO(issue 33 item 3): the redirect modules go; then this exemption goes too.
-    return "sys.modules[__name__]" in path.read_text(encoding="utf-8")
 
 
 def mirrored_test(module: str) -> str:
@@ -236,8 +239,6 @@ def untested_modules():
         folder = next((f for f in COVERED_BY_FOLDER if module.startswith(f)), None)
         if folder is not None and (TESTS / COVERED_BY_FOLDER[folder]).is_dir():
             continue
-        if _is_redirect(path):
-            continue
         missing.append(module)
     return missing
 
@@ -257,6 +258,8 @@ def test_the_covered_elsewhere_table_is_true():
             stale.append(f"{module}: no such module")
         elif (TESTS / mirrored_test(module)).exists():
             stale.append(f"{module}: has {mirrored_test(module)}, drop the row")
+        elif path.name == "__init__.py" and _only_reexports(path):
+            stale.append(f"{module}: only re-exports, drop the row")
         elif where == "doctest":
             if ">>> " not in path.read_text(encoding="utf-8"):
                 stale.append(f"{module}: no doctest examples")
@@ -279,6 +282,8 @@ def test_the_mirror_rule_catches_an_untested_module(tmp_path, monkeypatch):
     assert untested_modules() == ["pkg/a.py"]
     (tmp_path / "tests" / "pkg" / "test_a.py").write_text("")
     assert untested_modules() == []
+
+
 def modules_named_like_their_functions(sources):
     """``"module defines name"`` for every module whose last name part is a public
     function or class it defines or lists in ``__all__``: ``from package import name``
@@ -326,3 +331,44 @@ def test_the_name_rule_catches_a_module_named_like_its_function():
     assert modules_named_like_their_functions(bad) == [
         "andoyer.analysis.chaos.indicators defines indicators", "andoyer.a.b defines b"]
     assert modules_named_like_their_functions(ok) == []
+
+
+# --- no history in the tree ----------------------------------------------------------------
+#
+# Nothing is released: no module only redirects an old path, no keyword, flag or key is kept
+# under a former name with a DeprecationWarning; dates, commit hashes and "x -> y ms"
+# measurement histories go to benchmarks/NOTES.md and commit messages.
+
+#: A date, a commit hash named as such, a timing history ("0.59 -> 0.05 s").
+HISTORY = re.compile(r"20[0-9]{2}-[01][0-9]-[0-3][0-9]|\bcommit [0-9a-f]{7}"
+                     r"|(->|→) ?[0-9.]+ ?(ms|s|ns|us|µs)\b")
+#: Shims: a module replacing itself in sys.modules, a deprecation warning.
+SHIM = re.compile(r"sys\.modules\[__name__\] *=|DeprecationWarning|FutureWarning")
+#: Folders whose comments are being cleaned by the kernels reorganisation (issue 33 item 2).
+HISTORY_PENDING = ("kernels/", "integrate/engines/")
+
+
+def history_lines(texts):
+    """``"path:line: text"`` of every history line (dates, hashes, timings) or shim."""
+    out = []
+    for path, text in texts:
+        for k, line in enumerate(text.splitlines(), 1):
+            if SHIM.search(line) or (HISTORY.search(line)
+                                     and not path.startswith(HISTORY_PENDING)):
+                out.append(f"{path}:{k}: {line.strip()}")
+    return out
+
+
+def test_no_history_and_no_shims_in_src():
+    texts = [(p.relative_to(SRC).as_posix(), p.read_text(encoding="utf-8"))
+             for p in sorted(SRC.rglob("*.py"))]
+    assert history_lines(texts) == []
+
+
+def test_the_history_rule_sees_dates_timings_and_shims():
+    bad = [("a.py", "# measured 2026-11-27"), ("b.py", "# jet 0.9 -> 0.7 ms"),
+           ("c.py", "sys.modules[__name__] = importlib.import_module('x')"),
+           ("d.py", "warnings.warn('old', DeprecationWarning)"),
+           ("e.py", "# since commit 41dea64")]
+    ok = [("f.py", "# mu -> 0 limit"), ("kernels/g.py", "# 1.0 -> 0.8 s")]
+    assert len(history_lines(bad)) == 5 and history_lines(ok) == []

@@ -17,7 +17,6 @@ import inspect
 import pkgutil
 import re
 import sys
-import warnings
 from pathlib import Path
 
 import pytest
@@ -41,11 +40,8 @@ def _public_modules() -> list[str]:
 
 
 def _import(name: str) -> object:
-    """The module ``name``; the deprecated flat paths of the analysis modules (one
-    release of shims) warn, and give the new modules themselves."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        return importlib.import_module(name)
+    """The module ``name``."""
+    return importlib.import_module(name)
 
 
 def _api() -> dict[str, object]:

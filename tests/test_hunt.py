@@ -39,8 +39,8 @@ BAD = st.one_of(
 ARGS = st.sampled_from(["nan", "inf", "-1", "0", "1e300", "x", "", "1,2", "-0"])
 FLAGS = {
     "orbit": ["--t-end", "--n-out", "--rtol", "--andoyer", "--mu", "--body"],
-    "section": ["--h", "--energy", "--M", "--area", "--orbits", "--crossings", "--section"],
-    "chaos-map": ["--n", "--t-end", "--h", "--tol"],
+    "section": ["--energy", "--M", "--n-orbits", "--n-crossings", "--section"],
+    "chaos-map": ["--n", "--t-end", "--energy", "--tol"],
 }
 
 
@@ -57,8 +57,8 @@ def test_command_line_never_shows_a_traceback(command, data, tmp_path_factory, c
         argv += ["--andoyer", "0.3,1,0.2,1,0", "--t-end" if flag != "--t-end" else "--n-out",
                  "1" if flag != "--t-end" else "3"]
     if command == "section":
-        argv += ["--orbits", "2", "--crossings", "2"] if flag not in ("--orbits",
-                                                                      "--crossings") else []
+        argv += ["--n-orbits", "2", "--n-crossings", "2"] if flag not in (
+            "--n-orbits", "--n-crossings") else []
     if command == "chaos-map":
         argv += ["--n", "3", "--t-end", "2"] if flag not in ("--n", "--t-end") else []
     try:
@@ -72,9 +72,9 @@ def test_command_line_never_shows_a_traceback(command, data, tmp_path_factory, c
 # ----------------------------------------------------------------------------- the public API
 # Hunted from ``__all__``, not from a list kept by hand: every public callable of the
 # top-level package, of ``integrate`` and ``charts``, and of every module of the
-# ``analysis`` sub-packages (which have no package-level API; the deprecated flat paths are
-# the same modules and are skipped). A function added tomorrow is hunted tomorrow; if the
-# hunt cannot call it, the test says which required argument needs a good value below.
+# ``analysis`` sub-packages (their packages re-export the same objects, hunted in their
+# modules). A function added tomorrow is hunted tomorrow; if the hunt cannot call it, the
+# test says which required argument needs a good value below.
 HUNTED = ("andoyer", "andoyer.integrate", "andoyer.charts", "andoyer.analysis")
 #: Public subpackages not hunted here, and why (a new subpackage must be placed).
 NOT_HUNTED = {

@@ -1,6 +1,6 @@
 """One vocabulary (andoyer.notation.TERMS): every CLI flag is derived from the API name of
-what it sets, every scan key is the API name, and the former spellings keep working for
-one release with a deprecation message."""
+what it sets, every scan key is the API name; nothing was released, so a former spelling
+is simply an unknown flag, keyword or key."""
 
 import argparse
 import inspect
@@ -9,7 +9,7 @@ import re
 import pytest
 
 from andoyer import RigidBody
-from andoyer.cli import build_parser, main
+from andoyer.cli import build_parser
 from andoyer.notation import TERMS, VOCABULARY
 
 #: Flags that set nothing of the API, with why.
@@ -119,15 +119,6 @@ def test_command_flags_are_parameters_of_the_api_it_calls(command):
                                  f"parameter of {COMMAND_API[command]}"
 
 
-def test_api_signatures_use_no_former_name():
-    for paths in COMMAND_API.values():
-        for path in paths:
-            params = set(_parameters(_function(path)))
-            for t in TERMS:
-                # (a former name that is another term's name, as n, is that term)
-                assert not params & (set(t.old_api) - set(VOCABULARY)), (path, t)
-
-
 def test_scan_keys_are_api_names():
     from andoyer.scan.config import PARAMETERS
     from andoyer.scan.tasks import TASKS
@@ -156,7 +147,7 @@ def test_scan_dims_are_described_in_the_words_of_the_table():
 
 
 def test_energy_flag_is_not_next_to_help():
-    """--h (energy) sat beside -h (help): the flag is --energy, --h still works a release."""
+    """--h (energy) sat beside -h (help): the flag is --energy."""
     parser, commands = _commands()
     for name in ("section", "chaos-map", "explore"):
         flags = {s for a in _visible(commands[name]) for s in a.option_strings}
@@ -171,54 +162,42 @@ def test_energy_flag_is_not_next_to_help():
     (["explore", "--crossings", "9"], "n_crossings", 9, "--crossings", "--n-crossings"),
     (["chaos-map", "--h", "0.3"], "h", 0.3, "--h", "--energy"),
 ])
-def test_former_flags_work_with_a_deprecation_message(capsys, argv, dest, value, old, new):
+def test_former_flags_are_refused_and_the_flags_work(capsys, argv, dest, value, old, new):
     parser = build_parser()
-    args = parser.parse_args(argv)
-    assert getattr(args, dest) == value
-    err = capsys.readouterr().err
-    assert f"warning: {old} is deprecated" in err and f"use {new}" in err
+    with pytest.raises(SystemExit) as exc:  # refused; --h abbreviates --help: the usage
+        parser.parse_args(argv)
+    out = capsys.readouterr()
+    assert (exc.value.code == 2 and old in out.err) or (
+        old == "--h" and exc.value.code == 0 and out.out.startswith("usage:"))
     new_args = parser.parse_args([argv[0], new, argv[2]])
     assert getattr(new_args, dest) == value
     assert capsys.readouterr().err == ""
-    # hidden from --help
     text = parser._subparsers._group_actions[0].choices[argv[0]].format_help()
     assert not re.search(rf"{old}(?![\w-])", text)
 
 
-def test_former_flag_errors_name_the_flag_typed(capsys):
-    with pytest.raises(SystemExit):
-        main(["section", "--crossings", "0"])
-    assert "argument --crossings: must be an integer >= 1" in capsys.readouterr().err
-
-
-def test_former_api_keywords_warn_and_give_the_same_result():
+def test_former_api_keywords_are_refused():
     from andoyer.integrate.fill import fill_section
 
     body = RigidBody.paper()
     new = fill_section(body, 0.2466, 0.0, ("g", 0.0), n_orbits=6, sampling="sobol",
                        boundary_grid=40)
-    with pytest.warns(DeprecationWarning, match=r"fill_section\(n=...\) is deprecated.*"
-                                                r"n_orbits="):
-        old = fill_section(body, 0.2466, 0.0, ("g", 0.0), n=6, method="sobol",
-                           boundary_grid=40)
-    assert (old.y0.values == new.y0.values).all()
-    with pytest.raises(TypeError, match="n is the former name of n_orbits"):
-        fill_section(body, 0.2466, 0.0, ("g", 0.0), n=6, n_orbits=6)
+    assert new.sizes["orbit"] > 0
+    with pytest.raises(TypeError, match="unexpected keyword argument 'method'"):
+        fill_section(body, 0.2466, 0.0, ("g", 0.0), n_orbits=6, method="sobol")
 
 
-def test_former_scan_keys_warn_and_mean_the_same():
+def test_former_scan_keys_are_unknown_keys():
     from andoyer.scan.config import parse_config
 
     base = {"parameters": {"mu": [0.01, 0.02], "h": 0.25},
             "integrator": {"engine": "numba"}}
     new = parse_config({**base, "task": {"kind": "section", "n_orbits": 3,
                                          "n_crossings": 5}})
-    with pytest.warns(FutureWarning, match="'orbits' is deprecated.*write 'n_orbits'"):
-        old = parse_config({**base, "task": {"kind": "section", "orbits": 3,
-                                             "crossings": 5}})
-    assert old == new
-    with pytest.raises(ValueError, match="'orbits' is the former name of 'n_orbits'"):
-        parse_config({**base, "task": {"kind": "section", "orbits": 3, "n_orbits": 3}})
+    assert new == parse_config({**base, "task": {"kind": "section", "n_orbits": 3,
+                                                 "n_crossings": 5}})
+    with pytest.raises(ValueError, match="unknown key 'orbits'.*n_orbits"):
+        parse_config({**base, "task": {"kind": "section", "orbits": 3, "crossings": 5}})
 
 
 def test_scan_tol_is_both_tolerances():
@@ -239,9 +218,7 @@ def test_guide_shows_the_vocabulary():
     rows = [r for r in guide.read_text().splitlines() if r.startswith("| `")]
     for t in TERMS:
         assert "|" not in t.meaning, t  # a table cell
-        assert any(r.startswith(f"| `{t.api}` | `{t.flag}` |")
-                   and all(f"`{o}`" in r for o in t.old_api + t.old_cli + t.old_config)
-                   for r in rows), t
+        assert any(r.startswith(f"| `{t.api}` | `{t.flag}` |") for r in rows), t
 
 
 #: Defaults that differ on purpose between a command or a scan task and the API function it

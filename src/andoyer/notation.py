@@ -21,16 +21,10 @@ Examples
 
 from __future__ import annotations
 
-import functools
-import warnings
-from collections.abc import Callable
-from typing import Any, NamedTuple, TypeVar
+from typing import NamedTuple
 
 __all__ = ["Symbol", "NOTATION", "Coordinate", "COORDINATES", "COORDINATE", "CHART_COORDS",
-           "ANGLES", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY",
-           "renamed"]
-
-_F = TypeVar("_F", bound=Callable[..., Any])
+           "ANGLES", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY"]
 
 
 class Symbol(NamedTuple):
@@ -206,8 +200,7 @@ def label(name: str) -> str:
 # ---------------------------------------------------------------------- the vocabulary
 class Term(NamedTuple):
     """One thing a user passes, under its one name in the API, on the command line, in a
-    scan file; and the spellings of the previous release, still accepted with a
-    deprecation message (:func:`renamed`, ``cli._common``, ``scan.config``).
+    scan file.
 
     Parameters
     ----------
@@ -219,18 +212,12 @@ class Term(NamedTuple):
         Its key in a scan file (None: scan files do not take it).
     cli : str, optional
         Its command-line flag (None: ``--`` and the API name with ``-`` for ``_``).
-    old_api, old_cli, old_config : tuple of str
-        Former spellings in the API, on the command line and in scan files, still
-        accepted for one release with a deprecation message.
     """
 
     api: str                  #: the Python parameter name
     meaning: str              #: what it is (CLI help and docs start from it)
     config: str | None = None  #: key in a scan's TOML (None: not a scan key)
     cli: str | None = None    #: the flag, when it is not ``--`` + api with ``-`` for ``_``
-    old_api: tuple[str, ...] = ()     #: former keyword names
-    old_cli: tuple[str, ...] = ()     #: former flags
-    old_config: tuple[str, ...] = ()  #: former scan keys
 
     @property
     def flag(self) -> str:
@@ -247,8 +234,8 @@ class Term(NamedTuple):
 #: key is the API name. ``tests/test_vocabulary.py`` checks every command, every scan task
 #: and the analyses' signatures against this table.
 TERMS: tuple[Term, ...] = (
-    Term("h", "energy level H = h", "h", cli="--energy", old_cli=("--h",)),
-    Term("M", "area constant (G, gamma) = M", "M", old_cli=("--area",)),
+    Term("h", "energy level H = h", "h", cli="--energy"),
+    Term("M", "area constant (G, gamma) = M", "M"),
     Term("mu", "weight x distance of the centre of mass", "mu"),
     Term("epsilon", "turn of the centre of mass off the Hess direction in the (e1, e2) "
          "plane", "epsilon"),
@@ -259,11 +246,10 @@ TERMS: tuple[Term, ...] = (
     Term("section", "section 'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L); "
          "':-' for the decreasing direction", "section"),
     Term("n_orbits", "orbits seeded on the section plane (about this many plane points)",
-         "n_orbits", old_api=("n",), old_cli=("--orbits",), old_config=("orbits",)),
-    Term("n_crossings", "crossings of the section per orbit", "n_crossings",
-         old_cli=("--crossings",), old_config=("crossings",)),
+         "n_orbits"),
+    Term("n_crossings", "crossings of the section per orbit", "n_crossings"),
     Term("sampling", "how the orbits are seeded on the plane: grid, sobol or halton",
-         "sampling", old_api=("method",)),
+         "sampling"),
     Term("seed", "seed of the scrambled Sobol/Halton points", "seed"),
     Term("boundary_grid", "grid of the accessible-region search", "boundary_grid"),
     Term("t_max", "integrate at most to this time", "t_max"),
@@ -299,47 +285,3 @@ TERMS: tuple[Term, ...] = (
 
 #: API name -> its term.
 VOCABULARY: dict[str, Term] = {t.api: t for t in TERMS}
-
-
-def renamed(**old_to_new: str) -> Callable[[_F], _F]:
-    """Decorator: keyword arguments renamed in this release keep working for one more,
-    with a ``DeprecationWarning`` naming the new spelling (the table :data:`TERMS` lists
-    them as ``old_api``).
-
-    Parameters
-    ----------
-    **old_to_new : str
-        Former keyword name -> its name now. Giving both raises ``TypeError``.
-
-    Returns
-    -------
-    callable
-        The decorator; the wrapped function keeps its signature (``functools.wraps``).
-
-    Examples
-    --------
-    >>> import warnings
-    >>> @renamed(n="n_orbits")
-    ... def f(*, n_orbits=1):
-    ...     return n_orbits
-    >>> with warnings.catch_warnings(record=True) as w:
-    ...     warnings.simplefilter("always")
-    ...     f(n=3), str(w[0].message)
-    (3, 'f(n=...) is deprecated and will be removed in the next release; use n_orbits=...')
-    """
-    def decorate(func: _F) -> _F:
-        @functools.wraps(func)
-        def wrapper(*args: Any, **kwargs: Any) -> Any:
-            for old, new in old_to_new.items():
-                if old in kwargs:
-                    if new in kwargs:
-                        raise TypeError(f"{func.__name__}() got {old}= and {new}=: {old} is "
-                                        f"the former name of {new}; give only {new}")
-                    warnings.warn(f"{func.__name__}({old}=...) is deprecated and will be "
-                                  f"removed in the next release; use {new}=...",
-                                  DeprecationWarning, stacklevel=2)
-                    kwargs[new] = kwargs.pop(old)
-            return func(*args, **kwargs)
-        wrapper.__renamed__ = dict(old_to_new)  # type: ignore[attr-defined]
-        return wrapper  # type: ignore[return-value]
-    return decorate

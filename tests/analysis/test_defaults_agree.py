@@ -5,7 +5,6 @@ import importlib
 import inspect
 import math
 import pkgutil
-import warnings
 
 import numpy as np
 import pytest
@@ -19,21 +18,17 @@ from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH
 
 
 def _functions_with_a_branch():
-    """Every analysis module of the sub-packages (the old flat paths, which only point
-    at them, are skipped), as ``module.function``."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        infos = list(pkgutil.walk_packages(andoyer.analysis.__path__, "andoyer.analysis."))
-        for info in infos:
-            mod = importlib.import_module(info.name)
-            if info.ispkg or mod.__name__ != info.name:
-                continue
-            for name in getattr(mod, "__all__", ()):
-                f = getattr(mod, name)
-                if callable(f) and not inspect.isclass(f):
-                    p = inspect.signature(f).parameters.get("branch")
-                    if p is not None and isinstance(p.default, str):
-                        yield f"{info.name.rsplit('.', 1)[1]}.{name}", p.default
+    """Every analysis module of the sub-packages, as ``module.function``."""
+    for info in pkgutil.walk_packages(andoyer.analysis.__path__, "andoyer.analysis."):
+        mod = importlib.import_module(info.name)
+        if info.ispkg:
+            continue
+        for name in getattr(mod, "__all__", ()):
+            f = getattr(mod, name)
+            if callable(f) and not inspect.isclass(f):
+                p = inspect.signature(f).parameters.get("branch")
+                if p is not None and isinstance(p.default, str):
+                    yield f"{info.name.rsplit('.', 1)[1]}.{name}", p.default
 
 
 def test_every_branch_default_is_the_hess_separatrix():
@@ -92,7 +87,4 @@ def test_frequency_ratio_and_the_section_rotation_number():
     """omega_g / omega_l is not the section map's rotation number: both, named."""
     f = euler_poinsot_frequencies(RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0)), 0.21, 1.0)
     assert f.frequency_ratio * f.rotation_number_g_section == pytest.approx(1.0, rel=1e-15)
-    with warnings.catch_warnings(record=True) as w:
-        warnings.simplefilter("always")
-        assert f.rotation_number == f.frequency_ratio
-    assert "frequency_ratio" in str(w[0].message) and w[0].category is DeprecationWarning
+    assert not hasattr(f, "rotation_number")  # one name each, no ambiguous third

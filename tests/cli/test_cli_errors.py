@@ -114,17 +114,16 @@ def test_real_process_prints_one_line_and_no_traceback(tmp_path):
     assert proc.stderr.strip().startswith("andoyer orbit: error:")
 
 
-def test_level_flags_have_the_api_names_and_keep_the_old_aliases():
+def test_level_flags_have_the_api_names():
     parser = cli.build_parser()
-    new = parser.parse_args(["section", "--h", "0.25", "--M", "0.1"])
-    old = parser.parse_args(["section", "--energy", "0.25", "--area", "0.1"])
-    assert (new.h, new.M) == (old.h, old.M) == (0.25, 0.1)
+    new = parser.parse_args(["section", "--energy", "0.25", "--M", "0.1"])
+    assert (new.h, new.M) == (0.25, 0.1)
 
 
 @pytest.mark.parametrize("argv, flag, want", [
-    (["section", "--crossings", "0"], "--crossings", "an integer >= 1"),
-    (["section", "--crossings", "2.5"], "--crossings", "an integer >= 1"),
-    (["section", "--orbits", "abc"], "--orbits", "an integer >= 1"),
+    (["section", "--n-crossings", "0"], "--n-crossings", "an integer >= 1"),
+    (["section", "--n-crossings", "2.5"], "--n-crossings", "an integer >= 1"),
+    (["section", "--n-orbits", "abc"], "--n-orbits", "an integer >= 1"),
     (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--n-out", "1"], "--n-out", "an integer >= 2"),
     (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--t-end", "nan"], "--t-end", "finite and > 0"),
     (["orbit", "--andoyer", "0.3,1,0.2,1,0", "--rtol", "-1"], "--rtol", "finite and > 0"),

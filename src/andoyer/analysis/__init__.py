@@ -34,6 +34,6 @@ topic, imported on demand (``from andoyer.analysis.chaos.lyapunov import indicat
   :mod:`~andoyer.analysis.space.inertial` (axis traces, precession and nutation, the
   herpolhode, the Hess heteroclinic cycle in space).
 
-The former flat module paths (``andoyer.analysis.separatrix``, ...) import for one
-release with a ``DeprecationWarning``.
+Each sub-package re-exports the functions and classes of its modules
+(``from andoyer.analysis.splitting import separatrix_splitting``).
 """

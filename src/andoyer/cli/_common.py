@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
-import sys
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any, Literal, NamedTuple
 
@@ -84,35 +83,13 @@ def _flag_type(kind: str, check: Callable[[str, str], Any]) -> Callable[[str], A
 
 
 # ---------------------------------------------------------------------- the vocabulary
-class _Deprecated(argparse.Action):
-    """A former spelling of a flag: works as the new one, with a warning on stderr."""
-
-    def __init__(self, option_strings: Sequence[str], dest: str, new: str = "",
-                 **kwargs: Any) -> None:
-        self.new = new
-        super().__init__(option_strings, dest, **kwargs)
-
-    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
-                 values: Any, option_string: str | None = None) -> None:
-        sys.stderr.write(f"{parser.prog}: warning: {option_string} is deprecated and will be "
-                         f"removed in the next release; use {self.new}\n")
-        setattr(namespace, self.dest, values)
-
-
 def add_term(p: Any, api: str, **kwargs: Any) -> argparse.Action:
     """Add the flag of the API parameter ``api`` with its name from the vocabulary
     (:data:`andoyer.notation.TERMS`): ``dest`` is the API name, the help starts from the
-    table's meaning, and each former spelling still works (hidden from ``--help``) with a
-    deprecation warning naming the new flag."""
+    table's meaning."""
     term = VOCABULARY[api]
     kwargs.setdefault("help", term.meaning)
-    action = p.add_argument(term.flag, dest=api, **kwargs)
-    for old in term.old_cli:
-        p.add_argument(old, dest=api, action=_Deprecated, new=term.flag,
-                       type=kwargs.get("type"), nargs=kwargs.get("nargs"),
-                       choices=kwargs.get("choices"), default=argparse.SUPPRESS,
-                       help=argparse.SUPPRESS)
-    return action
+    return p.add_argument(term.flag, dest=api, **kwargs)
 
 
 # ---------------------------------------------------------------------- outputs
@@ -393,8 +370,7 @@ def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> N
 
 def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
     """``--energy``, ``--M``, ``--section``: energy level ``h`` (``-h`` is help), area
-    constant and section; ``--h`` and ``--area`` still work for one release, with a
-    deprecation warning."""
+    constant and section."""
     add_term(p, "h", type=real(), default=None, metavar="H",
              help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
     add_term(p, "M", type=real(), default=0.0,

@@ -58,7 +58,7 @@ ANGLE_LABELS = {0: "0", 1: "π/2", 2: "π", 3: "3π/2", 4: "2π", 5: "5π/2", 6:
 def chaos_module() -> Any | None:
     """:mod:`andoyer.analysis.chaos.lyapunov` (on heyoka where installed, else on taylor), or None
     if it cannot be imported: the indicator controls are then disabled."""
-    try:  # the module by its full name: the package's shim would warn (former names)
+    try:  # the module by its full name
         return importlib.import_module("andoyer.analysis.chaos.lyapunov")
     except ImportError:  # pragma: no cover - chaos needs no optional package
         return None

@@ -49,7 +49,6 @@ from andoyer.integrate.plane_sampling import (
 from andoyer.integrate.results import describe_variables, provenance
 from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels.generated import equations as K
-from andoyer.notation import renamed
 from andoyer.validation import box, integer
 from andoyer.validation import finite as _finite
 from andoyer.validation import positive as _positive
@@ -222,9 +221,8 @@ class _Equation:
             from scipy.optimize.elementwise import find_root
 
             # All brackets at once (Chandrupatla's method, vectorised): one call of the
-            # energy kernel per iteration for every bracket, instead of a Python-level
-            # brentq per bracket (measured: 0.59 -> 0.05 s for the two maps of the
-            # paper's chaos item, 39 000 scalar kernel calls).
+            # energy kernel per iteration for every bracket, not a Python-level brentq per
+            # bracket (timings: benchmarks/NOTES.md, "fill_section's roots").
             res = find_root(lambda A, pi, qi: self.f(pi, qi, A), (lo, hi),
                             args=(p[pts], q[pts]),
                             tolerances={"xatol": 1e-14 * self.act_max,
@@ -429,7 +427,6 @@ def _bottom(body: RigidBody, M: float) -> float:
         return float(0.5 * min(body.a, body.b, body.c) * np.float64(M) ** 2 - body.mu)
 
 
-@renamed(n="n_orbits", method="sampling")
 @checks_body
 def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits: int = 40,
                  sampling: Method = "grid", seed: int = 0,
@@ -453,12 +450,12 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
         ``G_max = sqrt(2 (h + mu) / min(a, b, c))``. The value is taken mod 2 pi.
     n_orbits : int, default 40
         About this many orbits: plane points (more orbits with ``root="all"`` where the
-        level has several sheets above one point). Formerly ``n`` (deprecated).
+        level has several sheets above one point).
     sampling : {"grid", "sobol", "halton"}
         ``"grid"``: a square grid over the bounding box of the accessible region, sized
         so that about n_orbits of its points are accessible. ``"sobol"``/``"halton"``:
         the first n_orbits accessible points of a scrambled low-discrepancy sequence in
-        that box. Formerly ``method`` (deprecated).
+        that box.
     seed : int, default 0
         Scrambling seed of the low-discrepancy sequences.
     plane_bounds : ((x_min, x_max), (y_min, y_max)), optional

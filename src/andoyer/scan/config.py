@@ -48,7 +48,7 @@ Keys
 
     * ``section``: ``section`` (``"theta2=0"``: plane ``(theta1, J1)``, or ``"g=0"``:
       plane ``(l, L)``; ``":-"`` for the decreasing direction), ``n_orbits`` (20),
-      ``n_crossings`` (300; formerly ``orbits``, ``crossings``), ``sampling``
+      ``n_crossings`` (300), ``sampling``
       (``"sobol"``, ``"halton"``, ``"grid"``),
       ``seed`` (0), ``boundary_grid`` (64), ``t_max`` (default ``1000 * n_crossings``);
     * ``chaos_map``: ``section`` (``"theta2=0"``), ``n = [nx, ny]`` (``[64, 64]``),
@@ -86,7 +86,6 @@ import math
 import numbers
 import os
 import tomllib
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -98,7 +97,6 @@ from andoyer.body import RigidBody
 from andoyer.errors import DamagedFileError
 from andoyer.integrate.engines import ENGINES, installed
 from andoyer.integrate.engines.base import Tolerance
-from andoyer.notation import TERMS
 from andoyer.scan.tasks import REQUIRED, TASKS, Integrator
 from andoyer.validation import integer
 
@@ -150,24 +148,6 @@ def _unknown(where: str, keys: Any, allowed: tuple[str, ...]) -> None:
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             raise ValueError(f"{where}: unknown key {key!r}{hint}; allowed keys: "
                              f"{', '.join(allowed)}")
-
-
-def _renamed_keys(where: str, table: Mapping[str, Any], allowed: Any) -> Mapping[str, Any]:
-    """The table with the keys renamed in this release (``old_config`` of
-    :data:`andoyer.notation.TERMS`) under their new names, each with a ``FutureWarning``
-    (a scan file is the user's: the warning is shown by default)."""
-    out = dict(table)
-    for term in TERMS:
-        for old in term.old_config:
-            if old not in out or term.config is None or term.config not in allowed:
-                continue
-            if term.config in out:
-                raise ValueError(f"{where}: {old!r} is the former name of {term.config!r}; "
-                                 f"give only {term.config!r}")
-            warnings.warn(f"{where}: the key {old!r} is deprecated and will be removed in the "
-                          f"next release; write {term.config!r}", FutureWarning, stacklevel=4)
-            out[term.config] = out.pop(old)
-    return out
 
 
 def _table(data: Mapping[str, Any], name: str, where: str) -> Mapping[str, Any]:
@@ -457,7 +437,6 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
                          "the task; sweep fewer values")
 
     # [task]
-    ttab = _renamed_keys(f"{where}: [task]", ttab, tk.options)
     _unknown(f"{where}: [task] ({task})", ttab, ("kind", *tk.options))
     options: list[tuple[str, Any]] = []
     for key, opt in tk.options.items():

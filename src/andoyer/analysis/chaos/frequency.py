@@ -14,8 +14,8 @@ here in this package's conventions: angular frequencies in rad per time unit (no
 the sign of :math:`e^{+i\omega t}`, complex amplitudes of ``z`` itself. Measured against
 exact signals (4001 samples, three lines, ``p = 2``): frequencies to 9e-15, the same
 accuracy as a hand-written NAFF locating the maximum as the root of
-:math:`d|\phi|^2/d\omega` by Brent's method (7e-15), and 4x faster (0.010 vs 0.039 s) --
-so the library is used. Against the Euler-Poinsot motion in closed form
+:math:`d|\phi|^2/d\omega` by Brent's method (7e-15), and faster (benchmarks/NOTES.md,
+"NAFF") -- so the library is used. Against the Euler-Poinsot motion in closed form
 (:func:`andoyer.analysis.unperturbed.euler_poinsot.euler_poinsot_frequencies`): see
 :func:`orbit_frequencies`.
 
@@ -53,7 +53,6 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.notation import renamed
 from andoyer.validation import checks_arguments, integer, positive
 
 __all__ = ["Lines", "naff", "frequency_drift", "orbit_frequencies", "frequency_map",
@@ -405,7 +404,6 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
         "y0": ("y_0", "initial Euler-Poisson state", "1", "(1)")})
 
 
-@renamed(n="n_orbits")
 @checks_body
 def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float], *,
                   n_orbits: int = 100, t_end: float = 2000.0, n_samples: int = 8193,
@@ -427,7 +425,7 @@ def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float
     section : (coord, value)
         ``("theta2", v)`` (plane ``(theta1, J1)``) or ``("g", v)`` (plane ``(l, L)``).
     n_orbits : int
-        About this many orbits (formerly ``n``, deprecated).
+        About this many orbits.
     t_end, n_samples, engine, window, progress :
         As in :func:`orbit_frequencies`.
 

@@ -76,7 +76,6 @@ from andoyer.analysis.chaos.specs import (
     IndicatorRun,
     MapGrid,
     Tangent,
-    regroup,
 )
 from andoyer.analysis.chaos.tangent_space import initial_tangent
 from andoyer.body import RigidBody, checks_body
@@ -386,7 +385,7 @@ def _describe(ds: xr.Dataset) -> None:
 def chaos_map(body: RigidBody, h: float, M: float, section: Any,
               grid: MapGrid | int | tuple[int, int] = DEFAULT_GRID,
               run: IndicatorRun = DEFAULT_RUN, *, engine: EngineLike = None,
-              chunk: int = 1024, progress: bool | None = None, **former: Any) -> xr.Dataset:
+              chunk: int = 1024, progress: bool | None = None) -> xr.Dataset:
     """FLI and/or MEGNO over a grid of a section's plane, on the energy level ``H = h``.
 
     Every grid point of the plane -- ``(l, L)`` of a ``g = const`` section or
@@ -429,11 +428,6 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         doubles; the progress line advances per chunk.
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
-    **former
-        The keywords of the previous release (``n``, ``plane_bounds``, ``root``,
-        ``indicator``, ``t_end``, ``n_samples``, ``tangent``, ``tol``, ``batch_size``,
-        ``n_threads``), accepted for one release with a ``DeprecationWarning``
-        (:data:`~andoyer.analysis.chaos.specs.FORMER_KEYWORDS`).
 
     Returns
     -------
@@ -464,8 +458,8 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     >>> ds.fli.dims, int(ds.accessible.sum()) > 0
     (('J1', 'theta1'), True)
     """
-    spec, job, options = regroup("chaos_map", grid, run, former, stacklevel=5)
-    eng = _engine(engine, "fli_map" if job.indicator == "fli" else "tangent", **options)
+    spec, job = MapGrid.of(grid), IndicatorRun.of(run)
+    eng = _engine(engine, "fli_map" if job.indicator == "fli" else "tangent")
     h = finite("h", h)
     M = finite("M", M)
     nx, ny = spec.n  # type: ignore[misc]

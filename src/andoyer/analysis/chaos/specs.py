@@ -6,16 +6,10 @@ level ``h``, area constant ``M``, section) as arguments, and these two objects f
 rest, as diffrax's ``diffeqsolve`` takes a controller and an event, so that its signature
 says in three words what a map is: a grid, an indicator run, an engine. Each object checks
 its fields when it is made (``andoyer.validation``: the message names the field).
-
-The flat keywords of the previous release (``n=``, ``t_end=``, ``tol=``, ...) are still
-accepted for one release with a ``DeprecationWarning`` (:func:`regroup`, the one place that
-knows where each went).
 """
 
 from __future__ import annotations
 
-import dataclasses
-import warnings
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -23,8 +17,7 @@ from andoyer.analysis.chaos.registry import INDICATORS, MAP_CHOICES, MAP_EXTRAS,
 from andoyer.integrate.engines.base import Tolerance
 from andoyer.validation import box, choice, grid, integer, positive
 
-__all__ = ["MapGrid", "IndicatorRun", "INDICATOR_CHOICES", "TANGENT_SPACES", "ROOTS",
-           "FORMER_KEYWORDS"]
+__all__ = ["MapGrid", "IndicatorRun", "INDICATOR_CHOICES", "TANGENT_SPACES", "ROOTS"]
 
 #: One of :data:`INDICATOR_CHOICES` (the registry's map indicators, or all of them).
 Indicator = str
@@ -168,50 +161,31 @@ class IndicatorRun:
         object.__setattr__(self, "tangent", choice("tangent", self.tangent, TANGENT_SPACES))
         object.__setattr__(self, "tol", Tolerance.single(self.tol).tol)
 
+    @classmethod
+    def of(cls, value: Any, name: str = "run") -> IndicatorRun:
+        """``value`` itself if it is an :class:`IndicatorRun`; ``TypeError`` naming
+        ``name`` otherwise.
+
+        Parameters
+        ----------
+        value : IndicatorRun
+            The run.
+        name : str, default "run"
+            The user's argument, named in the error.
+
+        Examples
+        --------
+        >>> IndicatorRun.of(IndicatorRun("megno")).indicator
+        'megno'
+        """
+        if not isinstance(value, IndicatorRun):
+            raise TypeError(f"{name} must be an IndicatorRun (indicator, t_end, n_samples, "
+                            f"tangent, tol), got {value!r}")
+        return value
+
     @property
     def renormalised(self) -> bool:
         """Whether the tangent vector is renormalised (an indicator that needs it asked
         for: MEGNO)."""
         return any(INDICATORS[k].renormalised for k in (*chosen(self.indicator), *MAP_EXTRAS))
 
-
-#: Former keywords of ``chaos_map`` (previous release) -> the object that holds them now.
-FORMER_KEYWORDS = {"n": "grid", "plane_bounds": "grid", "root": "grid",
-                   "indicator": "run", "t_end": "run", "n_samples": "run", "tangent": "run",
-                   "tol": "run", "batch_size": "engine", "n_threads": "engine"}
-_NEW = {"grid": "grid=MapGrid({k}=...)", "run": "run=IndicatorRun({k}=...)",
-        "engine": "engine=resolve_engine(name, {k}=...)"}
-
-
-def regroup(func: str, grid: Any, run: Any, former: dict[str, Any], *, stacklevel: int = 3
-            ) -> tuple[MapGrid, IndicatorRun, dict[str, Any]]:
-    """The grid, the run and the engine options of a call that may use the flat keywords
-    of the previous release (each warns once, ``DeprecationWarning``, naming its new
-    place; a keyword that never existed is a ``TypeError`` as Python's own).
-
-    >>> import warnings
-    >>> with warnings.catch_warnings(record=True) as w:
-    ...     warnings.simplefilter("always")
-    ...     g, r, opts = regroup("chaos_map", 8, IndicatorRun(), {"t_end": 5.0})
-    >>> g.n, r.t_end, opts, str(w[0].message)[:45]
-    ((8, 8), 5.0, {}, 'chaos_map(t_end=...) is deprecated and will b')
-    """
-    unknown = sorted(set(former) - set(FORMER_KEYWORDS))
-    if unknown:
-        raise TypeError(f"{func}() got an unexpected keyword argument {unknown[0]!r}")
-    grid = MapGrid.of(grid)
-    if not isinstance(run, IndicatorRun):
-        raise TypeError(f"run must be an IndicatorRun (indicator, t_end, n_samples, tangent, "
-                        f"tol), got {run!r}")
-    fields: dict[str, dict[str, Any]] = {"grid": {}, "run": {}, "engine": {}}
-    for k, v in former.items():
-        where = FORMER_KEYWORDS[k]
-        warnings.warn(f"{func}({k}=...) is deprecated and will be removed in the next "
-                      f"release; use {_NEW[where].format(k=k)}", DeprecationWarning,
-                      stacklevel=stacklevel)
-        fields[where][k] = v
-    if fields["grid"]:
-        grid = dataclasses.replace(grid, **fields["grid"])
-    if fields["run"]:
-        run = dataclasses.replace(run, **fields["run"])
-    return grid, run, fields["engine"]

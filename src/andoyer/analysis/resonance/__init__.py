@@ -14,13 +14,44 @@
   harmonic (a pendulum).
 """
 
-from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form, normal_form_frequency
-from andoyer.analysis.resonance.near_centre import resonant_normal_form
-from andoyer.analysis.resonance.predict import (
-    resonance_widths,
-    resonant_tori,
-    section_rotation_number,
-)
+from __future__ import annotations
 
-__all__ = ["resonant_tori", "resonance_widths", "section_rotation_number",
-           "birkhoff_normal_form", "normal_form_frequency", "resonant_normal_form"]
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form as birkhoff_normal_form
+    from andoyer.analysis.resonance.birkhoff import normal_form_frequency as normal_form_frequency
+    from andoyer.analysis.resonance.measure import measure_island as measure_island
+    from andoyer.analysis.resonance.near_centre import resonant_normal_form as resonant_normal_form
+    from andoyer.analysis.resonance.predict import FreeTopTorus as FreeTopTorus
+    from andoyer.analysis.resonance.predict import free_top_at_gap as free_top_at_gap
+    from andoyer.analysis.resonance.predict import resonance_widths as resonance_widths
+    from andoyer.analysis.resonance.predict import resonant_tori as resonant_tori
+    from andoyer.analysis.resonance.predict import (
+        section_rotation_number as section_rotation_number,
+    )
+    from andoyer.analysis.resonance.torus import Torus as Torus
+    from andoyer.analysis.resonance.torus import free_top_phase as free_top_phase
+    from andoyer.analysis.resonance.torus import sample_torus as sample_torus
+
+#: Name -> the module of this package that defines it (imported on first use).
+EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhoff",
+           "measure_island": "measure", "resonant_normal_form": "near_centre", "resonance_widths":
+           "predict", "resonant_tori": "predict", "section_rotation_number": "predict", "Torus":
+           "torus", "free_top_phase": "torus", "sample_torus": "torus", "free_top_at_gap":
+           "predict", "FreeTopTorus": "predict"}
+
+__all__ = sorted(EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in EXPORTS:
+        raise AttributeError(f"module 'andoyer.analysis.resonance' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"andoyer.analysis.resonance.{EXPORTS[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(EXPORTS))

@@ -2,4 +2,37 @@
 datasets of :func:`andoyer.integrate.attitude`: :mod:`~andoyer.analysis.space.lagrange_top`
 (nutation bounds and mean precession of the Lagrange top) and
 :mod:`~andoyer.analysis.space.inertial` (axis traces on the unit sphere, precession and
-nutation of orbits, the herpolhode, the Hess heteroclinic cycle in space)."""
+nutation of orbits, the herpolhode, the Hess heteroclinic cycle in space).
+
+The functions of its modules are names of this package too, but for ``lagrange_top``, the
+name of its module: ``from andoyer.analysis.space.lagrange_top import lagrange_top``.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from andoyer.analysis.space.inertial import axis_trace as axis_trace
+    from andoyer.analysis.space.inertial import herpolhode as herpolhode
+    from andoyer.analysis.space.inertial import heteroclinic_cycle as heteroclinic_cycle
+    from andoyer.analysis.space.inertial import precession_nutation as precession_nutation
+
+#: Name -> the module of this package that defines it (imported on first use).
+EXPORTS = {"axis_trace": "inertial", "herpolhode": "inertial", "heteroclinic_cycle": "inertial",
+           "precession_nutation": "inertial"}
+
+__all__ = sorted(EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in EXPORTS:
+        raise AttributeError(f"module 'andoyer.analysis.space' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"andoyer.analysis.space.{EXPORTS[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(EXPORTS))

@@ -43,7 +43,6 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 from typing import NamedTuple
 
 import numpy as np
@@ -164,16 +163,6 @@ class EulerPoinsotFrequencies(NamedTuple):
         ``g = const`` (turns of ``(l, L)`` per return), the inverse of
         :attr:`frequency_ratio`."""
         return 1.0 / self.frequency_ratio
-
-    @property
-    def rotation_number(self) -> float:
-        """Deprecated name of :attr:`frequency_ratio` (``omega_g / omega_l``, not the
-        section map's rotation number, which is :attr:`rotation_number_g_section`)."""
-        warnings.warn("EulerPoinsotFrequencies.rotation_number is deprecated and will be "
-                      "removed in the next release: it is omega_g / omega_l, now "
-                      "frequency_ratio; the section map's rotation number omega_l / omega_g "
-                      "is rotation_number_g_section", DeprecationWarning, stacklevel=2)
-        return self.frequency_ratio
 
 
 @checks_body
