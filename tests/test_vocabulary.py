@@ -30,7 +30,8 @@ CLI_ONLY = {
     "--points": "paper-check sampling", "--format": "output format", "--jobs": "report",
     "--quick": "report", "--only": "report", "--engines": "report", "--version": "",
     "--no-limits": "cost guards", "--frames": "animation frames (API t)",
-    "--fps": "animation frame rate", "--debug": "traceback", "--help": "",
+    "--fps": "animation frame rate", "--size": "animation frame side (px)",
+    "--debug": "traceback", "--help": "",
 }
 
 #: The API functions each command calls: its flags must be their parameters.

@@ -116,3 +116,14 @@ def test_animate_in_a_pipe_prints_plain_progress_lines(tmp_path, capsys):
                     capsys)
     assert code == 0 and "\r" not in err
     assert "[6/6] frames of top.gif: 100 %" in err, err
+
+
+def test_help_names_each_body_with_its_flags(capsys):
+    """``animate --help`` lists ``--body lagrange`` with the flags it takes."""
+    from andoyer.cli._common import BODY_FLAGS
+
+    with pytest.raises(SystemExit):
+        main(["animate", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for name, flags in BODY_FLAGS.items():
+        assert f"{name}: " + " ".join(f"--{f}" for f in flags) in text, name

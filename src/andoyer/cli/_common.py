@@ -183,12 +183,14 @@ def distinct_outputs(outputs: Iterable[Path], inputs: Iterable[Path] = ()) -> No
 def add_body_args(p: argparse.ArgumentParser) -> None:
     """The body group of every command that takes a body (:func:`body_from_args`)."""
     g = p.add_argument_group("body")
-    g.add_argument("--body", default="paper",
-                   choices=("paper", "hess", "custom", "lagrange", "kovalevskaya",
-                            "goryachev-chaplygin"),
-                   help="paper: Hess body A=2.5, B=2.0, C=2.2, mu=0.01 (default); hess: "
-                        "Hess body from --A --B --C --mu; custom: --A --B --C --mu --r; "
-                        "paper and hess bodies turn off the Hess direction with --epsilon")
+    g.add_argument("--body", default="paper", choices=tuple(BODY_FLAGS),
+                   help="paper: Hess body A=2.5, B=2.0, C=2.2, mu=0.01 (default); each "
+                        "body with its flags: " + "; ".join(
+                            f"{name}: " + " ".join(f"--{flag}" for flag in flags)
+                            for name, flags in BODY_FLAGS.items())
+                        + " (lagrange: A = B; kovalevskaya: A = B = 2C; goryachev-chaplygin: "
+                          "A = B = 4C); --epsilon turns a paper or hess body off the Hess "
+                          "direction")
     for name in ("A", "B", "C"):
         add_term(g, name, type=real(positive=True))
     add_term(g, "mu", type=real())
