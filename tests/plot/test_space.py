@@ -72,6 +72,9 @@ def test_plotly_gyroscope_frames_follow_the_attitude(ds):
     last = fig.frames[-1].data[0]
     assert np.allclose([last.x[1], last.y[1], last.z[1]], R[-1, :, 2])
     assert np.allclose(fig.data[1].x, R[:, 0, 2])
+    # the Play/Pause buttons and the slider sit under the scene, off its axis labels
+    bottom = fig.layout.scene.domain.y[0]
+    assert fig.layout.updatemenus[0].y < bottom and fig.layout.sliders[0].y < bottom
 
 
 def test_space_figures_have_no_overlapping_labels(ds):

@@ -442,6 +442,11 @@ def _encoder_error(exc: subprocess.CalledProcessError, final: Path) -> EncoderEr
                         f"{said}; nothing was written to {str(final)!r}")
 
 
+#: Where the 3D scene of :func:`gyroscope_plotly` starts (fraction of the height): its
+#: controls sit under it.
+SCENE_BOTTOM = 0.2
+
+
 def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any:
     """The gyroscope moving, as an interactive Plotly 3D figure (the explorer's 3D view).
 
@@ -518,7 +523,9 @@ def gyroscope_plotly(ds: xr.Dataset, orbit: int = 0, *, frames: int = 60) -> Any
               "label": f"{t[k]:.3g}", "method": "animate"} for k in keys]
     fig.update_layout(
         meta="andoyer-gyroscope", showlegend=False, margin={"l": 0, "r": 0, "t": 0, "b": 0},
-        scene={"aspectmode": "cube", "xaxis": {"range": [-1.1, 1.1], "title": "X"},
+        # the scene above the Play/Pause buttons and the slider (they covered its axes)
+        scene={"domain": {"x": [0.0, 1.0], "y": [SCENE_BOTTOM, 1.0]},
+               "aspectmode": "cube", "xaxis": {"range": [-1.1, 1.1], "title": "X"},
                "yaxis": {"range": [-1.1, 1.1], "title": "Y"},
                "zaxis": {"range": [-1.1, 1.1], "title": "Z"}},
         updatemenus=[{"type": "buttons", "showactive": False, "x": 0.02, "y": 0.02,
