@@ -532,10 +532,10 @@ def markdown(result: dict[str, Any]) -> str:
         " |G| ~ 1 on the level of (l, g, L, G, M) = (0.3, 0, 0.3, 1, 0). Tolerance 1e-12 "
         "everywhere (rtol = atol). Wall time: median of the timed runs after one warm-up "
         "run; CPU: all threads. Errors against an extended-precision heyoka reference "
-        "(long double, tol 1e-19). **x default** = this runner's time / andoyer on the "
-        "heyoka engine (the default where heyoka is installed, except the workloads of "
-        "`andoyer.integrate.engines.MEASURED_DEFAULTS`, set from these tables: see "
-        "\"Which engine for what\" in `SUMMARY.md`).",
+        "(long double, tol 1e-19). **x heyoka** = this runner's time / andoyer on the "
+        "heyoka engine (the default where heyoka is installed for every workload but those "
+        "of `andoyer.integrate.engines.MEASURED_DEFAULTS`, the FLI map on taylor: the "
+        "default of each workload is the table \"Which engine for what\" in `SUMMARY.md`).",
         ""]
     for wl in ("W1", "W2", "W3", "W4", "W5"):
         sub = [r for r in rows if r.workload == wl]
@@ -553,7 +553,7 @@ def markdown(result: dict[str, Any]) -> str:
                                  f"{_fmt(r.extra.get('compile_paid_s', math.nan), 's')} |")
                 lines.append("")
                 continue
-            lines += ["| runner | wall | CPU | x default | error median | error max | note |",
+            lines += ["| runner | wall | CPU | x heyoka | error median | error max | note |",
                       "|---|---|---|---|---|---|---|"]
             for r in cs:
                 ratio = r.wall_s / base if base > 0 and math.isfinite(r.wall_s) else math.nan
