@@ -76,19 +76,26 @@ def test_command_line_never_shows_a_traceback(command, data, tmp_path_factory, c
 # modules). A function added tomorrow is hunted tomorrow; if the hunt cannot call it, the
 # test says which required argument needs a good value below.
 HUNTED = ("andoyer", "andoyer.integrate", "andoyer.charts", "andoyer.analysis")
+#: Modules below those packages whose ``__all__`` is hunted too: the attitude API (the
+#: charts' and integrate's package APIs do not re-export it whole).
+HUNTED_MODULES = ("andoyer.charts.rotation", "andoyer.integrate.orientation")
+#: Public functions of otherwise unhunted packages that take user input: the explorer's
+#: figure builders (its side panel passes them the selected orbit).
+HUNTED_CALLABLES = {"andoyer.plot.space": ("gyroscope_plotly", "gyroscope_animation")}
 #: Public subpackages not hunted here, and why (a new subpackage must be placed).
 NOT_HUNTED = {
     "andoyer.cli": "the command line is hunted by test_command_line_never_shows_a_traceback",
     "andoyer.explore": "the explorer's forms convert through validation (tests/explore)",
     "andoyer.scan": "scan configurations are hunted in tests/scan (parse_config)",
-    "andoyer.plot": "figures of datasets the library made; they compute nothing",
+    "andoyer.plot": "figures of datasets the library made; they compute nothing (but the "
+                    "explorer's figure builders, HUNTED_CALLABLES)",
     "andoyer.io": "files the library wrote; damaged files are tested in tests/io",
     "andoyer.report": "the paper report, run from the command line",
     "andoyer.kernels": "Numba kernels on plain floats, below the validating layer",
     "andoyer.symbolic": "SymPy derivations: no user input",
 }
 #: Result records: built by the library, returned to the user, not validated on input.
-RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerPoissonEquilibrium",
+RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerAngles", "EulerPoissonEquilibrium",
            "EulerPoinsotFrequencies", "FixedPoint", "FixedPointSet", "Floquet", "Formula",
            "Lines", "ManifoldBranch", "ManifoldCurve", "Monodromy", "PermanentRotation",
            "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus"}
@@ -106,6 +113,8 @@ def _public_modules():
             for info in pkgutil.walk_packages(pkg.__path__, prefix=f"{name}."):
                 if not info.ispkg and info.name.count(".") == 3:
                     yield importlib.import_module(info.name)
+    for name in HUNTED_MODULES:
+        yield importlib.import_module(name)
 
 
 def _public_callables() -> dict[str, Any]:
@@ -113,8 +122,13 @@ def _public_callables() -> dict[str, Any]:
     for mod in _public_modules():
         for name in mod.__all__:
             obj = getattr(mod, name)
-            if callable(obj) and name not in RECORDS and name not in NO_INPUT:
+            if (callable(obj) and not isinstance(obj, type | dict) and name not in RECORDS
+                    and name not in NO_INPUT):
                 out.setdefault(name, obj)
+    for modname, names in HUNTED_CALLABLES.items():
+        mod = importlib.import_module(modname)
+        for name in names:
+            out.setdefault(name, getattr(mod, name))
     return out
 
 
@@ -175,13 +189,24 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "resonant_normal_form": {"body": RigidBody(2.5, 1.0, 2.0, 1e-3, (0.6, 0.48, 0.64)),
                              "h": 1.0, "resonance": "2:1", "axis": 2},
     "splitting_vs_epsilon": {"body": HESS, "n_phase": 8},
+    # the attitude API: quaternions (scalar first), rotation matrices, Euler angles
+    **{f: {"q": [0.9, 0.1, -0.3, 0.2]} for f in ("quaternion_conjugate", "rotation_matrix",
+                                                 "euler_angles")},
+    "quaternion_product": {"left": [0.9, 0.1, -0.3, 0.2], "right": [0.5, 0.5, -0.5, 0.5]},
+    "quaternion_from_matrix": {"R": np.eye(3)},
+    "quaternion_from_euler": {"psi": 0.3, "theta": 1.1, "phi": -0.4},
+    "quaternion_from_vertical": {"gamma": [0.0, 0.6, 0.8]},
+    "attitude_variables": {"q": [[1.0, 0.0, 0.0, 0.0]], "G": [[0.0, 0.0, 1.0]],
+                           "dims": ("time",)},
+    "gyroscope_animation": {"fps": 20},
     **{f: {"mu": 0.01} for f in ("pendulum_energy", "pendulum_modulus", "pendulum_motion",
                                  "pendulum_period", "pendulum_solution",
                                  "predicted_splitting")},
 }
 #: Arguments that are results of the library (built once, on first use).
 LAZY_USERS = {"grow_manifold", "measure_splitting", "splitting_at", "orbits_dataset",
-              "axis_trace", "precession_nutation", "herpolhode", "normal_form_frequency"}
+              "axis_trace", "precession_nutation", "herpolhode", "normal_form_frequency",
+              "gyroscope_plotly", "gyroscope_animation"}
 LAZY = {
     "branch": lambda: _manifold()[0], "wu": lambda: _manifold()[1],
     "ws": lambda: _manifold()[2], "orbits": lambda: [_manifold()[0].orbit],
@@ -471,3 +496,46 @@ def test_one_momentum_limit_for_actions_and_levels(name, param):
             assert G <= limit
             continue
         assert G <= limit, f"{name}({param} at |G| = {G:g}) was accepted beyond {limit:g}"
+
+
+# ------------------------------------------------------------------ engine constructors
+def _engine_options() -> list[tuple[str, str]]:
+    """``(engine, option)``: every keyword of every registered engine's constructor
+    (from the registry, so an engine added tomorrow is hunted tomorrow)."""
+    from andoyer.integrate.engines import ENGINES, engine_class
+
+    return [(name, p) for name in sorted(ENGINES)
+            for p in inspect.signature(engine_class(name)).parameters]
+
+
+#: Values no engine option takes: the bad classes of the API hunt and counts beyond what
+#: the compiled kernels hold (``max_steps=10**30`` was accepted, then propagate raised
+#: OverflowError from kernels/threads.py).
+ENGINE_BAD = {**BAD_CLASSES, "zero": 0, "huge_int": 10**30, "fraction": 2.5}
+#: Documented values of the classes above: chunksize=0 splits the orbits evenly up front.
+ENGINE_ACCEPTED = {("chunksize", "zero")}
+
+
+@pytest.mark.parametrize("engine, option", _engine_options())
+def test_engine_constructors_refuse_bad_options_naming_them(engine, option):
+    from andoyer.integrate.engines import engine_class
+
+    if engine == "heyoka":
+        pytest.importorskip("heyoka")
+    param = inspect.signature(engine_class(engine)).parameters[option]
+    failures = []
+    for cls, value in ENGINE_BAD.items():
+        if (_accepts(param, cls) or (option, cls) in ENGINE_ACCEPTED
+                or (cls == "fraction" and "float" in str(param.annotation))):
+            continue
+        try:
+            eng = engine_class(engine)(**{option: value})
+        except (ValueError, TypeError) as exc:
+            if not _names(str(exc), option):
+                failures.append(f"{engine}({option}={cls}): not naming it: {exc}")
+            continue
+        except Exception as exc:  # noqa: BLE001 -- what leaked is the finding
+            failures.append(f"{engine}({option}={cls}): leaked {type(exc).__name__}: {exc}")
+            continue
+        failures.append(f"{engine}({option}={cls}): accepted, {eng!r}")
+    assert not failures, "\n".join(failures)

@@ -367,3 +367,39 @@ def test_roots_of_a_map_grid_near_the_boundary_and_singular_sets(body, coord, M)
         want = _scalar_roots(body, h, M, coord, 0.4, pi, qi)
         assert g.size == want.size, (pi, qi, g, want)
         np.testing.assert_allclose(g, want, rtol=1e-12, atol=1e-13)  # solver: xatol 1e-14 G_max
+
+
+# ---------------------------------------------------- no hang near the minimum of H
+DEGENERATE = -RigidBody.paper().mu * (1.0 - 1e-7)
+
+
+@pytest.mark.timeout(120)
+@pytest.mark.parametrize("sampling", ["grid", "sobol", "halton"])
+def test_a_degenerate_level_returns_or_refuses_within_its_cost(sampling):
+    """h = -mu (1 - 1e-7), theta2 = 3 pi / 2, five orbits, the paper's body: the accessible
+    points' roots lie on the chart's singular set, and the grid was refined for ever (no
+    result after 300 s). Now the plane points tried are bounded before the work starts
+    (measured: a refusal in 2-3 s, or the few regular orbits Sobol's points find)."""
+    import time
+
+    t0 = time.perf_counter()
+    try:
+        ds = fill_section(RigidBody.paper(), DEGENERATE, 0.0, ("theta2", 3 * np.pi / 2),
+                          n_orbits=5, sampling=sampling)
+    except ValueError as exc:
+        assert "only where no orbit can start" in str(exc) and "raise h" in str(exc)
+    else:
+        assert 1 <= ds.sizes["orbit"] and float(ds.residual.max()) <= 1e-12
+    assert time.perf_counter() - t0 < 60.0
+
+
+def test_the_cost_of_the_search_is_checked_before_it_starts():
+    from andoyer.errors import CostLimitError
+    from andoyer.integrate import budget
+
+    with budget.limits(steps=1e5), pytest.raises(CostLimitError, match="fill_section"):
+        fill_section(RigidBody.paper(), DEGENERATE, 0.0, ("theta2", 3 * np.pi / 2),
+                     n_orbits=5)
+    # The estimate grows with the orbits asked for: a million orbits is refused at once.
+    with pytest.raises(CostLimitError, match="fill_section"):
+        fill_section(RigidBody.paper(), 0.2466, 0.0, ("g", 0.0), n_orbits=10**6)

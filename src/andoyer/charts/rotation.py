@@ -91,20 +91,20 @@ def _quaternions(name: str, q: ArrayLike) -> NDArray[np.float64]:
     return arr
 
 
-def quaternion_product(p: ArrayLike, q: ArrayLike) -> NDArray[np.float64]:
-    """Hamilton's product ``p (x) q`` of scalar-first quaternions (broadcast).
+def quaternion_product(left: ArrayLike, right: ArrayLike) -> NDArray[np.float64]:
+    """Hamilton's product ``left (x) right`` of scalar-first quaternions (broadcast).
 
     Parameters
     ----------
-    p, q : array_like, shape (..., 4)
-        Quaternions (scalar first), broadcast.
+    left, right : array_like, shape (..., 4)
+        The factors (scalar first), broadcast.
 
     Examples
     --------
     >>> quaternion_product([0, 1, 0, 0], [0, 0, 1, 0]).tolist()  # i j = k
     [0.0, 0.0, 0.0, 1.0]
     """
-    P, Q = _quaternions("p", p), _quaternions("q", q)
+    P, Q = _quaternions("left", left), _quaternions("right", right)
     p0, p1, p2, p3 = np.moveaxis(P, -1, 0)
     q0, q1, q2, q3 = np.moveaxis(Q, -1, 0)
     return np.stack(np.broadcast_arrays(p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,

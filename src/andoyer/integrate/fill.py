@@ -73,6 +73,12 @@ _SCAN_SLAB = 256
 #: at G = 0 (where the chart and the kernels are undefined).
 _ACTION_FLOOR = 1e-9
 _GOLDEN_ITERATIONS = 64
+#: Most plane points the sampling tries, per orbit asked for (at least
+#: :data:`_MIN_SAMPLE_POINTS`): near a degenerate minimum of H on the section the
+#: accessible points may have no admissible root (the minimum on the chart's singular
+#: set), and the search ends there instead of refining its grid for ever.
+SAMPLE_POINTS_PER_ORBIT = 64
+_MIN_SAMPLE_POINTS = 4096
 _INV_PHI = (math.sqrt(5.0) - 1.0) / 2.0
 
 
@@ -488,7 +494,14 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
     ValueError
         Unknown section coordinate, ``n_orbits < 1``, unknown sampling or root choice,
         ``|M|`` too large for h, or an energy level that does not meet the section (the
-        message gives the energy range on the section).
+        message gives the energy range on the section), or meets it only where no orbit
+        can start (a degenerate level near the minimum of H on the section: none of the
+        ``SAMPLE_POINTS_PER_ORBIT * n_orbits`` plane points tried has a root off the
+        chart's singular set).
+    andoyer.errors.CostLimitError
+        The evaluations of H the search may take (the boundary grid and the plane points
+        it may try, bounded before the work starts) exceed the limit of
+        :mod:`andoyer.integrate.budget`.
 
     Notes
     -----
@@ -521,8 +534,16 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
         raise ValueError(f"unknown root choice {root!r}; choose 'all', 'smallest' or "
                          "'largest'")
     boundary_grid = integer("boundary_grid", boundary_grid, 8)
-    # Roots of n points (~500 bytes each) and the boundary grid (~100 bytes a point).
-    budget.check("fill_section", memory=500.0 * n + 100.0 * float(boundary_grid) ** 2)
+    # The work, bounded before it starts: evaluations of H (each about an integration
+    # step's cost) on the boundary grid (scan and golden search over the action) and on
+    # the plane points the sampling may try (scan over the action); memory of the roots
+    # of n points (~500 bytes each) and of the boundary grid (~100 bytes a point).
+    max_points = max(SAMPLE_POINTS_PER_ORBIT * n, _MIN_SAMPLE_POINTS)
+    evaluations = (float(boundary_grid) ** 2 * (_N_SCAN_GRID + 2 * _GOLDEN_ITERATIONS)
+                   + max_points * _N_SCAN_ROOTS * 1.5)
+    budget.check("fill_section", steps=evaluations,
+                 memory=500.0 * n + 100.0 * float(boundary_grid) ** 2
+                 + 8.0 * _N_SCAN_ROOTS * min(max_points, _SCAN_SLAB) * 4)
     energy_fn = _energy_kernel(body, plane)  # the Hess chart raises here if e3 != 0
     bounds = None if plane_bounds is None else _check_bounds(plane_bounds, plane)
     if h <= -body.mu:
@@ -552,9 +573,18 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
             "boundary_grid or narrow plane_bounds")
     box = accessible_box(acc, xs, ys)
     if sampling == "grid":
-        P, Q = grid_points(eq, box, int(n))
+        P, Q = grid_points(eq, box, int(n), max_points)
     else:
-        P, Q = qmc_points(eq, box, int(n), sampling, int(seed))
+        P, Q = qmc_points(eq, box, int(n), sampling, int(seed), max_points)
+    if P.size == 0:
+        hmin = _section_minimum(body, plane, value, M, bounds)
+        raise ValueError(
+            f"energy level h = {h:.10g} meets the section {_label(plane, value, M)} only "
+            f"where no orbit can start: none of {max_points} plane points tried in the "
+            f"accessible box has a root {plane.symbols[3]} off the chart's singular set (a "
+            "degenerate level: H is within a hair of its minimum on the section, about "
+            f"{hmin:.10g}, and the accessible region shrinks to a point or to the singular "
+            "set); raise h")
     roots = eq.roots(P, Q) if P.size else []
     rows: list[tuple[int, float, int, int]] = []
     for i, r in enumerate(roots):

@@ -95,6 +95,18 @@ def attitude_variables(q: ArrayLike, G: ArrayLike, dims: tuple[str, ...]
     """
     Q = finite_array("q", q)
     Gm = finite_array("G", G)
+    if Q.ndim == 0 or Q.shape[-1] != 4:
+        raise ValueError(f"q must have shape (..., 4), got {Q.shape}")
+    if Gm.shape != (*Q.shape[:-1], 3):
+        raise ValueError(f"G must have shape {(*Q.shape[:-1], 3)} (one momentum per "
+                         f"quaternion of q), got {Gm.shape}")
+    if (not isinstance(dims, tuple | list) or len(dims) != Q.ndim - 1
+            or not all(isinstance(d, str) for d in dims)):
+        raise ValueError(f"dims must name the {Q.ndim - 1} leading dimension(s) of q, "
+                         f"got {dims!r}")
+    dims = tuple(dims)
+    if Gm.size:
+        budget.check_momentum(float(np.max(np.abs(Gm))), "G")
     R = rotation_matrix(Q)
     e = euler_angles(Q)
     return {

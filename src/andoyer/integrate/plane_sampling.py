@@ -70,8 +70,9 @@ def has_root(eq: LevelEquation, p: NDArray[np.float64], q: NDArray[np.float64]
     return out
 
 
-def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float], n: int
-                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float], n: int,
+                max_points: int | None = None
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Cell-centred k x k grid over the box, k chosen so that about n points are accessible.
 
     Parameters
@@ -82,14 +83,22 @@ def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float]
         The box of :func:`accessible_box`.
     n : int
         About how many accessible points are wanted.
+    max_points : int, optional
+        Most plane points tried in all (the grids' sizes add up): a level whose
+        accessible points have no admissible root (near a degenerate minimum) ends the
+        search there, with what was found (possibly nothing).
     """
     x0, x1, y0, y1, frac = box
     k = max(1, math.ceil(math.sqrt(n / max(frac, 1e-6))))
+    budget = math.inf if max_points is None else max_points
     best: tuple[int, NDArray[np.float64], NDArray[np.float64]] | None = None
     tried: set[int] = set()
     for _ in range(8):
-        if k in tried:
+        if k * k > budget:  # what is left of the budget: a smaller grid, or none
+            k = math.isqrt(int(budget))
+        if k < 1 or k in tried:
             break
+        budget -= k * k
         tried.add(k)
         gx = x0 + (np.arange(k) + 0.5) * (x1 - x0) / k
         gy = y0 + (np.arange(k) + 0.5) * (y1 - y0) / k
@@ -101,12 +110,14 @@ def grid_points(eq: LevelEquation, box: tuple[float, float, float, float, float]
         if count == n:
             break
         k = 2 * k if count == 0 else max(1, round(k * math.sqrt(n / count)))
-    assert best is not None
+    if best is None:
+        return np.empty(0), np.empty(0)
     return best[1], best[2]
 
 
 def qmc_points(eq: LevelEquation, box: tuple[float, float, float, float, float], n: int,
-                method: str, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+               method: str, seed: int, max_points: int | None = None
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The first n accessible points of a scrambled Sobol or Halton sequence in the box.
 
     Parameters
@@ -121,6 +132,8 @@ def qmc_points(eq: LevelEquation, box: tuple[float, float, float, float, float],
         The low-discrepancy sequence.
     seed : int
         Seed of its scrambling.
+    max_points : int, optional
+        Most points of the sequence tried in all (then what was found is returned).
     """
     x0, x1, y0, y1, frac = box
     from scipy.stats import qmc
@@ -131,7 +144,13 @@ def qmc_points(eq: LevelEquation, box: tuple[float, float, float, float, float],
     xs: list[NDArray[np.float64]] = []
     ys: list[NDArray[np.float64]] = []
     got = 0
+    budget = math.inf if max_points is None else max_points
+    if max_points is not None:
+        m = max(2, min(m, 2 ** int(math.log2(max(max_points, 2)))))
     for _ in range(64):
+        if budget < m:
+            break
+        budget -= m
         u = engine.random(m)
         X, Y = x0 + (x1 - x0) * u[:, 0], y0 + (y1 - y0) * u[:, 1]
         keep = has_root(eq, X, Y)
