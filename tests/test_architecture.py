@@ -123,6 +123,7 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "analysis/hess/reduced.py": "analysis/hess/test_hess_solution.py",
     "analysis/paper/trajectories.py": "report/test_paper.py",
     "analysis/resonance/torus.py": "analysis/resonance/test_predict.py",
+    "analysis/resonance/second_order.py": "analysis/resonance/test_predict.py",
     "analysis/space/lagrange_top.py": "analysis/space/test_inertial.py",
     "analysis/unperturbed/portraits.py": "analysis/unperturbed/test_separatrix.py",
     "charts/andoyer_deprit.py": "charts/test_charts.py",

@@ -191,6 +191,8 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         (R10 of :mod:`~andoyer.analysis.resonance.predict`) with
         ``predicted_stable_s_next_order`` (R12: the estimated size of its ``O(mu^2)`` term)
         and ``predicted_stable_s_holds`` (that estimate below the half-width),
+        ``predicted_stable_s_2`` (the second-order position, (S1)-(S4) of
+        :mod:`~andoyer.analysis.resonance.second_order`: error ``O(mu^3)``),
         ``libration_frequency``; ``seed_s``,
         ``seed_locked``, ``seed_drift`` per orbit run (dim ``seed``).
 
@@ -302,6 +304,9 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                                       "maxiter": _STABLE_EVALUATIONS})
     predicted_stable = float(chain.stable_shift(np.array([probe.phase]))[0])
     next_order = abs(chain.second_order_mean_shift())
+    from andoyer.analysis.resonance.second_order import SecondOrderChain
+
+    second = SecondOrderChain(chain, 2).stable_s(probe.phase, g_star)
     ds = xr.Dataset(
         {"predicted_half_width": ((), dG), "measured_half_width": ((), measured),
          "half_width_error": ((), measured - dG), "edge_uncertainty": ((), unc),
@@ -311,6 +316,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
          "stable_s": ((), float(stable.x)), "stable_span": ((), float(stable.fun)),
          "predicted_stable_s": ((), predicted_stable),
          "predicted_stable_s_next_order": ((), next_order),
+         "predicted_stable_s_2": ((), second),
          "predicted_stable_s_holds": ((), bool(next_order < dG)),
          "seed_s": ("seed", np.array(log_s)), "seed_locked": ("seed", np.array(log_l)),
          "seed_drift": ("seed", np.array(log_d))},
@@ -342,6 +348,9 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                                "1", "(R10)"),
         "predicted_stable_s_next_order": ("", "estimated size of the O(mu^2) term of "
                                           "predicted_stable_s", "1", "(R12)"),
+        "predicted_stable_s_2": ("\\delta G", "second-order position of the stable point "
+                                 "on the seed line (Lie-Deprit normal form to mu^2)", "1",
+                                 "(S1)-(S4)"),
         "predicted_stable_s_holds": ("", "the estimate is below the predicted half-width: "
                                      "the first-order stable point lies inside the island",
                                      "1", "(R12)"),

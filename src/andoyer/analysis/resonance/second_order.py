@@ -1,0 +1,273 @@
+r"""The island chain's centre to second order in ``mu``: the Lie-Deprit normal form of (R2).
+
+(S1) The reduced Hamiltonian of the section map (R2) to second order: solving
+     ``H0(I1, G) + mu V = h`` for ``G = G0(I1) + mu G1 + mu^2 G2``,
+     ``K = -G = K0(I1) + mu K1 + mu^2 K2``, ``K1 = V / omega_g``,
+     ``K2 = -(V V_G / omega_g^2 - (d omega_g/dG) V^2 / (2 omega_g^3))``, the derivatives in
+     ``G`` at fixed ``I1`` (``d/dG|_I = d/dG|_h + omega_g d/dh|_G``, from tori off the level).
+(S2) The jets of (D1) about the resonant torus ``I1*``: seven tori on the level at
+     ``G* + j d`` (``j = -3 .. 3``), their actions ``x_j = I1 - I1* = -int dG / W``
+     (Gauss-Legendre on :func:`~andoyer.analysis.resonance.predict.free_top_at_gap`),
+     every Fourier coefficient of ``K1``, ``K2`` and ``G0`` interpolated in ``x``;
+     ``omega(x) = W`` likewise, with ``omega_0 = p/q``.
+(S3) The resonant normal form to order 2 by Deprit's triangle
+     (:func:`~andoyer.analysis.resonance.deprit.lie_deprit`), resonance
+     ``k1 p + k2 q = 0`` (``t = phi2``).
+(S4) The centre of the island on a line of the section: at the new angles of a point,
+     the action where ``dKt/dJ = p/q`` (the innermost level curve of the slow Hamiltonian
+     touches the line there), mapped back to the old ``(I1, phi1)`` by (D4), then
+     ``G = -K`` and the plane point's free-top label ``G_label = sqrt(G^2 + 2 mu V/s(l))``
+     (exact: ``H0(l, L, G_label) = h``, ``s = a sin^2 l + b cos^2 l``), with ``(l, L)``
+     and ``V`` on the free-top torus ``(h - mu V, G)`` through the state (fixed point).
+
+The error is ``O(mu^3)`` in the position; the width at second order is not computed here.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from andoyer.analysis.resonance.deprit import JetSpace, lie_deprit, transform
+from andoyer.analysis.resonance.predict import ResonantChain, free_top_at_gap
+from andoyer.analysis.resonance.torus import (
+    fourier_coefficients,
+    perturbation,
+    sample_torus,
+)
+from andoyer.charts.andoyer_deprit import from_andoyer
+
+__all__ = ["SecondOrderChain"]
+
+#: Degree of the jets in ``x`` (the position needs 2 for K1, 1 for K2, 3 for K0).
+DEGREE = 4
+#: Half the number of tori of the interpolation in ``x`` (S2).
+_HALF = 3
+#: Their spacing, as a fraction of the distance to the nearer end of the regime.
+_SPACING = 0.03
+
+
+def _at(body: Any, h: float, G: float, M: float, sign: int, n: int, n2: int
+        ) -> tuple[Any, NDArray[np.complex128]]:
+    t = sample_torus(body, h, G, M, sign, n)
+    return t, fourier_coefficients(body, t, n2)
+
+
+class SecondOrderChain:
+    """(S1)-(S4) for one chain of :class:`~andoyer.analysis.resonance.predict.ResonantChain`.
+
+    Parameters
+    ----------
+    chain : ResonantChain
+        The first-order chain (its torus, ``p``, ``q``, the level).
+    order : int
+        Order in ``mu`` of the normal form (1 or 2).
+    """
+
+    def __init__(self, chain: ResonantChain, order: int = 2) -> None:
+        self.chain, self.order = chain, int(order)
+        body, h, M, T = chain.body, chain.h, chain.M, chain.torus
+        p, q, G0 = chain.p, chain.q, T.G
+        n1, n2 = T.phi1.size, 8
+        self.space = JetSpace(DEGREE, n1, n2)
+        row = chain.row
+        d = _SPACING * min(G0 - row["lo"], row["hi"] - G0)
+        Gs = G0 + d * np.arange(-_HALF, _HALF + 1)
+        e0 = row["gap"]
+        qc = sorted((body.a, body.b, body.c))[1]
+
+        def W_of(G: float) -> float:
+            return free_top_at_gap(body, h, e0 + qc * (G - G0) * (G + G0) / (2 * h)
+                                   ).rotation_number
+
+        nodes, weights = np.polynomial.legendre.leggauss(12)
+        xs = []
+        for G in Gs:   # x = -int_{G0}^{G} dG / W
+            mid, half = 0.5 * (G + G0), 0.5 * (G - G0)
+            xs.append(-half * sum(w / W_of(mid + half * z)
+                                  for z, w in zip(nodes, weights, strict=True)))
+        self.x_nodes = x = np.array(xs)
+        K1s, K2s, Ws = [], [], []
+        dh, dG = 1e-5 * h, 1e-5 * G0
+        for G in Gs:
+            t, V = _at(body, h, G, M, T.sign, n1, n2)
+            tp, vp = _at(body, h + dh, G, M, T.sign, n1, n2)
+            tm, vm = _at(body, h - dh, G, M, T.sign, n1, n2)
+            gp, wp = _at(body, h, G + dG, M, T.sign, n1, n2)
+            gm, wm = _at(body, h, G - dG, M, T.sign, n1, n2)
+            wg = t.omega_g
+            V_G = (wp - wm) / (2 * dG) + wg * (vp - vm) / (2 * dh)          # (S1)
+            H0_GG = ((gp.omega_g - gm.omega_g) / (2 * dG)
+                     + wg * (tp.omega_g - tm.omega_g) / (2 * dh))
+            grid = n1 * n2
+            v = np.fft.ifft2(V) * grid
+            vg = np.fft.ifft2(V_G) * grid
+            G2 = (v * vg).real / wg**2 - H0_GG * (v.real ** 2) / (2 * wg**3)
+            K1s.append(V / wg)
+            K2s.append(np.fft.fft2(-G2) / grid)
+            Ws.append(W_of(G))
+        vander = np.vander(x, 2 * _HALF + 1, increasing=True)
+        inv = np.linalg.inv(vander)
+
+        def jet(values: list[NDArray[np.complex128]]) -> NDArray[np.complex128]:
+            c = np.tensordot(inv, np.array(values), axes=(1, 0))
+            return np.asarray(c[: DEGREE + 1])
+
+        self.K1, self.K2 = jet(K1s), jet(K2s)
+        self.omega = list(np.real(inv @ np.array(Ws))[: DEGREE + 1])
+        self.omega[0] = p / q
+        self.G_poly = inv @ Gs                    # G0(I1* + x)
+        H = [self.K1, 2.0 * self.K2][: self.order]
+        self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, p, q)
+        xj = self.space.zeros()
+        xj[1, 0, 0] = 1.0
+        self.X = transform(self.space, xj, self.Ws)
+        self.P = transform(self.space, None, self.Ws)
+
+    # ------------------------------------------------------------------ series
+    def _series(self, parts: list[Any], x: float, phi: float, t: float) -> float:
+        mu, sp = self.chain.body.mu, self.space
+        return sum(mu**n / math.factorial(n) * sp.evaluate(parts[n], x, phi, t).real
+                   for n in range(1, self.order + 1))
+
+    def _dKt(self, x: float, phi: float, t: float) -> float:
+        """``dKt/dJ`` of the normal form at new ``(x, phi, t)``."""
+        mu, sp = self.chain.body.mu, self.space
+        w = sum(c * x**j for j, c in enumerate(self.omega))
+        return w + sum(mu**n / math.factorial(n)
+                       * sp.evaluate(sp.d_x(self.Ht[n - 1]), x, phi, t).real
+                       for n in range(1, self.order + 1))
+
+    def centre(self, phi_old: float, t: float) -> tuple[float, float]:
+        """(S4): the old ``(x, G)`` of the island's centre at old phase ``phi_old`` and
+        time ``t = phi2``."""
+        c = self.chain
+        target = c.p / c.q
+        x_new, phi_new = 0.0, phi_old
+        for _ in range(30):
+            # Newton in x on dKt/dJ = p/q (numerical derivative), then the new phase
+            f = self._dKt(x_new, phi_new, t) - target
+            h = 1e-6 * (abs(x_new) + 1e-6)
+            df = (self._dKt(x_new + h, phi_new, t) - self._dKt(x_new - h, phi_new, t)) / (2 * h)
+            x_step = f / df
+            x_new -= x_step
+            phi_next = phi_old - self._series(self.P, x_new, phi_new, t)
+            done = abs(x_step) < 1e-15 and abs(phi_next - phi_new) < 1e-14
+            phi_new = phi_next
+            if done:
+                break
+        x_old = x_new + self._series(self.X, x_new, phi_new, t)
+        mu, sp = c.body.mu, self.space
+        G0 = float(sum(g * x_old**j for j, g in enumerate(self.G_poly)))
+        G = G0 - mu * sp.evaluate(self.K1, x_old, phi_old, t).real
+        if self.order >= 2:
+            G -= mu**2 * sp.evaluate(self.K2, x_old, phi_old, t).real
+        return x_old, G
+
+    def label(self, phi_old: float, g_star: float) -> float:
+        """(S4): ``G_label - G*`` of the island's centre where the section ``g = g*`` meets
+        the old phase ``phi_old``."""
+        c = self.chain
+        body, h, M, T = c.body, c.h, c.M, c.torus
+        t = g_star - float(np.interp(phi_old, np.append(T.phi1, 2 * math.pi),
+                                     np.append(T.rho, T.rho[0])))
+        hp = h
+        for _ in range(6):
+            x_old, G = self.centre(phi_old, t)
+            tor = sample_torus(body, hp, G, M, T.sign, T.phi1.size)
+            from andoyer.analysis.resonance.predict import trig_interpolate
+
+            l = float(trig_interpolate(tor, np.unwrap(tor.l), np.array([phi_old]))[0])
+            L = float(trig_interpolate(tor, tor.L, np.array([phi_old]))[0])
+            rho = float(trig_interpolate(tor, tor.rho, np.array([phi_old]))[0])
+            t = g_star - rho
+            state = from_andoyer([l, g_star, L, G, M])
+            V = float(perturbation(body, state))
+            hp = h - body.mu * V
+        s = body.a * math.sin(l) ** 2 + body.b * math.cos(l) ** 2
+        return math.sqrt(G * G + 2 * body.mu * V / s) - T.G
+
+    def _to_new(self, G: float, phi_old: float, t: float) -> tuple[float, float]:
+        """New ``(x, phi)`` of the old state ``(G, phi1, phi2)``: ``x_old`` from
+        ``G = G0(x) - mu K1 - mu^2 K2`` (Newton), then (D4) inverted by iteration."""
+        mu, sp = self.chain.body.mu, self.space
+
+        def G_of(x: float) -> float:
+            out = float(sum(g * x**j for j, g in enumerate(self.G_poly)))
+            out -= mu * sp.evaluate(self.K1, x, phi_old, t).real
+            if self.order >= 2:
+                out -= mu**2 * sp.evaluate(self.K2, x, phi_old, t).real
+            return out
+
+        x = 0.0
+        for _ in range(40):
+            hstep = 1e-7
+            d = (G_of(x + hstep) - G_of(x - hstep)) / (2 * hstep)
+            step = (G_of(x) - G) / d
+            x -= step
+            if abs(step) < 1e-16:
+                break
+        x_new, phi_new = x, phi_old
+        for _ in range(40):
+            x_next = x - self._series(self.X, x_new, phi_new, t)
+            phi_next = phi_old - self._series(self.P, x_new, phi_new, t)
+            done = abs(x_next - x_new) < 1e-16 and abs(phi_next - phi_new) < 1e-15
+            x_new, phi_new = x_next, phi_next
+            if done:
+                break
+        return x_new, phi_new
+
+    def stable_s(self, phase: float, g_star: float) -> float:
+        """(S4) on the seed line of :func:`~andoyer.analysis.resonance.measure.measure_island`:
+        the ``s`` (``G`` units along the normal through the torus point of phase ``phase``)
+        where the slow Hamiltonian ``Kt - (p/q) J`` is extremal along the line (the
+        innermost level curve touches it: the orbit of least libration), by secant steps
+        on its derivative in ``s``."""
+        from andoyer.analysis.resonance.predict import trig_interpolate
+        from andoyer.analysis.resonance.torus import free_top_phase
+        from andoyer.integrate.fill import section_roots
+
+        c = self.chain
+        body, h, M, T = c.body, c.h, c.M, c.torus
+        mu, sp, p, q = body.mu, self.space, c.p, c.q
+        mom0 = c.states(np.array([phase]))
+        l0, L0 = float(np.arctan2(mom0[0, 0], mom0[0, 1])), float(mom0[0, 2])
+        dl, dL = (float(v[0]) for v in c.normal(mom0))
+
+        def new(s: float) -> tuple[float, float, float]:
+            l, L = l0 + s * dl, L0 + s * dL
+            roots = section_roots(body, h, M, ("g", g_star), [l], [L])[0]
+            G = float(roots[np.argmin(np.abs(roots - (T.G + s)))])
+            mom = from_andoyer([l, g_star, L, G, M])[:3]
+            phi = float(free_top_phase(body, mom)[0]) % (2 * math.pi)
+            h_free = 0.5 * (body.a * mom[0] ** 2 + body.b * mom[1] ** 2 + body.c * mom[2] ** 2)
+            tor = sample_torus(body, h_free, G, M, T.sign, T.phi1.size)
+            t = g_star - float(trig_interpolate(tor, tor.rho, np.array([phi]))[0])
+            x, ph = self._to_new(G, phi, t)
+            return x, ph, t
+
+        def slope(s: float) -> float:
+            ds = 1e-3 * (c.dG if math.isfinite(c.dG) else 1e-6)
+            a, b = new(s - ds), new(s + ds)
+            x, ph, t = new(s)
+            dx, dpsi = (b[0] - a[0]) / (2 * ds), (q * (b[1] - a[1]) - p * (b[2] - a[2])) / (2 * ds)
+            Kx = self._dKt(x, ph, t) - p / q
+            Kphi = sum(mu**n / math.factorial(n)
+                       * sp.evaluate(sp.d_phi(self.Ht[n - 1]), x, ph, t).real
+                       for n in range(1, self.order + 1))
+            return Kx * dx + Kphi / q * dpsi
+
+        s0 = float(c.stable_shift(np.array([phase]))[0])
+        s1 = s0 + 1e-2 * (c.dG if math.isfinite(c.dG) else 1e-6)
+        f0, f1 = slope(s0), slope(s1)
+        for _ in range(20):
+            if f1 == f0:
+                break
+            s0, s1, f0 = s1, s1 - f1 * (s1 - s0) / (f1 - f0), f1
+            if abs(s1 - s0) < 1e-13 * max(1e-3, abs(s1)):
+                break
+            f1 = slope(s1)
+        return s1
