@@ -5,13 +5,10 @@ Numba compiles every jitted function into its own *library*: an LLVM module that
 optimised (the full module pipeline) and emitted as machine code into the process,
 whoever calls it. A compiled caller links the optimised modules of its callees into its
 own and optimises and emits the whole again; the code that runs is the caller's copy.
-With the Taylor kernels' helpers nested three deep (an entry point, the orbit loop, the
-step and the section search, the jets), every helper was optimised once per level above
-it and emitted once more for nothing. Of the 6.2 s of CPU of the taylor engine's cold
-first ``propagate`` + ``poincare`` (W4), LLVM's module passes and emission took 2.6 s,
-1.7 s of it on the helpers' own libraries (0.9 s passes, 0.8 s emission), whose code
-never ran (measured with Numba's library timings); with this module the same calls take
-3.8-4.0 s.
+With the kernels' helpers nested three deep (an entry point, the orbit loop, the step and
+the section search, the jets), every helper was optimised once per level above it and
+emitted once more for nothing: most of a cold first call's LLVM time went to the
+helpers' own libraries, whose code never runs (measured: benchmarks/NOTES.md#link-only).
 
 :class:`LinkOnlyCompiler`, given to ``numba.njit(pipeline_class=...)``, compiles a
 function into a :class:`LinkOnlyLibrary`: Numba's own typing, lowering and per-function
@@ -19,34 +16,89 @@ LLVM passes, then nothing more. Its module is linked, as it is, into each caller
 module passes optimise the entry point and everything it calls once, as one unit; only
 the library's *environment* globals (the word Numba writes a pointer into when it
 registers the function) go into the process's JIT engine. Such a function has no
-address: only other compiled code can use it (helpers of :func:`kernel_jit
-<andoyer.kernels.common.kernel_jit>`, which have no Python entry anyway). A
-process that loads an entry point from the cache links nothing and never needed the
-helpers' own code.
+address: only other compiled code can use it (the helpers of
+:func:`~andoyer.kernels.common.kernel_jit`, which have no Python entry anyway). A process
+that loads an entry point from the cache links nothing and never needed the helpers' own
+code. The kernels give the same floats, bit for bit, with this pipeline and with Numba's
+(``tests/kernels/test_link_only.py`` compiles them both ways in fresh processes).
 
-Same results: the Taylor kernels (every entry point of :mod:`andoyer.kernels.taylor.flow`
-and :mod:`andoyer.kernels.taylor.tangent`, 4 orbits x 2 bodies, all 15 section kinds x 2
-directions, tangent, renormalised, attitude and jets: 146 arrays) gave the same floats,
-bit for bit, compiled fresh and loaded from the cache, as with Numba's pipeline; the
-machine code differs in register allocation and in the copies LLVM duplicates (the same
-floating-point operations, as the arrays show), and the W1/W2 kernel times did not
-change (within the 5 % noise of a loaded machine). A test compiles the kernels with
-Numba's pipeline in a fresh process and compares (``tests/kernels/test_link_only.py``).
+It overrides private Numba methods (``CPUCodeLibrary._finalize_final_module``,
+``_optimize_final_module``, a pipeline class's ``state.library``), so it is used only
+where :func:`enabled`:
 
-It leans on Numba internals (``CPUCodeLibrary._finalize_final_module``,
-``_optimize_final_module``, a pipeline class's ``state.library``), so :func:`supported`
-checks them once and :func:`link_only_options` leaves the pipeline out where they are
-missing: the helpers are then compiled as plain Numba functions (slower to compile).
+* on the Numba releases it was tested with, :data:`TESTED_NUMBA` (a test fails when the
+  installed Numba is not on the list, so a new release is tested before it is added);
+* when those internals are there (:func:`supported`);
+* unless the environment variable :data:`SWITCH_ENV` (``ANDOYER_LINK_ONLY``) is ``0``,
+  ``false``, ``no`` or ``off``, read once, when this module is imported.
+
+Elsewhere the helpers are compiled as plain Numba functions (without their Python and
+C-callback wrappers, through Numba's own pipeline): the same floats, a longer cold
+compile, and no warning (nothing is wrong; the switch and the list are documented in
+the guide's numerics page).
 """
 
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
+import os
+import re
+from collections.abc import Callable, Mapping
 from typing import Any
 
 __all__ = ["LinkOnlyCompiler", "LinkOnlyLibrary", "link_only_options", "link_only_jit",
-           "supported"]
+           "supported", "enabled", "switched_on", "numba_release", "TESTED_NUMBA", "SWITCH_ENV"]
+
+#: Numba releases (major, minor) whose internals this module was tested with; on any other
+#: the helpers are plain Numba functions. Add a release only after
+#: ``tests/kernels/test_link_only.py`` passed on it.
+TESTED_NUMBA: tuple[tuple[int, int], ...] = ((0, 68),)
+
+#: Environment variable that turns the link-only pipeline off (``0``, ``false``, ``no``,
+#: ``off``); unset or anything else: on where :func:`supported`.
+SWITCH_ENV = "ANDOYER_LINK_ONLY"
+_OFF = frozenset({"0", "false", "no", "off"})
+
+
+def switched_on(environ: Mapping[str, str] | None = None) -> bool:
+    """Whether :data:`SWITCH_ENV` leaves the link-only pipeline on.
+
+    Parameters
+    ----------
+    environ : mapping, optional
+        The environment to read (default ``os.environ``).
+
+    Examples
+    --------
+    >>> switched_on({}), switched_on({"ANDOYER_LINK_ONLY": "0"})
+    (True, False)
+    >>> switched_on({"ANDOYER_LINK_ONLY": " Off "}), switched_on({"ANDOYER_LINK_ONLY": "1"})
+    (False, True)
+    """
+    value = (os.environ if environ is None else environ).get(SWITCH_ENV, "")
+    return value.strip().lower() not in _OFF
+
+
+def numba_release(version: str | None = None) -> tuple[int, int] | None:
+    """``(major, minor)`` of a Numba version string (default the installed Numba's);
+    None if it does not start with two integers.
+
+    Parameters
+    ----------
+    version : str, optional
+        A version such as ``"0.68.1"`` or ``"0.69.0rc1"``.
+
+    Examples
+    --------
+    >>> numba_release("0.68.1"), numba_release("0.70rc1"), numba_release("x")
+    ((0, 68), (0, 70), None)
+    """
+    if version is None:
+        import numba
+
+        version = numba.__version__
+    found = re.match(r"(\d+)\.(\d+)", version)
+    return (int(found[1]), int(found[2])) if found else None
 
 
 def _classes() -> tuple[type, type] | None:
@@ -69,20 +121,36 @@ def _classes() -> tuple[type, type] | None:
 
 @functools.cache
 def supported() -> bool:
-    """Whether this Numba has the internals :class:`LinkOnlyLibrary` uses (and the
-    JIT codegen makes libraries of that class).
+    """Whether this Numba is a tested release (:data:`TESTED_NUMBA`) with the internals
+    :class:`LinkOnlyLibrary` uses (and its JIT codegen makes libraries of that class).
+    A release off the list is not looked into at all.
 
     Examples
     --------
-    >>> supported()
+    >>> supported() == (numba_release() in TESTED_NUMBA)
     True
     """
+    if numba_release() not in TESTED_NUMBA:
+        return False
     found = _classes()
     if found is None:
         return False
     from numba.core import codegen
 
     return getattr(codegen.JITCPUCodegen, "_library_class", None) is found[0]
+
+
+@functools.cache
+def enabled() -> bool:
+    """Whether helpers are compiled link-only in this process: :func:`supported` and
+    :func:`switched_on` (read once: the first answer holds for the process).
+
+    Examples
+    --------
+    >>> enabled() == (supported() and switched_on())
+    True
+    """
+    return switched_on() and supported()
 
 
 def _build_classes() -> tuple[type, type]:
@@ -163,25 +231,26 @@ def _build_classes() -> tuple[type, type]:
     return _Library, _Compiler
 
 
-if supported():
+if enabled():
     LinkOnlyLibrary, LinkOnlyCompiler = _build_classes()
-else:  # pragma: no cover - another Numba
+else:  # switched off, or another Numba: Numba's own pipeline, no private method touched
     LinkOnlyLibrary = LinkOnlyCompiler = None  # type: ignore[assignment]
 
 
 def link_only_options() -> dict[str, Any]:
     """Options of :func:`numba.njit` compiling a function into its callers only: the
     pipeline of :class:`LinkOnlyCompiler`, with neither the Python nor the C-callback
-    wrapper (nothing could call them); only the wrappers' removal where this Numba lacks
-    the internals (:func:`supported`).
+    wrapper (nothing could call them); only the wrappers' removal where the pipeline is
+    not :func:`enabled` (Numba's own pipeline).
 
     Examples
     --------
-    >>> sorted(link_only_options())
-    ['no_cfunc_wrapper', 'no_cpython_wrapper', 'pipeline_class']
+    >>> sorted(link_only_options()) == (["no_cfunc_wrapper", "no_cpython_wrapper"]
+    ...                                 + ["pipeline_class"] * enabled())
+    True
     """
     options: dict[str, Any] = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
-    if supported():
+    if enabled():
         options["pipeline_class"] = LinkOnlyCompiler
     return options
 
