@@ -11,8 +11,10 @@ import inspect
 import math
 import pkgutil
 import re
+import tempfile
 import time
 import warnings
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -98,7 +100,8 @@ NOT_HUNTED = {
 RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerAngles", "EulerPoissonEquilibrium",
            "EulerPoinsotFrequencies", "FixedPoint", "FixedPointSet", "Floquet", "Formula",
            "Lines", "ManifoldBranch", "ManifoldCurve", "Monodromy", "PermanentRotation",
-           "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus"}
+           "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus",
+           "CertifiedMelnikov", "MelnikovZero", "HyperbolicRotation"}
 #: Public names that take no user input worth hunting (documented acceptance).
 NO_INPUT = {"derive_reduced_hamiltonian": "no arguments (a SymPy derivation)",
             "paper_check": "n and seed are hunted in tests/analysis/paper/test_paper_check.py"}
@@ -135,6 +138,9 @@ def _public_callables() -> dict[str, Any]:
 API = _public_callables()
 
 HESS = RigidBody.hess(2.5, 1.0, 1.6, mu=0.01)
+#: A folder for the functions that write or read a file.
+_HUNT_FOLDER = Path(tempfile.mkdtemp(prefix="andoyer-hunt-"))
+(_HUNT_FOLDER / "read.json").write_text('{"format": "andoyer-certificate"}')
 FREE = RigidBody(2.5, 2.0, 2.2, 0.0, (1.0, 0.0, 0.0))
 #: Public functions that need heyoka itself (skipped where it is not installed).
 HEYOKA_ONLY: set[str] = set()
@@ -199,12 +205,15 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "attitude_variables": {"q": [[1.0, 0.0, 0.0, 0.0]], "G": [[0.0, 0.0, 1.0]],
                            "dims": ("time",)},
     "gyroscope_animation": {"fps": 20},
+    "write_certificate": {"path": str(_HUNT_FOLDER / "cert.json")},
+    "read_certificate": {"path": str(_HUNT_FOLDER / "read.json")},
     **{f: {"mu": 0.01} for f in ("pendulum_energy", "pendulum_modulus", "pendulum_motion",
                                  "pendulum_period", "pendulum_solution",
                                  "predicted_splitting")},
 }
 #: Arguments that are results of the library (built once, on first use).
-LAZY_USERS = {"grow_manifold", "measure_splitting", "splitting_at", "orbits_dataset",
+LAZY_USERS = {"verify_certificate", "write_certificate", "grow_manifold",
+              "measure_splitting", "splitting_at", "orbits_dataset",
               "axis_trace", "precession_nutation", "herpolhode", "normal_form_frequency",
               "gyroscope_plotly", "gyroscope_animation"}
 LAZY = {
@@ -212,7 +221,15 @@ LAZY = {
     "ws": lambda: _manifold()[2], "orbits": lambda: [_manifold()[0].orbit],
     "nf": lambda: _normal_form(), "I": lambda: [0.01],
     "ds": lambda: _attitude_dataset(),
+    "cert": lambda: _certificate(),
 }
+
+
+@functools.cache
+def _certificate() -> dict[str, Any]:
+    from andoyer.analysis.splitting.certificate import prove_certificate
+
+    return prove_certificate(B, digits=10)
 
 
 @functools.cache

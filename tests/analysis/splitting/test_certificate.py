@@ -62,7 +62,7 @@ def _shift_box(c, k, by):
     (lambda c: c.update(branch="theta1=0"), "line"),
     (lambda c: c["heteroclinic_line"].update(theta1="[0 +/- 1e-30]"), "line"),
     (lambda c: c["mu_interval"].update(upper="0.1"), "mu interval"),
-    (lambda c: _shift_box(c, 0, 3 * arb(c["zeros"][0]["box"]).rad()), "Krawczyk|enclose"),
+    (lambda c: _shift_box(c, 0, 3 * arb(c["zeros"][0]["box"]).rad()), "Krawczyk|where"),
     (lambda c: _shift_box(c, 1, arb("0.5")), "Krawczyk"),
     (lambda c: c["zeros"].__setitem__(1, copy.deepcopy(c["zeros"][0])), "same zero"),
     (lambda c: c["coefficient"].update(real="[1.0 +/- 1e-30]"), "coefficient"),

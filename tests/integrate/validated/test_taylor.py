@@ -156,3 +156,16 @@ def test_remainder_makes_long_steps_rigorous():
     for k in range(len(orb.times)):
         assert orb.contains(k, ref[k])
     assert orb.rad[-1].max() > 1e-8  # the remainder is what the width is made of
+
+
+def test_backward_flow_returns_to_the_start():
+    """Forward to t = 5 then backward from the enclosure's hull: the box holds the start."""
+    body = RigidBody.paper()
+    fwd = validated_flow(body, Y0, 5.0)
+    with working_precision(128):
+        end = [arb(x) for x in fwd.states[-1]]
+        back = validated_flow(body, [arb(x.mid()) for x in end], 5.0, backward=True,
+                              radius=[float(x.rad()) for x in end])
+    assert back.times[-1] == -5.0
+    assert back.contains(len(back.times) - 1, Y0)
+    assert not back.contains(len(back.times) - 1, [Y0[0] + 1e-15, *Y0[1:]])

@@ -37,8 +37,13 @@ from andoyer.analysis.splitting.certified import (
     certified_melnikov,
     melnikov_coefficient,
 )
-from andoyer.errors import CertificateError
-from andoyer.integrate.validated.arithmetic import FLINT_VERSION, BodySpec, working_precision
+from andoyer.errors import ArgumentTypeError, CertificateError
+from andoyer.integrate.validated.arithmetic import (
+    FLINT_VERSION,
+    BodySpec,
+    spec_of,
+    working_precision,
+)
 
 __all__ = ["FORMAT", "KIND", "prove_certificate", "write_certificate", "read_certificate",
            "verify_certificate"]
@@ -102,6 +107,7 @@ def prove_certificate(body: Any, *, branch: str = "theta1=4phi0", sheet: int = 1
     """
     from andoyer._version import __version__
 
+    body = spec_of(body)
     res = certified_melnikov(body, branch=branch, sheet=sheet, J2=J2, digits=digits,
                              phases=[])
     if not res.complete or len(res.zeros) != 2:
@@ -147,14 +153,29 @@ def write_certificate(cert: dict[str, Any], path: str | os.PathLike[str]) -> Pat
     cert : dict
         From :func:`prove_certificate`.
     path : str or os.PathLike
-        The file.
+        The file (``.json``).
     """
     from andoyer.atomic import atomic_path
 
-    out = Path(path)
+    if not isinstance(cert, dict):
+        raise ArgumentTypeError(f"cert must be a certificate (a dict), got "
+                                f"{type(cert).__name__}")
+    out = _path("path", path)
+    if out.suffix.lower() != ".json":
+        raise ValueError(f"path {str(out)!r} must name a .json file")
+    try:
+        text = json.dumps(cert, indent=1, allow_nan=False)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"cert is not JSON: {exc}") from None
     with atomic_path(out) as tmp:
-        tmp.write_text(json.dumps(cert, indent=1) + "\n")
+        tmp.write_text(text + "\n")
     return out
+
+
+def _path(name: str, value: Any) -> Path:
+    if isinstance(value, bool) or not isinstance(value, str | os.PathLike) or not str(value):
+        raise ArgumentTypeError(f"{name} must be a file path, got {value!r:.60}")
+    return Path(value)
 
 
 def read_certificate(path: str | os.PathLike[str]) -> dict[str, Any]:
@@ -165,7 +186,9 @@ def read_certificate(path: str | os.PathLike[str]) -> dict[str, Any]:
     path : str or os.PathLike
         The file.
     """
-    p = Path(path)
+    p = _path("path", path)
+    if not p.is_file():
+        raise ValueError(f"path {str(p)!r}: no such file")
     try:
         text = p.read_text()
     except UnicodeDecodeError:
@@ -209,7 +232,15 @@ def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[st
         Foreign JSON, a missing field, another python-flint, an altered content, or a
         box the Krawczyk test does not prove (one line naming what failed).
     """
-    data = cert if isinstance(cert, dict) else read_certificate(cert)
+    if isinstance(cert, dict):
+        data = cert
+    else:
+        if isinstance(cert, bool) or not isinstance(cert, str | os.PathLike):
+            raise ArgumentTypeError(f"cert must be a certificate (a dict) or its file, got "
+                                    f"{cert!r:.60}")
+        if not Path(cert).is_file():
+            raise ValueError(f"cert {str(cert)!r}: no such file")
+        data = read_certificate(cert)
     if data.get("format") != FORMAT:
         raise CertificateError(f"not an andoyer certificate (format {data.get('format')!r}, "
                                f"expected {FORMAT!r})")
@@ -282,9 +313,9 @@ def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[st
             if not (Kx.lower() > X.lower() and Kx.upper() < X.upper()):
                 raise CertificateError(f"zeros[{k}]: the Krawczyk test fails on its box "
                                        f"{z.get('box')}")
-            if not K.contains(Kx):
-                raise CertificateError(f"zeros[{k}]: the recorded zero does not enclose "
-                                       "K(box)")
+            if not K.overlaps(Kx):
+                raise CertificateError(f"zeros[{k}]: the recorded zero is not where "
+                                       "K(box) puts it")
             mids.append(float(m))
             rads.append(float(X.rad()))
         gap = abs(math.remainder(mids[0] - mids[1], math.tau))

@@ -75,14 +75,17 @@ from andoyer.integrate.validated.arithmetic import (
     ball_text,
     body_symbols,
     correct_digits,
+    decimal,
     evaluate,
     field_terms,
+    precision,
+    spec_of,
     working_precision,
 )
+from andoyer.validation import finite_array
 
 __all__ = ["CertifiedMelnikov", "MelnikovZero", "certified_melnikov", "melnikov_coefficient",
-           "heteroclinic_orbit_balls",
-           "krawczyk_zero"]
+           "heteroclinic_orbit_balls"]
 
 
 #: Symbols standing for ``sin g, cos g, sin l, cos l, cos J, sin J, J2`` along ``x0``.
@@ -169,7 +172,9 @@ class _Setup:
 
 
 def _setup(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int) -> _Setup:
-    if branch not in BRANCHES:
+    J2 = decimal("J2", J2, positive=True, maximum=1e6)
+    bits = precision("bits", bits)
+    if not isinstance(branch, str) or branch not in BRANCHES:
         raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
     if isinstance(sheet, bool) or sheet not in (1, -1):
         raise ValueError(f"sheet must be +1 or -1, got {sheet!r}")
@@ -192,29 +197,31 @@ def _setup(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int) -> _Setu
                       omega=hess_balls.c * J2b, values=values, tail_constant=K)
 
 
-def heteroclinic_orbit_balls(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int
+def heteroclinic_orbit_balls(body: RigidBody | BodySpec, branch: str = "theta1=4phi0",
+                             sheet: int = 1, J2: str = "1", bits: int = 128
                              ) -> tuple[arb, arb]:
     """``(theta1, lambda)``: the line of the heteroclinic orbit and its rate, as balls.
 
     Parameters
     ----------
-    spec : BodySpec
+    body : RigidBody or BodySpec
         The body.
-    branch : {"theta1=0", "theta1=4phi0"}
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
         The line.
-    sheet : {+1, -1}
+    sheet : {+1, -1}, default 1
         Which of its orbits.
-    J2 : str
+    J2 : str, default "1"
         The level.
-    bits : int
+    bits : int, default 128
         Working precision.
     """
-    setup = _setup(spec, branch, sheet, J2, bits)
+    setup = _setup(spec_of(body), branch, sheet, J2, bits)
     return setup.theta1, setup.lam
 
 
-def melnikov_coefficient(spec: BodySpec, *, branch: str = "theta1=4phi0", sheet: int = 1,
-                         J2: str = "1", bits: int = 192) -> tuple[acb, acb, float]:
+def melnikov_coefficient(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi0",
+                         sheet: int = 1, J2: str = "1", bits: int = 192
+                         ) -> tuple[acb, acb, float]:
     """``(Z, Z_closed, T)``: ``M(theta2_0) = Re(Z e^{i theta2_0})``, two enclosures of Z.
 
     ``Z = int (v - i u) e^{i (omega t + theta1/2)} dt`` (``{E, H1} = u sin g + v cos g``
@@ -224,7 +231,7 @@ def melnikov_coefficient(spec: BodySpec, *, branch: str = "theta1=4phi0", sheet:
 
     Parameters
     ----------
-    spec : BodySpec
+    body : RigidBody or BodySpec
         The body.
     branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
         The separatrix line.
@@ -241,7 +248,9 @@ def melnikov_coefficient(spec: BodySpec, *, branch: str = "theta1=4phi0", sheet:
     >>> bool(Z.overlaps(Zc)), correct_digits(Z.real) > 30
     (True, True)
     """
+    spec = spec_of(body)
     setup = _setup(spec, branch, sheet, J2, bits)
+    bits = precision("bits", bits)
     with working_precision(bits):
         target = arb(2) ** (-bits + 24)
         T = 2 * ((8 * setup.tail_constant * setup.J2 / setup.lam) / target).log() / setup.lam
@@ -290,7 +299,7 @@ class MelnikovZero:
     derivative_rad: float
 
 
-def krawczyk_zero(Z: acb, guess: arb, radius: arb) -> MelnikovZero | None:
+def _krawczyk_zero(Z: acb, guess: arb, radius: arb) -> MelnikovZero | None:
     """The Krawczyk test of ``M(theta) = Re(Z e^{i theta})`` on ``X = guess +- radius``.
 
     Parameters
@@ -482,18 +491,15 @@ def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi
     start = time.perf_counter()
     if isinstance(digits, bool) or not isinstance(digits, int) or not 5 <= digits <= 200:
         raise ValueError(f"digits must be an integer in [5, 200], got {digits!r}")
-    spec = body if isinstance(body, BodySpec) else BodySpec.from_body(body)
-    J2 = str(J2)
-    try:
-        float_J2 = float(J2)
-    except ValueError:
-        raise ValueError(f"J2 must be a positive decimal, got {J2!r}") from None
-    if not (math.isfinite(float_J2) and 0.0 < float_J2 <= 1e6):
-        raise ValueError(f"J2 must be a positive decimal (at most 1e6), got {J2!r}")
+    spec = spec_of(body)
+    J2 = decimal("J2", J2, positive=True, maximum=1e6)
+    float_J2 = float(J2)
+    if not isinstance(branch, str) or branch not in BRANCHES:
+        raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
+    if isinstance(sheet, bool) or sheet not in (1, -1):
+        raise ValueError(f"sheet must be +1 or -1, got {sheet!r}")
     th = ((np.arange(8) * math.tau / 8).tolist() if phases is None
-          else [float(p) for p in phases])
-    if not all(math.isfinite(p) for p in th):
-        raise ValueError("phases must be finite")
+          else [float(p) for p in finite_array("phases", phases, ndim=1)])
     hess = BodySpec(spec.A, spec.B, spec.C, spec.branch).body()
     flt = melnikov_off_hess(hess, float(spec.epsilon), np.array(th, dtype=float),
                             J2=float_J2, branch=branch, sheet=sheet)
@@ -538,11 +544,11 @@ def _zeros(Z: acb, digits: int) -> tuple[list[MelnikovZero], bool]:
     for k in (0, 1):
         z = pi / 2 - Z.arg() + k * pi
         z = z - 2 * pi * math.floor(float(z.mid()) / math.tau)
-        big = krawczyk_zero(Z, z, wide)
+        big = _krawczyk_zero(Z, z, wide)
         if big is None:
             raise ArithmeticError(f"the Krawczyk test failed on the box of radius 0.1 "
                                   f"around {float(z.mid())}")
-        tight = krawczyk_zero(Z, arb(big.zero), arb(10) ** (-digits + 3))
+        tight = _krawczyk_zero(Z, arb(big.zero), arb(10) ** (-digits + 3))
         zeros.append(tight if tight is not None else big)
         centres.append(float(z.mid()))
     zeros.sort(key=lambda zz: zz.zero_mid)

@@ -27,13 +27,18 @@ from typing import Any
 
 from flint import acb, acb_mat, arb
 
+from andoyer.body import RigidBody
+from andoyer.errors import ArgumentTypeError
 from andoyer.integrate.validated.arithmetic import (
     FLINT_VERSION,
     BodySpec,
     ball_text,
+    decimal,
+    precision,
     working_precision,
 )
 from andoyer.integrate.validated.taylor import validated_poincare
+from andoyer.validation import integer
 
 __all__ = ["HyperbolicRotation", "certified_rotation"]
 
@@ -123,6 +128,12 @@ def certified_rotation(body: Any, *, G: str = "1", sign: int = 1, bits: int = 12
     start_clock = time.perf_counter()
     if isinstance(sign, bool) or sign not in (1, -1):
         raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+    if not isinstance(body, RigidBody | BodySpec):
+        raise ArgumentTypeError(f"body must be a RigidBody or a BodySpec, got "
+                                f"{type(body).__name__}")
+    G = decimal("G", G, positive=True, maximum=1e6)
+    bits = precision("bits", bits)
+    order = integer("order", order, 4, 60)
     with working_precision(bits):
         if isinstance(body, BodySpec):
             b = body.balls(bits)
@@ -130,9 +141,9 @@ def certified_rotation(body: Any, *, G: str = "1", sign: int = 1, bits: int = 12
         else:
             c, mu, e1, e3 = 1 / arb(body.C), arb(body.mu), arb(body.e1), arb(body.e3)
         if not e3.is_zero():
-            raise ValueError("certified_rotation needs the centre of mass in the (e1, e2) "
-                             "plane (e3 = 0)")
-        Gb = arb(str(G))
+            raise ValueError("certified_rotation needs the body's centre of mass in the "
+                             "(e1, e2) plane (e3 = 0)")
+        Gb = arb(G)
         G3sq = Gb * Gb - 2 * mu * e1 / c
         if not G3sq > 0:
             raise ValueError(f"the level G = {G} is below the top of the pendulum: no "

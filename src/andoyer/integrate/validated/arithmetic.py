@@ -45,6 +45,9 @@ __all__ = [
     "ball_text",
     "ball_from_text",
     "correct_digits",
+    "decimal",
+    "precision",
+    "spec_of",
     "FLINT_VERSION",
 ]
 
@@ -74,6 +77,84 @@ def working_precision(bits: int) -> Iterator[None]:
         yield
     finally:
         flint.ctx.prec = old
+
+
+def decimal(name: str, value: Any, *, positive: bool = False,
+            maximum: float | None = None) -> str:
+    """A decimal number as its text (a ``str`` kept as typed, a real as its shortest
+    repr), or ``ValueError`` naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the error.
+    value : str or real
+        The number.
+    positive : bool, default False
+        Require ``value > 0``.
+    maximum : float, optional
+        Require ``value <= maximum``.
+
+    Examples
+    --------
+    >>> decimal("G", "2.2"), decimal("G", 1.5)
+    ('2.2', '1.5')
+    """
+    if isinstance(value, bool) or not isinstance(value, str | int | float):
+        raise ValueError(f"{name} must be a decimal number (a string or a real), got "
+                         f"{value!r}")
+    text = value.strip() if isinstance(value, str) else repr(float(value))
+    try:
+        number = float(text)
+    except ValueError:
+        raise ValueError(f"{name} must be a decimal number, got {value!r}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    if positive and not number > 0.0:
+        raise ValueError(f"{name} must be > 0, got {value!r}")
+    if maximum is not None and abs(number) > maximum:
+        raise ValueError(f"{name} must be at most {maximum:g} in size, got {value!r}")
+    return text
+
+
+def precision(name: str, bits: Any) -> int:
+    """Arb's working precision, an integer in ``[53, 4096]``, or ``ValueError`` naming it.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name.
+    bits : int
+        The precision.
+    """
+    from andoyer.validation import integer
+
+    return integer(name, bits, 53, 4096)
+
+
+def spec_of(body: Any, name: str = "body") -> BodySpec:
+    """``body`` as a :class:`BodySpec` (a ``RigidBody`` read by :meth:`BodySpec.from_body`),
+    or :class:`~andoyer.errors.ArgumentTypeError` naming ``name``.
+
+    Parameters
+    ----------
+    body : RigidBody or BodySpec
+        The body.
+    name : str, default "body"
+        The argument's name.
+    """
+    from andoyer.body import RigidBody
+    from andoyer.errors import ArgumentTypeError
+
+    if isinstance(body, BodySpec):
+        return body
+    if isinstance(body, RigidBody):
+        try:
+            return BodySpec.from_body(body)
+        except ValueError as exc:
+            raise ValueError(f"{name}: {exc}") from None
+    raise ArgumentTypeError(f"{name} must be a RigidBody or a BodySpec, got "
+                            f"{type(body).__name__} {body!r:.60}")
 
 
 def ball_text(x: Any, digits: int | None = None) -> str:

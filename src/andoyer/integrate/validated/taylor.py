@@ -87,6 +87,12 @@ class QuadraticField:
             out.append(s)
         return out
 
+    def reversed(self) -> QuadraticField:
+        """The field ``-f`` (the flow backward in time)."""
+        return QuadraticField(tuple(tuple((-c, j) for c, j in comp) for comp in self.linear),
+                              tuple(tuple((-c, j, k) for c, j, k in comp)
+                                    for comp in self.quadratic), self.bits)
+
     def jacobian(self, y: Vector) -> arb_mat:
         """``Df(y)`` as an Arb matrix."""
         n = self.n
@@ -465,7 +471,7 @@ def _initial(y0: Sequence[Any], radius: float | Sequence[float]) -> tuple[Vector
 def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
                    radius: float | Sequence[float] = 0.0, order: int = 30,
                    bits: int = 128, h_max: float = 1.0, tol: float = 1e-30,
-                   max_steps: int = 10_000) -> ValidatedOrbit:
+                   max_steps: int = 10_000, backward: bool = False) -> ValidatedOrbit:
     """Enclose the flow of (1) from the box ``y0 +- radius`` up to ``t_end``.
 
     Parameters
@@ -488,6 +494,9 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
         The remainder aimed at per step, relative to the state (sets the step size).
     max_steps : int, default 10000
         Refuse to take more steps.
+    backward : bool, default False
+        Integrate backward in time (the field ``-f``) to ``-t_end``; ``times`` are then
+        ``<= 0``.
 
     Returns
     -------
@@ -513,6 +522,8 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
         raise ValueError(f"order must be an integer in [4, 60], got {order!r}")
     with working_precision(bits):
         f = quadratic_field(body, bits)
+        if backward:
+            f = f.reversed()
         m, r = _initial(y0, radius)
         n = 6
         Q = arb_mat([[arb(1) if i == j else arb(0) for j in range(n)] for i in range(n)])
@@ -520,7 +531,7 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
         t = 0.0
         times, states, mids, rads, drads = [0.0], [], [], [], [0.0]
         hull = [m[i] + r[i] for i in range(n)]
-        states.append(tuple(ball_text(x, 20) for x in hull))
+        states.append(tuple(ball_text(x, 32) for x in hull))
         mids.append([float(x.mid()) for x in hull])
         rads.append([float(x.rad()) for x in hull])
         steps = 0
@@ -553,12 +564,14 @@ def validated_flow(body: Any, y0: Sequence[Any], t_end: float, *,
             t = t + h
             steps += 1
             times.append(t)
-            states.append(tuple(ball_text(x, 20) for x in hull))
+            states.append(tuple(ball_text(x, 32) for x in hull))
             mids.append([float(x.mid()) for x in hull])
             rads.append([float(x.rad()) for x in hull])
             drads.append(max(float(D[i, j].rad()) for i in range(n) for j in range(n)))
         D = Dm + Q * Dd
         deriv = tuple(ball_text(D[i, j], 20) for i in range(n) for j in range(n))
+    if backward:
+        times = [-x for x in times]
     return ValidatedOrbit(times=tuple(times), states=tuple(states), mid=np.array(mids),
                           rad=np.array(rads), derivative_rad=np.array(drads),
                           derivative=deriv, steps=steps, order=order, bits=bits,
@@ -620,8 +633,8 @@ def _newton_time(sig: Any, dsig: Any, lo: arb, hi: arb, tries: int = 60) -> arb 
 def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], value: float,
                        *, radius: float | Sequence[float] = 0.0, direction: int = 1,
                        order: int = 30, bits: int = 128, h_max: float = 1.0,
-                       tol: float = 1e-30, t_max: float = 1000.0, skip: float = 0.0
-                       ) -> PoincareCrossing:
+                       tol: float = 1e-30, t_max: float = 1000.0, skip: float = 0.0,
+                       backward: bool = False) -> PoincareCrossing:
     """The certified first crossing of the set ``y0 +- radius`` through ``(w, y) = c``.
 
     Parameters
@@ -644,6 +657,9 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
         Give up after this time.
     skip : float, default 0
         Ignore crossings before this time.
+    backward : bool, default False
+        Follow the flow backward in time (``time`` is then the elapsed time ``> 0`` of the
+        backward flow; ``direction`` refers to the backward motion).
 
     Returns
     -------
@@ -672,6 +688,8 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
         raise ValueError("weights must hold 6 numbers")
     with working_precision(bits):
         f = quadratic_field(body, bits)
+        if backward:
+            f = f.reversed()
         w = [arb(float(x)) for x in weights]
         c = arb(float(value))
         m, r = _initial(y0, radius)
