@@ -166,7 +166,7 @@ def test_invalid_inputs(tmp_path):
     with pytest.raises(ValueError, match="stability"):
         manifold_branch(TEST_BODY.with_mu(0.01), 0.3, "neutral")   # type: ignore[arg-type]
     with pytest.raises(SystemExit) as exc:
-        main(["manifolds", "--body", "custom", "--A", "2.5", "--B", "2", "--C", "2.2",
+        main(["manifolds", "--body", "general", "--A", "2.5", "--B", "2", "--C", "2.2",
               "--r", "0.6", "0.8", "0", "--out", str(tmp_path)])
     assert exc.value.code == 2
 

@@ -86,12 +86,14 @@ from andoyer.analysis.splitting.periodic import (
     middle_axis_rate,
     section_state,
 )
+from andoyer.analysis.splitting.problem import SplittingProblem, splitting_problem
 from andoyer.analysis.splitting.section_map import FLOW_ENGINES
-from andoyer.analysis.unperturbed.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_momentum
+from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH, separatrix_momentum
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import to_andoyer
 from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import to_hess
+from andoyer.integrate.engines import EngineLike
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.validation import checks_arguments, integer, positive
 
@@ -100,6 +102,7 @@ __all__ = [
     "ManifoldBranch",
     "ManifoldCurve",
     "manifold_branch",
+    "branch_of",
     "grow_manifold",
     "euler_poinsot_excess",
     "heteroclinic_line_of",
@@ -190,7 +193,7 @@ class ManifoldBranch:
         return flow_to_section(self.body, self.seed(s), "L", self.crossing_direction,
                                backward=self.stability == "stable", t_max=t_max,
                                tol=self.orbit.tol, long_double=self.orbit.long_double,
-                               engine=self.orbit.engine)
+                               engine=self.orbit.flow)
 
     def attrs(self) -> dict[str, Any]:
         return {"stability": self.stability, "branch": self.branch, "sheet": self.sheet,
@@ -229,7 +232,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
                     branch: str = DEFAULT_BRANCH, *, sheet: int = 1, psi0: float = 0.0,
                     delta: float = 1e-5, orbit: RotationOrbit | None = None,
                     mu_steps: int = 4, tol: float = DEFAULT_TOL,
-                    long_double: bool = False, engine: str | None = None) -> ManifoldBranch:
+                    long_double: bool = False, engine: EngineLike = None) -> ManifoldBranch:
     """The branch of ``W^u`` / ``W^s`` that follows a heteroclinic line, ready to grow.
 
     Parameters
@@ -257,7 +260,7 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
         The periodic orbit (default: continued in ``mu`` from 0 in ``mu_steps`` steps).
     tol, long_double :
         Integration tolerance and precision (extended precision needs heyoka).
-    engine : str, optional
+    engine : str or Engine, optional
         The engine of the flow when ``orbit`` is not given (default heyoka where
         installed, else taylor:
         :func:`~andoyer.analysis.splitting.section_map.flow_engine`); a given ``orbit``
@@ -282,23 +285,43 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
     >>> bool(np.ptp(curve.g) > 2 * np.pi)                  # one fundamental domain: a full turn
     True
     """
-    hess = body.nearest_hess()
+    problem = splitting_problem(body, h, branch, sheet,
+                                engine if orbit is None else orbit.flow)
+    return branch_of(problem, stability, orbit, psi0=psi0, delta=delta, mu_steps=mu_steps,
+                     tol=tol, long_double=long_double)
+
+
+def branch_of(problem: SplittingProblem, stability: Stability,
+              orbit: RotationOrbit | None = None, *, psi0: float = 0.0, delta: float = 1e-5,
+              mu_steps: int = 4, tol: float = DEFAULT_TOL,
+              long_double: bool = False) -> ManifoldBranch:
+    """The branch of ``W^u`` / ``W^s`` of a prepared problem (:func:`manifold_branch`
+    once its arguments are checked and its problem built).
+
+    Parameters
+    ----------
+    problem : SplittingProblem
+        The body, its nearest Hess body, the level, the line and the engine
+        (:func:`~andoyer.analysis.splitting.problem.splitting_problem`).
+    stability : {"unstable", "stable"}
+        Which manifold.
+    orbit : RotationOrbit, optional
+        The periodic orbit (default: continued in ``mu`` from 0 in ``mu_steps`` steps on
+        the problem's engine).
+    psi0, delta, mu_steps, tol, long_double :
+        As in :func:`manifold_branch`.
+    """
     if stability not in ("unstable", "stable"):
         raise ValueError(f"stability must be 'unstable' or 'stable', got {stability!r}")
-    if branch not in BRANCHES:
-        raise ValueError(f"branch must be one of {BRANCHES}, got {branch!r}")
-    if sheet not in (1, -1):
-        raise ValueError(f"sheet must be +1 or -1, got {sheet!r}")
     if not (math.isfinite(delta) and 0.0 < delta < 0.1):
         raise ValueError(f"delta must lie in (0, 0.1), got {delta!r}")
-    theta1_line, j1_dir = heteroclinic_line_of(hess, h, branch, sheet)
-    # J1 increasing: the line leaves L = -G (J1 = 0) and reaches L = +G (J1 = J2).
-    leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
-    rot = leaves if stability == "unstable" else reaches
+    body, h, hess = problem.body, problem.h, problem.hess
+    theta1_line = problem.theta1_line
+    rot = problem.rotation(stability)
     if orbit is None:
         orbits, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, rot),
                                             steps=mu_steps, tol=tol, long_double=long_double,
-                                            engine=engine)
+                                            engine=problem.engine)
         orbit = orbits[-1]
     elif orbit.section.sign != rot or orbit.body != body or orbit.M != 0.0:
         raise ValueError(f"orbit must be the rotation L = {'+' if rot > 0 else '-'}G of this "
@@ -310,8 +333,8 @@ def manifold_branch(body: RigidBody, h: float, stability: Stability,
                          "domain would alternate between the branches; not supported")
     factor = lam if stability == "unstable" else 1.0 / lam
     v = orbit.eigenvectors[:, k].copy()
-    trial = ManifoldBranch(orbit, stability, branch, sheet, v, factor, float(delta),
-                           theta1_line, -rot if stability == "unstable" else rot)
+    trial = ManifoldBranch(orbit, stability, problem.branch, problem.sheet, v, factor,
+                           float(delta), theta1_line, -rot if stability == "unstable" else rot)
     # Orient v: the traced point must arrive near the line's l = theta1/2 - phi0 (mod 2 pi).
     l_line = theta1_line / 2.0 - hess.phi0
     l_seen = float(to_andoyer(trial.trace(0.5).y)[0])

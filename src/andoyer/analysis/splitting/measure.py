@@ -16,20 +16,21 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.analysis.splitting.manifolds import (
     ManifoldCurve,
+    branch_of,
     euler_poinsot_excess,
     grow_manifold,
-    heteroclinic_line_of,
-    manifold_branch,
 )
 from andoyer.analysis.splitting.periodic import (
     DEFAULT_TOL,
     RotationSection,
     continue_rotation_orbit,
 )
-from andoyer.analysis.splitting.section_map import FLOW_ENGINES, flow_engine
+from andoyer.analysis.splitting.problem import splitting_problem
+from andoyer.analysis.splitting.section_map import FLOW_ENGINES
 from andoyer.analysis.unperturbed.separatrix import BRANCHES, DEFAULT_BRANCH, separatrix_energy
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.engines import EngineLike
 from andoyer.integrate.results import provenance, values_from_attrs
 from andoyer.validation import (
     MAX_ACTION,
@@ -260,7 +261,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
                          psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
                          tol: float = DEFAULT_TOL, long_double: bool = False,
                          grow: dict[str, Any] | None = None, progress: bool | None = None,
-                         engine: str | None = None) -> dict[str, xr.Dataset]:
+                         engine: EngineLike = None) -> dict[str, xr.Dataset]:
     """Measure the separatrix splitting for several ``mu`` and compare it with Melnikov.
 
     Parameters
@@ -293,7 +294,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
         Keyword arguments of :func:`grow_manifold`.
     progress : bool, optional
         Progress line on stderr (default: when stderr is a terminal).
-    engine : str, optional
+    engine : str or Engine, optional
         The engine of the flow (default heyoka where installed, else taylor;
         :func:`~andoyer.analysis.splitting.section_map.flow_engine`).
 
@@ -326,7 +327,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     >>> float(out["splitting"].relative_error[0]) < 0.05            # doctest: +SKIP
     True
     """
-    from andoyer.analysis.splitting.melnikov import melnikov_function
+    from andoyer.analysis.splitting.melnikov import melnikov_of
     from andoyer.analysis.splitting.periodic import orbits_dataset
     from andoyer.progress import Progress
 
@@ -336,32 +337,32 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     mus = _mu_values(body, mu)
     if np.any(np.diff(mus) <= 0):
         raise ValueError("mu must be increasing")
-    hess = body.nearest_hess()
-    engine = flow_engine(engine)
     # The one conversion of the level along the call path: G -> h here, h -> J2 = G in
-    # heteroclinic_line_of (separatrix_momentum).
+    # the problem (separatrix_momentum); the problem (nearest Hess body, line, engine)
+    # is built once and passed down.
     h = separatrix_energy(body, positive("G", G))
-    theta1_line, j1_dir = heteroclinic_line_of(hess, h, branch, sheet)
-    leaves, reaches = (-1, 1) if j1_dir > 0 else (1, -1)
+    problem = splitting_problem(body, h, branch, sheet, engine)
+    theta1_line = problem.theta1_line
     bar = Progress(2 + 3 * mus.size, f"manifolds of {body.name or 'the body'}", progress)
     # Both rotation orbits, continued in mu once through every requested value.
     path = np.concatenate([[0.0], mus])
-    orb_u, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, leaves), mu=path,
-                                       tol=tol, long_double=long_double, engine=engine)
-    bar.update(1)
-    orb_s, _ = continue_rotation_orbit(body, h, 0.0, RotationSection(psi0, reaches), mu=path,
-                                       tol=tol, long_double=long_double, engine=engine)
-    bar.update(1)
+    orbits = {}
+    for stability in ("unstable", "stable"):
+        orbits[stability], _ = continue_rotation_orbit(
+            body, h, 0.0, RotationSection(psi0, problem.rotation(stability)), mu=path,
+            tol=tol, long_double=long_double, engine=problem.engine)
+        bar.update(1)
+    orb_u, orb_s = orbits["unstable"], orbits["stable"]
     splits, inters = [], []
     curves: dict[str, xr.Dataset] = {}
     for k, m in enumerate(mus):
-        bm = body.with_mu(float(m))
-        common: dict[str, Any] = {"sheet": sheet, "psi0": psi0, "delta": delta, "tol": tol,
+        at_mu = problem.with_mu(float(m))
+        common: dict[str, Any] = {"psi0": psi0, "delta": delta, "tol": tol,
                                   "long_double": long_double}
-        wu = grow_manifold(manifold_branch(bm, h, "unstable", branch, orbit=orb_u[k + 1],
-                                           **common), **(grow or {}))
-        ws = grow_manifold(manifold_branch(bm, h, "stable", branch, orbit=orb_s[k + 1],
-                                           **common), **(grow or {}))
+        wu = grow_manifold(branch_of(at_mu, "unstable", orb_u[k + 1], **common),
+                           **(grow or {}))
+        ws = grow_manifold(branch_of(at_mu, "stable", orb_s[k + 1], **common),
+                           **(grow or {}))
         bar.update(1)
         sp, it = measure_splitting(wu, ws, n_phase=n_phase)
         bar.update(2)
@@ -373,8 +374,8 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
 
     phases = splits[0].phase.values
     # The Melnikov phase: theta2 = g - theta1/2 where the unperturbed line crosses L = 0.
-    mel = melnikov_function(body, phases - theta1_line / 2.0, J2=G, branch=branch,
-                            sheet=sheet)
+    mel = melnikov_of(body, problem.hess, np.asarray(phases - theta1_line / 2.0, dtype=float),
+                      J2=G, branch=branch, sheet=sheet, quadrature=True)
     dG = np.stack([sp.Delta_G.values for sp in splits])
     dE = np.stack([sp.Delta_E.values for sp in splits])
     pred_E = mus[:, None] * mel["M"].values[None, :]
@@ -383,7 +384,7 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     amp_pred = np.max(np.abs(pred_G), axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         rel = np.where(amp_pred > 0, np.max(np.abs(dG - pred_G), axis=1) / amp_pred, np.nan)
-    attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[engine],
+    attrs = provenance(body.with_mu(float(mus[-1])), engine=FLOW_ENGINES[problem.engine.name],
                        branch=branch, sheet=sheet, energy=h, G_level=G, psi0=psi0,
                        delta=delta, tolerance=tol, long_double=int(long_double),
                        n_phase=n_phase, theta1_line=theta1_line, rho=mel.attrs["rho"],
@@ -460,7 +461,7 @@ def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
                          branch: str = DEFAULT_BRANCH,
                          G: float = 1.0, n_phase: int = 16, delta: float = 1e-5,
                          tol: float = DEFAULT_TOL, progress: bool | None = None,
-                         engine: str | None = None) -> xr.Dataset:
+                         engine: EngineLike = None) -> xr.Dataset:
     """The splitting of a separatrix branch as the centre of mass turns off the Hess
     direction: measured (:func:`separatrix_splitting`) against the first-order Melnikov
     prediction (:func:`~andoyer.analysis.splitting.melnikov.melnikov_off_hess`) over ``epsilon``.

@@ -100,6 +100,7 @@ __all__ = [
     "melnikov_closed_form",
     "melnikov_quadrature",
     "melnikov_function",
+    "melnikov_of",
     "predicted_splitting",
     "melnikov_rho",
     "melnikov_off_hess",
@@ -376,8 +377,29 @@ def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
         th = np.atleast_1d(finite_array("theta2_0", theta2_0))
         if th.ndim != 1 or not np.all(np.isfinite(th)):
             raise ValueError("theta2_0 must be a 1-D array of finite phases")
-    hess = body.nearest_hess()
-    eps = body.hess_epsilon
+    return melnikov_of(body, body.nearest_hess(), th, J2=J2, branch=branch, sheet=sheet,
+                       quadrature=quadrature)
+
+
+def melnikov_of(body: RigidBody, hess: RigidBody, theta2_0: NDArray[np.float64], *,
+                J2: float, branch: str, sheet: int, quadrature: bool) -> xr.Dataset:
+    """:func:`melnikov_function` of a body whose nearest Hess body ``hess`` is already
+    known (a prepared problem's,
+    :class:`~andoyer.analysis.splitting.problem.SplittingProblem`), at checked phases.
+
+    Parameters
+    ----------
+    body : RigidBody
+        The body.
+    hess : RigidBody
+        Its nearest Hess body (:meth:`~andoyer.body.RigidBody.nearest_hess`).
+    theta2_0 : ndarray, shape (n,)
+        Finite phases.
+    J2, branch, sheet, quadrature :
+        As in :func:`melnikov_function`.
+    """
+    th = theta2_0
+    eps = float(math.remainder(body.phi0 - hess.phi0, math.tau))
     theta1, s = heteroclinic_line(hess, J2, branch, sheet)
     rho = melnikov_rho(hess, J2)
     x = math.pi * rho

@@ -103,6 +103,8 @@ from andoyer.analysis.splitting.section_map import (
 )
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import STATE
+from andoyer.integrate.engines import EngineLike
+from andoyer.integrate.engines.base import EngineBase
 from andoyer.integrate.results import VariableMeta, describe_variables, provenance
 from andoyer.kernels.common import T_START
 from andoyer.validation import checks_arguments, finite_array, integer
@@ -160,8 +162,10 @@ class RotationOrbit:
         Integration tolerance.
     long_double : bool
         Extended precision (heyoka only).
-    engine : str
-        The engine of the section map (:func:`~andoyer.analysis.splitting.section_map.flow_engine`).
+    flow : Engine
+        The engine of the section map, as the caller gave it (an instance keeps its
+        options; :func:`~andoyer.analysis.splitting.section_map.flow_engine`); its name is
+        :attr:`engine`.
     """
 
     body: RigidBody
@@ -179,7 +183,12 @@ class RotationOrbit:
     residual: float
     tol: float = DEFAULT_TOL
     long_double: bool = field(default=False)
-    engine: str = field(default_factory=flow_engine)
+    flow: EngineBase = field(default_factory=flow_engine)
+
+    @property
+    def engine(self) -> str:
+        """The name of :attr:`flow`, the engine of the section map."""
+        return self.flow.name
 
     @property
     def lyapunov_exponent(self) -> float:
@@ -207,7 +216,7 @@ def _eigen(DP: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.flo
 def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                    section: RotationSection | None = None, *, guess: ArrayLike | None = None,
                    tol: float = DEFAULT_TOL, xtol: float = 1e-13, max_iter: int = 12,
-                   long_double: bool = False, engine: str | None = None) -> RotationOrbit:
+                   long_double: bool = False, engine: EngineLike = None) -> RotationOrbit:
     """Newton's method on the section map for the periodic orbit near the rotation.
 
     Parameters
@@ -231,7 +240,7 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
         Raise ``RuntimeError`` if not converged after this many iterations.
     long_double : bool
         Extended precision integration (heyoka only).
-    engine : str, optional
+    engine : str or Engine, optional
         The engine of the section map (``tangent_crossings`` capability); default heyoka
         where installed, else taylor
         (:func:`~andoyer.analysis.splitting.section_map.flow_engine`).
@@ -283,7 +292,7 @@ def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                             section: RotationSection | None = None, *,
                             mu: ArrayLike | None = None, steps: int = 4,
                             tol: float = DEFAULT_TOL, long_double: bool = False,
-                            engine: str | None = None,
+                            engine: EngineLike = None,
                             ) -> tuple[list[RotationOrbit], xr.Dataset]:
     """Continue the periodic orbit in ``mu`` from the permanent rotation at ``mu = 0``.
 

@@ -30,7 +30,7 @@ from andoyer.charts.euler_poisson import as_state
 from andoyer.dynamics import vector_field
 from andoyer.errors import IntegrationError
 from andoyer.integrate.engines import EngineLike, engine_class, engines_with, resolve_engine
-from andoyer.integrate.engines.base import Capability, SectionEvent, Tolerance
+from andoyer.integrate.engines.base import Capability, EngineBase, SectionEvent, Tolerance
 from andoyer.validation import checks_arguments, finite, positive, real_array
 
 __all__ = [
@@ -221,9 +221,10 @@ FLOW_ENGINES: Mapping[str, str] = _Descriptions()
 
 
 @checks_arguments
-def flow_engine(engine: EngineLike = None) -> str:
-    """The name of the engine of :func:`flow_to_section`: ``engine`` (a name or an
-    engine), else heyoka where installed, else taylor
+def flow_engine(engine: EngineLike = None) -> EngineBase:
+    """The engine of :func:`flow_to_section`, resolved once: ``engine`` itself when it is
+    an engine instance (its options -- ``max_steps``, threads, ... -- reach the kernels),
+    the engine of that name, else heyoka where installed, else taylor
     (:func:`~andoyer.integrate.engines.default_engine_name`); it must have the
     ``tangent_crossings`` capability.
 
@@ -235,10 +236,10 @@ def flow_engine(engine: EngineLike = None) -> str:
 
     Examples
     --------
-    >>> flow_engine("numba")
+    >>> flow_engine("numba").name
     'numba'
     """
-    return resolve_engine(engine, Capability.TANGENT_CROSSINGS).name
+    return resolve_engine(engine, Capability.TANGENT_CROSSINGS)
 
 
 @checks_body
@@ -301,7 +302,9 @@ def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *
                         t_max=t_max, backward=backward, renormalise=False,
                         extended_precision=long_double)
         if not c.ok[0]:
-            raise IntegrationError(f"the {eng.name} engine met a non-finite state")
+            raise IntegrationError(f"the {eng.name} engine failed on the flow to the "
+                                   f"{kind!r} section (a non-finite state, or its step "
+                                   f"limit: {eng!r})")
         found, t, y = int(c.count[0]), float(c.t[0, 0]), c.y[0, 0]
         phi: NDArray[np.float64] | None = np.ascontiguousarray(c.w[0, 0].T) if stm else None
     else:
@@ -526,7 +529,7 @@ class SectionReturn:
 def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                section: RotationSection | None = None, *, jacobian: bool = True,
                tol: float = DEFAULT_TOL, long_double: bool = False,
-               engine: str | None = None) -> SectionReturn:
+               engine: EngineLike = None) -> SectionReturn:
     """The Poincare map of ``Sigma = {psi = psi0}`` in the coordinates ``(G1, G2)/|G|``.
 
     Returns an object with ``x`` (the image), ``y`` (its Euler-Poisson state), ``T``
@@ -552,7 +555,7 @@ def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
         Integration tolerance (raised to the finest the engine honours).
     long_double : bool, default False
         Extended precision (heyoka only).
-    engine : str, optional
+    engine : str or Engine, optional
         As in :func:`flow_to_section`.
     """
     sec = RotationSection() if section is None else section
