@@ -156,9 +156,9 @@ HOW: dict[str, Way] = {
     "andoyer resonances --max-order 8 --order 8": Way(
         "cli", ("resonances", "--max-order", "8", "--order", "8"), "as written",
         expect=("resonances.nc", "resonances-normal-form.nc", "resonances.png")),
-    "andoyer resonances --body custom --A 2.5 --B 1 --C 2 --mu 0.001 --r 0.6 0.48 0.64 "
+    "andoyer resonances --body general --A 2.5 --B 1 --C 2 --mu 0.001 --r 0.6 0.48 0.64 "
     "--energy 1 --max-order 3 --order 8": Way(
-        "cli", ("resonances", "--body", "custom", "--A", "2.5", "--B", "1", "--C", "2",
+        "cli", ("resonances", "--body", "general", "--A", "2.5", "--B", "1", "--C", "2",
                 "--mu", "0.001", "--r", "0.6", "0.48", "0.64", "--energy", "1",
                 "--max-order", "3", "--order", "8"), "as written",
         expect=("resonances.nc", "resonances-normal-form.nc", "resonances.png")),

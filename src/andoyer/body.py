@@ -26,7 +26,11 @@ from andoyer.errors import ArgumentTypeError
 from andoyer.validation import checks_arguments, real_array
 from andoyer.validation import finite as _finite
 
-__all__ = ["RigidBody", "PAPER_BODY", "checks_body"]
+__all__ = ["RigidBody", "PAPER_BODY", "PAPER", "Preset", "PRESETS", "make_body", "checks_body"]
+
+#: The paper's body (Fig. 3 of Kyrychenko): a Hess body, its moments and mu -- the one
+#: place these numbers are written (``RigidBody.paper``, the scan configs' defaults).
+PAPER = {"A": 2.5, "B": 2.0, "C": 2.2, "mu": 0.01}
 
 #: Relative tolerance used to decide whether a body satisfies the Hess conditions (2).
 HESS_RTOL = 1e-12
@@ -386,7 +390,7 @@ class RigidBody:
         return float(math.remainder(self.phi0 - self.nearest_hess().phi0, math.tau))
 
     @classmethod
-    def paper(cls, mu: float = 0.01) -> RigidBody:
+    def paper(cls, mu: float = PAPER["mu"]) -> RigidBody:
         """The paper's body: Hess, A = 2.5, B = 2.0, C = 2.2, mu = 0.01 (Fig. 3).
 
         Parameters
@@ -399,7 +403,7 @@ class RigidBody:
         >>> RigidBody.paper(mu=0.05).mu
         0.05
         """
-        return cls.hess(2.5, 2.0, 2.2, mu, name="paper")
+        return cls.hess(PAPER["A"], PAPER["B"], PAPER["C"], mu, name="paper")
 
     @classmethod
     def euler_poinsot(cls, A: float, B: float, C: float) -> RigidBody:
@@ -471,6 +475,122 @@ class RigidBody:
 
 #: The body of the paper's computations (Fig. 3).
 PAPER_BODY = RigidBody.paper()
+
+
+@dataclass(frozen=True)
+class Preset:
+    """A kind of body users name (``--body``, a scan's ``[body] kind``, the explorer).
+
+    Parameters
+    ----------
+    name : str
+        Its name in the CLI, scan configs and the explorer.
+    factory : callable
+        ``factory(**values) -> RigidBody`` from the values of its flags (each given,
+        or its default).
+    flags : tuple of str
+        The body flags it takes (``A``, ``B``, ``C``, ``mu``, ``r``, ``epsilon``); others
+        are refused.
+    help : str
+        What it is, for ``--help``.
+    required : tuple of str, optional
+        The flags that have no default.
+    defaults : dict, optional
+        The defaults of the others.
+    integrals : tuple of str, optional
+        The first integrals it brings beside ``H``, ``(G, gamma)``, ``|gamma|^2`` (rows
+        of :data:`andoyer.charts.integrals.INTEGRALS`; the datasets, drifts and the
+        explorer then carry them).
+    """
+
+    name: str
+    factory: Callable[..., RigidBody]
+    flags: tuple[str, ...]
+    help: str
+    required: tuple[str, ...] = ()
+    defaults: dict[str, float] = field(default_factory=dict)
+    integrals: tuple[str, ...] = ()
+
+    def make(self, **values: object) -> RigidBody:
+        """The body from ``values`` (None: the flag's default); ``ValueError`` naming a
+        flag it does not take or a required flag missing.
+
+        Parameters
+        ----------
+        **values : object
+            Flag name -> value (None for not given).
+
+        Examples
+        --------
+        >>> PRESETS["kovalevskaya"].make(C=0.5).A
+        1.0
+        """
+        given = {k: v for k, v in values.items() if v is not None}
+        extra = sorted(set(given) - set(self.flags), key=list(_FLAG_ORDER).index)
+        if extra:
+            raise ValueError(f"the {self.name} body does not take {', '.join(extra)} (it "
+                             f"takes {', '.join(self.flags)})")
+        missing = [k for k in self.required if k not in given]
+        if missing:
+            raise ValueError(f"the {self.name} body needs {', '.join(missing)}")
+        return self.factory(**{**self.defaults, **given})
+
+
+_FLAG_ORDER = ("A", "B", "C", "mu", "epsilon", "r")
+_MU = {"mu": PAPER["mu"]}
+
+
+def _turned(body: RigidBody, epsilon: float) -> RigidBody:
+    """``body`` with its centre of mass turned by ``epsilon`` off the Hess direction."""
+    if epsilon == 0.0:
+        return body
+    return RigidBody.near_hess(body.A, body.B, body.C, body.mu, epsilon,
+                               branch=1 if body.e2 >= 0.0 else -1,
+                               name=f"{body.name} turned by {epsilon:g}")
+
+
+#: The body presets, by name: ``--body`` choices, their flags and help, scan configs'
+#: kinds and the explorer's body menu are derived from this table.
+PRESETS: dict[str, Preset] = {p.name: p for p in (
+    Preset("paper", lambda mu, epsilon: _turned(RigidBody.paper(mu), epsilon),
+           ("mu", "epsilon"),
+           f"Hess body A={PAPER['A']:g}, B={PAPER['B']:g}, C={PAPER['C']:g}, "
+           f"mu={PAPER['mu']:g} (the paper's; default)", defaults={**_MU, "epsilon": 0.0}),
+    Preset("hess", lambda A, B, C, mu, epsilon: _turned(RigidBody.hess(A, B, C, mu), epsilon),
+           ("A", "B", "C", "mu", "epsilon"), "Hess body from A > C > B and mu",
+           ("A", "B", "C"), {**_MU, "epsilon": 0.0}),
+    Preset("general", lambda A, B, C, mu, r: RigidBody(A, B, C, mu, tuple(r), "general"),
+           ("A", "B", "C", "mu", "r"), "any body: A, B, C, mu and the direction r of the "
+           "centre of mass", ("A", "B", "C", "r"), dict(_MU)),
+    Preset("lagrange", lambda A, C, mu: RigidBody.lagrange(A, C, mu), ("A", "C", "mu"),
+           "Lagrange top: A = B, centre of mass on the axis 3", ("A", "C"), dict(_MU)),
+    Preset("kovalevskaya", lambda C, mu: RigidBody.kovalevskaya(C, mu), ("C", "mu"),
+           "Kovalevskaya top: A = B = 2C, equatorial centre of mass (its integral K)",
+           defaults={"C": 1.0, "mu": 1.0}, integrals=("K",)),
+    Preset("goryachev-chaplygin", lambda C, mu: RigidBody.goryachev_chaplygin(C, mu),
+           ("C", "mu"), "Goryachev-Chaplygin top: A = B = 4C, equatorial centre of mass",
+           defaults={"C": 1.0, "mu": 1.0}),
+)}
+
+
+def make_body(kind: str, **values: object) -> RigidBody:
+    """The body of preset ``kind`` (:data:`PRESETS`) from its flags' values.
+
+    Parameters
+    ----------
+    kind : str
+        A key of :data:`PRESETS`.
+    **values : object
+        Flag name -> value (None for not given).
+
+    Examples
+    --------
+    >>> make_body("paper").A, make_body("hess", A=2.5, B=1.0, C=1.6).is_hess
+    (2.5, True)
+    """
+    if kind not in PRESETS:
+        raise ValueError(f"body kind must be one of {', '.join(PRESETS)}, got {kind!r}")
+    return PRESETS[kind].make(**values)
 
 
 _P = ParamSpec("_P")

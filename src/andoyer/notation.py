@@ -24,7 +24,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 __all__ = ["Symbol", "NOTATION", "Coordinate", "COORDINATES", "COORDINATE", "CHART_COORDS",
-           "ANGLES", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY"]
+           "ANGLES", "SectionCoordinate", "SECTION_COORDINATES", "SECTION_ANGLES",
+           "section_symbol", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY"]
 
 
 class Symbol(NamedTuple):
@@ -154,6 +155,72 @@ CHART_COORDS: dict[str, tuple[str, ...]] = {
 #: Storage names of the angles (NaN-aware wrapping in plots, units rad).
 ANGLES: tuple[str, ...] = tuple(c.storage for c in COORDINATES
                                 if c.units == "rad" and c.code not in ("m", "theta3"))
+
+
+class SectionCoordinate(NamedTuple):
+    """A coordinate a Poincare section ``coord = value`` can be taken on.
+
+    Parameters
+    ----------
+    code : str
+        Its name (a section kind of the generated kernels,
+        :data:`andoyer.kernels.generated.SECTION_KINDS`).
+    chart : str or None
+        The chart it belongs to (None: an angle of the analysis modules only, not a
+        chart coordinate: ``psi``).
+    needs : tuple of int
+        The columns of :func:`andoyer.charts.andoyer_deprit.singular_distances` where
+        it is undefined (an angle: 0 ``G = 0``, 1 ``L = +-G``, 2 ``|M| = G``; empty:
+        smooth, defined everywhere).
+    reversal : int or None
+        ``s`` with ``f(R y; s value) = s f(y; value)`` under the time reversal
+        ``R = diag(-1, -1, -1, 1, 1, 1)`` of (1) (checked by SymPy in
+        ``tests/symbolic/test_sections.py``); None: ``R`` does not map its sections onto
+        sections of it.
+    """
+
+    code: str
+    chart: str | None
+    needs: tuple[int, ...]
+    reversal: int | None
+
+
+#: Every section coordinate, by code (the one table: the charts of the sections, the
+#: angles and where they are undefined, which sections a forward-only engine can run
+#: backward, and their symbols via :data:`COORDINATE`, derive from it).
+SECTION_COORDINATES: dict[str, SectionCoordinate] = {s.code: s for s in (
+    *(SectionCoordinate(k, "euler_poisson", (), -1) for k in ("G1", "G2", "G3")),
+    *(SectionCoordinate(k, "euler_poisson", (), 1) for k in ("gamma1", "gamma2", "gamma3")),
+    SectionCoordinate("l", "andoyer", (0, 1), None),
+    SectionCoordinate("g", "andoyer", (0, 1, 2), -1),
+    SectionCoordinate("L", "andoyer", (), -1),
+    SectionCoordinate("G", "andoyer", (), 1),
+    SectionCoordinate("theta1", "hess", (0, 1), 1),
+    SectionCoordinate("theta2", "hess", (0, 1, 2), None),
+    SectionCoordinate("J1", "hess", (), None),
+    SectionCoordinate("J2", "hess", (), 1),
+    SectionCoordinate("psi", None, (), 1),
+)}
+#: The angles of the charts a section can be taken on.
+SECTION_ANGLES = tuple(k for k, s in SECTION_COORDINATES.items()
+                       if s.needs and s.chart is not None)
+
+
+def section_symbol(code: str) -> str:
+    """The symbol (mathtext, without ``$``) of a section coordinate given by its code.
+
+    Parameters
+    ----------
+    code : str
+        A section coordinate's code (``"theta2"``) or storage name (``"g_angle"``).
+
+    Examples
+    --------
+    >>> section_symbol("theta2"), section_symbol("g_angle"), section_symbol("psi")
+    ('\\\\theta_2', 'g', 'psi')
+    """
+    c = COORDINATE.get(code)
+    return c.symbol if c is not None and c.symbol else code
 
 
 def storage_name(code: str) -> str:

@@ -173,10 +173,10 @@ def test_plane_coordinates_period() -> None:
 def test_integral_drifts(settings: Settings) -> None:
     sd = seed(settings, 1.0, 0.5)[0]
     ds = list(crossing_stages(settings, sd.y0))[-1].ds
-    d = integral_drifts(ds, settings.h, settings.M, PAPER.mu)
+    d = integral_drifts(ds, settings.h, settings.M, PAPER)
     assert 0 < d["H"] < 1e-11 and d["area"] < 1e-11 and d["geometric"] < 1e-11
     bad = ds.assign(H=ds.H + 1e-6)
-    assert integral_drifts(bad, settings.h, settings.M, PAPER.mu)["H"] > 0.9e-6 / settings.h
+    assert integral_drifts(bad, settings.h, settings.M, PAPER)["H"] > 0.9e-6 / settings.h
 
 
 # ----------------------------------------------------------------------------- separatrices

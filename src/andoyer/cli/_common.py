@@ -8,6 +8,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any, Literal, NamedTuple
 
+from andoyer.body import PRESETS
 from andoyer.integrate.engines import ENGINES, FALLBACK_DEFAULTS
 from andoyer.notation import VOCABULARY
 from andoyer.outputs import guard_file, guard_folder
@@ -19,15 +20,8 @@ __all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args
            "output_folder", "distinct_outputs", "count", "real", "Inputs",
            "inputs_from_args", "ENGINE_HELP"]
 
-#: The body flags each --body takes (others are refused, not ignored).
-BODY_FLAGS = {
-    "paper": ("mu", "epsilon"),
-    "hess": ("A", "B", "C", "mu", "epsilon"),
-    "custom": ("A", "B", "C", "mu", "r"),
-    "lagrange": ("A", "C", "mu"),
-    "kovalevskaya": ("C", "mu"),
-    "goryachev-chaplygin": ("C", "mu"),
-}
+#: The body flags each --body takes (others are refused, not ignored): the presets'.
+BODY_FLAGS = {name: preset.flags for name, preset in PRESETS.items()}
 
 
 # ---------------------------------------------------------------------- number flags
@@ -183,14 +177,11 @@ def distinct_outputs(outputs: Iterable[Path], inputs: Iterable[Path] = ()) -> No
 def add_body_args(p: argparse.ArgumentParser) -> None:
     """The body group of every command that takes a body (:func:`body_from_args`)."""
     g = p.add_argument_group("body")
-    g.add_argument("--body", default="paper", choices=tuple(BODY_FLAGS),
-                   help="paper: Hess body A=2.5, B=2.0, C=2.2, mu=0.01 (default); each "
-                        "body with its flags: " + "; ".join(
-                            f"{name}: " + " ".join(f"--{flag}" for flag in flags)
-                            for name, flags in BODY_FLAGS.items())
-                        + " (lagrange: A = B; kovalevskaya: A = B = 2C; goryachev-chaplygin: "
-                          "A = B = 4C); --epsilon turns a paper or hess body off the Hess "
-                          "direction")
+    g.add_argument("--body", default="paper", choices=tuple(PRESETS),
+                   help="each body with its flags: " + "; ".join(
+                       f"{k}: {' '.join('--' + f for f in p.flags)} ({p.help})"
+                       for k, p in PRESETS.items())
+                   + "; --epsilon turns a paper or hess body off the Hess direction")
     for name in ("A", "B", "C"):
         add_term(g, name, type=real(positive=True))
     add_term(g, "mu", type=real())
@@ -198,54 +189,27 @@ def add_body_args(p: argparse.ArgumentParser) -> None:
              help="turn the Hess body's centre of mass by this angle (rad) in the (e1, e2) "
                   "plane off the Hess direction (RigidBody.near_hess; default 0: Hess)")
     add_term(g, "r", type=real(), nargs=3, metavar=("E1", "E2", "E3"),
-             help="direction of the centre of mass (custom bodies)")
+             help="direction of the centre of mass (general bodies)")
 
 
 def body_from_args(args: argparse.Namespace) -> Any:
-    """The body of ``--body`` and its flags; a flag the body does not take is refused.
+    """The body of ``--body`` and its flags (:data:`andoyer.body.PRESETS`); a flag the
+    body does not take is refused.
 
     ``--epsilon`` turns a paper or Hess body's centre of mass off the Hess direction
     (:meth:`~andoyer.body.RigidBody.near_hess`, same moments, ``mu`` and branch).
     """
-    from andoyer.body import RigidBody
-
-    body = _body(args)
-    eps = getattr(args, "epsilon", None)
-    if eps is None or eps == 0.0:
-        return body
-    return RigidBody.near_hess(body.A, body.B, body.C, body.mu, eps,
-                               branch=1 if body.e2 >= 0.0 else -1,
-                               name=f"{body.name} turned by {eps:g}")
-
-
-def _body(args: argparse.Namespace) -> Any:
-    from andoyer.body import RigidBody
-
-    extra = [n for n in ("A", "B", "C", "mu", "epsilon", "r")
-             if getattr(args, n, None) is not None and n not in BODY_FLAGS[args.body]]
+    preset = PRESETS[args.body]
+    values = {n: getattr(args, n, None) for n in ("A", "B", "C", "mu", "epsilon", "r")}
+    extra = [n for n, v in values.items() if v is not None and n not in preset.flags]
     if extra:
-        takes = ", ".join(f"--{n}" for n in BODY_FLAGS[args.body])
+        takes = ", ".join(f"--{n}" for n in preset.flags)
         raise ValueError(f"--body {args.body} does not take --{', --'.join(extra)} (it takes "
-                         f"{takes}); for a body of your own use --body hess or --body custom")
-    mu = 0.01 if args.mu is None else args.mu
-    if args.body == "paper":
-        return RigidBody.paper(mu)
-    if args.body in ("kovalevskaya", "goryachev-chaplygin"):
-        make = (RigidBody.kovalevskaya if args.body == "kovalevskaya"
-                else RigidBody.goryachev_chaplygin)
-        C = 1.0 if args.C is None else args.C  # --C is parsed positive
-        return make(C, 1.0 if args.mu is None else args.mu)
-    missing = [n for n in ("A", "B", "C") if getattr(args, n) is None
-               and not (args.body == "lagrange" and n == "B")]
+                         f"{takes}); for a body of your own use --body hess or --body general")
+    missing = [n for n in preset.required if values[n] is None]
     if missing:
         raise ValueError(f"--body {args.body} needs --{', --'.join(missing)}")
-    if args.body == "hess":
-        return RigidBody.hess(args.A, args.B, args.C, mu)
-    if args.body == "lagrange":
-        return RigidBody.lagrange(args.A, args.C, mu)
-    if args.r is None:
-        raise ValueError("--body custom needs --r E1 E2 E3 (direction of the centre of mass)")
-    return RigidBody(args.A, args.B, args.C, mu, tuple(args.r), "custom")
+    return preset.make(**{n: values[n] for n in preset.flags})
 
 
 #: Initial-state flag -> (chart, components).

@@ -24,7 +24,8 @@ from typing import Any
 import numpy as np
 import panel as pn
 
-from andoyer.body import RigidBody
+from andoyer.body import PAPER, RigidBody
+from andoyer.charts.integrals import INTEGRALS
 from andoyer.explore.orbits import integral_drifts
 from andoyer.explore.seeds import initial_charts
 from andoyer.explore.state import (
@@ -42,8 +43,9 @@ __all__ = ["ExplorerBase", "Job", "BODIES", "SECTIONS", "DIRECTIONS", "LEVEL_COL
 
 log = logging.getLogger("andoyer.explore")
 
-BODIES = {"paper (Hess, A=2.5, B=2, C=2.2)": "paper", "Hess (A > C > B)": "hess",
-           "general (A, B, C, r)": "general"}
+#: The explorer's body menu: label -> preset (:data:`andoyer.body.PRESETS`).
+BODIES = {f"paper (Hess, A={PAPER['A']:g}, B={PAPER['B']:g}, C={PAPER['C']:g})": "paper",
+          "Hess (A > C > B)": "hess", "general (A, B, C, r)": "general"}
 SECTIONS = {"θ2 = const: plane (θ1, J1)": "theta2", "g = const: plane (l, L)": "g"}
 DIRECTIONS = {"increasing (+)": 1, "decreasing (−)": -1, "both": 0}
 LEVEL_COLOURS = {"info": "#1b5e20", "busy": "#0d47a1", "warning": "#8a5a00",
@@ -342,10 +344,10 @@ def orbit_info_html(o: Orbit) -> str:
         rows.append(f"<b>{chart}</b><table style='font-size:85%'>{cells}</table>")
     drift = ""
     if o.ds is not None:
-        d = integral_drifts(o.ds, o.settings.h, o.settings.M, o.settings.body.mu)
-        drift = (f"<b>drift at the section points</b><br>|H − h|/max(|h|, μ) ≤ "
-                 f"{d['H']:.1e}<br>|(G, γ) − M|/|G| ≤ {d['area']:.1e}<br>"
-                 f"||γ|² − 1| ≤ {d['geometric']:.1e}")
+        d = integral_drifts(o.ds, o.settings.h, o.settings.M, o.settings.body)
+        drift = "<b>drift at the section points</b>" + "".join(
+            f"<br>{html.escape(INTEGRALS[k].symbol)}: |Δ|/{html.escape(INTEGRALS[k].scale_name)}"
+            f" ≤ {v:.1e}" for k, v in d.items())
     return (f"<div><b style='color:{o.colour}'>● orbit {o.id}</b> "
             f"({o.status}, {o.x.size} crossings; {o.settings.plane.text[2]}"
             f" = {o.seed.action:.12g}, solution {o.seed.root_index + 1} of "

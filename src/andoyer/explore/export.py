@@ -22,6 +22,7 @@ from matplotlib.figure import Figure
 from andoyer.explore.chains import ChainOverlay
 from andoyer.explore.state import PlaneView, Session
 from andoyer.integrate.results import provenance
+from andoyer.notation import section_symbol
 
 __all__ = ["orbits_dataset", "plane_figure", "netcdf_bytes", "png_bytes", "save"]
 
@@ -172,7 +173,7 @@ def plane_figure(ds: xr.Dataset | None, view: PlaneView, *, title: str | None = 
         ax.set_xlabel(LABELS[s.plane.x])
         ax.set_ylabel(LABELS[s.plane.y])
         angle_ticks(ax, *view.x_range)
-        sym = {"theta2": r"\theta_2", "g": "g"}[s.plane.coord]
+        sym = section_symbol(s.plane.coord)
         ax.set_title(title if title is not None else
                      f"{s.body.name or 'body'}: $h = {s.h:.8g}$, $M = {s.M:.6g}$, "
                      f"${sym} = {s.section.value:.4g}$")

@@ -19,6 +19,9 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer.analysis.chaos.registry import MAP_EXTRAS, PANEL_INDICATORS
+from andoyer.body import RigidBody
+from andoyer.charts.euler_poisson import STATE
+from andoyer.charts.integrals import INTEGRALS, integrals_of
 from andoyer.explore.state import PlaneView, Settings, Stage, plane_coordinates
 from andoyer.validation import finite as _finite
 
@@ -89,11 +92,15 @@ def crossing_stages(settings: Settings, y0: NDArray[np.float64], *,
         n = min(N, n * growth)
 
 
-def integral_drifts(ds: xr.Dataset, h: float, M: float, mu: float) -> dict[str, float]:
+def integral_drifts(ds: xr.Dataset, h: float, M: float, body: RigidBody
+                    ) -> dict[str, float]:
     """Largest drift of the integrals over the section points of one orbit.
 
-    ``H``: ``max |H - h| / max(|h|, mu)``; ``area``: ``max |(G, gamma) - M| / |G|``;
-    ``geometric``: ``max ||gamma|^2 - 1|``. NaN when there are no points.
+    Each of the body's integrals (:func:`andoyer.charts.integrals.integrals_of`) from its
+    level -- ``h`` for ``H``, ``M`` for ``(G, gamma)``, 1 for ``|gamma|^2``, the first
+    point's value for the others (Kovalevskaya's ``K``) -- relative to the scale the
+    datasets use (:data:`andoyer.charts.integrals.INTEGRALS`: ``max(|h|, mu)`` for
+    ``H``, the first point's ``|G|`` for the area). NaN when there are no points.
 
     Parameters
     ----------
@@ -103,16 +110,21 @@ def integral_drifts(ds: xr.Dataset, h: float, M: float, mu: float) -> dict[str, 
         The energy level.
     M : float
         The area constant.
-    mu : float
-        The body's ``mu`` (the energy's scale where ``|h|`` is small).
+    body : RigidBody
+        The body (its integrals, and ``mu``: the energy's scale where ``|h|`` is small).
     """
-    if int(np.sum(np.isfinite(ds.H.values))) == 0:
-        return {"H": math.nan, "area": math.nan, "geometric": math.nan}
-    G = np.sqrt(ds.G1**2 + ds.G2**2 + ds.G3**2)
-    scale = max(abs(h), mu, np.finfo(float).tiny)
-    return {"H": float(np.nanmax(np.abs(ds.H.values - h))) / scale,
-            "area": float(np.nanmax(np.abs((ds.area - M) / G).values)),
-            "geometric": float(np.nanmax(np.abs(ds.geometric.values - 1.0)))}
+    names = integrals_of(body)
+    ok = np.isfinite(ds.H.values).ravel()
+    if not ok.any():
+        return dict.fromkeys(names, math.nan)
+    y = np.stack([ds[s].values.ravel() for s in STATE], axis=-1)[ok]
+    levels = {"H": h, "area": M, "geometric": 1.0}
+    out = {}
+    for name in names:
+        integral = INTEGRALS[name]
+        values = ds[name].values.ravel()[ok] if name in ds else integral(body, y)
+        out[name] = float(np.max(np.abs(integral.drift(body, values, y[:1], levels.get(name)))))
+    return out
 
 
 #: The indicators of the side panel's line (the registry's panel indicators and the MLE).

@@ -52,7 +52,7 @@ from bokeh.models.annotations.labels import Title
 from bokeh.models.tickers import FixedTicker
 
 from andoyer.analysis.chaos.registry import INDICATORS
-from andoyer.body import RigidBody
+from andoyer.body import PRESETS, RigidBody, make_body
 from andoyer.explore.base import (
     ANGLE_LABELS,
     TIME_COLOURS,
@@ -300,8 +300,7 @@ class Explorer(ExplorerLayout):
         if oid == self._selected:
             self._show_info()
         if stage.done:
-            drift = integral_drifts(stage.ds, o.settings.h, o.settings.M,
-                                    o.settings.body.mu)
+            drift = integral_drifts(stage.ds, o.settings.h, o.settings.M, o.settings.body)
             short = (f" (t_max = {1000.0 * o.settings.n_crossings:g} reached first)"
                      if stage.stop < o.settings.n_crossings else "")
             self._status(f"orbit {oid}: {stage.stop} crossings{short}; max drift of H "
@@ -373,24 +372,23 @@ class Explorer(ExplorerLayout):
     # ------------------------------------------------------------------ controls
     def _sync_body_widgets(self) -> None:
         mode = self.w_body.value
-        for wid in (self.w_A, self.w_B, self.w_C):
-            wid.disabled = mode == "paper"
-        self.w_r.disabled = mode != "general"
+        flags = PRESETS[mode].flags
+        for name, wid in (("A", self.w_A), ("B", self.w_B), ("C", self.w_C)):
+            wid.disabled = name not in flags
+        self.w_r.disabled = "r" not in flags
 
     def _settings_from_widgets(self) -> Settings:
         mode = self.w_body.value
         mu = number(self.w_mu)
-        if mode == "paper":
-            body = RigidBody.paper(mu)
-        else:
-            A, B, C = number(self.w_A), number(self.w_B), number(self.w_C)
-            if mode == "hess":
-                body = RigidBody.hess(A, B, C, mu)
-            else:
-                from andoyer.validation import floats
+        flags = PRESETS[mode].flags
+        values: dict[str, Any] = {"mu": mu}
+        if "A" in flags:
+            values.update(A=number(self.w_A), B=number(self.w_B), C=number(self.w_C))
+        if "r" in flags:
+            from andoyer.validation import floats
 
-                r = floats(self.w_r.value or "", 3, "r = (e1, e2, e3)")
-                body = RigidBody(A, B, C, mu, (r[0], r[1], r[2]), "general")
+            values["r"] = tuple(floats(self.w_r.value or "", 3, "r = (e1, e2, e3)"))
+        body = make_body(mode, **values)
         section = Section(self.w_section.value, number(self.w_value),
                           self.w_direction.value)
         engine = None if self.w_engine.value == "default" else self.w_engine.value

@@ -319,7 +319,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     xarray.Dataset
         Dims ``(orbit, time)``: the Euler-Poisson state, the Andoyer-Deprit and Hess
         coordinates, the integrals ``H``, ``area``, ``geometric`` and their drifts
-        ``H_drift`` (relative to ``|H(0)|``), ``area_drift`` (relative to ``|G(0)|``)
+        ``H_drift`` (relative to ``max(|H(0)|, mu)``), ``area_drift`` (relative to ``|G(0)|``)
         and ``geometric_drift``; attrs record body, engine, tolerances and version.
 
     Examples

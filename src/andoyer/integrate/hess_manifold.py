@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.charts.hess import as_hess, from_hess
+from andoyer.charts.integrals import INTEGRALS, drift_scale
 from andoyer.integrate.api import check_times, check_tolerances
 from andoyer.integrate.engines.ivp import solve_dop853
 from andoyer.integrate.results import provenance, states_dataset
@@ -149,7 +150,7 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
         (``theta1`` exactly ``0`` or ``2 pi``: the sheet, switching at each ``L = +-G``
         passage), the cyclic angle ``theta3`` (unreduced, from 0 at ``t[0]``, with the
         jump ``pi`` at each ``G = 0`` passage), the integrals ``H``, ``area``,
-        ``geometric``, ``H_drift`` (relative to ``|H(t0)|``), ``hess_relation``
+        ``geometric``, ``H_drift`` (relative to ``max(|H(t0)|, mu)``), ``hess_relation``
         ``= e1 G1 + e2 G2``, the passage counts ``sheet_switches`` and
         ``g_zero_passages`` with their times in attrs. Attrs: provenance, ``method``,
         ``engine``, tolerances, ``theta1`` (the initial sheet).
@@ -249,8 +250,10 @@ def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
     ds["hess_relation"] = (ds.G1 * body.e1 + ds.G2 * body.e2)
     ds["hess_relation"].attrs.update(symbol="(G, r)", long_name="Hess invariant relation "
                                      "e1 G1 + e2 G2", equation="(3)", units="1")
-    H0 = ds.H.isel(time=0)
-    ds["H_drift"] = (ds.H - H0) / (abs(H0) if float(abs(H0)) > 0 else 1.0)
-    ds["H_drift"].attrs.update(units="1", long_name="drift of H since t[0]")
+    H0 = float(ds.H.isel(time=0))
+    scale = float(drift_scale("H", body, np.zeros(6), H0))
+    ds["H_drift"] = (ds.H - H0) / (scale if scale > 0 else 1.0)
+    ds["H_drift"].attrs.update(units="1", long_name="drift of H since t[0]",
+                               relative_to=INTEGRALS["H"].scale_name)
     ds.time.attrs.update(units="body time units", long_name="time")
     return ds

@@ -16,14 +16,9 @@ from xarray.core import indexing
 from andoyer._version import __version__
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import SINGULAR_RTOL, Singular, to_andoyer
-from andoyer.charts.euler_poisson import (
-    STATE,
-    area_integral,
-    energy,
-    geometric_integral,
-    momentum_bound,
-)
+from andoyer.charts.euler_poisson import STATE, momentum_bound
 from andoyer.charts.hess import to_hess
+from andoyer.charts.integrals import INTEGRALS, integrals_of
 from andoyer.notation import COORDINATES, coordinates, storage_name
 
 __all__ = ["states_dataset", "derived_values", "provenance", "describe_variables",
@@ -136,9 +131,10 @@ def values_from_attrs(ds: xr.Dataset, meta: Mapping[str, VariableMeta]) -> xr.Da
 def _derived_names(body: RigidBody, drifts: bool) -> tuple[str, ...]:
     """Names of the variables :func:`states_dataset` derives from the states."""
     charts = ("andoyer", "hess") if abs(body.e3) <= 1e-12 else ("andoyer",)
+    integrals = integrals_of(body)
     return (*(storage_name(c) for chart in charts for c in coordinates(chart)),
-            "H", "area", "geometric", "singular",
-            *(("H_drift", "area_drift", "geometric_drift") if drifts else ()))
+            *integrals, "singular",
+            *((f"{k}_drift" for k in integrals) if drifts else ()))
 
 
 def derived_values(body: RigidBody, y: NDArray[np.float64], drifts: bool = False
@@ -146,9 +142,12 @@ def derived_values(body: RigidBody, y: NDArray[np.float64], drifts: bool = False
     """Chart coordinates, integrals, singular flags (and drifts) of states ``y``.
 
     Every array is computed once, the Hess chart from the Andoyer-Deprit coordinates;
-    NaN states (padding) give NaN values and the flag -1. The drifts are taken along
-    the last axis of ``y[..., 0]``, from its first entry: ``H_drift`` relative to
-    ``|H(0)|``, ``area_drift`` relative to ``|G(0)|``.
+    NaN states (padding) give NaN values and the flag -1. The integrals are the body's
+    (:func:`andoyer.charts.integrals.integrals_of`: ``H``, ``area``, ``geometric`` and
+    those its kind brings, e.g. Kovalevskaya's ``K``). The drifts are taken along the
+    last axis of ``y[..., 0]``, from its first entry, each relative to its integral's
+    scale (:data:`andoyer.charts.integrals.INTEGRALS`: ``H_drift`` relative to
+    ``max(|H(0)|, mu)``, ``area_drift`` relative to ``|G(0)|``).
 
     Parameters
     ----------
@@ -163,25 +162,22 @@ def derived_values(body: RigidBody, y: NDArray[np.float64], drifts: bool = False
     safe = np.where(valid[..., None], y, np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0]))
     nan = np.where(valid, 1.0, np.nan)
     x, flags = to_andoyer(safe, with_mask=True)
-    H = energy(body, safe)
+    values = {k: INTEGRALS[k](body, safe) for k in integrals_of(body)}
     # G = 0 relative to the orbit's momentum scale (the largest |G| on its energy level),
     # not only where |G| is exactly 0.
-    G_zero = x[..., 3] <= SINGULAR_RTOL * momentum_bound(body, safe, H)
+    G_zero = x[..., 3] <= SINGULAR_RTOL * momentum_bound(body, safe, values["H"])
     out: dict[str, NDArray[Any]] = {
         name: x[..., i] * nan for i, name in enumerate(map(storage_name, coordinates("andoyer")))}
     if abs(body.e3) <= 1e-12:
         xh = to_hess(body, safe, andoyer=(x, flags))
         out.update({name: xh[..., i] * nan
                     for i, name in enumerate(map(storage_name, coordinates("hess")))})
-    area, geometric = area_integral(safe), geometric_integral(safe)
-    out.update(H=H * nan, area=area * nan, geometric=geometric * nan,
-               singular=np.where(valid, np.where(G_zero, int(Singular.G_ZERO), flags), -1))
+    out.update({k: v * nan for k, v in values.items()})
+    out["singular"] = np.where(valid, np.where(G_zero, int(Singular.G_ZERO), flags), -1)
     if drifts:
-        H0, area0 = H[..., :1], area[..., :1]
-        G0 = np.linalg.norm(safe[..., :1, :3], axis=-1)
-        out.update(H_drift=(H - H0) / np.where(np.abs(H0) > 0, np.abs(H0), 1.0) * nan,
-                   area_drift=(area - area0) / np.where(G0 > 0, G0, 1.0) * nan,
-                   geometric_drift=(geometric - geometric[..., :1]) * nan)
+        y0 = safe[..., :1, :]
+        out.update({f"{k}_drift": INTEGRALS[k].drift(body, v, y0) * nan
+                    for k, v in values.items()})
     return out
 
 
@@ -240,8 +236,10 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     Holds the Euler-Poisson state, the Andoyer-Deprit and (for ``e3 = 0``) Hess-chart
     coordinates, the integrals H, (G, gamma), ``|gamma|^2``, and the singular flags.
     With ``drifts=True`` (orbits along the last dimension, from its first entry) also
-    ``H_drift`` (relative to ``|H(0)|``), ``area_drift`` (relative to ``|G(0)|``) and
-    ``geometric_drift``.
+    ``H_drift`` (relative to ``max(|H(0)|, mu)``), ``area_drift`` (relative to
+    ``|G(0)|``) and ``geometric_drift``; a body whose kind brings an integral (a
+    Kovalevskaya top's ``K``) has it and its drift too
+    (:data:`andoyer.charts.integrals.INTEGRALS`).
 
     The derived variables are lazy: :func:`derived_values` runs once, when the first of
     them is read (``.values``, arithmetic, plotting, ``load()``, writing to disk). A
@@ -287,8 +285,13 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     if extra:
         data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
     ds = describe_variables(xr.Dataset(data, coords=dict(coords), attrs=dict(attrs)))
-    if drifts:
-        for name in ("H_drift", "area_drift", "geometric_drift"):
-            ds.variables[name].attrs.update(
-                units="1", long_name=f"drift of {name.split('_')[0]} since t[0]")
+    for name in integrals_of(body):
+        integral = INTEGRALS[name]
+        if name not in VARIABLE_ATTRS:  # an integral of this kind of body only
+            ds.variables[name].attrs.update(symbol=integral.symbol,
+                                            long_name=integral.long_name, units="1")
+        if drifts:
+            ds.variables[f"{name}_drift"].attrs.update(
+                units="1", long_name=f"drift of {name} since t[0]",
+                relative_to=integral.scale_name)
     return ds

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from andoyer.charts.andoyer_deprit import singular_distances
 from andoyer.integrate.engines.base import SectionEvent
 from andoyer.kernels.generated.equations import SECTION_KINDS
+from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
 
 __all__ = ["Section", "SectionPlane", "SECTION_PLANES", "SECTION_KINDS", "SECTION_SINGULAR_RTOL"]
 
@@ -32,15 +33,11 @@ SECTION_SINGULAR_RTOL = 1e-6
 
 #: Columns of :func:`andoyer.charts.andoyer_deprit.singular_distances` an angle needs:
 #: 0 (G = 0), 1 (L = +-G: the node of the invariant and body planes), 2 (``|M| = G``: the
-#: node of the invariant and horizontal planes).
-_ANGLE_NEEDS = {"l": (0, 1), "theta1": (0, 1), "g": (0, 1, 2), "theta2": (0, 1, 2)}
-
-_CHART_OF = {
-    **{k: "euler_poisson" for k in ("G1", "G2", "G3", "gamma1", "gamma2", "gamma3")},
-    **{k: "andoyer" for k in ("l", "g", "L", "G")},
-    **{k: "hess" for k in ("theta1", "theta2", "J1", "J2")},
-}
-ANGLES = ("l", "g", "theta1", "theta2")
+#: node of the invariant and horizontal planes) -- from :data:`andoyer.notation.
+#: SECTION_COORDINATES`, as the chart of each coordinate and the angles.
+_ANGLE_NEEDS = {k: s.needs for k, s in SECTION_COORDINATES.items() if s.needs}
+_CHART_OF = {k: s.chart for k, s in SECTION_COORDINATES.items() if s.chart is not None}
+ANGLES = SECTION_ANGLES
 
 
 @dataclass(frozen=True)

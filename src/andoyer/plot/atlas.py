@@ -17,7 +17,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from andoyer.analysis.chaos.registry import MAP_INDICATORS
-from andoyer.notation import ANGLES
+from andoyer.notation import ANGLES, section_symbol
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, colour_bar, colour_scale, new_figure, paper_style
 
@@ -95,8 +95,7 @@ def _heading(ds: xr.Dataset, task: str, fixed: Mapping[str, float]) -> str:
     a = ds.attrs
     parts = [f"body {a.get('body_name', '?')}"]
     if "section_coord" in a:
-        sym = {"theta2": r"\theta_2", "g": "g"}.get(str(a["section_coord"]),
-                                                    str(a["section_coord"]))
+        sym = section_symbol(str(a["section_coord"]))
         what = "sections" if task == "section" else "chaos maps on"
         parts.append(f"{what} ${sym} = {float(a['section_value']):.4g}$")
     for key, dim in (("h_level", "h_level"), ("M_level", "M_level")):

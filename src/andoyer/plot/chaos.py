@@ -16,7 +16,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from andoyer.analysis.chaos.registry import INDICATORS, PANEL_INDICATORS
-from andoyer.notation import ANGLES
+from andoyer.notation import ANGLES, section_symbol
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import COLOURS, SCALES, WIDTH, angle_ticks, colour_scale, paper_style
 
@@ -26,7 +26,6 @@ __all__ = ["plot_chaos_map", "plot_indicators", "COLOUR_BAR_LABELS"]
 #: colour-mapped indicators).
 COLOUR_BAR_LABELS: dict[str, str] = {k: SCALES[k].label for k in INDICATORS if k in SCALES}
 _ANGLES = ANGLES
-_SECTION_SYMBOL = {"g": "g", "theta2": r"\theta_2"}
 # FLI and the others: the colour range spans these percentiles of the data.
 _PERCENTILES = (0.5, 99.0)
 
@@ -150,7 +149,7 @@ def _title(a: dict[Any, Any], name: str) -> str:
                                             else ""))
     coord = a.get("section_coord")
     if coord is not None and "section_value" in a:
-        sym = _SECTION_SYMBOL.get(str(coord), str(coord))
+        sym = section_symbol(str(coord))
         parts.append(f"${sym} = {float(a['section_value']):.4g}$")
     for key in ("h", "M"):
         if key in a:

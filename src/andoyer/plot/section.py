@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 
 from andoyer.atomic import atomic_path
 from andoyer.integrate.section import SECTION_PLANES
-from andoyer.notation import ANGLES, COORDINATES
+from andoyer.notation import ANGLES, COORDINATES, section_symbol
 from andoyer.plot.style import colour_scale
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
@@ -32,7 +32,7 @@ PLANES: dict[str, tuple[str, str]] = {
 #: Storage name -> axis label with the paper's symbol (mathtext), from :mod:`andoyer.notation`.
 LABELS: dict[str, str] = {c.storage: c.label for c in COORDINATES if c.symbol}
 _ANGLES = ANGLES
-_SYMBOL = {"g": "g", "g_angle": "g", "theta2": r"\theta_2"}
+
 
 
 def _plane(ds: xr.Dataset, what: str) -> tuple[str, str]:
@@ -152,7 +152,7 @@ def _default_title(ds: xr.Dataset) -> str:
     parts = []
     coord = a.get("section_coord")
     if coord is not None and "section_value" in a:
-        parts.append(f"${_SYMBOL.get(str(coord), str(coord))} = {float(a['section_value']):.4g}$")
+        parts.append(f"${section_symbol(str(coord))} = {float(a['section_value']):.4g}$")
     for key, sym in (("h", "h"), ("M", "M")):
         if key in a:
             parts.append(f"${sym} = {float(a[key]):.6g}$")

@@ -34,7 +34,8 @@ from matplotlib.figure import Figure
 
 from andoyer.analysis.chaos.registry import INDICATORS
 
-__all__ = ["RC", "COLOURS", "MARKERS", "WIDTH", "SCALES", "ColourScale", "colour_scale",
+__all__ = ["RC", "COLOURS", "COLOUR_MAPS", "MARKERS", "WIDTH", "SCALES", "ColourScale",
+           "colour_scale",
            "colour_bar", "paper_style", "new_figure", "angle_ticks"]
 
 #: Width of a one-column figure, inches (a journal column is about 3.3 in; a page 6.7 in).
@@ -116,13 +117,16 @@ class ColourScale:
         return Normalize(lo, hi if hi > lo else lo + 1.0)
 
 
+#: Colour conventions -> colour map: ``"chaos"`` runs pale (regular) to dark (chaotic).
+COLOUR_MAPS = {"chaos": "magma_r"}
+
 #: Colour-mapped quantity (its storage name) -> its colour scale, the same in every
 #: figure, tutorial and in the explorer. Chaos runs pale (regular) to dark (chaotic); the
 #: chaos indicators' scales are their rows of the registry
 #: (:data:`andoyer.analysis.chaos.registry.INDICATORS`).
 SCALES: dict[str, ColourScale] = {
-    **{k: ColourScale(s.cmap, s.label, s.vmin, s.vmax)
-       for k, s in INDICATORS.items() if s.cmap is not None},
+    **{k: ColourScale(COLOUR_MAPS[s.colours], s.label, s.vmin, s.vmax)
+       for k, s in INDICATORS.items() if s.colours is not None},
     "log10_drift": ColourScale("magma_r", r"$\log_{10}$ frequency drift", None, 0.0),
     "chaotic_fraction": ColourScale("magma_r", "chaotic fraction", 0.0, None),
     "layer_width": ColourScale("viridis", "layer width (rad)", 0.0, None),

@@ -93,7 +93,7 @@ from typing import Any
 
 import numpy as np
 
-from andoyer.body import RigidBody
+from andoyer.body import PAPER, RigidBody
 from andoyer.errors import DamagedFileError
 from andoyer.integrate.engines import ENGINES, installed
 from andoyer.integrate.engines.base import Tolerance
@@ -125,17 +125,23 @@ PARAMETER_ATTRS: dict[str, tuple[str, str, str, str]] = {
     "C": ("C", "principal moment of inertia C", "(1)", "1"),
 }
 
-#: Defaults of a Hess body: the paper's body (Fig. 3) on the area level M = 0.
-HESS_DEFAULTS = {"A": 2.5, "B": 2.0, "C": 2.2, "mu": 0.01, "epsilon": 0.0, "M": 0.0}
+#: Defaults of a Hess body: the paper's body (Fig. 3, :data:`andoyer.body.PAPER`) on the
+#: area level M = 0.
+HESS_DEFAULTS = {**PAPER, "epsilon": 0.0, "M": 0.0}
 
 #: A grid of more points than this is refused whatever its cost.
 MAX_POINTS = 1_000_000
+
+#: The body kinds of a scan: presets of :data:`andoyer.body.PRESETS` whose parameters
+#: (A, B, C, mu) can be swept.
+BODY_KINDS = ("hess", "general")
 
 #: Version of the configuration layout recorded in the store.
 CONFIG_FORMAT = 1
 
 _SECTIONS = ("body", "parameters", "task", "integrator", "store")
-_BODY_KEYS = {"hess": ("kind", "name", "branch"), "general": ("kind", "name", "r")}
+_BODY_KEYS = dict(zip(BODY_KINDS, (("kind", "name", "branch"), ("kind", "name", "r")),
+                      strict=True))
 
 Value = float | tuple[float, ...]
 

@@ -35,6 +35,7 @@ from functools import cache
 
 import sympy as sp
 
+from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
 from andoyer.symbolic.hamiltonian import S
 
 __all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "section_function",
@@ -52,9 +53,10 @@ SMOOTH: dict[str, sp.Expr] = {
     "G1": G1, "G2": G2, "G3": G3, "gamma1": gamma1, "gamma2": gamma2, "gamma3": gamma3,
     "L": G3, "G": _G, "J1": (_G + G3) / 2, "J2": _G,
 }
-ANGLES = ("l", "g", "theta1", "theta2")
+#: The chart angles a section can be taken on (:data:`andoyer.notation.SECTION_ANGLES`).
+ANGLES = SECTION_ANGLES
 #: Section angles that are not chart coordinates (see the module notes).
-EXTRA_ANGLES = ("psi",)
+EXTRA_ANGLES = tuple(k for k, s in SECTION_COORDINATES.items() if s.chart is None)
 
 
 @cache

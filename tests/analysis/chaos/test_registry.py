@@ -59,7 +59,7 @@ def derived_lists() -> dict[str, tuple[str, ...]]:
 
 
 def expected_lists() -> dict[str, tuple[str, ...]]:
-    coloured = tuple(k for k, s in INDICATORS.items() if s.cmap is not None)
+    coloured = tuple(k for k, s in INDICATORS.items() if s.colours is not None)
     return {
         "IndicatorRun choices": MAP_CHOICES,
         "andoyer chaos-map --indicator": MAP_CHOICES,
@@ -84,14 +84,14 @@ def test_the_check_catches_a_list_that_differs(monkeypatch):
 
 def test_labels_and_scales_are_the_rows():
     from andoyer.plot.chaos import COLOUR_BAR_LABELS
-    from andoyer.plot.style import SCALES
+    from andoyer.plot.style import COLOUR_MAPS, SCALES
 
     for name, spec in INDICATORS.items():
-        if spec.cmap is None:
+        if spec.colours is None:
             continue
         scale = SCALES[name]
         assert (scale.cmap, scale.label, scale.vmin, scale.vmax) == (
-            spec.cmap, spec.label, spec.vmin, spec.vmax)
+            COLOUR_MAPS[spec.colours], spec.label, spec.vmin, spec.vmax)
         assert COLOUR_BAR_LABELS[name] == spec.label
 
 

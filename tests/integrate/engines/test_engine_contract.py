@@ -271,6 +271,7 @@ def test_backward_flow_returns_to_the_start(name: str, bodies: dict[str, RigidBo
 
 @pytest.mark.parametrize("name", having(Capability.BACKWARD))
 @pytest.mark.parametrize(("coord", "value", "direction"), [("G3", 0.0, 1), ("psi", 0.4, -1),
+                                                          ("g", 0.5, 1),
                                                           ("gamma2", 0.3, 0)])
 def test_backward_crossings_lie_on_the_section(name: str, bodies: dict[str, RigidBody],
                                                coord: str, value: float,

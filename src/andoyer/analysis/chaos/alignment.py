@@ -55,7 +55,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.analysis.chaos.lyapunov import TANGENT_SPACES, Tangent, initial_tangent, output_times
 from andoyer.body import RigidBody, checks_body
-from andoyer.charts.euler_poisson import STATE, energy
+from andoyer.charts.euler_poisson import STATE
+from andoyer.charts.integrals import INTEGRALS
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
@@ -297,14 +298,13 @@ def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
                                f"for orbits {bad}")
     with np.errstate(divide="ignore", invalid="ignore"):
         mle = np.where(times > 0.0, res.rho[..., 0] / times, np.nan)
-    H = energy(body, res.y)
-    scale = np.maximum(np.abs(H[:, :1]), body.mu)
+    H = INTEGRALS["H"](body, res.y)
     data: dict[str, Any] = {
         "sali": (("orbit", "time"), sali(res.u[..., 0, :], res.u[..., 1, :])),
         "gali": (("orbit", "time"), gali(res.u)),
         "mle": (("orbit", "time"), mle),
         "log_norm": (("orbit", "time", "vector"), res.rho),
-        "H_drift": (("orbit", "time"), (H - H[:, :1]) / np.where(scale > 0, scale, 1.0)),
+        "H_drift": (("orbit", "time"), INTEGRALS["H"].drift(body, H, res.y[:, :1])),
         "w0": (("orbit", "vector", "component"), W0),
     }
     for i, s in enumerate(STATE):

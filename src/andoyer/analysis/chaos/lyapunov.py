@@ -80,8 +80,9 @@ from andoyer.analysis.chaos.specs import (
 from andoyer.analysis.chaos.tangent_space import initial_tangent
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
-from andoyer.charts.euler_poisson import STATE, energy
+from andoyer.charts.euler_poisson import STATE
 from andoyer.charts.hess import from_hess
+from andoyer.charts.integrals import INTEGRALS
 from andoyer.errors import IntegrationError
 from andoyer.integrate import budget
 from andoyer.integrate.api import initial_states
@@ -342,9 +343,8 @@ def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times
     data: dict[str, Any] = {k: (("orbit", "time"), v) for k, v in _derived(flow, times).items()}
     for k, s in enumerate(STATE):
         data[s] = (("orbit", "time"), flow.y[..., k])
-    H = energy(body, flow.y)
-    scale = np.maximum(np.abs(H[:, :1]), body.mu)
-    data["H_drift"] = (("orbit", "time"), (H - H[:, :1]) / np.where(scale > 0, scale, 1.0))
+    H = INTEGRALS["H"](body, flow.y)
+    data["H_drift"] = (("orbit", "time"), INTEGRALS["H"].drift(body, H, flow.y[:, :1]))
     data["w0"] = (("orbit", "component"), w)
     ds = xr.Dataset(data, coords={"orbit": np.arange(y.shape[0]), "time": times,
                                   "component": list(STATE)},
@@ -529,8 +529,8 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         else:  # the FLI alone (and the MLE): the raw tangent vector
             out["fli"][sel], out["mle"][sel], y_end, ok = _fli_only(eng, y, w, params, tol,
                                                                     times)
-        out["H_error"][sel] = (np.abs(energy(body, y_end) - h)
-                               / (max(abs(h), body.mu) or 1.0))
+        out["H_error"][sel] = np.abs(INTEGRALS["H"].drift(
+            body, INTEGRALS["H"](body, y_end), y_end, h))
         n_failed += int(np.sum(~ok))
         bar.update(sel.size)
     bar.close()

@@ -63,8 +63,9 @@ class IndicatorSpec:
     panel : bool, default False
         Drawn against time by :func:`andoyer.plot.chaos.plot_indicators` and shown by
         the explorer.
-    cmap : str, optional
-        Its colour map (None: never colour-mapped).
+    colours : str, optional
+        Its colour convention, a key of :data:`andoyer.plot.style.COLOUR_MAPS`
+        (``"chaos"``: pale regular, dark chaotic; None: never colour-mapped).
     vmin, vmax : float, optional
         Fixed ends of its colour range (None: from the data).
     regular : float, optional
@@ -91,7 +92,7 @@ class IndicatorSpec:
     renormalised: bool = True
     on_map: bool = False
     panel: bool = False
-    cmap: str | None = None
+    colours: str | None = None
     vmin: float | None = None
     vmax: float | None = None
     regular: float | None = None
@@ -122,18 +123,18 @@ INDICATORS: dict[str, IndicatorSpec] = {s.name: s for s in (
         "fast Lyapunov indicator sup_s ln|w(s)| (sup over output times)", "FLI", "1",
         f"{_L}:fli_of_flow",
         "Froeschle, Lega & Gonczi (1997); w(0) unit tangent vector",
-        renormalised=False, on_map=True, panel=True, cmap="magma_r"),
+        renormalised=False, on_map=True, panel=True, colours="chaos"),
     IndicatorSpec(
         "megno", "MEGNO", r"MEGNO $\langle Y\rangle$", "MEGNO ⟨Y⟩", "mean MEGNO <Y>", "<Y>",
         "1", f"{_L}:megno_of_flow",
         "Cincotta & Simo (2000); -> 2 quasi-periodic, -> 0 stable periodic, "
         "~ lambda t / 2 chaotic",
-        on_map=True, panel=True, cmap="magma_r", vmin=0.0, vmax=8.0, regular=2.0,
+        on_map=True, panel=True, colours="chaos", vmin=0.0, vmax=8.0, regular=2.0,
         reading="2: regular, grows: chaotic"),
     IndicatorSpec(
         "mle", "Lyapunov", r"$\ln\|w(t)\|\,/\,t$", "λ",
         "finite-time maximal Lyapunov exponent ln|w(t)|/t", "lambda",
-        "1 / body time unit", f"{_L}:mle_of_flow", renormalised=False, cmap="magma_r"),
+        "1 / body time unit", f"{_L}:mle_of_flow", renormalised=False, colours="chaos"),
     IndicatorSpec(
         "log_norm", "ln|w|", r"$\ln\|w(t)\|$", "ln|w|", "ln of the tangent-vector norm",
         "ln|w|", "1", f"{_L}:log_norm_of_flow", renormalised=False),

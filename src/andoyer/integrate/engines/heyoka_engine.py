@@ -147,19 +147,19 @@ def tolerance(rtol: float, atol: float) -> float:
 
 
 def _propagate_scalar(key: IntegratorKey, y0: NDArray[np.float64], t: NDArray[np.float64],
-                      pars: NDArray[np.float64]) -> NDArray[np.float64]:
+                      par: NDArray[np.float64]) -> NDArray[np.float64]:
     with borrow(key) as slot:
         ta = slot.ta
         ta.time = float(t[0])
         ta.state[:] = y0
-        ta.pars[:] = pars[:slot.n_pars]
+        ta.pars[:] = par[:slot.n_pars]
         res = ta.propagate_grid(t)
         check_outcome(res[0], "propagate_grid")
         return np.array(res[-1])
 
 
 def _propagate_batch(key: IntegratorKey, y0: NDArray[np.float64], t: NDArray[np.float64],
-                     pars: NDArray[np.float64]) -> NDArray[np.float64]:
+                     par: NDArray[np.float64]) -> NDArray[np.float64]:
     m = key.batch_size
     k = y0.shape[0]
     lanes = np.concatenate([y0, np.repeat(y0[-1:], m - k, axis=0)]) if k < m else y0
@@ -167,7 +167,7 @@ def _propagate_batch(key: IntegratorKey, y0: NDArray[np.float64], t: NDArray[np.
         ta = slot.ta
         ta.set_time(np.full(m, t[0]))
         ta.state[:] = lanes.T
-        ta.pars[:] = pars[:slot.n_pars, None]
+        ta.pars[:] = par[:slot.n_pars, None]
         out = ta.propagate_grid(np.repeat(t, m).reshape(-1, m))[-1]
         for r in ta.propagate_res:
             check_outcome(r[0], "propagate_grid")
@@ -184,7 +184,7 @@ class _Found(NamedTuple):
 
 
 def _accept(kind: int, t: Sequence[float] | NDArray[np.float64],
-            y: Sequence[NDArray[np.float64]], pars: NDArray[np.float64],
+            y: Sequence[NDArray[np.float64]], par: NDArray[np.float64],
             lane: NDArray[np.int64] | None = None) -> _Found:
     """Newton-polish raw event states onto the section, drop w <= 0 and t <= T_START."""
     if len(t) == 0:
@@ -192,14 +192,14 @@ def _accept(kind: int, t: Sequence[float] | NDArray[np.float64],
     T = np.asarray(t, dtype=float)
     Y = np.array(y, dtype=float)  # (r, 6)
     cf = section_cfunc(kind)
-    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, T.size))
+    P = np.broadcast_to(par[:cf.nparams, None], (cf.nparams, T.size))
     f, w, fdot = cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))
     with np.errstate(divide="ignore", invalid="ignore"):
         dt = -f / fdot
     # Expected |dt|: a few ulp of t. A larger step (a nearly tangent crossing) is not
     # taken: the first-order update below would not be accurate.
     dt = np.where(np.abs(dt) <= _MAX_POLISH, dt, 0.0)
-    F = field_at(Y, pars)
+    F = field_at(Y, par)
     Y = Y + dt[:, None] * F
     T = T + dt
     keep = (w > 0.0) & (T > T_START)
@@ -213,7 +213,7 @@ def _chunk_steps(n_missing: int, steps: int, found: int) -> int:
     return max(8, math.ceil(n_missing * steps / found) + 2)
 
 
-def _crossings_scalar(key: IntegratorKey, y0: NDArray[np.float64], pars: NDArray[np.float64],
+def _crossings_scalar(key: IntegratorKey, y0: NDArray[np.float64], par: NDArray[np.float64],
                       n_crossings: int, t_max: float) -> _Found:
     with borrow(key) as slot:
         ta, rec = slot.ta, slot.recorder
@@ -221,7 +221,7 @@ def _crossings_scalar(key: IntegratorKey, y0: NDArray[np.float64], pars: NDArray
         rec.clear()
         ta.time = 0.0
         ta.state[:] = y0
-        ta.pars[:] = pars[:slot.n_pars]
+        ta.pars[:] = par[:slot.n_pars]
         found: list[_Found] = []
         n_found = steps = 0
         chunk = 64
@@ -229,7 +229,7 @@ def _crossings_scalar(key: IntegratorKey, y0: NDArray[np.float64], pars: NDArray
             outcome, _, _, nsteps, _, _ = ta.propagate_until(t_max, max_steps=chunk)
             check_outcome(outcome, "looking for crossings")
             steps += nsteps
-            new = _accept(key.kind, rec.t, rec.y, pars)
+            new = _accept(key.kind, rec.t, rec.y, par)
             rec.clear()
             found.append(new)
             n_found += new.t.size
@@ -309,20 +309,20 @@ _MIN_CHUNK = 32
 
 
 def _split_by_lane(kind: int, rows: list[tuple[int, float, NDArray[np.float64]]],
-                   pars: NDArray[np.float64], m: int) -> list[_Found]:
+                   par: NDArray[np.float64], m: int) -> list[_Found]:
     """Polish all roots of a chunk at once and split them by lane, in time order."""
     lane = np.fromiter((r[0] for r in rows), dtype=np.int64, count=len(rows))
     t = np.fromiter((r[1] for r in rows), dtype=float, count=len(rows))
     order = np.lexsort((t, lane))
     lane = lane[order]
-    found = _accept(kind, t[order], [rows[q][2] for q in order.tolist()], pars, lane)
+    found = _accept(kind, t[order], [rows[q][2] for q in order.tolist()], par, lane)
     assert found.lane is not None
     bounds = np.searchsorted(found.lane, np.arange(m + 1))
     return [_Found(found.t[bounds[j]:bounds[j + 1]], found.y[bounds[j]:bounds[j + 1]])
             for j in range(m)]
 
 
-def _crossings_batch_worker(key: IntegratorKey, pars: NDArray[np.float64], n_crossings: int,
+def _crossings_batch_worker(key: IntegratorKey, par: NDArray[np.float64], n_crossings: int,
                             t_max: float, queue: _Queue, budget: int | None) -> None:
     """Run the orbits of ``queue`` through the lanes of one batch integrator.
 
@@ -338,7 +338,7 @@ def _crossings_batch_worker(key: IntegratorKey, pars: NDArray[np.float64], n_cro
         ta, rec = slot.ta, slot.recorder
         assert isinstance(rec, BatchRecorder)
         rec.clear()
-        ta.pars[:] = pars[:slot.n_pars, None]
+        ta.pars[:] = par[:slot.n_pars, None]
         lanes: list[_Orbit | None] = [None] * m
         taken = np.zeros(m, dtype=np.int64)  # steps of the lane's orbit in this phase
         state = np.empty((6, m))
@@ -375,7 +375,7 @@ def _crossings_batch_worker(key: IntegratorKey, pars: NDArray[np.float64], n_cro
             ta.set_dtime(hi, lo)
             ta.propagate_until(t_end, max_steps=max(_MIN_CHUNK, math.ceil(chunk)))
             res = ta.propagate_res
-            found = _split_by_lane(key.kind, rec.rows, pars, m) if rec.rows else None
+            found = _split_by_lane(key.kind, rec.rows, par, m) if rec.rows else None
             rec.clear()
             state = np.array(ta.state)
             hi, lo = (np.array(a, dtype=float) for a in ta.dtime)
@@ -488,7 +488,7 @@ class HeyokaEngine(EngineBase):
         return engine
 
     def _tangent(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                 t: NDArray[np.float64], pars: NDArray[np.float64], tolerance: Tolerance,
+                 t: NDArray[np.float64], par: NDArray[np.float64], tolerance: Tolerance,
                  renormalise: bool, scale: float) -> TangentFlow:
         """Renormalised: the SIMD/threaded system of :mod:`.heyoka_tangent`; else, for one
         vector per orbit and orbits enough to fill SIMD lanes, the 12-variable system
@@ -497,19 +497,19 @@ class HeyokaEngine(EngineBase):
         if not renormalise:
             batch = self._batch(y0.shape[0], PLAIN_SIMD_MULTIPLE)
             if w0.shape[1] == 1 and batch > 1 and t[-1] > t[0]:
-                return heyoka_tangent.plain_flow(y0, w0, t, pars, tolerance.tol, batch,
+                return heyoka_tangent.plain_flow(y0, w0, t, par, tolerance.tol, batch,
                                                  self.n_threads)
-            return heyoka_tangent.matrix_flow(y0, w0, t, pars, tolerance.tol)
-        return heyoka_tangent.renormalised_flow(y0, w0, t, pars, tolerance.tol, scale,
+            return heyoka_tangent.matrix_flow(y0, w0, t, par, tolerance.tol)
+        return heyoka_tangent.renormalised_flow(y0, w0, t, par, tolerance.tol, scale,
                                                 self._batch(y0.shape[0]), self.n_threads)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                           pars: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
                            t_max: float, tolerance: Tolerance,
                            extended_precision: bool) -> TangentFlow:
         """The fundamental matrix stopped by a terminal event, in double or extended
         precision, forward or (``t_max < 0``) backward."""
-        return heyoka_tangent.matrix_crossings(y0, w0, pars, event, n_crossings, t_max,
+        return heyoka_tangent.matrix_crossings(y0, w0, par, event, n_crossings, t_max,
                                                tolerance.tol, extended_precision)
 
     def warm_up(self, capability: Capability, tolerance: Tolerance, *, n: int = 1,
@@ -520,30 +520,30 @@ class HeyokaEngine(EngineBase):
         return heyoka_tangent.warm_up(batch_size=self._batch(n), tol=tolerance.tol, k=k)
 
     def _propagate(self, y0: NDArray[np.float64], t: NDArray[np.float64],
-                   pars: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+                   par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         tol = tolerance.tol
         n = y0.shape[0]
         m = self._batch(n)
         key = IntegratorKey(m, NO_SECTION, 0, tol)
         if m == 1:
-            rows = _run([partial(_propagate_scalar, key, y0[i], t, pars) for i in range(n)],
+            rows = _run([partial(_propagate_scalar, key, y0[i], t, par) for i in range(n)],
                         self.n_threads)
             return np.stack(rows)
-        blocks = _run([partial(_propagate_batch, key, y0[s:s + m], t, pars)
+        blocks = _run([partial(_propagate_batch, key, y0[s:s + m], t, par)
                        for s in range(0, n, m)], self.n_threads)
         return np.concatenate(blocks)
 
     def _attitude(self, z0: NDArray[np.float64], t: NDArray[np.float64],
-                  pars: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
+                  par: NDArray[np.float64], tolerance: Tolerance) -> NDArray[np.float64]:
         """A scalar integrator of (1) with the quaternion
         (:func:`~andoyer.integrate.engines.heyoka_symbolic.attitude_system`) per orbit,
         orbits in threads."""
         key = IntegratorKey(1, ATTITUDE, 0, tolerance.tol)
-        rows = _run([partial(_propagate_scalar, key, z0[i], t, pars)
+        rows = _run([partial(_propagate_scalar, key, z0[i], t, par)
                      for i in range(z0.shape[0])], self.n_threads)
         return np.stack(rows)
 
-    def _crossings(self, y0: NDArray[np.float64], pars: NDArray[np.float64],
+    def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
                    event: SectionEvent, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         kind, direction, tol = event.kind, event.direction, tolerance.tol
@@ -557,7 +557,7 @@ class HeyokaEngine(EngineBase):
         key = IntegratorKey(m, kind, direction, tol)
         results: list[_Found | None]
         if m == 1:
-            results = list(_run([partial(_crossings_scalar, key, y0[i], pars, n_crossings,
+            results = list(_run([partial(_crossings_scalar, key, y0[i], par, n_crossings,
                                          float(t_max)) for i in range(n)], self.n_threads))
         else:
             orbits = [_Orbit(i, y0[i]) for i in range(n)]
@@ -565,11 +565,11 @@ class HeyokaEngine(EngineBase):
             # The pilot: every orbit takes a few hundred steps (its first crossings are
             # kept), which measures its return time and step rate ...
             queue = _Queue(orbits)
-            _run([partial(_crossings_batch_worker, key, pars, n_crossings, float(t_max),
+            _run([partial(_crossings_batch_worker, key, par, n_crossings, float(t_max),
                           queue, _PILOT_STEPS)] * n_workers, n_workers)
             # ... then the rest, longest first, lanes refilled as orbits finish.
             queue = _Queue(_schedule(orbits, n_crossings, float(t_max)))
-            _run([partial(_crossings_batch_worker, key, pars, n_crossings, float(t_max),
+            _run([partial(_crossings_batch_worker, key, par, n_crossings, float(t_max),
                           queue, None)] * n_workers, n_workers)
             results = [_concat(o.parts, n_crossings) for o in orbits]
         for i, r in enumerate(results):

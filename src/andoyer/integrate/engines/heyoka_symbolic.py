@@ -309,18 +309,18 @@ def section_cfunc(kind: int) -> Any:
         return _section_cfunc_cached(kind)
 
 
-def field_at(Y: NDArray[np.float64], pars: NDArray[np.float64]) -> NDArray[np.float64]:
+def field_at(Y: NDArray[np.float64], par: NDArray[np.float64]) -> NDArray[np.float64]:
     """The vector field (1) at states ``Y`` (r, 6), from the compiled heyoka function.
 
     Parameters
     ----------
     Y : ndarray, shape (r, 6)
         Euler-Poisson states.
-    pars : ndarray
+    par : ndarray
         Runtime parameters (:data:`~andoyer.integrate.engines.base.PAR` order).
     """
     cf = field_cfunc()
-    P = np.broadcast_to(pars[:cf.nparams, None], (cf.nparams, Y.shape[0]))
+    P = np.broadcast_to(par[:cf.nparams, None], (cf.nparams, Y.shape[0]))
     return np.asarray(cf(np.ascontiguousarray(Y.T), pars=np.ascontiguousarray(P))).T
 
 

@@ -277,7 +277,7 @@ def _good(outcome: Any) -> bool:
 
 
 def _block(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
-           pars: NDArray[np.float64], out: NDArray[np.float64], ok: NDArray[np.bool_],
+           par: NDArray[np.float64], out: NDArray[np.float64], ok: NDArray[np.bool_],
            tasks: _Counter) -> None:
     """Integrate blocks of ``key.batch_size`` orbits taken from ``tasks`` until none is left."""
     m = key.batch_size
@@ -285,9 +285,9 @@ def _block(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
     with _borrow(key) as ta:
         n_pars = int(np.shape(ta.pars)[0])
         if m == 1:
-            ta.pars[:] = pars[:n_pars]
+            ta.pars[:] = par[:n_pars]
         else:
-            ta.pars[:] = pars[:n_pars, None]
+            ta.pars[:] = par[:n_pars, None]
             grid = np.ascontiguousarray(np.repeat(t, m).reshape(-1, m))
         while (start := tasks.next()) is not None:
             stop = min(start + m, n)
@@ -312,23 +312,23 @@ def _block(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
 
 
 def _run_blocks(key: _Key, x0: NDArray[np.float64], t: NDArray[np.float64],
-                pars: NDArray[np.float64], out: NDArray[np.float64], ok: NDArray[np.bool_],
+                par: NDArray[np.float64], out: NDArray[np.float64], ok: NDArray[np.bool_],
                 n_threads: int) -> None:
     """:func:`_block` on ``n_threads`` threads sharing one queue of blocks."""
     n = x0.shape[0]
     tasks = _Counter(n, key.batch_size)
     workers = min(n_threads, -(-n // key.batch_size))
     if workers <= 1:
-        _block(key, x0, t, pars, out, ok, tasks)
+        _block(key, x0, t, par, out, ok, tasks)
         return
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        for fut in [pool.submit(_block, key, x0, t, pars, out, ok, tasks)
+        for fut in [pool.submit(_block, key, x0, t, par, out, ok, tasks)
                     for _ in range(workers)]:
             fut.result()
 
 
 def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
-                      t: NDArray[np.float64], pars: NDArray[np.float64], tol: float,
+                      t: NDArray[np.float64], par: NDArray[np.float64], tol: float,
                       scale: float, batch_size: int, n_threads: int) -> TangentFlow:
     """The renormalised system over output times ``t`` (see the module notes).
 
@@ -340,7 +340,7 @@ def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
         Initial tangent vectors.
     t : ndarray, shape (m,)
         Output times.
-    pars : ndarray
+    par : ndarray
         Runtime parameters.
     tol : float
         heyoka's tolerance.
@@ -358,7 +358,7 @@ def renormalised_flow(y0: NDArray[np.float64], w0: NDArray[np.float64],
     out = np.empty((n, t.size, x0.shape[1]))
     ok = np.zeros(n, dtype=bool)
     _template(key)  # compile or load once, before the threads start
-    _run_blocks(key, x0, t, pars, out, ok, n_threads)
+    _run_blocks(key, x0, t, par, out, ok, n_threads)
     u = out[..., _N:_N + 6 * k].reshape(n, t.size, k, _N)
     return TangentFlow(np.broadcast_to(t, (n, t.size)).copy(), out[..., :_N], u,
                        out[..., _N + 6 * k:_N + 7 * k] * scale, out[..., -2:] * scale**2,
@@ -385,7 +385,7 @@ def _plain_blocks(key: _Key, x0: NDArray[np.float64], grid: NDArray[np.float64],
 
 
 def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.float64],
-               pars: NDArray[np.float64], tol: float, batch_size: int,
+               par: NDArray[np.float64], tol: float, batch_size: int,
                n_threads: int) -> TangentFlow:
     """``w(t) = Phi(t) w(0)`` of ONE vector per orbit, not renormalised, over output
     times ``t``: the 12-variable system (state and ``w' = J w``,
@@ -402,7 +402,7 @@ def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.f
         One initial tangent vector per orbit.
     t : ndarray, shape (m,)
         Output times.
-    pars : ndarray
+    par : ndarray
         Runtime parameters (the body's ``a, b, c, mu, e1, e2, e3`` first).
     tol : float
         heyoka's tolerance.
@@ -415,7 +415,7 @@ def plain_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.f
     m = batch_size
     if w0.shape[1] != 1 or m < 2:
         raise ValueError("plain_flow takes one vector per orbit and a batch size > 1")
-    coeffs = coefficient_values(pars)
+    coeffs = coefficient_values(par)
     key = _Key("plain", m, tol, zero=frozenset(np.flatnonzero(coeffs == 0.0).tolist()))
     n_blocks = -(-n // m)
     # Lanes as columns, padded to whole blocks with the last orbit (its copies are
@@ -459,7 +459,7 @@ def _matrix_vectors(ta: Any, k: int) -> tuple[NDArray[np.float64], NDArray[np.fl
 
 
 def matrix_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.float64],
-                pars: NDArray[np.float64], tol: float) -> TangentFlow:
+                par: NDArray[np.float64], tol: float) -> TangentFlow:
     """``w_i(t) = Phi(t) w_i(0)`` over output times ``t`` (either direction).
 
     Parameters
@@ -470,7 +470,7 @@ def matrix_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.
         Initial tangent vectors.
     t : ndarray, shape (m,)
         Output times (either direction, from ``t[0]``).
-    pars : ndarray
+    par : ndarray
         Runtime parameters.
     tol : float
         heyoka's tolerance.
@@ -481,7 +481,7 @@ def matrix_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.
     W = np.full((n, t.size, k, _N), np.nan)
     ok = np.zeros(n, dtype=bool)
     with _borrow(key) as ta:
-        ta.pars[:] = pars[:int(np.shape(ta.pars)[0])]
+        ta.pars[:] = par[:int(np.shape(ta.pars)[0])]
         for i in range(n):
             ta.time = float(t[0])
             _matrix_start(ta, y0[i], w0[i])
@@ -502,22 +502,22 @@ def matrix_flow(y0: NDArray[np.float64], w0: NDArray[np.float64], t: NDArray[np.
 _MAX_POLISH = 1e-8  # largest Newton time step of the crossing polish
 
 
-def _polish(kind: int, y: NDArray[np.float64], t: float, pars: NDArray[np.float64]
+def _polish(kind: int, y: NDArray[np.float64], t: float, par: NDArray[np.float64]
             ) -> tuple[NDArray[np.float64], float]:
     """One Newton step in time onto ``f = 0``: heyoka stops on the Taylor root, and the
     event time is rounded to the state's precision."""
     cf = section_cfunc(kind)
-    P = np.ascontiguousarray(pars[:cf.nparams, None])
+    P = np.ascontiguousarray(par[:cf.nparams, None])
     f, _, fdot = (float(v[0]) for v in cf(np.ascontiguousarray(y[:, None]), pars=P))
     dt = -f / fdot if fdot != 0.0 else 0.0
     if abs(dt) < _MAX_POLISH:
-        y = y + dt * field_at(y[None], pars)[0]
+        y = y + dt * field_at(y[None], par)[0]
         t += dt
     return y, t
 
 
 def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
-                     pars: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                     par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
                      t_max: float, tol: float, extended: bool) -> TangentFlow:
     """The first crossings of ``event`` with ``w_i = Phi w_i(0)`` there; ``t_max < 0``
     integrates backward (the event's direction is in physical time).
@@ -528,7 +528,7 @@ def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
         Initial Euler-Poisson states.
     w0 : ndarray, shape (n, k, 6) or (k, 6)
         Initial tangent vectors.
-    pars : ndarray
+    par : ndarray
         Runtime parameters (:data:`~andoyer.integrate.engines.base.PAR` order).
     event : SectionEvent
         The section and its crossing direction.
@@ -551,7 +551,7 @@ def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
     ok = np.ones(n, dtype=bool)
     section_cfunc(event.kind)
     with _borrow(key) as ta:
-        ta.pars[:] = pars[:int(np.shape(ta.pars)[0])]
+        ta.pars[:] = par[:int(np.shape(ta.pars)[0])]
         for i in range(n):
             ta.time = fp(0.0)
             _matrix_start(ta, y0[i], w0[i])
@@ -565,7 +565,7 @@ def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
                     break
                 y, w = _matrix_vectors(ta, k)
                 c = int(count[i])
-                Y[i, c], T[i, c] = _polish(event.kind, y, float(ta.time), pars)
+                Y[i, c], T[i, c] = _polish(event.kind, y, float(ta.time), par)
                 W[i, c] = w
                 count[i] += 1
     u, rho = unit_vectors(W)

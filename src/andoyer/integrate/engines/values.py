@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
+from andoyer.notation import SECTION_COORDINATES
 from andoyer.validation import integer, positive
 
 __all__ = [
@@ -54,10 +55,11 @@ REVERSAL = np.array([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
 ATTITUDE_REVERSAL = np.concatenate([REVERSAL, np.ones(4)])
 
 #: Section -> sign ``s`` with ``f(R y; s value) = s f(y; value)``: the sections a
-#: forward-only engine can run backward (momentum components flip, gamma and ``|G|``
-#: and the phase ``psi`` of gamma do not).
-REVERSIBLE: dict[str, int] = {"G1": -1, "G2": -1, "G3": -1, "L": -1, "gamma1": 1,
-                              "gamma2": 1, "gamma3": 1, "G": 1, "J2": 1, "psi": 1}
+#: forward-only engine can run backward (momentum components and the angle g flip;
+#: gamma, ``|G|``, theta1 mod 2 pi and the phase ``psi`` of gamma do not), from
+#: :data:`andoyer.notation.SECTION_COORDINATES` (SymPy checks each sign).
+REVERSIBLE: dict[str, int] = {k: s.reversal for k, s in SECTION_COORDINATES.items()
+                              if s.reversal is not None}
 
 
 class Capability(enum.Enum):

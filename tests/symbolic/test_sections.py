@@ -1,0 +1,55 @@
+"""The one table of section coordinates (:data:`andoyer.notation.SECTION_COORDINATES`):
+SymPy checks each reversal sign on the generated section functions
+(``f(R y; s value) = s f(y; value)`` with ``R = diag(-1, -1, -1, 1, 1, 1)``), and every
+section table andoyer uses is derived from it."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
+from andoyer.symbolic.hamiltonian import S
+from andoyer.symbolic.sections import section_function, sv, value
+
+
+def _reversed(f: sp.Expr, s: int) -> sp.Expr:
+    """``f(R y; s value)``: momenta flipped, the value (and its sine) times ``s``."""
+    G1, G2, G3 = S.y[:3]
+    return f.subs({G1: -G1, G2: -G2, G3: -G3, value: s * value, sv: s * sv},
+                  simultaneous=True)
+
+
+def reversal_sign(coord: str) -> int | None:
+    """The sign ``s`` with ``f(R y; s value) = s f(y; value)``, or None (SymPy)."""
+    f, _ = section_function(coord)
+    for s in (1, -1):
+        if sp.simplify(sp.expand(_reversed(f, s) - s * f)) == 0:
+            return s
+    return None
+
+
+@pytest.mark.parametrize("coord", sorted(SECTION_COORDINATES))
+def test_each_reversal_sign_is_the_section_functions(coord):
+    assert reversal_sign(coord) == SECTION_COORDINATES[coord].reversal
+
+
+def test_the_check_catches_a_wrong_sign():
+    f, _ = section_function("G3")
+    assert sp.simplify(_reversed(f, 1) - f) != 0  # G3 flips: +1 is wrong
+
+
+def test_every_section_table_is_derived_from_the_one_table():
+    from andoyer.integrate import section
+    from andoyer.integrate.engines.values import REVERSIBLE
+    from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
+    from andoyer.plot.section import LABELS  # noqa: F401 (the plot layer imports)
+    from andoyer.symbolic import sections
+
+    table = SECTION_COORDINATES
+    assert REVERSIBLE == {k: s.reversal for k, s in table.items() if s.reversal is not None}
+    assert section.ANGLES == sections.ANGLES == SECTION_ANGLES
+    assert section._CHART_OF == {k: s.chart for k, s in table.items() if s.chart}
+    assert section._ANGLE_NEEDS == {k: s.needs for k, s in table.items() if s.needs}
+    assert set(sections.EXTRA_ANGLES) == {k for k, s in table.items() if s.chart is None}
+    assert set(table) == set(SECTION_KINDS) | set(EXTRA_SECTION_KINDS)
