@@ -164,7 +164,7 @@ class SectionCoordinate(NamedTuple):
     ----------
     code : str
         Its name (a section kind of the generated kernels,
-        :data:`andoyer.kernels.generated.SECTION_KINDS`).
+        :data:`andoyer.kernels.generated.equations.SECTION_KINDS`).
     chart : str or None
         The chart it belongs to (None: an angle of the analysis modules only, not a
         chart coordinate: ``psi``).
