@@ -19,7 +19,6 @@ if TYPE_CHECKING:
     from andoyer.analysis.splitting.certified import (
         heteroclinic_orbit_balls as heteroclinic_orbit_balls,
     )
-    from andoyer.analysis.splitting.certified import krawczyk_zero as krawczyk_zero
     from andoyer.analysis.splitting.certified import melnikov_coefficient as melnikov_coefficient
     from andoyer.analysis.splitting.hyperbolic import HyperbolicRotation as HyperbolicRotation
     from andoyer.analysis.splitting.hyperbolic import certified_rotation as certified_rotation
@@ -79,7 +78,7 @@ EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_p
            "certificate", "write_certificate": "certificate", "read_certificate": "certificate",
            "verify_certificate": "certificate", "CertifiedMelnikov": "certified", "MelnikovZero":
            "certified", "certified_melnikov": "certified", "melnikov_coefficient": "certified",
-           "heteroclinic_orbit_balls": "certified", "krawczyk_zero": "certified",
+           "heteroclinic_orbit_balls": "certified",
            "HyperbolicRotation": "hyperbolic", "certified_rotation": "hyperbolic"}
 
 __all__ = sorted(EXPORTS)
