@@ -9,9 +9,10 @@ recurrences of the field (1),
 
 the same sum in every lane. Numba leaves such a loop scalar: its lane loop of
 constant trip count is unrolled before LLVM's loop vectoriser sees it, and Numba
-disables the SLP vectoriser by default (measured: plain lane loops ran 1.5-3x *slower*
-per orbit than the scalar jets, whatever the layout; enabling SLP globally made the
-scalar kernels 2.6x slower). :func:`cauchy` is therefore an intrinsic that writes the
+disables the SLP vectoriser by default (plain lane loops ran slower per orbit than the
+scalar jets, whatever the layout, and enabling SLP globally slows the scalar kernels;
+measured: benchmarks/NOTES.md#taylor-lanes). :func:`cauchy` is therefore an intrinsic
+that writes the
 vector code itself: one ``<LANES x double>`` accumulator, two vector loads and one
 fused multiply-add per ``j`` (the scalar jets' ``contract`` flag fuses the same
 multiply-add, in the same order of ``j``).
@@ -72,7 +73,8 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
 def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
     """The vector code of :func:`cauchy` (arguments as there): one loop over ``j``, one
     vector accumulator per product (independent chains of fused multiply-adds: a single
-    chain waits out the multiply-add's latency at every ``j``, measured 2.4x slower)."""
+    chain waits out the multiply-add's latency at every ``j``; measured:
+    benchmarks/NOTES.md#taylor-lanes)."""
     sig = types.void(m, u, v, k, products)
     n = len(products) // 3
 

@@ -9,9 +9,8 @@ rows of the outputs, allocated once.
 
 Why threads and not Numba's ``prange``: the same machine code runs either way (the
 kernels release the GIL), but a ``parallel=True`` entry point costs Numba's parfor
-passes at compile time. Measured on this machine, cold cache, one orbit: compiling
-``propagate`` took 7.1 s with ``prange`` and 5.0 s without; ``locate_crossings`` 11.4 s
-and 8.4 s -- the first call of a fresh install pays it. Blocks are handed out as threads
+passes at compile time, which the first call of a fresh install pays (measured:
+benchmarks/NOTES.md#threads). Blocks are handed out as threads
 free up, so orbits of unequal cost (near a separatrix the steps shrink) balance as with
 ``prange`` at chunk size 1.
 
@@ -111,10 +110,9 @@ _POOL_LOCK = threading.Lock()
 
 
 def _pool() -> ThreadPoolExecutor:
-    """The process's worker threads, started once. Measured on 8 orbits x 50 crossings
-    of theta2 = 0: a pool created per call added ~3 ms (12.1 vs 8.5 ms through
-    ``poincare``); with this one the engine takes 3.48 ms, as with ``prange`` (3.47 ms),
-    and 50 x 1000 crossings 428-437 ms vs 430-431 ms."""
+    """The process's worker threads, started once (a pool per call costs milliseconds
+    a call; with this one the engine is as fast as with ``prange``; measured:
+    benchmarks/NOTES.md#threads)."""
     global _POOL
     with _POOL_LOCK:
         if _POOL is None:

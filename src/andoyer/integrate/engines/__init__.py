@@ -112,13 +112,10 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 #: "Which engine for what" of ``benchmarks/SUMMARY.md``), and that engine. Decided from
 #: the benchmark table, not at run time; every workload not listed runs on heyoka. A
 #: workload moves off heyoka only where another engine is faster by more than 10 % (the
-#: scatter of one run's medians on a 2-core machine is about 5 %): in the full run of
-#: 2026-11-27 (commit 41dea64) taylor was 0.96x heyoka on the G3 section and numba 0.92x
-#: on theta2 (with 1.4x its CPU time): both stay on heyoka, whose cold start is also
-#: far cheaper (0.56 s against 4.7 s).
+#: scatter of one run's medians on a 2-core machine is about 5 %; heyoka's cold start is
+#: also far cheaper). Measured: benchmarks/NOTES.md#engine-defaults.
 MEASURED_DEFAULTS: dict[str, str] = {
-    # W3, FLI map 64^2, t = 1000: taylor's SIMD lanes (kernels.taylor.lanes) 637 ms
-    # against heyoka's 783 ms (0.81x wall, 0.80x CPU), 256^2 9.3 s against 11.0 s.
+    # W3, the FLI map: taylor's SIMD lanes (kernels.taylor.lanes) faster than heyoka.
     "fli_map": "taylor",
 }
 

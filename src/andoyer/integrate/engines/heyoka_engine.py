@@ -69,7 +69,7 @@ schedule keeps the lanes full:
    return later); a chunk ends when the first lane should be done, and a lane whose
    orbit is done takes the next orbit from the queue.
 
-On the 50-orbit x 1000-crossing benchmark 97-98 % of the SIMD lane-steps are useful.
+Nearly every SIMD lane-step is useful (measured: benchmarks/NOTES.md#heyoka-engine).
 Two traps are avoided this way: a terminal event in one lane of a batch integrator
 stops every lane, and ``heyoka.ensemble_propagate_until`` takes one end time for all
 orbits (and deep-copies the integrator for each one).
@@ -437,8 +437,8 @@ class HeyokaEngine(EngineBase):
         :func:`heyoka.recommended_simd_size` (4 doubles with AVX2) whenever there are at
         least that many orbits, else 1 (scalar integrators); the 12-variable tangent flow
         of the FLI maps (``tangent(renormalise=False)``, one vector) takes
-        :data:`PLAIN_SIMD_MULTIPLE` times that (two SIMD vectors per operation: measured
-        on 984 orbits of the W3 map, one thread, 0.373 -> 0.312 s CPU with AVX2). At most
+        :data:`PLAIN_SIMD_MULTIPLE` times that (two SIMD vectors per operation are
+        faster; measured: benchmarks/NOTES.md#heyoka-engine). At most
         :data:`~andoyer.integrate.engines.values.MAX_BATCH`.
     n_threads : int, optional
         Threads running independent orbits or batches (at most

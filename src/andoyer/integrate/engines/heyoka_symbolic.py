@@ -33,7 +33,7 @@ __all__ = ["PARAMETERS", "COS_PHI0", "SIN_PHI0", "INV_SCALE", "par", "heyoka_sta
 
 #: ``cos phi0``, ``sin phi0`` as runtime parameters of their own in the section functions:
 #: heyoka would expand ``cos(par)``, ``sin(par)`` by their Taylor recursions at every step
-#: (measured on the theta2 = 0 event: 392 -> 315 ns per lane-step, 8 lanes).
+#: (measured: benchmarks/NOTES.md#heyoka-engine).
 COS_PHI0, SIN_PHI0 = sp.symbols("cos_phi0 sin_phi0", real=True)
 #: ``1/T``: the scale of the MEGNO quadratures of the tangent flows.
 INV_SCALE = sp.Symbol("inv_scale", positive=True)
@@ -80,9 +80,8 @@ def taylor_form(expr: sp.Expr) -> Any:
     heyoka then multiplies state by state before the parameters and negates each
     negative term. Here each degree is written ``gcd * (c1*x_k..x_1 - c2*...)``: the
     common parameter factored out, each coefficient multiplied in first, the state
-    variables in reverse order (γ before G), signs folded into subtractions. Measured on
-    W1 (one orbit, tol 1e-12, the same 9029 steps): 4.11 -> 3.60 ms, against 3.44 ms
-    with the numbers folded in as constants (``benchmarks/``, issue 15).
+    variables in reverse order (γ before G), signs folded into subtractions: nearly as
+    fast as the numbers folded in as constants (measured: benchmarks/NOTES.md#heyoka-engine).
 
     Parameters
     ----------
@@ -129,9 +128,9 @@ def heyoka_system(scalar: bool = False) -> tuple[tuple[Any, Any], ...]:
     ----------
     scalar : bool
         For a scalar (one-orbit) integrator: each right-hand side in
-        :func:`taylor_form`, 12 % cheaper per step there. Batch (SIMD) integrators keep
-        :func:`heyoka.from_sympy`'s form: the rewrite measured 6-20 % slower with 8
-        lanes (``taylor_adaptive_batch``, AVX-512), same orbits, same steps.
+        :func:`taylor_form`, cheaper per step there. Batch (SIMD) integrators keep
+        :func:`heyoka.from_sympy`'s form, which is faster with lanes (measured:
+        benchmarks/NOTES.md#heyoka-engine).
     """
     smap = symbol_map()
     return tuple((x, taylor_form(e) if scalar else hy.from_sympy(e, smap))

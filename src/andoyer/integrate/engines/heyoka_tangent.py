@@ -44,8 +44,7 @@ transforms of the one SymPy -> heyoka field (:func:`heyoka_system`) by
 
 Compiled integrators are kept per process in a pool keyed by what changes the code;
 heyoka's on-disk JIT cache (heyoka.py >= 7.10, ``~/.cache/heyoka``) makes a rebuild in
-a new process cheap (measured for the renormalised system at tol = 1e-12: 1.01 s
-without the cache, 0.063 s from it).
+a new process cheap (measured: benchmarks/NOTES.md#heyoka-engine).
 """
 
 from __future__ import annotations

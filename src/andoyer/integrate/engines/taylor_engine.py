@@ -25,9 +25,10 @@ vectors (``6 + 6 k`` floats: the FLI map's route).
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
 renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of 8
 orbits in one vector instruction, each orbit with its own steps (the scalar kernel's),
-3.2-3.8x less CPU per orbit-step than the scalar kernel (measured there); so do the
-crossings of a state component's section (``G3 = c`` ...) of many states alone
-(:mod:`andoyer.kernels.taylor.lane_crossings`; W2 G3 on one thread: 2.25 -> 1.07 s CPU).
+at a fraction of the scalar kernel's CPU per orbit-step; so do the crossings of a state
+component's section (``G3 = c`` ...) of many states alone
+(:mod:`andoyer.kernels.taylor.lane_crossings`; measured:
+benchmarks/NOTES.md#taylor-lane-crossings).
 
 The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
 a machine compiles what it calls (a few seconds), later processes load it.
@@ -58,11 +59,10 @@ _N = 6
 
 
 #: Orbits from which many-orbit propagations run on SIMD lanes
-#: (:mod:`andoyer.kernels.taylor.lanes`), one vector of lanes. Measured on one thread
-#: (CPU, lanes / scalar kernel, state / with a tangent vector): 4 orbits 0.60 / 0.52,
-#: 6 orbits 0.45 / 0.37, 8 orbits 0.37 / 0.30; but fewer orbits than lanes fill one
-#: block on one thread, where the scalar kernel runs one orbit per thread, so below 8
-#: the wall times are about even and the scalar kernel is kept.
+#: (:mod:`andoyer.kernels.taylor.lanes`), one vector of lanes: fewer orbits than lanes
+#: fill one block on one thread, where the scalar kernel runs one orbit per thread, so
+#: below 8 the wall times are about even and the scalar kernel is kept (measured:
+#: benchmarks/NOTES.md#taylor-lanes).
 LANES_FROM = 8
 
 
@@ -74,9 +74,8 @@ def _lanes() -> Any:
 
 #: Crossings asked (orbits x crossings per orbit) from which a component section's
 #: crossings run on SIMD lanes (and from :data:`LANES_FROM` orbits). Below, the lanes
-#: would save under ~25 ms a call (measured ~24 us a crossing of G3 = 0 on one thread)
-#: and compiling their kernel costs ~1.8 s once (a cold first ``poincare`` of 8 orbits x
-#: 20 crossings: 4.3 s on the scalar kernel, 6.1 s on lanes).
+#: would save less than compiling their kernel costs once (measured:
+#: benchmarks/NOTES.md#taylor-lane-crossings).
 LANE_CROSSINGS_FROM = 1000
 
 

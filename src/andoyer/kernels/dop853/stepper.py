@@ -264,7 +264,7 @@ def make_stepper(field: Any) -> Stepper:
         argument of the last stage (``y + h sum_j B_j k_j`` = y1 when ``last = 13``)."""
         n = y.shape[0]
         for s in range(first, last):
-            if n == N:  # the field (1) alone: six accumulators in registers, 1.7x faster
+            if n == N:  # the field (1) alone: six accumulators in registers (faster)
                 s0 = s1 = s2 = s3 = s4 = s5 = 0.0
                 for j in range(s):
                     w = A[s, j]

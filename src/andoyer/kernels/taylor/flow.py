@@ -35,9 +35,8 @@ rule -- a section of a state component (``G3 = 0``) steps exactly as :func:`prop
 it (near ``G = 0`` an angle's section function has unbounded jets). On the angle
 sections this is what makes the crossings as accurate as heyoka's: the error of a
 crossing is the integration's global error there, and the angle's jets shorten the
-steps by some 12 % (W2, ``theta2 = 0``, 1000 crossings: median error 2.0e-11 without,
-5.5e-12 with, heyoka 6.1e-12, against the extended-precision reference of the
-benchmarks).
+steps a little (the crossings' errors then match heyoka's against the extended-precision
+reference; measured: benchmarks/NOTES.md#taylor-sections).
 
 Tangent vectors. The variational equations :math:`\dot w = J(x) w` are linear in
 ``w`` and bilinear in the jets: a state of ``6 + 6 k`` floats carries ``k`` tangent
@@ -152,8 +151,8 @@ MIN_ORDER = 4
 _N = N_STATE  # the Euler-Poisson state
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish (as heyoka's engine)
 #: A counter's start, typed int64: a literal 0 (or 1) passed to a compiled helper makes
-#: Numba compile a second specialisation of it for ``Literal[int](0)`` (measured on a
-#: cold first section: ``record`` 0.5 s, the order-1 jets 0.3 s more).
+#: Numba compile a second specialisation of it for ``Literal[int](0)``, a longer cold
+#: start (measured: benchmarks/NOTES.md#taylor-sections).
 _ZERO = np.int64(0)
 
 #: Hash of every source the compiled entry points depend on (their cache key).

@@ -173,8 +173,8 @@ def block_at(x, order, tau):
     The six sums run side by side (order outermost, one accumulator per component), not
     one after the other: each sum is a chain of dependent fused multiply-adds, and six
     independent chains keep the FMA units busy. Each component's operations are those
-    of its own Horner loop, in the same order, so the values are bit for bit the same;
-    measured on one thread: 49 -> 22 ns a block (order 15).
+    of its own Horner loop, in the same order, so the values are bit for bit the same
+    (about twice as fast; measured: benchmarks/NOTES.md#taylor-jets).
     """
     v0 = x[order, 0]
     v1 = x[order, 1]

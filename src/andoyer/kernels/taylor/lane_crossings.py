@@ -27,12 +27,9 @@ The lanes' section values (end value and root bound of every lane's step) are on
 vector Horner loop over the lanes (:func:`_end_and_bound`), each lane's operations the
 scalar ones; only a lane whose step may hold a root leaves the vector code.
 
-Measured (W2: 50 orbits x 1000 upward crossings of G3 = 0, paper's body, tol 1e-12,
-one thread, CPU, load 1.4-2.6): the scalar kernel 2.1-2.25 s (~360 ns per step, of
-which ~25 ns section work), these lanes 0.85-1.07 s, the heyoka engine 1.23-1.35 s;
-per orbit-step 138-153 ns here against 104-108 ns for the lanes' plain propagation
-(the section work ~35-45 ns: the vector Horner loop cut it from ~50-60 ns). The same
-5,945,024 steps as the scalar kernel.
+On many crossings of a component section these lanes take less than half the scalar
+kernel's time, the same steps as the scalar kernel (measured:
+benchmarks/NOTES.md#taylor-lane-crossings).
 """
 
 from __future__ import annotations
@@ -269,7 +266,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     """:func:`andoyer.kernels.taylor.flow.locate_crossings` of states alone (n, 6) on SIMD
     lanes, for a section whose :func:`component` is not -1 (else ValueError).
 
-    Measured: see the module notes.
+    Costs: the module notes.
 
     Parameters
     ----------

@@ -10,18 +10,16 @@ by :mod:`andoyer.symbolic.taylor_codegen` from the same SymPy field as the scala
 ones) do every multiply-add for all lanes with one vector instruction -- heyoka's
 batch mode, without heyoka.
 
-Design (measured on this machine, AVX-512, 2 shared cores, CPU time; numbers in
-``/work/notes/26-lanes.md``):
+Design (measured: benchmarks/NOTES.md#taylor-lanes):
 
 * **Vector code by intrinsics** (:mod:`andoyer.kernels.simd`). Plain Numba loops over
   the lanes are not vectorised (their constant trip count is unrolled first, and
-  Numba turns LLVM's SLP vectoriser off): they ran 1.5-3x *slower* per orbit than the
-  scalar jets in every layout tried (scratch rows, flat arrays, per-lane
-  accumulators); SLP on for the whole process made the scalar kernels 2.6x slower. The
-  intrinsics' hot loop is the ideal one: per ``j``, 12 vector loads and 18 fused
-  multiply-adds into 18 register accumulators (the tangent jet), on buffers aligned to
-  64 bytes (:func:`aligned`). Jets of state and tangent vector: about 170 ns per
-  lane-step against the scalar 680 ns per orbit-step.
+  Numba turns LLVM's SLP vectoriser off): they ran slower per orbit than the scalar
+  jets in every layout tried, and SLP on for the whole process slows the scalar
+  kernels. The intrinsics' hot loop is the ideal one: per ``j``, 12 vector loads and 18
+  fused multiply-adds into 18 register accumulators (the tangent jet), on buffers
+  aligned to 64 bytes (:func:`aligned`); a lane-step's jets cost about a quarter of a
+  scalar orbit-step's.
 * **Each lane steps on its own.** A lane has its own time, its own Jorba-Zou step
   (:func:`lane_steps`: the rule of :func:`andoyer.kernels.taylor.jets.step_size`,
   lane by lane) and its own next output time; output times inside a step are the
@@ -42,14 +40,10 @@ Design (measured on this machine, AVX-512, 2 shared cores, CPU time; numbers in
 * **Threads over blocks of orbits** (:func:`andoyer.kernels.threads.over_orbits`),
   each block a queue for its own lanes (:func:`block_size`: four blocks per thread).
 
-Per lane-step with one tangent vector (order 15): 235 ns (264 before the buffers were
-aligned to cache lines), of which the jets about 170, the step size 38 (two powers per
-lane), the step's end 11 (vector Horner), output times and lane bookkeeping the rest;
-the scalar kernel takes 890 ns per orbit-step (3.8x); the state alone 122 ns against
-385 ns. The FLI map (``chaos_map``, 32² and 64², t = 1000, tol 1e-12) on taylor takes
-0.82 and 0.79 of heyoka's time. Cold compilation of the entry point (one
-specialisation serves every width ``6 + 6 k``): 3.6 s CPU, loaded from the cache in a
-second process in 0.3 s.
+A lane-step costs about a quarter of the scalar kernel's orbit-step, mostly the jets
+(then the step size: two powers per lane); one specialisation of the entry point serves
+every width ``6 + 6 k`` (per-step costs, FLI maps against heyoka, compile time:
+benchmarks/NOTES.md#taylor-lanes).
 
 States of ``6 + 6 k`` floats (the state and ``k`` tangent vectors, not renormalised,
 as :func:`andoyer.kernels.taylor.flow.propagate`).
@@ -152,7 +146,8 @@ def lane_steps(X, order, h, a1, a2, tot):
 @kernel_jit
 def lane_advance(X, order, h):
     """Rows 0 of every lane's jets = the values at ``t0 + h[lane]`` (vector code,
-    :func:`andoyer.kernels.simd.advance`: the scalar loops took 45 ns per lane-step)."""
+    :func:`andoyer.kernels.simd.advance`: faster than the scalar loops; measured:
+    benchmarks/NOTES.md#taylor-lanes)."""
     simd.advance(X, order, h)
 
 
@@ -210,8 +205,8 @@ def take_orbit(z0, t_out, max_steps, X, lane, nxt, out, info, nothing):
 @kernel_jit
 def aligned(n):
     """``n`` zeros starting on a 64-byte boundary, so that each lane vector is one
-    cache line (measured: vector loads straddling two lines made the Cauchy products
-    1.5x slower, 53 against 34 ns per lane)."""
+    cache line (vector loads straddling two lines slow the Cauchy products down;
+    measured: benchmarks/NOTES.md#taylor-lanes)."""
     buf = np.zeros(n + 8)
     start = ((-buf.ctypes.data) // 8) % 8
     return buf[start:start + n]

@@ -25,20 +25,15 @@ counted once: at a step's start it belongs to the previous step, at its end to t
 * Any other section takes its jet from one pass of the tape (:func:`tape_jet`, which
   the step size uses too), and ``f_b`` is the tape at the step's end state (order 0).
   ``P(h)`` is not reliable there: the series of ``f`` (a square root of ``|G|^2`` for
-  the angles and ``|G|``) need not converge on a step sized by the state's jets.
-  Measured on 16 random states of a general body, tol 1e-12: ``P(h)`` was off by more
-  than 2e-5 of ``f``'s scale in 1 % of steps (up to 0.86, near ``|G| = 0.06``), and
-  carried over it added a theta2 crossing.
+  the angles and ``|G|``) need not converge on a step sized by the state's jets (carried
+  over, such a ``P(h)`` added a theta2 crossing; measured:
+  benchmarks/NOTES.md#taylor-sections).
 * :func:`end_and_bound` gives ``P(h)`` and the bound :math:`B = \sum_{k \ge 1}
   |f^{[k]}| h^k` in one loop (two independent Horner chains); a step with ``f_a`` and
   ``f_b`` of one sign and :math:`|f_a| > B` cannot hold a root and skips the isolation.
 
-Measured (W2, 50 orbits x 1000 upward crossings of G3 = 0, tol 1e-12, one thread,
-5.95 M steps): the section work per step went from ~150 ns (a tape pass for the jet, the
-end state's own Horner sum, a second tape pass there, the bound) to ~36 ns; the
-crossings of G3 = 0 and theta2 = 0 are bit for bit those of the code before. A helper's
-call costs: a single helper with both paths behind a runtime branch measured 80 ns
-more per step than two helpers chosen by the caller.
+Two helpers chosen by the caller, not one with both paths behind a runtime branch: a
+helper's call costs (measured: benchmarks/NOTES.md#taylor-sections).
 """
 
 from __future__ import annotations
@@ -62,8 +57,8 @@ __all__ = ["VAR", "LIN", "MUL",
 VAR, LIN, MUL = 0, 1, 2  # ops of a section tape (SQRT = 3), see taylor_codegen
 ROOT_MAXITER = 200
 #: Bracket width (relative) at which :func:`solve_root` stops: 4 eps, a float the
-#: compiled code reads as a constant (``np.finfo`` in the kernel compiled Numba's finfo
-#: machinery on every cold start: 0.2 s of CPU). 4 eps is exact: the same comparisons.
+#: compiled code reads as a constant (``np.finfo`` in the kernel would compile Numba's
+#: finfo machinery on every cold start). 4 eps is exact: the same comparisons.
 _ROOT_XTOL = 4.0 * float(np.finfo(np.float64).eps)
 
 
@@ -109,11 +104,9 @@ def tape_jet(tape, C, x, order, u):
     """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
     state's jet ``x`` (the last node is the function): the tape interpreter (rows
     ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.generated.recurrences.SECTION_TAPES`,
-    constants ``C``). Products by :func:`cauchy` (four orders at a time: W2 theta2, 50 x
-    1000 crossings, one thread, 0.96-1.05 -> 0.90-0.93 s CPU, load 1-1.4; the crossings
-    within round-off of the one-order loop's: 12 of 50 orbits differ in the last bits,
-    error at the 1000th crossing against the extended-precision reference median
-    5.5e-12, max 2.5e-11 in both)."""
+    constants ``C``). Products by :func:`cauchy`, four orders at a time (faster; the
+    crossings within round-off of a one-order loop's -- measured:
+    benchmarks/NOTES.md#taylor-sections)."""
     # Node by node (each node reads earlier nodes only, and the state's jet is known to
     # the full order): one dispatch per node, not per node and order.
     for n in range(tape.shape[0]):
@@ -400,8 +393,8 @@ def casteljau(B, n, left, right):
 def tape_value(tape, C, Y, u):
     """A section tape's function at the state ``Y[0]``: :func:`tape_jet` at order 0, the
     same floats (each node's one multiply-add as there), without its loops over orders.
-    Called once a step (the step's end value ``f_b``); measured on the theta2 tape (33
-    nodes): 45 ns against 110 ns for ``tape_jet`` at order 0."""
+    Called once a step (the step's end value ``f_b``): less than half the time of
+    ``tape_jet`` at order 0 (measured: benchmarks/NOTES.md#taylor-sections)."""
     for n in range(tape.shape[0]):
         op = tape[n, 0]
         a = tape[n, 1]
