@@ -42,8 +42,7 @@ import math
 
 import numpy as np
 
-from andoyer.kernels.cache import cached_njit
-from andoyer.kernels.common import kernel_jit
+from andoyer.kernels.common import exact_jit, kernel_jit
 from andoyer.kernels.generated import recurrences
 
 __all__ = ["VAR", "LIN", "MUL",
@@ -419,7 +418,7 @@ def tape_value(tape, C, Y, u):
     return u[tape.shape[0] - 1, 0]
 
 
-@cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)
+@exact_jit
 def section_jet(tape, C, x, order):
     """The jet of a section function or margin (:func:`section_tape`) along a state's
     jet ``x`` (order + 1, 6): shape (order + 1,)."""
