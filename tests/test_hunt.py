@@ -187,6 +187,8 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "resonance_widths": {"section": "g=0", "max_order": 9},
     "resonant_tori": {"max_order": 9},
     "free_top_at_gap": {"gap": 0.01},
+    "island_prediction": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,
+                          "resonance": "3:1", "axis": 1, "order_mu": 1},
     "free_top_phase": {"momentum": [0.3, 0.9, 0.1]},
     "elliptic_f": {"phi": 0.7},
     "measure_island": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,

@@ -377,3 +377,26 @@ def test_stable_point_first_order_misses_like_mu2_second_like_mu3(body, h, label
         assert s_in < float(last.predicted_stable_s_2) < s_out
         assert not s_in < float(last.predicted_stable_s) < s_out
         assert bool(last.predicted_stable_s_holds) is False
+
+
+def test_island_prediction_orders_and_p2_chains():
+    """(S1)-(S4) as a dataset: on Hess(3, 1, 2) the 3:1 chain at mu = 1e-3 has its second
+    order within the first order's error estimate of the first and a smaller estimate of
+    its own; the 3:2 chain (p = 2) has no width at first order (R3) and one of O(mu) at
+    second (the libration frequency too): doubling mu doubles both within 1 %."""
+    from andoyer.analysis.resonance import island_prediction
+
+    ds = island_prediction(WIDE, 1.0, 0.0, "3:1", axis=1)
+    s1, s2 = ds.stable_s.values
+    e1, e2 = ds.stable_s_error.values
+    assert abs(s2 - s1) < 3 * e1 and e2 < 0.2 * e1
+    assert ds.half_width.values[1] == pytest.approx(2.561e-3, rel=2e-3)   # measured 2.5601e-3
+    assert int(ds.order_mu[-1]) == 2 and ds.stable_s.attrs["equation"] == "(S4)"
+    a = island_prediction(WIDE.with_mu(1e-4), 1.0, 0.0, "3:2", axis=1)
+    b = island_prediction(WIDE.with_mu(2e-4), 1.0, 0.0, "3:2", axis=1)
+    assert np.isnan(a.half_width.values[0]) and np.isnan(a.libration_frequency.values[0])
+    assert float(b.half_width[1]) == pytest.approx(2 * float(a.half_width[1]), rel=0.01)
+    assert float(b.libration_frequency[1]) == pytest.approx(
+        2 * float(a.libration_frequency[1]), rel=0.01)
+    with pytest.raises(ValueError, match="order_mu"):
+        island_prediction(WIDE, 1.0, 0.0, "3:1", order_mu=3)

@@ -5,6 +5,10 @@
   ``(r, gamma)`` by FFT;
 - :mod:`~andoyer.analysis.resonance.predict`: where (the resonant tori ``W = p/q``) and
   how wide (the first-order pendulum: half-widths, periodic orbits, their stability);
+- :mod:`~andoyer.analysis.resonance.deprit`: the Lie-Deprit series to order ``N``
+  (Deprit's triangle) on jets in the action with Fourier coefficients in the angles;
+- :mod:`~andoyer.analysis.resonance.second_order` (``island_prediction``): the chain's
+  stable point, width and libration frequency to second order in ``mu`` from it;
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
   Poincare sections of the perturbed flow;
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
@@ -31,6 +35,7 @@ if TYPE_CHECKING:
     from andoyer.analysis.resonance.predict import (
         section_rotation_number as section_rotation_number,
     )
+    from andoyer.analysis.resonance.second_order import island_prediction as island_prediction
     from andoyer.analysis.resonance.torus import Torus as Torus
     from andoyer.analysis.resonance.torus import free_top_phase as free_top_phase
     from andoyer.analysis.resonance.torus import sample_torus as sample_torus
@@ -40,7 +45,7 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "measure_island": "measure", "resonant_normal_form": "near_centre", "resonance_widths":
            "predict", "resonant_tori": "predict", "section_rotation_number": "predict", "Torus":
            "torus", "free_top_phase": "torus", "sample_torus": "torus", "free_top_at_gap":
-           "predict", "FreeTopTorus": "predict"}
+           "predict", "FreeTopTorus": "predict", "island_prediction": "second_order"}
 
 __all__ = sorted(EXPORTS)
 

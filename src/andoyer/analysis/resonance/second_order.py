@@ -40,7 +40,7 @@ from andoyer.analysis.resonance.torus import (
 )
 from andoyer.charts.andoyer_deprit import from_andoyer
 
-__all__ = ["SecondOrderChain"]
+__all__ = ["SecondOrderChain", "island_prediction"]
 
 #: Degree of the jets in ``x`` (the position needs 2 for K1, 1 for K2, 3 for K0).
 DEGREE = 4
@@ -120,10 +120,12 @@ class SecondOrderChain:
         self.omega = list(np.real(inv @ np.array(Ws))[: DEGREE + 1])
         self.omega[0] = p / q
         self.G_poly = inv @ Gs                    # G0(I1* + x)
-        H = [self.K1, 2.0 * self.K2][: self.order]
+        H = [self.K1, 2.0 * self.K2, self.space.zeros()][: self.order]   # K3: not built
         self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, p, q)
         xj = self.space.zeros()
         xj[1, 0, 0] = 1.0
+        self.dHt = [self.space.d_x(f) for f in self.Ht]
+        self.pHt = [self.space.d_phi(f) for f in self.Ht]
         self.X = transform(self.space, xj, self.Ws)
         self.P = transform(self.space, None, self.Ws)
 
@@ -138,7 +140,7 @@ class SecondOrderChain:
         mu, sp = self.chain.body.mu, self.space
         w = sum(c * x**j for j, c in enumerate(self.omega))
         return w + sum(mu**n / math.factorial(n)
-                       * sp.evaluate(sp.d_x(self.Ht[n - 1]), x, phi, t).real
+                       * sp.evaluate(self.dHt[n - 1], x, phi, t).real
                        for n in range(1, self.order + 1))
 
     def centre(self, phi_old: float, t: float) -> tuple[float, float]:
@@ -220,19 +222,14 @@ class SecondOrderChain:
                 break
         return x_new, phi_new
 
-    def stable_s(self, phase: float, g_star: float) -> float:
-        """(S4) on the seed line of :func:`~andoyer.analysis.resonance.measure.measure_island`:
-        the ``s`` (``G`` units along the normal through the torus point of phase ``phase``)
-        where the slow Hamiltonian ``Kt - (p/q) J`` is extremal along the line (the
-        innermost level curve touches it: the orbit of least libration), by secant steps
-        on its derivative in ``s``."""
+    def _line(self, phase: float, g_star: float) -> Any:
+        """``s -> (x, phi, t)`` in the new variables of the seed line's state at ``s``."""
         from andoyer.analysis.resonance.predict import trig_interpolate
         from andoyer.analysis.resonance.torus import free_top_phase
         from andoyer.integrate.fill import section_roots
 
         c = self.chain
         body, h, M, T = c.body, c.h, c.M, c.torus
-        mu, sp, p, q = body.mu, self.space, c.p, c.q
         mom0 = c.states(np.array([phase]))
         l0, L0 = float(np.arctan2(mom0[0, 0], mom0[0, 1])), float(mom0[0, 2])
         dl, dL = (float(v[0]) for v in c.normal(mom0))
@@ -249,6 +246,18 @@ class SecondOrderChain:
             x, ph = self._to_new(G, phi, t)
             return x, ph, t
 
+        return new
+
+    def stable_s(self, phase: float, g_star: float) -> float:
+        """(S4) on the seed line of :func:`~andoyer.analysis.resonance.measure.measure_island`:
+        the ``s`` (``G`` units along the normal through the torus point of phase ``phase``)
+        where the slow Hamiltonian ``Kt - (p/q) J`` is extremal along the line (the
+        innermost level curve touches it: the orbit of least libration), by secant steps
+        on its derivative in ``s``."""
+        c = self.chain
+        mu, sp, p, q = c.body.mu, self.space, c.p, c.q
+        new = self._line(phase, g_star)
+
         def slope(s: float) -> float:
             ds = 1e-3 * (c.dG if math.isfinite(c.dG) else 1e-6)
             a, b = new(s - ds), new(s + ds)
@@ -256,11 +265,13 @@ class SecondOrderChain:
             dx, dpsi = (b[0] - a[0]) / (2 * ds), (q * (b[1] - a[1]) - p * (b[2] - a[2])) / (2 * ds)
             Kx = self._dKt(x, ph, t) - p / q
             Kphi = sum(mu**n / math.factorial(n)
-                       * sp.evaluate(sp.d_phi(self.Ht[n - 1]), x, ph, t).real
+                       * sp.evaluate(self.pHt[n - 1], x, ph, t).real
                        for n in range(1, self.order + 1))
             return Kx * dx + Kphi / q * dpsi
 
         s0 = float(c.stable_shift(np.array([phase]))[0])
+        if not math.isfinite(s0):        # p >= 2: no first-order offset
+            s0 = 0.0
         s1 = s0 + 1e-2 * (c.dG if math.isfinite(c.dG) else 1e-6)
         f0, f1 = slope(s0), slope(s1)
         for _ in range(20):
@@ -271,3 +282,225 @@ class SecondOrderChain:
                 break
             f1 = slope(s1)
         return s1
+
+    # ------------------------------------------------------------ the slow pendulum
+    def slow(self, x: float, phi: float, t: float) -> float:
+        """``Kt - (p/q) J`` less its value at ``x = 0`` of ``K0`` (S4): the slow
+        Hamiltonian of the resonant normal form, conserved along its flow."""
+        mu, sp = self.chain.body.mu, self.space
+        k0 = sum(w * x ** (j + 1) / (j + 1) for j, w in enumerate(self.omega) if j >= 1)
+        return float(k0 + sum(mu**n / math.factorial(n)
+                              * sp.evaluate(self.Ht[n - 1], x, phi, t).real
+                              for n in range(1, self.order + 1)))
+
+    def _x_at(self, phi: float, t: float) -> float:
+        c = self.chain
+        x = 0.0
+        for _ in range(40):
+            f = self._dKt(x, phi, t) - c.p / c.q
+            h = 1e-6 * (abs(x) + 1e-6)
+            df = (self._dKt(x + h, phi, t) - self._dKt(x - h, phi, t)) / (2 * h)
+            step = f / df
+            x -= step
+            if abs(step) < 1e-16:
+                break
+        return x
+
+    def equilibria(self) -> dict[str, tuple[float, float, float]]:
+        """The stable and unstable equilibria of the slow Hamiltonian: ``kind ->
+        (psi, x, libration or growth rate per radian of phi2)`` (``t = 0``,
+        ``phi = psi / q``); NaN where the normal form has no resonant harmonic."""
+        from scipy.optimize import brentq
+
+        c, sp, mu = self.chain, self.space, self.chain.body.mu
+        q = c.q
+
+        def dpsi(psi: float) -> float:
+            x = self._x_at(psi / q, 0.0)
+            return sum(mu**n / math.factorial(n)
+                       * sp.evaluate(self.pHt[n - 1], x, psi / q, 0.0).real
+                       for n in range(1, self.order + 1)) / q
+
+        grid = np.linspace(0.0, 2 * math.pi, 97)
+        vals = np.array([dpsi(float(v)) for v in grid])
+        out: dict[str, tuple[float, float, float]] = {}
+        scale = float(np.max(np.abs(vals)))
+        if not scale > 1e-300:
+            nan = (math.nan, math.nan, math.nan)
+            return {"stable": nan, "unstable": nan}
+        for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
+            psi = brentq(dpsi, float(grid[i]), float(grid[i + 1]), xtol=1e-14)
+            x = self._x_at(psi / q, 0.0)
+            e = 1e-5
+            K = self.slow
+            Kxx = (K(x + 1e-6, psi / q, 0) - 2 * K(x, psi / q, 0) + K(x - 1e-6, psi / q, 0)) / 1e-12
+            Kpp = (K(x, (psi + e) / q, 0) - 2 * K(x, psi / q, 0) + K(x, (psi - e) / q, 0)) / e**2
+            Kxp = (K(x + 1e-6, (psi + e) / q, 0) - K(x + 1e-6, (psi - e) / q, 0)
+                   - K(x - 1e-6, (psi + e) / q, 0) + K(x - 1e-6, (psi - e) / q, 0)) / (4e-6 * e)
+            det = q * q * (Kxx * Kpp - Kxp * Kxp)
+            kind = "stable" if det > 0 else "unstable"
+            if kind not in out:
+                out[kind] = (float(psi), float(x), math.sqrt(abs(det)))
+        return out
+
+    def half_width(self, phase: float, g_star: float, s_stable: float) -> float:
+        """Half the distance between the two crossings of the separatrix (the level of the
+        slow Hamiltonian at the unstable equilibrium) with the seed line, in ``G`` units."""
+        from scipy.optimize import brentq
+
+        eq = self.equilibria()
+        psi_u, x_u, _r = eq.get("unstable", (math.nan,) * 3)
+        if not math.isfinite(psi_u):
+            return math.nan
+        K_u = self.slow(x_u, psi_u / self.chain.q, 0.0)
+        new = self._line(phase, g_star)
+
+        def f(s: float) -> float:
+            x, ph, t = new(s)
+            return self.slow(x, ph, t) - K_u
+
+        f0 = f(s_stable)
+        w = 2.0 * abs(self.chain.W) * math.sqrt(2.0 * abs(f0 / self.omega[1])) \
+            if self.omega[1] else 1e-6
+        edges = []
+        for direction in (-1.0, 1.0):
+            step = 0.5 * w
+            b = s_stable + direction * step
+            for _ in range(40):
+                if np.sign(f(b)) != np.sign(f0):
+                    break
+                step *= 1.5
+                b = s_stable + direction * step
+            edges.append(brentq(f, min(s_stable, b), max(s_stable, b), xtol=1e-15,
+                                rtol=1e-12))
+        return 0.5 * (edges[1] - edges[0])
+
+
+_META = {
+    "stable_s": ("\\delta G", "the stable periodic orbit on the seed line of measure_island "
+                 "(G units from the resonant torus)", "1", "(S4)"),
+    "stable_s_error": ("", "estimated size of the next order of stable_s (order 1: the "
+                       "mean second-order term (R12); order 2: the third-order terms of "
+                       "the triangle from K1, K2)", "1", "(R12), (S4)"),
+    "half_width": ("\\Delta G", "half the distance between the separatrix's crossings of "
+                   "the seed line", "1", "(S4)"),
+    "libration_frequency": ("\\Omega", "small-oscillation frequency about the stable "
+                            "equilibrium, per radian of phi2", "1", "(S4)"),
+    "residue_stable": ("R_s", "Greene's residue sin^2(pi q Omega)", "1", "(R8)"),
+    "stable_angle": ("\\psi_s", "slow angle q phi - p phi2 of the stable equilibrium (new "
+                     "variables)", "rad", "(S4)"),
+    "unstable_angle": ("\\psi_u", "slow angle of the unstable equilibrium", "rad", "(S4)"),
+    "stable_action": ("x_s", "action offset J - J* of the stable equilibrium (new "
+                      "variables)", "1", "(S4)"),
+    "unstable_action": ("x_u", "action offset of the unstable equilibrium", "1", "(S4)"),
+}
+
+
+def island_prediction(body: Any, h: float, M: float, resonance: str, *, order_mu: int = 2,
+                      axis: int | None = None, sign: int = 1, g_star: float = 0.0) -> Any:
+    """A ``q:p`` island chain predicted to order ``order_mu`` in ``mu`` by the Lie-Deprit
+    normal form (S1)-(S4), each order with the estimated size of the next.
+
+    Parameters
+    ----------
+    body : RigidBody
+        Oz the middle axis of inertia; its ``mu`` > 0 sets the chain.
+    h, M : float
+        The energy level (> 0) and the area constant.
+    resonance : str
+        ``"q:p"`` (``W = p/q``); ``p >= 2`` chains have a width from order 2 on.
+    order_mu : int
+        Highest order in ``mu`` (1 or 2); every order up to it is returned.
+    axis : int, optional
+        Body axis (1 or 2) of the regime; default: the first the level lists.
+    sign : int
+        Sign (+1, -1) of the momentum on that axis.
+    g_star : float
+        The section ``g = g*`` of the seed line (a line through the first-order stable
+        point, normal to the resonant torus, as :func:`~andoyer.analysis.resonance.measure.
+        measure_island` seeds).
+
+    Returns
+    -------
+    xarray.Dataset
+        On dim ``order_mu``: ``stable_s``, ``stable_s_error``, ``half_width``,
+        ``libration_frequency``, ``residue_stable``, ``stable_angle``, ``unstable_angle``,
+        ``stable_action``, ``unstable_action``; attrs ``p``, ``q``, ``axis``, ``sign``,
+        ``stable_phase`` (the line's free-top phase), ``G_star``.
+
+    Examples
+    --------
+    >>> from andoyer import RigidBody
+    >>> ds = island_prediction(RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), 1.0, 0.0, "3:1",
+    ...                        axis=1)   # doctest: +SKIP
+    """
+    import xarray as xr
+
+    from andoyer.analysis.resonance.predict import check_level_args, resonant_rows
+    from andoyer.integrate.results import describe_variables, provenance
+    from andoyer.integrate.section import Section
+    from andoyer.validation import finite, integer
+
+    h, M, _ = check_level_args(body, h, M, 2)
+    if not isinstance(resonance, str):
+        raise ValueError(f"resonance must be a string 'q:p', got {resonance!r}")
+    try:
+        q, p = (int(v) for v in resonance.split(":"))
+    except ValueError:
+        raise ValueError(f"resonance must be 'q:p' with whole numbers, got "
+                         f"{resonance!r}") from None
+    if not (1 <= q <= 100 and 1 <= p <= 100 and math.gcd(p, q) == 1):
+        raise ValueError(f"resonance {resonance!r}: q and p must be coprime, 1 to 100")
+    order_mu = integer("order_mu", order_mu, 1, 2)
+    if axis is not None:
+        axis = integer("axis", axis, 1, 2)
+    if isinstance(sign, bool) or sign not in (1, -1):
+        raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+    g_star = finite("g_star", g_star)
+    if not body.mu > 0.0:
+        raise ValueError("island_prediction needs mu > 0: at mu = 0 there is no island")
+    rows = [r for r in resonant_rows(body, h, M, p + q) if r["p"] == p and r["q"] == q
+            and r["sign"] == sign and (axis is None or r["axis"] == axis)]
+    if not rows:
+        raise ValueError(f"no torus with W = {p}/{q} on h = {h!r}, M = {M!r}"
+                         + (f" about axis {axis}" if axis is not None else ""))
+    sec = Section("g", g_star, 1)
+    chain = ResonantChain(body, h, M, rows[0], sec)
+    chains = {n: SecondOrderChain(chain, n) for n in range(1, order_mu + 2)}
+    psi_s = chain.psi_s if chain.mu_order == 1 else \
+        chains[order_mu].equilibria().get("stable", (math.nan,) * 3)[0]
+    phase = chain.points(psi_s) if math.isfinite(psi_s) else np.empty(0)
+    if phase.size == 0:
+        raise ValueError(f"resonance {resonance!r}: the normal form to order {order_mu} has "
+                         "no stable equilibrium (no resonant harmonic up to that order)")
+    ph = float(phase[0])
+    names = list(_META)
+    cols: dict[str, list[float]] = {k: [] for k in names}
+    for n in range(1, order_mu + 1):
+        so = chains[n]
+        eq = so.equilibria()
+        st = so.stable_s(ph, g_star)
+        nxt = chains[n + 1].stable_s(ph, g_star) if n >= 2 else \
+            st + chain.second_order_mean_shift()
+        if n < p:     # (R3): each order brings |k2| <= 1 more; no resonant harmonic yet
+            eq = {}
+        width = so.half_width(ph, g_star, st) if n >= p else math.nan
+        om = eq.get("stable", (math.nan,) * 3)[2]
+        vals = {"stable_s": st, "stable_s_error": abs(nxt - st), "half_width": width,
+                "libration_frequency": om, "residue_stable": math.sin(math.pi * q * om) ** 2,
+                "stable_angle": eq.get("stable", (math.nan,) * 3)[0],
+                "unstable_angle": eq.get("unstable", (math.nan,) * 3)[0],
+                "stable_action": eq.get("stable", (math.nan,) * 3)[1],
+                "unstable_action": eq.get("unstable", (math.nan,) * 3)[1]}
+        for k in names:
+            cols[k].append(float(vals[k]))
+    ds = xr.Dataset({k: ("order_mu", np.array(v)) for k, v in cols.items()},
+                    coords={"order_mu": np.arange(1, order_mu + 1)},
+                    attrs=provenance(body, h=h, M=M, p=p, q=q, label=resonance,
+                                     axis=int(rows[0]["axis"]), sign=sign, g_star=g_star,
+                                     stable_phase=ph, G_star=chain.torus.G,
+                                     method="Lie-Deprit normal form in mu (Deprit's "
+                                            "triangle) on jets about the resonant torus",
+                                     derivation="andoyer.analysis.resonance.second_order "
+                                                "(S1)-(S4), deprit (D1)-(D4)"))
+    return describe_variables(ds, _META)
