@@ -95,6 +95,7 @@ NOT_HUNTED = {
     "andoyer.report": "the paper report, run from the command line",
     "andoyer.kernels": "Numba kernels on plain floats, below the validating layer",
     "andoyer.symbolic": "SymPy derivations: no user input",
+    "andoyer.validation": "the checkers themselves, tested in tests/validation",
 }
 #: Result records: built by the library, returned to the user, not validated on input.
 RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerAngles", "EulerPoissonEquilibrium",
@@ -458,11 +459,69 @@ def test_public_entries_reject_bad_values_clearly(name, data):
 BETWEEN, BEYOND = 1e120, 2e150
 
 
+#: What each argument name means in the paper's vocabulary (one name, one meaning:
+#: tests/test_vocabulary.py), hence the range a decorated function must give it
+#: (``ranges=`` of ``validation.checks_arguments``; the decorator infers nothing from names).
+QUANTITIES: dict[str, str] = {
+    **dict.fromkeys(("h", "h0", "energy"), "energy"),
+    **dict.fromkeys(("L", "M", "J1", "J2", "J3", "L0", "p", "p0"), "action"),
+    **dict.fromkeys(("G", "G0", "action"), "length"),
+    **dict.fromkeys(("l", "g", "theta1", "theta2", "theta3", "psi", "psi0", "vartheta",
+                     "vartheta0", "q", "q0", "phi0", "t0"), "angle"),
+    **dict.fromkeys(("t_end", "T", "period", "duration"), "time"),
+    **dict.fromkeys(("mu", "c"), "scale"),
+    **dict.fromkeys(("epsilon", "value"), "finite"),
+    **dict.fromkeys(("tol", "xtol", "rtol", "atol"), "tolerance"),
+    **dict.fromkeys(("sheet",), "sheet"),
+    **dict.fromkeys(("n", "k", "steps", "mu_steps", "window", "points_per_period",
+                     "boundary_grid", "n_check", "n_times", "n_samples", "n_initial",
+                     "n_levels", "n_curve", "n_phase", "n_orbits", "n_crossings", "n_freq",
+                     "n_points"), "count"),
+}
+
+
+def _decorated_functions():
+    """``(dotted name, function)`` of every function of andoyer decorated by
+    ``checks_arguments`` (directly or through ``checks_body``)."""
+    import andoyer
+
+    seen = {}
+    for info in pkgutil.walk_packages(andoyer.__path__, "andoyer."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if callable(obj) and hasattr(obj, "__checks__") \
+                    and getattr(obj, "__module__", None) == info.name:
+                seen[f"{info.name}.{name}"] = obj
+    return sorted(seen.items())
+
+
+def test_every_decorated_function_gives_its_quantities_their_ranges():
+    """The ranges are given at decoration, explicitly; this checks them against the
+    vocabulary: an argument named like a quantity and annotated as a number (an ``int``
+    for counts and sheets) is given the range of its name, and no argument another."""
+    from andoyer.validation.arguments import _scalar_kind
+
+    wrong = []
+    found = _decorated_functions()
+    assert len(found) > 100
+    for dotted, func in found:
+        ranges = dict(func.__checks__.ranges)
+        namespace = getattr(inspect.unwrap(func), "__globals__", None)
+        for p in inspect.signature(func).parameters.values():
+            kind = _scalar_kind(p.annotation, namespace)
+            want = QUANTITIES.get(p.name)
+            qualifies = kind is not None and want is not None and (
+                kind[0] == "int" if want in ("count", "sheet") else kind[0] in ("float", "array"))
+            if ranges.get(p.name) != (want if qualifies else None):
+                wrong.append(f"{dotted}({p.name}): {ranges.get(p.name)}, its name says {want}")
+    assert wrong == []
+
+
 def _momentum_arguments() -> list[tuple[str, str]]:
     """``(function, argument)``: every public argument that is an action, a length or an
     energy level of a body (the quantities :func:`validation.momentum_limit` bounds)."""
-    from andoyer.validation import QUANTITIES
-
     out = []
     for name, func in sorted(API.items()):
         params = inspect.signature(func).parameters
@@ -476,8 +535,6 @@ def _momentum_arguments() -> list[tuple[str, str]]:
 def _at(name: str, param: str, G: float, good: Any) -> Any:
     """The value of ``param`` that means ``|G| = G`` (an energy: the level reaching it; a
     vector where the good value is one: ``good`` scaled)."""
-    from andoyer.validation import QUANTITIES
-
     if QUANTITIES[param] != "energy":
         vector = np.asarray(good, dtype=float) if np.ndim(good) else None
         return G if vector is None else list(G * vector / np.linalg.norm(vector))
@@ -488,15 +545,17 @@ def _at(name: str, param: str, G: float, good: Any) -> Any:
 @pytest.mark.parametrize("name, param", _momentum_arguments())
 def test_one_momentum_limit_for_actions_and_levels(name, param):
     """One rule (``validation.momentum_limit``) for every action and every level of a body:
-    a module of closed forms (``CLOSED_FORM``) takes ``|G|`` up to MAX_ACTION, any other up
-    to MAX_MOMENTUM (what the integrators take), whether ``|G|`` is given or reached by a
-    level. Before, closed forms took an action J2 = 1e120 but refused the level reaching
-    it ("beyond what the integrators take"), and an integrating function took it and
-    refused its own state, naming y0."""
+    a function of closed forms (decorated ``closed_form=True``) takes ``|G|`` up to
+    MAX_ACTION, any other up to MAX_MOMENTUM (what the integrators take), whether ``|G|``
+    is given or reached by a level. Before, closed forms took an action J2 = 1e120 but
+    refused the level reaching it ("beyond what the integrators take"), and an integrating
+    function took it and refused its own state, naming y0."""
     from andoyer.validation import MAX_ACTION, MAX_MOMENTUM
 
     func = API[name]
-    closed = bool(getattr(importlib.import_module(func.__module__), "CLOSED_FORM", False))
+    checks = getattr(func, "__checks__", None)
+    closed = checks.closed_form if checks is not None else bool(
+        getattr(importlib.import_module(func.__module__), "CLOSED_FORM", False))
     args = _good_args(name, func)
     limit = MAX_ACTION if closed else MAX_MOMENTUM
     for G in (BETWEEN, BEYOND):

@@ -14,11 +14,12 @@ References
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 import numbers
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import ParamSpec, TypeVar
+from typing import Any, ParamSpec, TypeVar, overload
 
 import numpy as np
 
@@ -597,15 +598,37 @@ _P = ParamSpec("_P")
 _R = TypeVar("_R")
 
 
-def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
+@overload
+def checks_body(func: Callable[_P, _R], /) -> Callable[_P, _R]: ...
+
+
+@overload
+def checks_body(func: None = None, /, *, ranges: Mapping[str, str] | None = ...,
+                labels: Mapping[str, str] | None = ..., closed_form: bool = ...
+                ) -> Callable[[Callable[_P, _R]], Callable[_P, _R]]: ...
+
+
+def checks_body(func: Callable[_P, _R] | None = None, /, *,
+                ranges: Mapping[str, str] | None = None,
+                labels: Mapping[str, str] | None = None, closed_form: bool = False) -> Any:
     """Decorator of the public functions whose first argument is a body: anything but a
-    :class:`RigidBody` there raises one clear ``TypeError`` naming the function; the
-    scalar arguments are checked by :func:`andoyer.validation.checks_arguments`.
+    :class:`RigidBody` there raises one clear ``TypeError`` naming the function; the other
+    arguments are checked by :func:`andoyer.validation.checks_arguments` with the ranges
+    given here (an ``energy`` held to a level of that body).
 
     Parameters
     ----------
-    func : callable
-        The public function to wrap (first argument: the body).
+    func : callable, optional
+        The public function to wrap (first argument: the body); bare ``@checks_body``
+        checks the body and the annotated types only.
+    ranges, labels, closed_form :
+        As in :func:`andoyer.validation.checks_arguments`
+        (``@checks_body(ranges={"h": "energy"}, closed_form=True)``).
+
+    Returns
+    -------
+    callable
+        The wrapped function, or the decorator when ``func`` is not given.
 
     Examples
     --------
@@ -615,16 +638,24 @@ def checks_body(func: Callable[_P, _R]) -> Callable[_P, _R]:
     ...
     andoyer.errors.ArgumentTypeError: energy: body must be a RigidBody (...), got str 'paper'
     """
+    options: dict[str, Any] = {"ranges": ranges, "labels": labels, "closed_form": closed_form}
+    if func is None:
+        return functools.partial(_checks_body, options=options)
+    return _checks_body(func, options)
 
-    checked = checks_arguments(func)
+
+def _checks_body(func: Callable[_P, _R], options: dict[str, Any]) -> Callable[_P, _R]:
+    first = next(iter(inspect.signature(func).parameters), "body")
+    checked = checks_arguments(**options, body=first)(func)
 
     @functools.wraps(func)
     def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
-        body = args[0] if args else kwargs.get("body")
+        body = args[0] if args else kwargs.get(first)
         if not isinstance(body, RigidBody):
             raise ArgumentTypeError(
                 f"{func.__name__}: body must be a RigidBody (e.g. RigidBody.paper() or "
                 f"RigidBody.hess(A, B, C, mu)), got {type(body).__name__} {repr(body)[:60]}")
         return checked(*args, **kwargs)
 
+    wrapper.__checks__ = checked.__checks__  # type: ignore[attr-defined]
     return wrapper

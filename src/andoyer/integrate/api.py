@@ -294,7 +294,7 @@ def _run_chunks(fn: Callable[[slice], Any], n: int, label: str,
 
 
 # ---------------------------------------------------------------------- orbits
-@checks_body
+@checks_body(ranges={"rtol": "tolerance", "atol": "tolerance"})
 @orbit_docstring
 def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLike = None,
               rtol: float = 1e-12, atol: float = 1e-12, chart: str = "euler_poisson",
@@ -344,7 +344,7 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
                                     atol=tolerance.atol, initial_chart=chart))
 
 
-@checks_body
+@checks_body(ranges={"n_crossings": "count", "rtol": "tolerance", "atol": "tolerance"})
 @orbit_docstring
 def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings: int, *,
              engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,
@@ -581,7 +581,7 @@ def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
 
 
 # ---------------------------------------------------------------------- canonical charts
-@checks_body
+@checks_body(ranges={"rtol": "tolerance", "atol": "tolerance"})
 def integrate_canonical(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
                         chart: str = "hess", rtol: float = 1e-12, atol: float = 1e-12,
                         singular_margin: float = 1e-9) -> xr.Dataset:

@@ -112,7 +112,7 @@ def limits(steps: float | None = None, memory: float | None = None) -> Iterator[
         LIMITS.update(old)
 
 
-@checks_body
+@checks_body(ranges={"duration": "time", "rtol": "tolerance"})
 def estimate_steps(body: RigidBody, y: NDArray[np.float64], duration: float,
                    rtol: float = 1e-12) -> float:
     """Estimated DOP853 steps to integrate the states ``y`` (shape (n, 6)) for ``duration``.

@@ -359,7 +359,7 @@ def _no_intersection(body: RigidBody, plane: SectionPlane, value: float, M: floa
 
 
 # ----------------------------------------------------------------------- public API
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: Any
                   ) -> list[NDArray[np.float64]]:
     """All values of the remaining action on the level h above plane points ``(x, y)``.
@@ -401,7 +401,7 @@ def section_roots(body: RigidBody, h: float, M: float, section: Any, x: Any, y: 
     return eq.roots(p, q)
 
 
-@checks_body
+@checks_body(ranges={"M": "action"})
 def default_h(body: RigidBody, M: float = 0.0) -> float:
     """The default energy level of the command line and the explorer: H at
     ``(l, g, L, G, M) = (0.3, 0, 0.3, 1, M)`` (Eq. (7)).
@@ -433,7 +433,8 @@ def _bottom(body: RigidBody, M: float) -> float:
         return float(0.5 * min(body.a, body.b, body.c) * np.float64(M) ** 2 - body.mu)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "n_orbits": "count", "boundary_grid": "count",
+             "tol": "tolerance"}, labels=ARGUMENT_NAMES)
 def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits: int = 40,
                  sampling: Method = "grid", seed: int = 0,
                  plane_bounds: Any = None, root: RootChoice = "all",

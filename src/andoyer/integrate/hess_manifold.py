@@ -115,7 +115,7 @@ def _onto_casimirs(y: NDArray[np.float64], M: float, scale: float
     return out, float(np.max(np.abs(new - gamma), initial=0.0))
 
 
-@checks_body
+@checks_body(ranges={"rtol": "tolerance", "atol": "tolerance"})
 def propagate_hess_manifold(body: RigidBody, x0: ArrayLike, t: ArrayLike, *,
                             rtol: float = 1e-12, atol: float = 1e-12,
                             singular_margin: float = 1e-9) -> xr.Dataset:

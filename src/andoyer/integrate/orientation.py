@@ -121,7 +121,7 @@ def attitude_variables(q: ArrayLike, G: ArrayLike, dims: tuple[str, ...]
     }
 
 
-@checks_body
+@checks_body(ranges={"rtol": "tolerance", "atol": "tolerance"})
 @orbit_docstring
 def attitude(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, precession0: ArrayLike = 0.0,
              engine: EngineLike = None, rtol: float = 1e-12, atol: float = 1e-12,

@@ -175,7 +175,7 @@ def _check_k(k: Any, tangent: str) -> int:
     return int(k)
 
 
-@checks_body
+@checks_body(ranges={"k": "count"})
 def initial_tangents(body: RigidBody, y: ArrayLike, k: int,
                      tangent: Tangent = "leaf") -> NDArray[np.float64]:
     """``k`` orthonormal initial deviation vectors at Euler-Poisson states, (n, k, 6).
@@ -231,7 +231,7 @@ def initial_tangents(body: RigidBody, y: ArrayLike, k: int,
     return W
 
 
-@checks_body
+@checks_body(ranges={"t_end": "time", "k": "count", "n_times": "count", "tol": "tolerance"})
 def alignment_indices(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *,
                       k: int = 2, n_times: int = 101, t: ArrayLike | None = None,
                       chart: str = "euler_poisson", tangent: Tangent = "leaf",

@@ -103,7 +103,7 @@ def _reference(A: float, B: float, C: float, h: float, M: float, coord: str, val
     return float(np.nanmax(Y))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "t_end": "time", "tol": "tolerance"})
 def regular_reference(body: RigidBody, h: float, M: float = 0.0,
                       section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                       t_end: float = 300.0, engine: str | None = None,
@@ -150,7 +150,7 @@ def regular_reference(body: RigidBody, h: float, M: float = 0.0,
                       positive("tol", tol), n_threads)
 
 
-@checks_arguments
+@checks_arguments(ranges={"theta1": "angle"})
 def layer_width(chaotic: NDArray[np.bool_], accessible: NDArray[np.bool_],
                 theta1: NDArray[np.float64], line: float = 0.0
                 ) -> tuple[NDArray[np.float64], float]:
@@ -239,7 +239,7 @@ def hess_line(body: RigidBody) -> float:
     return float(np.mod(2.0 * eps, math.tau))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "t_end": "time", "tol": "tolerance"})
 def chaos_border(body: RigidBody, h: float, M: float = 0.0,
                  section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                  t_end: float = 300.0, margin: float = MARGIN, engine: str | None = None,
@@ -344,7 +344,8 @@ def chaos_border(body: RigidBody, h: float, M: float = 0.0,
                             "separatrix, per row", "rad", "(14)")})
 
 
-@checks_body
+@checks_body(ranges={"mu": "scale", "epsilon": "finite", "h": "energy", "M": "action", "t_end":
+             "time", "tol": "tolerance"})
 def chaos_border_map(body: RigidBody, mu: ArrayLike, epsilon: ArrayLike, h: float, M: float = 0.0,
                      section: Any = ("theta2", 0.0), *, n: int | tuple[int, int] = 24,
                      t_end: float = 300.0, margin: float = MARGIN,

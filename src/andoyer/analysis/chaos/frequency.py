@@ -105,7 +105,7 @@ def _signal(z: ArrayLike) -> NDArray[np.complex128]:
     return zz
 
 
-@checks_arguments
+@checks_arguments(ranges={"n_freq": "count", "window": "count"})
 def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     """The ``n_freq`` strongest spectral lines of a uniformly sampled complex signal.
 
@@ -162,7 +162,7 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     return Lines(omega, amplitude, float((n - 1) * dt))
 
 
-@checks_arguments
+@checks_arguments(ranges={"window": "count"})
 def frequency_drift(z: ArrayLike, dt: float, *, window: int = 2) -> float:
     """Relative change of the main frequency between the two halves of a signal.
 
@@ -246,7 +246,7 @@ def resonance_label(nu: float, tol: float, max_order: int = RESONANCE_ORDER) -> 
     return ""
 
 
-@checks_body
+@checks_body(ranges={"t_end": "time", "n_samples": "count", "window": "count"})
 def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
                       n_samples: int = 8193, chart: str = "euler_poisson",
                       engine: str | None = None, window: int = 2,
@@ -404,7 +404,8 @@ def orbit_frequencies(body: RigidBody, y0: ArrayLike, t_end: float, *,
         "y0": ("y_0", "initial Euler-Poisson state", "1", "(1)")})
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "n_orbits": "count", "t_end": "time",
+             "n_samples": "count", "window": "count"})
 def frequency_map(body: RigidBody, h: float, M: float, section: tuple[str, float], *,
                   n_orbits: int = 100, t_end: float = 2000.0, n_samples: int = 8193,
                   engine: str | None = None, window: int = 2,

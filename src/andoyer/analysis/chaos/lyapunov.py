@@ -241,7 +241,7 @@ def _fli_only(eng: EngineBase, y: NDArray[np.float64], w: NDArray[np.float64],
 # ----------------------------------------------------------------------------- single orbits
 
 
-@checks_arguments
+@checks_arguments(ranges={"t_end": "time", "n_times": "count"})
 def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.float64]:
     """The output times of an indicator: ``t`` if given (checked: 1-D, increasing, finite,
     starting at 0), else ``linspace(0, t_end, n_times)``.
@@ -272,7 +272,8 @@ def output_times(t_end: float, n_times: int, t: ArrayLike | None) -> NDArray[np.
 
 
 
-@checks_body
+@checks_body(ranges={"t_end": "time", "n_times": "count", "tol": "tolerance"},
+             labels=ARGUMENT_NAMES)
 def indicators(body: RigidBody, y0: ArrayLike, t_end: float = 1000.0, *, n_times: int = 101,
                t: ArrayLike | None = None, chart: str = "euler_poisson",
                tangent: Tangent = "leaf", w0: ArrayLike | None = None,
@@ -381,7 +382,7 @@ def _describe(ds: xr.Dataset) -> None:
 # ----------------------------------------------------------------------------- maps
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def chaos_map(body: RigidBody, h: float, M: float, section: Any,
               grid: MapGrid | int | tuple[int, int] = DEFAULT_GRID,
               run: IndicatorRun = DEFAULT_RUN, *, engine: EngineLike = None,

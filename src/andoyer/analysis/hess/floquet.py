@@ -101,7 +101,7 @@ def _fd_monodromy(body: RigidBody, y0: NDArray[np.float64], T: float, step: floa
     return Phi, out[12]
 
 
-@checks_body
+@checks_body(ranges={"T": "time", "tol": "tolerance"})
 def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variational",
               tol: float = 1e-15, step: float = 1e-6,
               engine: EngineLike = None) -> Monodromy:
@@ -157,7 +157,7 @@ def monodromy(body: RigidBody, y0: ArrayLike, T: float, *, method: str = "variat
     return Monodromy(Phi, T, y, yT, method)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "tol": "tolerance"})
 def physical_pendulum_monodromy(body: RigidBody, h: float, *, method: str = "variational",
                                 tol: float = 1e-15, step: float = 1e-6,
                                 engine: EngineLike = None) -> Monodromy:
@@ -230,7 +230,7 @@ def _leaf_basis(y: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.asarray(vt[1:].T)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "tol": "tolerance"})
 def floquet_multipliers(body: RigidBody, h: float, *, method: str = "variational",
                         tol: float = 1e-15, parabolic_tol: float = 1e-6,
                         engine: EngineLike = None) -> Floquet:
@@ -304,7 +304,7 @@ def hess_rotation_multiplier(body: RigidBody) -> float:
     return math.exp(2.0 * math.pi * sigma / body.c)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "tol": "tolerance"})
 def floquet_scan(body: RigidBody, h: ArrayLike, *, method: str = "variational",
                  tol: float = 1e-15, parabolic_tol: float = 1e-6,
                  engine: EngineLike = None) -> xr.Dataset:

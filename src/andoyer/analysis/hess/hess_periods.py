@@ -28,7 +28,7 @@ from andoyer.validation import finite_array
 __all__ = ["hess_periods"]
 
 
-@checks_body
+@checks_body(ranges={"n": "count", "n_check": "count"})
 def hess_periods(body: RigidBody, M_values: Sequence[float], n: int, n_check: int, *,
                  engine: str | None = None) -> xr.Dataset:
     """Hess-solution periods vs energy: closed form on ``n`` levels, and ``n_check`` levels

@@ -108,7 +108,8 @@ __all__ = [
 CLOSED_FORM = True
 
 # ----------------------------------------------------------------------------- embedding
-@checks_body
+@checks_body(ranges={"theta2": "angle", "J2": "action", "psi": "angle", "M": "action"},
+             closed_form=CLOSED_FORM)
 def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike,
                M: float = 0.0) -> NDArray[np.float64]:
     """Euler-Poisson state of the Hess solution from ``(theta2, J2, psi)``; shape ``(..., 6)``.
@@ -143,7 +144,8 @@ def hess_state(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike
     return np.stack(np.broadcast_arrays(*cols), axis=-1)
 
 
-@checks_arguments
+@checks_arguments(ranges={"theta2": "angle", "J2": "action", "psi": "angle", "M": "action"},
+                  closed_form=CLOSED_FORM)
 def signed_to_hess(theta2: ArrayLike, J2: ArrayLike, psi: ArrayLike, M: float = 0.0
                    ) -> NDArray[np.float64]:
     """Hess-chart values ``(theta1, theta2, J1, J2, J3)`` of signed-picture states.
@@ -293,7 +295,7 @@ def _solution_m(body: RigidBody, theta2_0: float, J2_0: float, psi0: float, M: f
             "cos2": np.cos(0.5 * psi) ** 2, "sin2": np.sin(0.5 * psi) ** 2}
 
 
-@checks_body
+@checks_body(ranges={"rtol": "tolerance", "atol": "tolerance"})
 def hess_solution(body: RigidBody, x0: ArrayLike, t: ArrayLike, *, rtol: float = 1e-12,
                   atol: float = 1e-12) -> xr.Dataset:
     """The Hess solution from a point of ``theta1 = 0``, in closed form where it exists.

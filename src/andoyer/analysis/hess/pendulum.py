@@ -133,7 +133,8 @@ def require_pendulum_body(body: RigidBody, what: str) -> None:
 
 
 # ----------------------------------------------------------------------------- the pendulum
-@checks_arguments
+@checks_arguments(ranges={"c": "scale", "mu": "scale", "q": "angle", "p": "action"},
+                  closed_form=CLOSED_FORM)
 def pendulum_energy(c: float, mu: float, q: ArrayLike, p: ArrayLike) -> NDArray[np.float64]:
     """``H = c p^2 / 2 + mu sin q``: the reduced Hamiltonian of both pendulums.
 
@@ -156,7 +157,7 @@ def _excess(c: float, mu: float, q: float, p: float) -> float:
     return 0.5 * c * p * p + 2.0 * mu * math.sin(0.5 * phi) ** 2
 
 
-@checks_arguments
+@checks_arguments(ranges={"mu": "scale", "h": "energy"}, closed_form=CLOSED_FORM)
 def pendulum_motion(mu: float, h: float) -> str:
     """``"equilibrium"``, ``"libration"``, ``"separatrix"`` or ``"rotation"`` at energy ``h``.
 
@@ -179,7 +180,7 @@ def pendulum_motion(mu: float, h: float) -> str:
     return "libration" if h < mu else "rotation"
 
 
-@checks_arguments
+@checks_arguments(ranges={"mu": "scale", "h": "energy"}, closed_form=CLOSED_FORM)
 def pendulum_modulus(mu: float, h: float) -> float:
     """Parameter ``m = k^2`` of the elliptic functions (scipy's convention).
 
@@ -201,7 +202,7 @@ def pendulum_modulus(mu: float, h: float) -> float:
     return 2.0 * mu / (h + mu)
 
 
-@checks_arguments
+@checks_arguments(ranges={"c": "scale", "mu": "scale", "h": "energy"}, closed_form=CLOSED_FORM)
 def pendulum_period(c: float, mu: float, h: float) -> float:
     """Period of ``H = c p^2/2 + mu sin q`` at energy ``h``, via ``scipy.special.ellipk``.
 
@@ -234,7 +235,8 @@ def pendulum_period(c: float, mu: float, h: float) -> float:
     return float(4.0 * ellipk(m) / math.sqrt(c * mu))
 
 
-@checks_arguments
+@checks_arguments(ranges={"c": "scale", "mu": "scale", "q0": "angle", "p0": "action"},
+                  closed_form=CLOSED_FORM)
 def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
                       ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Closed-form solution of ``dq/dt = c p``, ``dp/dt = -mu cos q`` from ``(q0, p0)`` at ``t[0]``.
@@ -316,7 +318,7 @@ def pendulum_solution(c: float, mu: float, q0: float, p0: float, t: ArrayLike
 
 
 # ----------------------------------------------------------------------------- physical pendulum
-@checks_body
+@checks_body(ranges={"vartheta": "angle", "L": "action"}, closed_form=CLOSED_FORM)
 def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArray[np.float64]:
     """Euler-Poisson states on the physical pendulum: ``G = (0, 0, L)``,
     ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)``; shape ``(..., 6)``.
@@ -339,7 +341,7 @@ def pendulum_state(body: RigidBody, vartheta: ArrayLike, L: ArrayLike) -> NDArra
     return np.stack([z, z, LL, np.sin(a), np.cos(a), z], axis=-1)
 
 
-@checks_body
+@checks_body(ranges={"l": "angle", "g": "angle"})
 def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int = 1
                        ) -> NDArray[np.float64]:
     """``Pi = mu (r, gamma)`` on the physical pendulum in Andoyer-Deprit variables.
@@ -375,7 +377,7 @@ def pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike, L_sign: int 
     return np.asarray(body.mu * np.sin(g_ - l_ - body.phi0))
 
 
-@checks_body
+@checks_body(ranges={"l": "angle", "g": "angle"})
 def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
                              ) -> NDArray[np.float64]:
     """The potential on the physical pendulum as printed after (11): ``mu^-1 sin(g + l - phi0)``.
@@ -395,7 +397,7 @@ def paper_pendulum_potential(body: RigidBody, l: ArrayLike, g: ArrayLike
                              - body.phi0) / body.mu)
 
 
-@checks_body
+@checks_body(ranges={"vartheta0": "angle", "L0": "action"}, closed_form=CLOSED_FORM)
 def physical_pendulum(body: RigidBody, vartheta0: float, L0: float, t: ArrayLike
                       ) -> xr.Dataset:
     """The physical-pendulum motion in closed form (Jacobi elliptic functions).

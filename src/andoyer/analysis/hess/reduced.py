@@ -99,7 +99,7 @@ def derive_reduced_hamiltonian() -> Any:
     return sp.simplify(H_hess().subs(S.theta1, 0).subs(S.c, c_hess))
 
 
-@checks_body
+@checks_body(ranges={"theta2": "angle", "J2": "action", "M": "action"}, closed_form=CLOSED_FORM)
 def reduced_hamiltonian(body: RigidBody, theta2: ArrayLike, J2: ArrayLike, M: float = 0.0
                         ) -> NDArray[np.float64]:
     """``H = c J2^2/2 + mu sqrt(J2^2 - M^2) sin(theta2) / J2`` on ``theta1 = 0 (mod 2 pi)``.
@@ -145,7 +145,8 @@ def drift_rate(body: RigidBody) -> float:
     return body.kappa * math.sin(2.0 * body.phi0)
 
 
-@checks_body
+@checks_body(ranges={"theta2": "angle", "J1": "action", "J2": "action", "M": "action", "theta1":
+             "angle"}, closed_form=CLOSED_FORM)
 def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLike,
                   M: float = 0.0, theta1: float = 0.0) -> NDArray[np.float64]:
     """``d(theta2, J1, J2, theta3)/dt`` on ``theta1 = 0`` or ``2 pi`` (a Hess body).
@@ -194,7 +195,7 @@ def reduced_field(body: RigidBody, theta2: ArrayLike, J1: ArrayLike, J2: ArrayLi
 
 
 # ----------------------------------------------------------------------------- energies
-@checks_body
+@checks_body(ranges={"M": "action"}, closed_form=CLOSED_FORM)
 def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
     """``(J2*, h_min)``: the centre ``theta2 = 3 pi/2`` of the reduced system.
 
@@ -240,7 +241,7 @@ def energy_minimum(body: RigidBody, M: float = 0.0) -> tuple[float, float]:
     return J, float(reduced_hamiltonian(body, 1.5 * math.pi, J, M))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"}, closed_form=CLOSED_FORM)
 def classify_motion(body: RigidBody, h: float, M: float = 0.0) -> str:
     """Motion of the reduced system at energy ``h`` (a key of :data:`MOTIONS`).
 
@@ -280,7 +281,7 @@ def classify_motion(body: RigidBody, h: float, M: float = 0.0) -> str:
     return "libration" if h < pole else "rotation"
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"}, closed_form=CLOSED_FORM)
 def cubic_roots(body: RigidBody, h: float, M: float = 0.0) -> tuple[float, float, float]:
     """Roots ``u_a <= u_b <= u_c`` of ``P(u) = mu^2 (u - M^2) - u (h - c u/2)^2``.
 
@@ -320,7 +321,7 @@ def cubic_roots(body: RigidBody, h: float, M: float = 0.0) -> tuple[float, float
     return float(roots[0]), float(max(roots[1], M * M)), float(roots[2])
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"}, closed_form=CLOSED_FORM)
 def period(body: RigidBody, h: float, M: float = 0.0, *, method: str = "elliptic") -> float:
     """Period of the reduced motion in ``(theta2, J2)`` at energy ``h``.
 

@@ -36,7 +36,7 @@ __all__ = ["fig3_trajectories", "fig3_section", "separatrix_energy", "zoom_box",
 DEFAULT_J1: tuple[float, ...] = (0.004, 0.012, 0.03, 0.07, 0.13, 0.2, 0.3, 0.42)
 
 
-@checks_body
+@checks_body(ranges={"J2": "action"})
 def zoom_box(body: RigidBody, J2: float = 1.0
              ) -> tuple[tuple[float, float], tuple[float, float]]:
     """The enlarged region of Fig. 3: a box around the saddle (theta1, J1) = (4 phi0, 0).
@@ -60,7 +60,8 @@ def _check_body(body: RigidBody) -> None:
     body.require_planar("Fig. 3 (the Hess chart)")
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "theta2": "angle", "t_end": "time", "rtol": "tolerance",
+             "atol": "tolerance"})
 def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
                       J1: Sequence[float] = DEFAULT_J1, theta2: float = 0.0,
                       t_end: float = 400.0, dt: float = 0.1, engine: str | None = None,
@@ -131,7 +132,8 @@ def fig3_trajectories(body: RigidBody, *, J2: float = 1.0,
         "", "largest relative energy drift over the trajectories", "1", "(16)")})
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "h": "energy", "theta2": "angle", "n_orbits": "count",
+             "n_crossings": "count", "rtol": "tolerance", "atol": "tolerance"})
 def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
                  theta2: float = 0.0, n_orbits: int = 40, n_zoom: int = 12,
                  n_crossings: int = 300,

@@ -174,7 +174,7 @@ def _normalise(H: NDArray[np.complex128], omega0: float, N: int) -> NDArray[np.f
     return np.array([H[k, k].real for k in range(1, N // 2 + 1)])
 
 
-@checks_body
+@checks_body(ranges={"G": "length"}, closed_form=CLOSED_FORM)
 def birkhoff_normal_form(body: RigidBody, G: float, *, order: int = 8,
                          lstar: float = 0.0) -> xr.Dataset:
     """The Birkhoff normal form of the free top ``(l, L)`` about a centre, to ``order``.

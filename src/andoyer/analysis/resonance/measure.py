@@ -141,7 +141,7 @@ class _Probe:
         return locked, drift, span
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "n_crossings": "count", "tol": "tolerance"})
 def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
                    axis: int | None = None, g_star: float = 0.0,
                    n_crossings: int | None = None,

@@ -143,7 +143,7 @@ def _d5(f: object, x: float, d: float) -> float:
     return float((8.0 * (v[2] - v[1]) - (v[3] - v[0])) / (12.0 * d))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def resonant_normal_form(body: RigidBody, h: float, M: float, resonance: str, *,
                          axis: int = 2, sign: int = 1, order: int = 8) -> xr.Dataset:
     r"""The resonant normal form of a ``q:p`` chain near a centre of the free top.

@@ -192,7 +192,7 @@ class FreeTopTorus(NamedTuple):
     omega_g: float
 
 
-@checks_body
+@checks_body(ranges={"h": "energy"})
 def free_top_at_gap(body: RigidBody, h: float, gap: float) -> FreeTopTorus:
     """(R11): ``W``, ``omega_l``, ``omega_g`` of the torus ``q G^2 = 2 h (1 + gap)``,
     computed from ``gap`` without cancellation near the separatrix.
@@ -368,7 +368,7 @@ _TORI_META = {
 }
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def resonant_tori(body: RigidBody, h: float, M: float, *, max_order: int = 12
                   ) -> xr.Dataset:
     """The resonant tori of the free top on one energy level: ``W(G*) = p/q``, ``p + q <=
@@ -761,7 +761,7 @@ _WIDTH_META = {
 }
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def resonance_widths(body: RigidBody, h: float, M: float, section: str = "g=0", *,
                      max_order: int = 12) -> xr.Dataset:
     """The ``p/q`` island chains of ``body`` on ``H = h``: centre, half-width, periodic

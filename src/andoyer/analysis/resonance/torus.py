@@ -230,7 +230,7 @@ def perturbation(body: RigidBody, states: NDArray[np.float64]) -> NDArray[np.flo
                       - hamiltonian_expr(G1, G2, G3, g1, g2, g3, a, b, c, 0.0, e1, e2, e3))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "G": "length", "M": "action", "n": "count"})
 def sample_torus(body: RigidBody, h: float, G: float, M: float, sign: int = 1,
                  n: int = 256) -> Torus:
     """The torus ``(h, G)`` of the free top, sampled at ``n`` phases ``phi1 = 2 pi j/n``.

@@ -371,7 +371,7 @@ def herpolhode(ds: xr.Dataset) -> xr.Dataset:
     return describe_variables(out, _HERPOLHODE_META)
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "n_times": "count", "rtol": "tolerance", "atol": "tolerance"})
 def heteroclinic_cycle(body: RigidBody, J2: float = 1.0, *, t_half: float | None = None,
                        n_times: int = 2001, engine: EngineLike = None, rtol: float = 1e-12,
                        atol: float = 1e-12) -> xr.Dataset:

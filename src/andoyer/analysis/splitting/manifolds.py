@@ -207,7 +207,7 @@ class ManifoldBranch:
                 "period": self.orbit.period, "tolerance": self.orbit.tol}
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "sheet": "sheet"})
 def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
                          ) -> tuple[float, int]:
     """``(theta1 of the line, sign of dJ1/dt on it)`` on the level ``h = c J2^2/2``
@@ -227,7 +227,8 @@ def heteroclinic_line_of(body: RigidBody, h: float, branch: str, sheet: int
     return heteroclinic_line(body, separatrix_momentum(body, h), branch, sheet)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "sheet": "sheet", "psi0": "angle", "mu_steps": "count", "tol":
+             "tolerance"})
 def manifold_branch(body: RigidBody, h: float, stability: Stability,
                     branch: str = DEFAULT_BRANCH, *, sheet: int = 1, psi0: float = 0.0,
                     delta: float = 1e-5, orbit: RotationOrbit | None = None,
@@ -466,7 +467,7 @@ def _needs_point(g: NDArray[np.float64], G: NDArray[np.float64], max_gap: float,
     return split
 
 
-@checks_arguments
+@checks_arguments(ranges={"n_initial": "count"})
 def grow_manifold(branch: ManifoldBranch, *, n_initial: int = 48, max_gap: float = 0.15,
                   max_angle: float = 0.1, max_points: int = 2000, s_margin: float = 0.05,
                   min_ds: float = 1e-9) -> ManifoldCurve:

@@ -46,7 +46,7 @@ __all__ = ["measure_splitting", "separatrix_splitting", "splitting_at", "splitti
 
 
 # ----------------------------------------------------------------------------- splitting
-@checks_arguments
+@checks_arguments(ranges={"g": "angle"})
 def splitting_at(wu: ManifoldCurve, ws: ManifoldCurve, g: float) -> dict[str, Any]:
     """Fresh points of both manifolds on the line ``g = const`` of ``Sigma_0``.
 
@@ -89,7 +89,7 @@ def _shoelace(xs: NDArray[np.float64], ys: NDArray[np.float64]) -> float:
     return 0.5 * float(np.dot(xs, np.roll(ys, -1)) - np.dot(ys, np.roll(xs, -1)))
 
 
-@checks_arguments
+@checks_arguments(ranges={"n_phase": "count"})
 def measure_splitting(wu: ManifoldCurve, ws: ManifoldCurve, *, n_phase: int = 32,
                       locate: bool | None = None, gtol: float = 1e-13,
                       noise: float = 1e-11) -> tuple[xr.Dataset, xr.Dataset]:
@@ -255,7 +255,8 @@ def _mu_values(body: RigidBody, mu: Sequence[float] | ArrayLike | None
     return mus
 
 
-@checks_body
+@checks_body(ranges={"mu": "scale", "G": "length", "sheet": "sheet", "psi0": "angle", "n_phase":
+             "count", "tol": "tolerance"})
 def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None = None, *,
                          G: float = 1.0, branch: str = DEFAULT_BRANCH, sheet: int = 1,
                          psi0: float = 0.0, delta: float = 1e-5, n_phase: int = 16,
@@ -455,7 +456,8 @@ def separatrix_splitting(body: RigidBody, mu: Sequence[float] | ArrayLike | None
             **curves}
 
 
-@checks_body
+@checks_body(ranges={"epsilon": "finite", "mu": "scale", "G": "length", "n_phase": "count", "tol":
+             "tolerance"})
 def splitting_vs_epsilon(body: RigidBody, epsilon: Sequence[float] | ArrayLike,
                          mu: Sequence[float] | ArrayLike | None = None, *,
                          branch: str = DEFAULT_BRANCH,

@@ -114,7 +114,7 @@ CLOSED_FORM = True
 TAIL = 46.0
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "sheet": "sheet"}, closed_form=CLOSED_FORM)
 def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
                       ) -> tuple[float, int]:
     """``(theta1 of the line in [0, 4 pi), s)``: ``s = +1`` where J1 increases along it.
@@ -146,7 +146,7 @@ def heteroclinic_line(body: RigidBody, J2: float, branch: str, sheet: int = 1
                                               else -1)
 
 
-@checks_body
+@checks_body(ranges={"J2": "action"}, closed_form=CLOSED_FORM)
 def melnikov_rho(body: RigidBody, J2: float = 1.0) -> float:
     """``rho = c J2 / lambda = c / (2 sigma)``: frequency of theta2 over the rate of J1.
 
@@ -188,7 +188,7 @@ def melnikov_integrand(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(np.einsum("...i,...i->...", gradE, X1[..., :3]))
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "sheet": "sheet"}, closed_form=CLOSED_FORM)
 def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
                          branch: str = DEFAULT_BRANCH, sheet: int = 1
                          ) -> NDArray[np.float64]:
@@ -221,7 +221,8 @@ def melnikov_closed_form(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.
     return np.asarray(-s * factor * (np.sin(theta1 + th) - np.sin(th)))
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "sheet": "sheet", "points_per_period": "count"},
+             closed_form=CLOSED_FORM)
 def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0,
                         branch: str = DEFAULT_BRANCH, sheet: int = 1,
                         method: str = "trapezoid", points_per_period: int = 32
@@ -294,7 +295,8 @@ def melnikov_quadrature(body: RigidBody, theta2_0: ArrayLike, *, J2: float = 1.0
     return out.reshape(np.shape(theta2_0))
 
 
-@checks_body
+@checks_body(ranges={"g": "angle", "mu": "scale", "G": "length", "sheet": "sheet"},
+             closed_form=CLOSED_FORM)
 def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 1.0,
                         branch: str = DEFAULT_BRANCH, sheet: int = 1
                         ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -326,7 +328,7 @@ def predicted_splitting(body: RigidBody, g: ArrayLike, mu: float, *, G: float = 
     return dE, -dE / (body.c * G)
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "sheet": "sheet", "n": "count"}, closed_form=CLOSED_FORM)
 def melnikov_function(body: RigidBody, theta2_0: ArrayLike | None = None, *,
                       J2: float = 1.0, branch: str = DEFAULT_BRANCH, sheet: int = 1,
                       n: int = 64, quadrature: bool = True) -> xr.Dataset:
@@ -455,7 +457,8 @@ def melnikov_of(body: RigidBody, hess: RigidBody, theta2_0: NDArray[np.float64],
     return ds
 
 
-@checks_body
+@checks_body(ranges={"epsilon": "finite", "J2": "action", "sheet": "sheet"},
+             closed_form=CLOSED_FORM)
 def melnikov_off_hess(body: RigidBody, epsilon: float, theta2_0: ArrayLike, *,
                       J2: float = 1.0, branch: str = DEFAULT_BRANCH, sheet: int = 1,
                       method: str = "closed_form") -> NDArray[np.float64]:

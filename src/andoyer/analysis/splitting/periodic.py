@@ -212,7 +212,7 @@ def _eigen(DP: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.flo
     return w, V
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "tol": "tolerance", "xtol": "tolerance"})
 def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                    section: RotationSection | None = None, *, guess: ArrayLike | None = None,
                    tol: float = DEFAULT_TOL, xtol: float = 1e-13, max_iter: int = 12,
@@ -287,7 +287,8 @@ def rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                          float(np.linalg.norm(r.x - x)), tol, long_double, engine)
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "mu": "scale", "steps": "count", "tol":
+             "tolerance"})
 def continue_rotation_orbit(body: RigidBody, h: float, M: float = 0.0,
                             section: RotationSection | None = None, *,
                             mu: ArrayLike | None = None, steps: int = 4,
@@ -410,7 +411,7 @@ def orbits_dataset(orbits: list[RotationOrbit]) -> xr.Dataset:
 
 
 # ----------------------------------------------------------------------------- exact orbit
-@checks_body
+@checks_body(ranges={"h": "energy"})
 def pendulum_rotation(body: RigidBody, h: float, section: RotationSection | None = None
                       ) -> tuple[NDArray[np.float64], float]:
     """The pendulum rotation about ``sign * z`` on ``M = 0`` (bodies with ``e3 = 0``).

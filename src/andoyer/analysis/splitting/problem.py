@@ -101,7 +101,7 @@ class SplittingProblem:
         return dataclasses.replace(self, body=self.body.with_mu(float(mu)))
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "sheet": "sheet"})
 def splitting_problem(body: RigidBody, h: float, branch: str = DEFAULT_BRANCH,
                       sheet: int = 1, engine: EngineLike = None) -> SplittingProblem:
     """Prepare a separatrix-splitting problem: the nearest Hess body, the line, the engine.

@@ -67,7 +67,7 @@ def middle_axis_rate(body: RigidBody) -> float:
     return body.require_middle_axis("a hyperbolic rotation about the z axis")
 
 
-@checks_body
+@checks_body(ranges={"G": "length"})
 def rotation_energy(body: RigidBody, G: float = 1.0) -> float:
     """``h = c G^2 / 2``: the energy of the permanent rotation about z (the middle axis
     in this module) with ``|G| = G``:
@@ -242,7 +242,7 @@ def flow_engine(engine: EngineLike = None) -> EngineBase:
     return resolve_engine(engine, Capability.TANGENT_CROSSINGS)
 
 
-@checks_body
+@checks_body(ranges={"psi0": "angle", "tol": "tolerance"})
 def flow_to_section(body: RigidBody, y0: ArrayLike, kind: str, direction: int, *,
                     psi0: float = 0.0, backward: bool = False, t_max: float = 1e4,
                     tol: float = DEFAULT_TOL, stm: bool = False,
@@ -344,7 +344,7 @@ def _section_gradient(kind: str, psi0: float) -> NDArray[np.float64]:
     return g
 
 
-@checks_body
+@checks_body(ranges={"psi0": "angle"})
 def event_projector(body: RigidBody, y: NDArray[np.float64], kind: str,
                     psi0: float = 0.0) -> NDArray[np.float64]:
     """``I - F grad(f)^T / (grad(f), F)``: the event sensitivity at a crossing ``y``.
@@ -386,7 +386,7 @@ def _assemble(n: NDArray[np.float64], G: float, gamma3: float, psi0: float
                      rho * math.cos(psi0), gamma3])
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action"})
 def section_state(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                   section: RotationSection | None = None, *, jacobian: bool = False
                   ) -> Any:
@@ -525,7 +525,7 @@ class SectionReturn:
     stm: NDArray[np.float64] | None
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "M": "action", "tol": "tolerance"})
 def return_map(body: RigidBody, x: ArrayLike, h: float, M: float = 0.0,
                section: RotationSection | None = None, *, jacobian: bool = True,
                tol: float = DEFAULT_TOL, long_double: bool = False,

@@ -214,7 +214,7 @@ class PermanentRotation:
                 f"moment {self.moment} = {self.moment_value:g}): {self.linear_type}")
 
 
-@checks_body
+@checks_body(ranges={"G0": "length"}, closed_form=CLOSED_FORM)
 def permanent_rotations(body: RigidBody, G0: float = 1.0) -> tuple[PermanentRotation, ...]:
     """The six permanent rotations of the free body and their linear type.
 

@@ -165,7 +165,7 @@ class EulerPoinsotFrequencies(NamedTuple):
         return 1.0 / self.frequency_ratio
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "G": "length"}, closed_form=CLOSED_FORM)
 def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoinsotFrequencies:
     """Period of ``(l, L)``, mean rate of ``g`` and rotation number of the free top.
 
@@ -244,7 +244,7 @@ def euler_poinsot_frequencies(body: RigidBody, h: float, G: float) -> EulerPoins
     return EulerPoinsotFrequencies(T, g_rate, g1 * T1 / (2.0 * math.pi), m, regime)
 
 
-@checks_body
+@checks_body(ranges={"G0": "length"}, closed_form=CLOSED_FORM)
 def euler_poinsot_momentum(body: RigidBody, G0: ArrayLike, t: ArrayLike) -> NDArray[np.float64]:
     """The body-frame angular momentum of the free top at times ``t``, in closed form.
 

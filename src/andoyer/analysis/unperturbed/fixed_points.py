@@ -322,7 +322,7 @@ def _l_closed_forms(body: RigidBody, G0: float
     return pts
 
 
-@checks_arguments
+@checks_arguments(ranges={"value": "finite", "period": "time", "phi0": "angle"})
 def theta_text(value: float, period: float, phi0: float, lstar: float | None) -> str:
     """Name ``value`` (mod ``period``) as ``k pi + m phi0 (+ n l*)``, simplest first.
 
@@ -515,7 +515,7 @@ def _n_seed(n_seed: Any) -> tuple[int, int]:
     return nq, npp
 
 
-@checks_body
+@checks_body(ranges={"G0": "length"}, closed_form=CLOSED_FORM)
 def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
                          n_seed: int | tuple[int, int] = (64, 33)) -> FixedPointSet:
     """All fixed points of the unperturbed system (9) in ``(l, L)`` at fixed ``G = G0``.
@@ -548,7 +548,7 @@ def andoyer_fixed_points(body: RigidBody, G0: float = 1.0, *,
     return _fixed_points(body, "andoyer", G0, math.tau, _n_seed(n_seed))
 
 
-@checks_body
+@checks_body(ranges={"J2": "action"}, closed_form=CLOSED_FORM)
 def hess_fixed_points(body: RigidBody, J2: float = 1.0, *, double_cover: bool = False,
                       n_seed: int | tuple[int, int] = (64, 33)) -> FixedPointSet:
     """All fixed points of the unperturbed Hess-chart system in ``(theta1, J1)``, ``M = 0``.

@@ -152,7 +152,8 @@ def _portrait(body: RigidBody, chart: str, action: float, n: Any, n_levels: int,
     return values_from_attrs(ds, SEPARATRIX_LEVEL)
 
 
-@checks_body
+@checks_body(ranges={"G0": "length", "n_levels": "count", "n_curve": "count"},
+             closed_form=CLOSED_FORM)
 def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] = (241, 121),
                      *, n_levels: int = 14, n_curve: int = 201) -> xr.Dataset:
     """Everything Fig. 1 / Fig. 2(a) need: the unperturbed portrait of (9) in ``(l, L)``.
@@ -190,7 +191,8 @@ def portrait_andoyer(body: RigidBody, G0: float = 1.0, n: int | tuple[int, int] 
     return _portrait(body, "andoyer", G0, n, n_levels, check_grid_size(n_curve, "n_curve"), False)
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "n_levels": "count", "n_curve": "count"},
+             closed_form=CLOSED_FORM)
 def portrait_hess(body: RigidBody, J2: float = 1.0, n: int | tuple[int, int] = (241, 81), *,
                   n_levels: int = 14, n_curve: int = 201,
                   double_cover: bool = False) -> xr.Dataset:

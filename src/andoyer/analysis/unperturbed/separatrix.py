@@ -104,7 +104,7 @@ BRANCHES = ("theta1=0", "theta1=4phi0")
 DEFAULT_BRANCH = "theta1=0"
 
 
-@checks_body
+@checks_body(ranges={"J2": "action"}, closed_form=CLOSED_FORM)
 def heteroclinic_rate(body: RigidBody, J2: float = 1.0) -> float:
     """Rate ``lambda = 2 sigma J2`` of the unperturbed heteroclinic orbits, ``J1 ~ e^{-lambda t}``.
 
@@ -145,7 +145,7 @@ def _branch_angle(body: RigidBody, branch: str) -> tuple[float, int]:
     return float(np.mod(4.0 * phi0, math.tau)), sgn
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "t0": "angle"}, closed_form=CLOSED_FORM)
 def heteroclinic(body: RigidBody, J2: float, t: ArrayLike, branch: str = DEFAULT_BRANCH,
                  t0: float = 0.0, sign: int = +1, *, theta2_0: float = 0.0) -> xr.Dataset:
     """The unperturbed (``mu = 0``, ``M = 0``) heteroclinic orbit along a separatrix line.
@@ -287,7 +287,7 @@ def _middle(body: RigidBody) -> tuple[str, float]:
     return axis, I[axis]
 
 
-@checks_body
+@checks_body(ranges={"G0": "length"}, closed_form=CLOSED_FORM)
 def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     """Energy ``H0 = I_mid G0^2 / 2`` of the separatrix: that of the rotation about the
     middle axis (``c G0^2/2`` when z is the middle axis, as for a Hess body).
@@ -313,7 +313,7 @@ def separatrix_energy(body: RigidBody, G0: float = 1.0) -> float:
     return 0.5 * _middle(body)[1] * G0**2
 
 
-@checks_body
+@checks_body(ranges={"h": "energy"}, closed_form=CLOSED_FORM)
 def separatrix_momentum(body: RigidBody, h: float) -> float:
     """``|G| = J2 = sqrt(2 h / I_mid)``: the momentum of the separatrices (and of the
     rotations about the middle axis) on the level ``H = h``; the inverse of
@@ -406,7 +406,7 @@ def _curves(body: RigidBody, chart: str, action: float, period: float, n: int
     return out
 
 
-@checks_body
+@checks_body(ranges={"action": "length", "period": "time", "n": "count"}, closed_form=CLOSED_FORM)
 def separatrix_curves(body: RigidBody, chart: str, action: float, period: float,
                     n: int) -> xr.Dataset:
     """The unperturbed separatrices and singular lines of one chart as a dataset.
@@ -489,7 +489,7 @@ def check_grid_size(n: Any, what: str, minimum: int = 8) -> int:
     return integer(what, n, minimum, MAX_COUNT)
 
 
-@checks_body
+@checks_body(ranges={"G0": "length", "n": "count"}, closed_form=CLOSED_FORM)
 def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dataset:
     """The separatrices of (9) in ``(l, L)`` as sampled curves, closed form.
 
@@ -525,7 +525,7 @@ def separatrix_andoyer(body: RigidBody, G0: float = 1.0, n: int = 401) -> xr.Dat
     return separatrix_curves(body, "andoyer", G0, math.tau, check_grid_size(n, "n"))
 
 
-@checks_body
+@checks_body(ranges={"J2": "action", "n": "count"}, closed_form=CLOSED_FORM)
 def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
                     double_cover: bool = False) -> xr.Dataset:
     """The separatrices of the unperturbed Hess-chart system in ``(theta1, J1)``.
@@ -562,7 +562,7 @@ def separatrix_hess(body: RigidBody, J2: float = 1.0, n: int = 401, *,
 
 
 
-@checks_body
+@checks_body(ranges={"h": "energy", "n": "count"}, closed_form=CLOSED_FORM)
 def separatrix_on_level(body: RigidBody, h: float, chart: str, n: int = 401, *,
                         double_cover: bool = False) -> xr.Dataset | None:
     """The unperturbed (mu = 0) separatrices that lie on the energy level ``H0 = h``.

@@ -1,21 +1,21 @@
-"""Checks of scalar inputs shared by the layers: clear messages naming the argument."""
+"""Checks of scalar inputs shared by the layers: each a function of the argument's name (for
+the message) and its value, called where the user's value arrives; clear messages naming
+the argument. The limits of ``|G|`` (:data:`MAX_MOMENTUM`, :data:`MAX_ACTION`) and of
+counts (:data:`MAX_COUNT`) are here, read by :mod:`andoyer.validation.arguments` too."""
 
 from __future__ import annotations
 
-import functools
-import inspect
 import math
 import numbers
-from collections.abc import Callable, Iterable
-from typing import Any, ParamSpec, TypeVar
+from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["MAX_ACTION", "MAX_MOMENTUM", "MAX_ENERGY", "MAX_COUNT", "QUANTITIES", "level",
-           "momentum_limit",
-           "finite", "positive", "integer", "real_array", "finite_array",
-           "floats", "choice", "grid", "box", "flag", "checks_arguments"]
+__all__ = ["MAX_ACTION", "MAX_MOMENTUM", "MAX_ENERGY", "MAX_COUNT", "level", "momentum_limit",
+           "finite", "positive", "integer", "real_array", "finite_array", "floats", "choice",
+           "grid", "box", "flag"]
 
 
 def _real(name: str, value: Any) -> float:
@@ -76,12 +76,12 @@ MAX_ENERGY = 1e200
 def momentum_limit(closed_form: bool) -> float:
     """The largest ``|G|`` a public function takes, whether given as an action (``G``,
     ``J2``, ``M``, ...) or reached by an energy level: the one rule of
-    :func:`checks_arguments`.
+    :func:`~andoyer.validation.arguments.checks_arguments`.
 
     :data:`MAX_MOMENTUM` where the function integrates (the field (1) and its error
     control stay finite); :data:`MAX_ACTION` where it evaluates closed forms only (a
-    module that sets ``CLOSED_FORM = True`` beside its functions: ``|G|^2``, an energy,
-    stays a float). An energy given without a body is held to the square of the limit.
+    function decorated with ``closed_form=True``: ``|G|^2``, an energy, stays a float).
+    An energy given without a body is held to the square of the limit.
 
     Parameters
     ----------
@@ -109,7 +109,8 @@ def level(name: str, h: float, body: Any, maximum: float = MAX_MOMENTUM) -> None
 
     ``maximum``: :func:`momentum_limit` (:data:`MAX_MOMENTUM` where the level is
     integrated, the default; :data:`MAX_ACTION` in a module of closed forms), which
-    :func:`checks_arguments` applies to each argument ``h`` beside a ``body``.
+    :func:`~andoyer.validation.arguments.checks_arguments` applies to an ``"energy"``
+    argument of a function that takes a body.
 
     Parameters
     ----------
@@ -433,241 +434,3 @@ def floats(text: str, n: int, what: str) -> list[float]:
     if len(vals) != n:
         raise ValueError(f"{what} needs {n} numbers, got {len(vals)}")
     return vals
-
-
-_P = ParamSpec("_P")
-_R = TypeVar("_R")
-
-#: The scalar annotations :func:`checks_arguments` enforces.
-_SCALARS = ("float", "int", "bool", "str")
-
-
-#: Annotations of numeric arrays (checked for type: numbers, not text, bools or None).
-_ARRAYS = ("ArrayLike", "NDArray[np.float64]", "Sequence[float]")
-
-
-def _scalar_kind(annotation: Any, namespace: dict[str, Any] | None = None
-                 ) -> tuple[Any, bool] | None:
-    """``(kind, optional)`` of an annotation :func:`checks_arguments` enforces: a plain
-    scalar (``float``, ``int | None``, ...), a numeric array (``ArrayLike``), or one class
-    of the function's module (``RotationSection | None``); else ``None`` (tuples,
-    literals, unions of several types stay each function's own check)."""
-    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", "")
-    parts = [t.strip() for t in text.split("|")]
-    optional = "None" in parts
-    kinds = [t for t in parts if t != "None"]
-    if len(kinds) == 1 and kinds[0] in _SCALARS:
-        return kinds[0], optional
-    if kinds and all(k in _ARRAYS for k in kinds) and any(k != "Sequence[float]"
-                                                          for k in kinds):
-        return "array", optional
-    if len(kinds) == 1 and kinds[0].isidentifier() and namespace is not None:
-        cls = namespace.get(kinds[0])
-        if isinstance(cls, type) and cls.__module__.startswith("andoyer."):
-            return cls, optional
-    return None
-
-
-def _shown(value: Any) -> str:
-    """``repr(value)`` cut to 60 characters, for an error message (built only on an error:
-    the repr of an array costs more than the whole check)."""
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def _check_scalar(name: str, value: Any, kind: Any, optional: bool) -> None:
-    if value is None and optional:
-        return
-    if kind == "int":  # the type, and MAX_COUNT: finer ranges are the function's integer()
-        ok = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_) \
-            and (isinstance(value, numbers.Integral)
-                 or (math.isfinite(value) and float(value).is_integer()))
-        if not ok:
-            raise ValueError(f"{name} must be an integer{' or None' if optional else ''}, "
-                             f"got {_shown(value)}")
-        if abs(value) > MAX_COUNT:
-            raise ValueError(f"{name} must be an integer within +-{MAX_COUNT:.0e}, got "
-                             f"{value!r}")
-        return
-    if isinstance(kind, type):
-        if not isinstance(value, kind):
-            raise ValueError(f"{name} must be a {kind.__name__}"
-                             f"{' or None' if optional else ''}, got {type(value).__name__} "
-                             f"{_shown(value)}")
-        return
-    if kind == "array":
-        # The values NumPy would turn silently into a number: None (NaN), a bool (1.0), a
-        # numeric text ("1"). Ragged rows, text or bools in a list, complex values are
-        # each function's real_array check (with its own name for the argument).
-        if value is None or isinstance(value, bool | np.bool_ | str | bytes):
-            raise ValueError(f"{name} must be a number or an array of numbers"
-                             f"{' or None' if optional else ''}, got {_shown(value)}")
-        return
-    if kind == "bool":
-        if not isinstance(value, bool | np.bool_):
-            raise ValueError(f"{name} must be True or False"
-                             f"{' or None' if optional else ''}, got {_shown(value)}")
-    elif kind == "str":
-        if not isinstance(value, str):
-            raise ValueError(f"{name} must be a string{' or None' if optional else ''}, "
-                             f"got {_shown(value)}")
-    elif kind == "float":
-        if isinstance(value, np.ndarray) and value.ndim == 0:
-            value = value[()]
-        if not isinstance(value, numbers.Real) or isinstance(value, bool | np.bool_):
-            raise ValueError(f"{name} must be a real number{' or None' if optional else ''}"
-                             f", got {_shown(value)}")
-        if math.isnan(value):
-            raise ValueError(f"{name} must be a number, got NaN")
-
-
-#: What each argument name means, hence its range: the names follow the paper (one name,
-#: one meaning: ``tests/test_vocabulary.py``), so one table bounds every public function.
-#: ``energy``: finite, and with a ``body`` argument a level reaching ``|G|`` within
-#: :func:`momentum_limit` (:func:`level`; ``MAX_MOMENTUM``, or ``MAX_ACTION`` in a module
-#: of closed forms), else ``|h|`` within its square (``MAX_ENERGY`` where integrated);
-#: ``action`` (momenta): finite, within :func:`momentum_limit`; ``length``
-#: (``G = |G|``, a number; ``J2`` is signed through G = 0): also ``>= 0``; ``angle``,
-#: ``time``, ``finite``: finite;
-#: ``scale`` (``mu``, ``c``): finite, ``|x| <= MAX_ENERGY``; ``tolerance``: finite and
-#: > 0; ``sheet``: +1 or -1; ``count``: an integer in ``[0, MAX_COUNT]``. Every ``int``
-#: argument is also bounded by ``MAX_COUNT`` in absolute value. Arrays under these names
-#: are checked elementwise.
-QUANTITIES: dict[str, str] = {
-    **dict.fromkeys(("h", "h0", "energy"), "energy"),
-    **dict.fromkeys(("L", "M", "J1", "J2", "J3", "L0", "p", "p0"), "action"),
-    **dict.fromkeys(("G", "G0", "action"), "length"),
-    **dict.fromkeys(("l", "g", "theta1", "theta2", "theta3", "psi", "psi0", "vartheta",
-                     "vartheta0", "q", "q0", "phi0", "t0"), "angle"),
-    **dict.fromkeys(("t_end", "T", "period", "duration"), "time"),
-    **dict.fromkeys(("mu", "c"), "scale"),
-    **dict.fromkeys(("epsilon", "value"), "finite"),
-    **dict.fromkeys(("tol", "xtol", "rtol", "atol"), "tolerance"),
-    **dict.fromkeys(("sheet",), "sheet"),
-    **dict.fromkeys(("n", "k", "steps", "mu_steps", "window", "points_per_period",
-                     "boundary_grid", "n_check", "n_times", "n_samples", "n_initial",
-                     "n_levels", "n_curve", "n_phase", "n_orbits", "n_crossings", "n_freq",
-                     "n_points"), "count"),
-}
-
-
-def _quantity(name: str, label: str, value: Any, kind: str, bound: dict[str, Any],
-              limit: float = MAX_MOMENTUM) -> None:
-    """Check ``value`` of the argument ``name`` against its quantity ``kind``."""
-    if kind == "count":
-        if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
-            if not (math.isfinite(value) and 0.0 <= float(value) <= MAX_COUNT):
-                raise ValueError(f"{label} must be an integer in [0, {MAX_COUNT:.0e}], got "
-                                 f"{value!r}")
-        return
-    if kind == "sheet":
-        if not (isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
-                and value in (1, -1)):
-            raise ValueError(f"{label} must be +1 or -1, got {value!r}")
-        return
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        return  # not numbers: the function's own check names it
-    if arr.size == 0:
-        return
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{label} must be finite, got {_short(value)}")
-    big = float(np.max(np.abs(arr)))
-    if kind == "energy":
-        body = bound.get("body")
-        if arr.ndim == 0 and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
-            level(label, float(arr), body, limit)
-        elif big > limit * limit:
-            raise ValueError(f"{label} must be within +-{limit * limit:g}, got "
-                             f"{_short(value)}")
-    elif kind == "length" and arr.ndim == 0 and not arr >= 0.0:  # (G0 may be a vector G)
-        raise ValueError(f"{label} must be >= 0 (a length of the angular momentum), got "
-                         f"{_short(value)}")
-    if kind in ("action", "length") and big > limit:
-        why = ("its square, an energy, must stay a float" if limit > MAX_MOMENTUM else
-               "what the integrators take: the field (1) and its error control would "
-               "overflow")
-        raise ValueError(f"{label} must be within +-{limit:g} ({why}), got {_short(value)}")
-    elif kind == "scale" and big > MAX_ENERGY:
-        raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_short(value)}")
-    elif kind == "tolerance" and not np.all(arr > 0.0):
-        raise ValueError(f"{label} must be > 0, got {_short(value)}")
-
-
-def _short(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def checks_arguments(func: Callable[_P, _R]) -> Callable[_P, _R]:
-    """Decorator of a public function: every argument annotated as a plain scalar
-    (``float``, ``int``, ``bool``, ``str``, each optionally ``| None``) is checked to be
-    one before the function runs (a bool, text, a list or None where a number belongs;
-    NaN for a ``float``; a fraction for an ``int``); one annotated ``ArrayLike`` must not
-    be None, a bool or text; one annotated with a class of the package must be an
-    instance of it. An argument whose name is a quantity of :data:`QUANTITIES` (``h``, the
-    actions, angles, times, ``mu``, tolerances, counts, ``sheet``) is held to its range,
-    an energy ``h`` to a level its ``body`` reaches within :func:`momentum_limit` (what
-    the integrators take, or in a module with ``CLOSED_FORM = True`` what its actions
-    take: :func:`level`). Each failure is a
-    ``ValueError`` naming the argument (a module's ``ARGUMENT_NAMES`` dict may give a longer
-    name). Finer ranges, shapes and choices stay each function's own checks.
-
-    Parameters
-    ----------
-    func : callable
-        The public function to wrap; its annotations say what each argument must be.
-
-    Examples
-    --------
-    >>> @checks_arguments
-    ... def period(h: float, n: int = 1, *, progress: bool | None = None) -> float:
-    ...     return h * n
-    >>> period(2.0, 3), float(period(np.float32(0.5)))
-    (6.0, 0.5)
-    >>> period("2.0")
-    Traceback (most recent call last):
-    ...
-    ValueError: h must be a real number, got '2.0'
-    >>> period(1.0, progress="yes")
-    Traceback (most recent call last):
-    ...
-    ValueError: progress must be True or False or None, got 'yes'
-    """
-    sig = inspect.signature(func)
-    namespace = getattr(func, "__globals__", None)
-    checks = {p.name: kind for p in sig.parameters.values()
-              if (kind := _scalar_kind(p.annotation, namespace)) is not None}
-    # The quantity of a name applies where the annotation says a number or an array of
-    # numbers (an ``int`` only for counts and sheets; ``n`` of elliptic_pi is a float).
-    ranged = {name: QUANTITIES[name] for name, kind in checks.items()
-              if name in QUANTITIES and (
-                  kind[0] in ("float", "array") if QUANTITIES[name] not in ("count", "sheet")
-                  else kind[0] == "int")}
-    if not checks:
-        return func
-    where = getattr(func, "__name__", "function")
-    # A module may give an argument a longer name for messages ("n (number of plane
-    # points)"): ARGUMENT_NAMES = {"n": ...} beside the function.
-    labels: dict[str, str] = dict((namespace or {}).get("ARGUMENT_NAMES", {}))
-    # A module of closed forms (CLOSED_FORM = True beside the functions) takes levels
-    # past what the integrators take, as far as its actions (momentum_limit).
-    limit = momentum_limit(bool((namespace or {}).get("CLOSED_FORM", False)))
-
-    @functools.wraps(func)
-    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
-        try:
-            bound = sig.bind(*args, **kwargs)
-        except TypeError as exc:
-            raise TypeError(f"{where}: {exc}") from None
-        for name, value in bound.arguments.items():
-            if name in checks:
-                _check_scalar(labels.get(name, name), value, *checks[name])
-        for name, value in bound.arguments.items():
-            if name in ranged and value is not None:
-                _quantity(name, labels.get(name, name), value, ranged[name],
-                          bound.arguments, limit)
-        return func(*args, **kwargs)
-
-    return wrapper
