@@ -158,6 +158,34 @@ def _offline_note(app):  # noqa: ANN001
             "inventories)", ", ".join(INTERSPHINX))
 
 
+# autosummary imports every module of the API at each build to regenerate its pages:
+# most of a build with nothing changed. Skipped while no source, template or API index is
+# newer than the last build that generated them (the stamp written when a build ends).
+_AUTOSUMMARY_STAMP = ROOT / "docs" / "_build" / ".autosummary-stamp"
+
+
+def _api_sources_unchanged() -> bool:
+    if not _AUTOSUMMARY_STAMP.exists() or not _GENERATED.is_dir():
+        return False
+    stamp = _AUTOSUMMARY_STAMP.stat().st_mtime
+    sources = [*(ROOT / "src" / "andoyer").rglob("*.py"), *(ROOT / "docs" / "api").glob("*.rst"),
+               *(ROOT / "docs" / "_templates").rglob("*"), Path(__file__)]
+    return all(path.stat().st_mtime < stamp for path in sources if path.is_file())
+
+
+def _stamp_autosummary(app, exception):  # noqa: ANN001
+    if exception is None:
+        _AUTOSUMMARY_STAMP.parent.mkdir(parents=True, exist_ok=True)
+        _AUTOSUMMARY_STAMP.touch()
+
+
 def setup(app):  # noqa: ANN001, ANN201
     app.connect("autodoc-skip-member", _skip_type_aliases)
     app.connect("builder-inited", _offline_note)
+    if _api_sources_unchanged():
+        from sphinx.ext.autosummary import process_generate_options
+
+        for listener in list(app.events.listeners.get("builder-inited", [])):
+            if listener.handler is process_generate_options:
+                app.disconnect(listener.id)
+    app.connect("build-finished", _stamp_autosummary)
