@@ -179,16 +179,21 @@ def test_matplotlibs_logged_warnings_are_the_warning_line(tmp_path):
 
 
 @pytest.mark.timeout(180)
-def test_a_section_at_a_degenerate_level_ends_in_one_line(capsys, tmp_path):
+def test_a_section_at_a_degenerate_level_returns(capsys, tmp_path):
     """andoyer section just above the minimum of H on theta2 = 3 pi/2 (h = -mu (1 - 1e-7),
-    five orbits): no result after 300 s before; now one line (bad input) in seconds."""
+    five orbits): no result after 300 s before; now the section in seconds (measured 14 s
+    with the integration of the crossings), no traceback."""
     import time
 
     t0 = time.perf_counter()
-    code, err = run(["section", "--energy=-0.009999999", "--section", "theta2=4.71238898038469",
-                     "--n-orbits", "5", "--n-crossings", "5", "--engine", "numba",
-                     "--out", str(tmp_path / "s.nc")], capsys)
-    assert code == EXIT_CODES["bad input"], err
-    assert "only where no orbit can start" in err and len(err.strip().splitlines()) == 1
-    assert time.perf_counter() - t0 < 90.0
-    assert not (tmp_path / "s.nc").exists()
+    out = tmp_path / "s.nc"
+    try:
+        code = main(["section", "--energy=-0.009999999", "--section",
+                     "theta2=4.71238898038469", "--n-orbits", "5", "--n-crossings", "5",
+                     "--engine", "numba", "--out", str(out)])
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code in (0, None) and "Traceback" not in err, err
+    assert out.exists()
+    assert time.perf_counter() - t0 < 120.0

@@ -375,21 +375,20 @@ DEGENERATE = -RigidBody.paper().mu * (1.0 - 1e-7)
 
 @pytest.mark.timeout(120)
 @pytest.mark.parametrize("sampling", ["grid", "sobol", "halton"])
-def test_a_degenerate_level_returns_or_refuses_within_its_cost(sampling):
+def test_a_degenerate_level_returns_within_its_cost(sampling):
     """h = -mu (1 - 1e-7), theta2 = 3 pi / 2, five orbits, the paper's body: the accessible
-    points' roots lie on the chart's singular set, and the grid was refined for ever (no
-    result after 300 s). Now the plane points tried are bounded before the work starts
-    (measured: a refusal in 2-3 s, or the few regular orbits Sobol's points find)."""
+    region is a thin band (572 of 40000 boundary cells, 372 with a root off the singular
+    set) the box's grid missed, and the grid was refined for ever (no result after 300 s).
+    Now the plane points tried are bounded before the work starts, and the accessible cells
+    themselves seed the orbits the box's grid misses (measured: 5 orbits in 2-4 s)."""
     import time
 
     t0 = time.perf_counter()
-    try:
-        ds = fill_section(RigidBody.paper(), DEGENERATE, 0.0, ("theta2", 3 * np.pi / 2),
-                          n_orbits=5, sampling=sampling)
-    except ValueError as exc:
-        assert "only where no orbit can start" in str(exc) and "raise h" in str(exc)
-    else:
-        assert 1 <= ds.sizes["orbit"] and float(ds.residual.max()) <= 1e-12
+    ds = fill_section(RigidBody.paper(), DEGENERATE, 0.0, ("theta2", 3 * np.pi / 2),
+                      n_orbits=5, sampling=sampling)
+    assert 1 <= ds.sizes["orbit"] <= 10 and float(ds.residual.max()) <= 1e-12
+    if sampling == "grid":
+        assert ds.sizes["orbit"] == 5
     assert time.perf_counter() - t0 < 60.0
 
 

@@ -541,7 +541,7 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
     # of n points (~500 bytes each) and of the boundary grid (~100 bytes a point).
     max_points = max(SAMPLE_POINTS_PER_ORBIT * n, _MIN_SAMPLE_POINTS)
     evaluations = (float(boundary_grid) ** 2 * (_N_SCAN_GRID + 2 * _GOLDEN_ITERATIONS)
-                   + max_points * _N_SCAN_ROOTS * 1.5)
+                   + max_points * _N_SCAN_ROOTS * 2.5)
     budget.check("fill_section", steps=evaluations,
                  memory=500.0 * n + 100.0 * float(boundary_grid) ** 2
                  + 8.0 * _N_SCAN_ROOTS * min(max_points, _SCAN_SLAB) * 4)
@@ -577,6 +577,21 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
         P, Q = grid_points(eq, box, int(n), max_points)
     else:
         P, Q = qmc_points(eq, box, int(n), sampling, int(seed), max_points)
+    roots = eq.roots(P, Q) if P.size else []
+    if P.size == 0:
+        # A thin accessible band the box's grid misses (near a degenerate minimum): the
+        # accessible cells of the boundary grid themselves, at most max_points of them.
+        cells = np.flatnonzero(acc.ravel())
+        cells = cells[np.unique(np.linspace(0, cells.size - 1, min(cells.size, max_points))
+                                .round().astype(np.intp))]
+        Pc, Qc = X.ravel()[cells], Y.ravel()[cells]
+        found = eq.roots(Pc, Qc)
+        good = np.array([i for i, r in enumerate(found) if r.size], dtype=np.intp)
+        if good.size:
+            good = good[np.unique(np.linspace(0, good.size - 1, min(good.size, n))
+                                  .round().astype(np.intp))]
+        P, Q = Pc[good], Qc[good]
+        roots = [found[i] for i in good]
     if P.size == 0:
         hmin = _section_minimum(body, plane, value, M, bounds)
         raise ValueError(
@@ -586,7 +601,6 @@ def fill_section(body: RigidBody, h: float, M: float, section: Any, *, n_orbits:
             "degenerate level: H is within a hair of its minimum on the section, about "
             f"{hmin:.10g}, and the accessible region shrinks to a point or to the singular "
             "set); raise h")
-    roots = eq.roots(P, Q) if P.size else []
     rows: list[tuple[int, float, int, int]] = []
     for i, r in enumerate(roots):
         pick = {"all": r, "smallest": r[:1], "largest": r[-1:]}[root]
