@@ -47,7 +47,8 @@ COMMAND_API = {
     "indicators": ("andoyer.analysis.chaos.lyapunov:indicators",),
     "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
                    "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
-                   "andoyer.analysis.resonance.near_centre:resonant_normal_form"),
+                   "andoyer.analysis.resonance.near_centre:resonant_normal_form",
+                   "andoyer.analysis.resonance.second_order:island_prediction"),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.
@@ -227,6 +228,8 @@ def test_guide_shows_the_vocabulary():
 DEFAULTS_ON_PURPOSE = {
     ("chaos-map", "n"): "the shell's map is a picture, 128 x 128; the API's 64 suits scripts",
     ("explore", "body"): "the same body: the CLI names the paper's preset",
+    ("resonances", "order_mu"): "0: no normal form in mu unless asked (seconds per chain); "
+                                "the API takes its best order, 2",
     ("resonances", "n_orbits"): "0: no section drawn under the chains unless asked (the "
                                 "prediction itself integrates nothing)",
     ("resonances", "order"): "0: no normal form unless asked (the API's 8 is the degree "

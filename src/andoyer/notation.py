@@ -348,6 +348,7 @@ TERMS: tuple[Term, ...] = (
     Term("long_double", "integrate in 80-bit extended precision"),
     Term("max_order", "largest order p + q of the p/q resonances (island chains) listed"),
     Term("order", "degree N of the normal form in the distance to the centre (even)"),
+    Term("order_mu", "order in mu of the Lie-Deprit normal form of the island chains"),
 )
 
 #: API name -> its term.

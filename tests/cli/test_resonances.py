@@ -94,3 +94,27 @@ def test_resonances_command_refuses_a_bad_order(tmp_path, capsys, order, message
     err = capsys.readouterr().err
     assert "Traceback" not in err and message in err
     assert not list(tmp_path.iterdir())
+
+
+def test_resonances_order_mu_writes_the_chains_to_second_order(tmp_path, capsys):
+    """--order-mu 2: each chain of sign +1 to orders 1 and 2 in mu (island_prediction), the
+    table printed and *-order-mu.nc written; the 3:1 chain about axis 1 of Hess(3, 1, 2)
+    at mu = 1e-3 has its stable point at -1.1707e-4 (measured -1.1712e-4, first order
+    -1.1567e-4)."""
+    out = tmp_path / "res.nc"
+    assert main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+                 "--mu", "0.001", "--energy", "1", "--max-order", "4", "--order-mu", "2",
+                 "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "chains to order 2 in mu" in text and "res-order-mu.nc" in text
+    ds = xr.open_dataset(tmp_path / "res-order-mu.nc")
+    row = ds.where((ds.label == "3:1") & (ds.axis == 1), drop=True).isel(chain=0)
+    assert float(row.stable_s.sel(order_mu=2)) == pytest.approx(-1.1712e-4, rel=2e-3)
+    assert float(row.stable_s_error.sel(order_mu=2)) < float(row.stable_s_error.sel(order_mu=1))
+    with pytest.raises(SystemExit) as exc:
+        main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+              "--mu", "0", "--energy", "1", "--order-mu", "1", "--out", str(tmp_path / "z.nc")])
+    assert exc.value.code != 0
+    err = capsys.readouterr().err
+    assert "--order-mu needs mu > 0" in err and "Traceback" not in err
+    assert not (tmp_path / "z.nc").exists()

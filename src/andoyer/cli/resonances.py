@@ -23,6 +23,42 @@ ORDER = 48
 
 #: The ending of the normal forms' NetCDF beside ``--out`` (``--order``).
 NORMAL_FORM = "-normal-form.nc"
+#: The ending of the chains to order N in mu beside ``--out`` (``--order-mu``).
+ORDER_MU = "-order-mu.nc"
+
+
+def _orders_in_mu(body: Any, h: float, M: float, pred: Any, order_mu: int) -> Any:
+    """Each chain of ``pred`` (sign +1, width from an order <= ``order_mu``) predicted to
+    ``order_mu`` by :func:`~andoyer.analysis.resonance.island_prediction` ((S1)-(S4)), on
+    dims ``chain``, ``order_mu``; a chain the normal form cannot take (a torus too near the
+    separatrix for its spectrum) is left out and named in ``attrs['skipped']``."""
+    import numpy as np
+    import xarray as xr
+
+    from andoyer.analysis.resonance import island_prediction
+
+    parts, labels, axes, skipped = [], [], [], []
+    for i in range(pred.sizes["resonance"]):
+        r = pred.isel(resonance=i)
+        if int(r.sign) != 1 or int(r.p) > order_mu:
+            continue
+        label = str(r.label.values)
+        try:
+            parts.append(island_prediction(body, h, M, label, order_mu=order_mu,
+                                           axis=int(r.axis)))
+        except ValueError:
+            skipped.append(f"{label} (axis {int(r.axis)})")
+            continue
+        labels.append(label)
+        axes.append(int(r.axis))
+    if not parts:
+        return None
+    out = xr.concat(parts, dim="chain", combine_attrs="drop_conflicts")
+    out = out.assign_coords(chain=np.arange(len(parts)), label=("chain", np.array(labels)),
+                            axis=("chain", np.array(axes, dtype=np.int64)))
+    out.attrs["skipped"] = ", ".join(skipped)
+    out.attrs["order_mu"] = order_mu
+    return out
 
 
 def _normal_forms(body: Any, h: float, M: float, pred: Any, order: int) -> Any:
@@ -95,10 +131,13 @@ def run(args: argparse.Namespace) -> int:
     if args.order and (args.order % 2 or args.order < 4):
         raise ValueError(f"--order must be 0 (no normal form) or even, 4 to 16 (the normal "
                          f"form has whole powers of the action), got {args.order}")
-    inputs = inputs_from_args(args, level=True,
-                              beside=(".png", NORMAL_FORM) if args.order else (".png",))
+    beside = (".png",) + ((NORMAL_FORM,) if args.order else ()) \
+        + ((ORDER_MU,) if args.order_mu else ())
+    inputs = inputs_from_args(args, level=True, beside=beside)
     out, body, h = inputs.out, inputs.body, inputs.h
     assert h is not None
+    if args.order_mu and not body.mu > 0.0:
+        raise ValueError("--order-mu needs mu > 0 (at mu = 0 there is no island)")
     ds = resonance_widths(body, h, args.M, args.section, max_order=args.max_order)
     write_netcdf(ds, out)
     written = [out]
@@ -107,6 +146,12 @@ def run(args: argparse.Namespace) -> int:
         nfs = _normal_forms(body, h, args.M, ds, args.order)
         written.append(out.with_name(out.stem + NORMAL_FORM))
         write_netcdf(nfs, written[-1])
+    orders = None
+    if args.order_mu:
+        orders = _orders_in_mu(body, h, args.M, ds, args.order_mu)
+        if orders is not None:
+            written.append(out.with_name(out.stem + ORDER_MU))
+            write_netcdf(orders, written[-1])
     ax = None
     if args.n_orbits:
         import warnings
@@ -143,6 +188,8 @@ def run(args: argparse.Namespace) -> int:
               f"{float(r.residue_stable):10.3e}")
     if nfs is not None:
         _print_normal_forms(nfs)
+    if args.order_mu:
+        _print_orders(orders, args.order_mu)
     print(f"wrote {', '.join(str(p) for p in written)} and {png}")
     return 0
 
@@ -174,6 +221,30 @@ def _print_normal_forms(nfs: Any) -> None:
               f"{float(r.nf_action):10.4e} {float(r.nf_G_action):12.8f} {text}")
 
 
+def _print_orders(orders: Any, order_mu: int) -> None:
+    import math
+
+    print(f"chains to order {order_mu} in mu (Lie-Deprit normal form, (S1)-(S4); g = g* "
+          "seed line through the first-order stable point):")
+    if orders is None:
+        print("  none (no chain the normal form takes)")
+        return
+    print(f"  {'q:p':>6} {'axis':>4} {'order':>5} {'stable s':>12} {'+- next':>9} "
+          f"{'half-width':>11} {'Omega':>10}")
+    for c in orders.chain.values:
+        r = orders.sel(chain=c)
+        for n in r.order_mu.values:
+            v = r.sel(order_mu=n)
+            w = float(v.half_width)
+            text = f"{w:11.4e}" if math.isfinite(w) else f"{'-':>11}"
+            om = float(v.libration_frequency)
+            otext = f"{om:10.3e}" if math.isfinite(om) else f"{'-':>10}"
+            print(f"  {str(r.label.values):>6} {int(r.axis):>4} {int(n):>5} "
+                  f"{float(v.stable_s):+12.4e} {float(v.stable_s_error):9.1e} {text} {otext}")
+    if orders.attrs.get("skipped"):
+        print(f"  not taken: {orders.attrs['skipped']}")
+
+
 def register(sub: Any) -> None:
     p = sub.add_parser(NAME, help="p/q island chains predicted at first order in mu: "
                                   "NetCDF + PNG",
@@ -198,6 +269,11 @@ def register(sub: Any) -> None:
     add_term(p, "order", type=count(0, 16), default=0,
              help="degree N of the normal forms near the centres (even, 4 to 16), written "
                   f"beside --out as *{NORMAL_FORM}; default 0: none")
+    add_term(p, "order_mu", type=count(0, 2), default=0,
+             help="order N (1 or 2) in mu of the Lie-Deprit normal form of each chain "
+                  "(stable point on a seed line with the size of the next order, "
+                  f"half-width, libration frequency), written beside --out as *{ORDER_MU}; "
+                  "default 0: none")
     add_term(p, "n_orbits", type=count(0), default=0,
              help="orbits of a section drawn under the chains (default 0: none)")
     add_term(p, "n_crossings", type=count(1), default=300,
