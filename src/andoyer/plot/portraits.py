@@ -127,8 +127,9 @@ def _legend(ax: Axes, ds_list: list[xr.Dataset], mark_hess: bool,
                                   markerfacecolor=st.get("facecolors", st.get("color")),
                                   markeredgecolor=st.get("edgecolors", st.get("color")),
                                   label=kind))
-    if anchor is None:
-        ax.get_figure(root=True).legend(handles=handles, loc="outside lower center", ncol=5)
+    fig = ax.get_figure(root=True)
+    if anchor is None and fig is not None:
+        fig.legend(handles=handles, loc="outside lower center", ncol=5)
     else:
         ax.legend(handles=handles, loc="upper center", bbox_to_anchor=anchor, ncol=3)
 
