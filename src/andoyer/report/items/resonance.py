@@ -1,5 +1,5 @@
-"""Items beyond the paper: the p/q island chains predicted at first order in mu and
-measured on sections; the Birkhoff normal form at the centres against the closed form.
+"""Items beyond the paper: the p/q island chains predicted at first and second order in
+mu and measured on sections; the Birkhoff normal form at the centres against the closed form.
 
 The builder computes with :mod:`andoyer.analysis.resonance`, draws with
 :mod:`andoyer.plot` and returns a :class:`~andoyer.report.base.Result`; its prose is
@@ -120,8 +120,27 @@ def resonances(ctx: Context) -> Result:
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
         rows.append([body.name, f"{label} (axis {axis})", f"{mu:g}", f"{p:.4e}", "-",
                      f"{q:.4e}", f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
-                     f"{float(m.stable_s):+.4e}", f"{float(m.predicted_stable_s):+.4e}"])
+                     f"{float(m.stable_s):+.4e}", f"{float(m.predicted_stable_s):+.4e}",
+                     f"{float(m.predicted_stable_s_2):+.4e}"])
         numbers[f"half_width_{label}_mu_{mu:g}"] = q
+    # The paper's body at its mu: thin chains whose position is decided at second order
+    # (R12): first order misses the island, the Lie-Deprit normal form (S1)-(S4) does not.
+    second_order = []
+    if not ctx.quick:
+        paper_body = RigidBody.paper(0.01)
+        m = measure_island(paper_body, 0.2466, 0.0, "7:1", axis=1, n_seeds=2, n_rounds=4,
+                           engine=engine)
+        p, q = float(m.predicted_half_width), float(m.measured_half_width)
+        rows.append(["paper", "7:1 (axis 1)", "0.01", f"{p:.4e}", "-", f"{q:.4e}",
+                     f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
+                     f"{float(m.stable_s):+.4e}", f"{float(m.predicted_stable_s):+.4e}",
+                     f"{float(m.predicted_stable_s_2):+.4e}"])
+        hw = float(m.measured_half_width)
+        second_order.append({
+            "first": (float(m.stable_s) - float(m.predicted_stable_s)) / hw,
+            "second": (float(m.stable_s) - float(m.predicted_stable_s_2)) / hw})
+        numbers["paper_7:1_stable_miss_first_half_widths"] = second_order[-1]["first"]
+        numbers["paper_7:1_stable_miss_second_half_widths"] = second_order[-1]["second"]
     # Near a centre, at a resonance: the resonant normal form (N1)-(N5) of the tilted
     # body's 2:1 chain about y, against the torus route and the sections.
     near = []
@@ -135,7 +154,8 @@ def resonances(ctx: Context) -> Result:
         rows.append([TILTED.name, "2:1 (axis 2, near the centre)", f"{mu:g}", f"{p:.4e}",
                      f"{n:.4e}", f"{q:.4e}", f"{(q - n) / n:+.2%}",
                      f"{float(m.edge_uncertainty):.1e}", f"{float(m.stable_s):+.4e}",
-                     f"{float(m.predicted_stable_s):+.4e}"])
+                     f"{float(m.predicted_stable_s):+.4e}",
+                     f"{float(m.predicted_stable_s_2):+.4e}"])
         numbers[f"normal_form_half_width_2:1_mu_{mu:g}"] = n
         numbers[f"half_width_near_centre_2:1_mu_{mu:g}"] = q
         numbers[f"torus_half_width_2:1_mu_{mu:g}"] = p
@@ -170,9 +190,9 @@ def resonances(ctx: Context) -> Result:
     return Result(
         files, numbers,
         {"engine": engine, "n_chains": int(pred.sizes["resonance"]),
-         "nf": nf_rows, "near": near},
+         "nf": nf_rows, "near": near, "second_order": second_order},
         Table(["body", "chain", "mu", "predicted half-width (G), torus (R6)",
                "normal form (N5)", "measured", "difference (to the normal form where "
                "given)", "edge uncertainty", "stable point, measured",
-               "stable point, (R10)"], rows),
+               "stable point, (R10)", "stable point, second order (S4)"], rows),
         pre="\n".join(lines))
