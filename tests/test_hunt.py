@@ -232,7 +232,7 @@ LAZY = {
 def _certificate() -> dict[str, Any]:
     from andoyer.analysis.splitting.certificate import prove_certificate
 
-    return prove_certificate(B, digits=10)
+    return prove_certificate(B, branch="theta1=4phi0", digits=10)
 
 
 @functools.cache

@@ -68,7 +68,7 @@ def test_float_zeros_lie_in_the_zero_boxes(result):
 def test_quadrature_float_agrees():
     """The float trapezoidal rule of melnikov.py lies within 1e-14 of the certified ball."""
     body = RigidBody.paper()
-    res = certified_melnikov(body, phases=[0.0, 1.0], digits=30)
+    res = certified_melnikov(body, branch="theta1=4phi0", phases=[0.0, 1.0], digits=30)
     q = melnikov_quadrature(body, [0.0, 1.0], branch="theta1=4phi0")
     assert np.allclose(q, res.values_mid, rtol=0, atol=1e-14)
 
@@ -81,7 +81,7 @@ def test_hess_branch_of_a_hess_body_vanishes_identically():
 
 def test_the_integral_is_independent_of_the_closed_form():
     """A wrong closed form (factor 2) would not overlap the certified integral."""
-    Z, Zc, _ = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), bits=128)
+    Z, Zc, _ = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), branch="theta1=4phi0", bits=128)
     with working_precision(128):
         assert Z.overlaps(Zc)
         assert not Z.overlaps(2 * Zc)
@@ -95,7 +95,7 @@ def test_bracket_is_linear_in_the_phase():
 
 
 def test_krawczyk_rejects_a_box_without_a_zero():
-    Z, _, _ = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), bits=128)
+    Z, _, _ = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), branch="theta1=4phi0", bits=128)
     with working_precision(128):
         assert _krawczyk_zero(Z, arb(1.0), arb("0.01")) is None
         # a box around a zero that is too wide for M' to keep its sign
@@ -125,7 +125,7 @@ def test_tail_bound_exceeds_the_true_tail():
     from andoyer.analysis.splitting.certified import _setup
     spec = BodySpec("2.5", "2.0", "2.2")
     setup = _setup(spec, "theta1=4phi0", 1, "1", 128)
-    Z, _, _ = melnikov_coefficient(spec, bits=128)
+    Z, _, _ = melnikov_coefficient(spec, branch="theta1=4phi0", bits=128)
     for T0 in (20, 60, 120):
         part = acb.integral(lambda t, _a: setup.weight(t), -T0, T0)
         missing = abs(Z - part)

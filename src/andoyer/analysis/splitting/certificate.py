@@ -37,6 +37,7 @@ from andoyer.analysis.splitting.certified import (
     certified_melnikov,
     melnikov_coefficient,
 )
+from andoyer.analysis.unperturbed.separatrix import DEFAULT_BRANCH
 from andoyer.errors import ArgumentTypeError, CertificateError
 from andoyer.integrate.validated.arithmetic import (
     FLINT_VERSION,
@@ -75,7 +76,7 @@ def _digest(cert: dict[str, Any]) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-def prove_certificate(body: Any, *, branch: str = "theta1=4phi0", sheet: int = 1,
+def prove_certificate(body: Any, *, branch: str = DEFAULT_BRANCH, sheet: int = 1,
                       J2: str = "1", digits: int = 30) -> dict[str, Any]:
     """Prove the first-order statement and return its certificate (a JSON-ready dict).
 
@@ -83,8 +84,9 @@ def prove_certificate(body: Any, *, branch: str = "theta1=4phi0", sheet: int = 1
     ----------
     body : RigidBody or BodySpec
         A Hess or near-Hess body.
-    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
-        The separatrix line.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        The separatrix line. The default is every analysis' default, the Hess
+        separatrix; on a Hess body that line does not split (M = 0).
     sheet : {+1, -1}, default 1
         Which of its orbits.
     J2 : str, default "1"
@@ -101,7 +103,7 @@ def prove_certificate(body: Any, *, branch: str = "theta1=4phi0", sheet: int = 1
     Examples
     --------
     >>> from andoyer import RigidBody
-    >>> cert = prove_certificate(RigidBody.paper(), digits=20)
+    >>> cert = prove_certificate(RigidBody.paper(), branch="theta1=4phi0", digits=20)
     >>> verify_certificate(cert)["zeros"]
     2
     """

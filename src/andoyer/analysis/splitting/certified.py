@@ -66,7 +66,7 @@ import sympy as sp
 from flint import acb, arb
 
 from andoyer.analysis.splitting.melnikov import heteroclinic_line, melnikov_off_hess
-from andoyer.analysis.unperturbed.separatrix import BRANCHES
+from andoyer.analysis.unperturbed.separatrix import BRANCHES, DEFAULT_BRANCH
 from andoyer.body import RigidBody
 from andoyer.charts.andoyer_deprit import rotation_chain_expr
 from andoyer.integrate.validated.arithmetic import (
@@ -197,7 +197,7 @@ def _setup(spec: BodySpec, branch: str, sheet: int, J2: str, bits: int) -> _Setu
                       omega=hess_balls.c * J2b, values=values, tail_constant=K)
 
 
-def heteroclinic_orbit_balls(body: RigidBody | BodySpec, branch: str = "theta1=4phi0",
+def heteroclinic_orbit_balls(body: RigidBody | BodySpec, branch: str = DEFAULT_BRANCH,
                              sheet: int = 1, J2: str = "1", bits: int = 128
                              ) -> tuple[arb, arb]:
     """``(theta1, lambda)``: the line of the heteroclinic orbit and its rate, as balls.
@@ -206,8 +206,9 @@ def heteroclinic_orbit_balls(body: RigidBody | BodySpec, branch: str = "theta1=4
     ----------
     body : RigidBody or BodySpec
         The body.
-    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
-        The line.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        The line. The default is every analysis' default, the Hess
+        separatrix; on a Hess body that line does not split (M = 0).
     sheet : {+1, -1}, default 1
         Which of its orbits.
     J2 : str, default "1"
@@ -219,7 +220,7 @@ def heteroclinic_orbit_balls(body: RigidBody | BodySpec, branch: str = "theta1=4
     return setup.theta1, setup.lam
 
 
-def melnikov_coefficient(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi0",
+def melnikov_coefficient(body: RigidBody | BodySpec, *, branch: str = DEFAULT_BRANCH,
                          sheet: int = 1, J2: str = "1", bits: int = 192
                          ) -> tuple[acb, acb, float]:
     """``(Z, Z_closed, T)``: ``M(theta2_0) = Re(Z e^{i theta2_0})``, two enclosures of Z.
@@ -233,8 +234,9 @@ def melnikov_coefficient(body: RigidBody | BodySpec, *, branch: str = "theta1=4p
     ----------
     body : RigidBody or BodySpec
         The body.
-    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
-        The separatrix line.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        The separatrix line. The default is every analysis' default, the Hess
+        separatrix; on a Hess body that line does not split (M = 0).
     sheet : {+1, -1}, default 1
         Which of its two orbits.
     J2 : str, default "1"
@@ -244,7 +246,8 @@ def melnikov_coefficient(body: RigidBody | BodySpec, *, branch: str = "theta1=4p
 
     Examples
     --------
-    >>> Z, Zc, T = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), bits=192)
+    >>> paper = BodySpec("2.5", "2.0", "2.2")
+    >>> Z, Zc, T = melnikov_coefficient(paper, branch="theta1=4phi0", bits=192)
     >>> bool(Z.overlaps(Zc)), correct_digits(Z.real) > 30
     (True, True)
     """
@@ -449,7 +452,7 @@ class CertifiedMelnikov:
         return ds
 
 
-def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi0",
+def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = DEFAULT_BRANCH,
                        sheet: int = 1, J2: str = "1", digits: int = 30,
                        phases: Sequence[float] | None = None) -> CertifiedMelnikov:
     """Enclose ``M`` to ``digits`` correct digits and prove its zeros simple.
@@ -459,8 +462,9 @@ def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi
     body : RigidBody or BodySpec
         A Hess or near-Hess body (``RigidBody.hess`` / ``near_hess``; read by
         :meth:`BodySpec.from_body`), or its exact spec.
-    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=4phi0"
-        The separatrix line.
+    branch : {"theta1=0", "theta1=4phi0"}, default "theta1=0"
+        The separatrix line. The default is every analysis' default, the Hess
+        separatrix; on a Hess body that line does not split (M = 0).
     sheet : {+1, -1}, default 1
         Which of its two orbits.
     J2 : str, default "1"
@@ -484,7 +488,7 @@ def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = "theta1=4phi
 
     Examples
     --------
-    >>> res = certified_melnikov(RigidBody.paper(), digits=30, phases=[0.0])
+    >>> res = certified_melnikov(RigidBody.paper(), branch="theta1=4phi0", digits=30, phases=[0.0])
     >>> res.digits >= 30, len(res.zeros), res.complete
     (True, 2, True)
     """
