@@ -192,7 +192,8 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         ``predicted_stable_s_next_order`` (R12: the estimated size of its ``O(mu^2)`` term)
         and ``predicted_stable_s_holds`` (that estimate below the half-width),
         ``predicted_stable_s_2`` (the second-order position, (S1)-(S4) of
-        :mod:`~andoyer.analysis.resonance.second_order`: error ``O(mu^3)``),
+        :mod:`~andoyer.analysis.resonance.second_order`: error ``O(mu^3)``; NaN with
+        ``attrs['second_order']`` saying why when the normal form cannot be built),
         ``libration_frequency``; ``seed_s``,
         ``seed_locked``, ``seed_drift`` per orbit run (dim ``seed``).
 
@@ -306,7 +307,10 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     next_order = abs(chain.second_order_mean_shift())
     from andoyer.analysis.resonance.second_order import SecondOrderChain
 
-    second = SecondOrderChain(chain, 2).stable_s(probe.phase, g_star)
+    try:
+        second, why = SecondOrderChain(chain, 2).stable_s(probe.phase, g_star), ""
+    except ValueError as exc:   # a node torus the normal form cannot sample
+        second, why = math.nan, f"not computed: {exc}"
     ds = xr.Dataset(
         {"predicted_half_width": ((), dG), "measured_half_width": ((), measured),
          "half_width_error": ((), measured - dG), "edge_uncertainty": ((), unc),
@@ -323,7 +327,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         attrs=provenance(body, h=h, M=M, resonance=resonance, axis=int(chain.row["axis"]),
                          g_star=g_star, n_crossings=n_crossings, n_seeds=n_seeds,
                          n_rounds=n_rounds, tolerance=tol, G_star=chain.torus.G,
-                         stable_phase=probe.phase,
+                         stable_phase=probe.phase, second_order=why or "computed",
                          method="seeds on the normal line through a predicted stable point; "
                                 "locked: the slow angle psi spans < 2 pi over n_crossings "
                                 "returns; edges by rounds of seeds in each bracket"))
