@@ -25,6 +25,7 @@ from hypothesis import strategies as st
 
 from andoyer import RigidBody
 from andoyer.analysis.chaos.specs import IndicatorRun
+from andoyer.analysis.resonance.deprit import JetSpace
 from andoyer.cli import EXIT_CODES, main
 from andoyer.errors import CostLimitError
 
@@ -163,6 +164,8 @@ GOOD: dict[str, Any] = {
     "n_check": 2, "chaotic": np.ones((2, 6), bool), "accessible": np.ones((2, 6), bool),
     "theta1": (np.arange(6) + 0.5) * np.pi / 3,
 }
+#: Jets of degree 2 on a 4 x 1 Fourier grid (the Lie-Deprit triangle's arguments).
+_JETS = JetSpace(2, 4, 1)
 #: Where a function needs other values than the shared ones (and small sizes: cost guard).
 OVERRIDES: dict[str, dict[str, Any]] = {
     "chaos_map": {"grid": 4, "run": IndicatorRun(t_end=5.0), "engine": "numba"},
@@ -172,6 +175,11 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "chaos_border_map": {"body": HESS, "h": 0.3125, "n": 4, "t_end": 5.0,
                          "engine": "numba", "mu": [0.01], "epsilon": [0.05]},
     "melnikov_off_hess": {"body": HESS, "epsilon": 0.05},
+    "prove_certificate": {"branch": "theta1=4phi0", "digits": 10},
+    "chosen": {"indicator": "both"},
+    "lie_deprit": {"space": _JETS, "H": [_JETS.zeros()], "omega": [0.5, 1.0],
+                   "resonance": (1, 2)},
+    "transform": {"space": _JETS, "f": _JETS.zeros(), "Ws": [_JETS.zeros()]},
     "check_grid_size": {"what": "n"},
     "elliptic_pi": {"n": 0.3},
     "lagrange_top": {"body": RigidBody.lagrange(1.0, 0.6, 1.0),

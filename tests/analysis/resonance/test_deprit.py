@@ -38,7 +38,7 @@ def test_pendulum_energy_to_order_N(order, slope):
     0.2 of it."""
     space = JetSpace(8, 16, 1)
     Ht, _W = lie_deprit(space, [_cos(space, 1, 1.0)] + [space.zeros()] * (order - 1),
-                        [J_STAR, 1.0], 0, 1)
+                        [J_STAR, 1.0], (0, 1))
     assert Ht[1][0, 0, 0].real / 2 == pytest.approx(1 / (4 * J_STAR**2), rel=1e-13)
     mus = np.array([0.01, 0.02, 0.04])
     err = []
@@ -56,7 +56,7 @@ def test_old_variables_from_new_compose_to_the_normal_form(order):
     within 0.1."""
     space = JetSpace(8, 32, 1)
     H1 = _cos(space, 1, 1.0) + _cos(space, 2, 0.4) + _cos(space, 1, 0.3, degree=1)
-    Ht, Ws = lie_deprit(space, [H1] + [space.zeros()] * (order - 1), [J_STAR, 1.0], 0, 1)
+    Ht, Ws = lie_deprit(space, [H1] + [space.zeros()] * (order - 1), [J_STAR, 1.0], (0, 1))
     x_jet = space.zeros()
     x_jet[1, 0, 0] = 1.0
     X, P = transform(space, x_jet, Ws), transform(space, None, Ws)
@@ -85,7 +85,7 @@ def test_resonant_harmonic_is_kept_and_the_rest_removed():
     H1 = space.zeros()
     H1[0, 1, -1] = H1[0, -1, 1] = 0.5
     H1[0, 1, 0] = H1[0, -1, 0] = 0.5
-    Ht, Ws = lie_deprit(space, [H1], [1.0, 1.0], 1, 1)
+    Ht, Ws = lie_deprit(space, [H1], [1.0, 1.0], (1, 1))
     assert Ht[0][0, 1, -1] == pytest.approx(0.5) and abs(Ht[0][0, 1, 0]) < 1e-15
     assert Ws[0][0, 1, 0] == pytest.approx(0.5 / 1j)
     assert abs(Ws[0][0, 1, -1]) == 0.0

@@ -168,4 +168,6 @@ def chosen(indicator: str) -> tuple[str, ...]:
     >>> chosen("both"), chosen("megno")
     (('fli', 'megno'), ('megno',))
     """
+    if not isinstance(indicator, str) or indicator not in MAP_CHOICES:
+        raise ValueError(f"indicator must be one of {MAP_CHOICES}, got {indicator!r:.60}")
     return MAP_INDICATORS if indicator == ALL_OF_THEM else (indicator,)

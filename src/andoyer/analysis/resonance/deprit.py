@@ -41,6 +41,9 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from andoyer.errors import ArgumentTypeError
+from andoyer.validation import finite_array, integer
+
 __all__ = ["JetSpace", "lie_deprit", "transform"]
 
 Jet = NDArray[np.complex128]
@@ -97,6 +100,35 @@ class JetSpace:
         return complex(np.sum(xs[:, None, None] * f * e[None]))
 
 
+def _jets(space: JetSpace, name: str, jets: object, *, minimum: int = 1) -> list[Jet]:
+    """``jets`` checked as a sequence of at least ``minimum`` finite jets of ``space``."""
+    if isinstance(jets, np.ndarray) and jets.ndim == 3:
+        jets = [jets]
+    if not isinstance(jets, (list, tuple)) or len(jets) < minimum:
+        raise ArgumentTypeError(f"{name} must be a list of at least {minimum} jets of "
+                                f"shape {space.zeros().shape}, got {jets!r:.60}")
+    return [_jet(space, f"{name}[{i}]", f) for i, f in enumerate(jets)]
+
+
+def _jet(space: JetSpace, name: str, f: object) -> Jet:
+    """``f`` checked as a finite jet of ``space`` (shape ``(D + 1, n1, n2)``)."""
+    shape = space.zeros().shape
+    a = np.asarray(f) if isinstance(f, np.ndarray) else None
+    if a is None or a.shape != shape or not np.issubdtype(a.dtype, np.number) \
+            or a.dtype == np.bool_:
+        raise ArgumentTypeError(f"{name} must be a jet: an array of shape {shape}, got "
+                                f"{f!r:.60}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite")
+    return np.asarray(a, dtype=complex)
+
+
+def _space(space: object) -> JetSpace:
+    if not isinstance(space, JetSpace):
+        raise ArgumentTypeError(f"space must be a JetSpace, got {space!r:.60}")
+    return space
+
+
 def _homological(space: JetSpace, psi: Jet, omega: Sequence[float], p: int, q: int
                  ) -> tuple[Jet, Jet]:
     """(D3): ``W`` with ``(omega(J) d_phi + d_t) W = psi - resonant(psi)``; returns
@@ -116,8 +148,8 @@ def _homological(space: JetSpace, psi: Jet, omega: Sequence[float], p: int, q: i
     return W, kept
 
 
-def lie_deprit(space: JetSpace, H: Sequence[Jet], omega: Sequence[float], p: int, q: int
-               ) -> tuple[list[Jet], list[Jet]]:
+def lie_deprit(space: JetSpace, H: Sequence[Jet], omega: Sequence[float],
+               resonance: tuple[int, int]) -> tuple[list[Jet], list[Jet]]:
     """(D2)-(D3): the normal form to order ``N = len(H)``.
 
     Parameters
@@ -129,15 +161,24 @@ def lie_deprit(space: JetSpace, H: Sequence[Jet], omega: Sequence[float], p: int
     omega : sequence of float
         Taylor coefficients ``omega_j`` of ``K0'(J* + x) = sum omega_j x^j``;
         ``omega_0 = p/q`` at a resonance.
-    p, q : int
-        The resonance ``p omega_t = q omega_phi`` kept (``k1 p + k2 q = 0``); ``p = 0``:
-        none (only ``k = 0`` is kept).
+    resonance : (int, int)
+        ``(p, q)``: the resonance ``p omega_t = q omega_phi`` kept (``k1 p + k2 q = 0``);
+        ``p = 0``: none (only ``k = 0`` is kept).
 
     Returns
     -------
     (list of jets, list of jets)
         ``Ht_1 .. Ht_N`` (same ``n!`` convention) and the generators ``W_1 .. W_N``.
     """
+    space = _space(space)
+    H = _jets(space, "H", H)
+    omega = [float(w) for w in finite_array("omega", omega, ndim=1)]
+    if not omega:
+        raise ValueError("omega must hold at least omega_0")
+    if not isinstance(resonance, (tuple, list)) or len(resonance) != 2:
+        raise ArgumentTypeError(f"resonance must be a pair of integers (p, q), got "
+                                f"{resonance!r:.60}")
+    p, q = (integer("resonance", r, -10**6, 10**6) for r in resonance)
     N = len(H)
     table: dict[tuple[int, int], Jet] = {(0, n): H[n - 1] for n in range(1, N + 1)}
     Ws: list[Jet] = []
@@ -192,6 +233,9 @@ def transform(space: JetSpace, f: Jet | None, Ws: Sequence[Jet]) -> list[Jet]:
     list of jets
         ``ft_0 .. ft_N`` with ``f(old) = sum mu^n / n! ft_n(new)``.
     """
+    space = _space(space)
+    f = None if f is None else _jet(space, "f", f)
+    Ws = _jets(space, "Ws", Ws, minimum=0)
     N = len(Ws)
     base = space.zeros() if f is None else f
     table: dict[tuple[int, int], Jet] = {(0, 0): base}

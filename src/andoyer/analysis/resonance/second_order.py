@@ -121,7 +121,7 @@ class SecondOrderChain:
         self.omega[0] = p / q
         self.G_poly = inv @ Gs                    # G0(I1* + x)
         H = [self.K1, 2.0 * self.K2, self.space.zeros()][: self.order]   # K3: not built
-        self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, p, q)
+        self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, (p, q))
         xj = self.space.zeros()
         xj[1, 0, 0] = 1.0
         self.dHt = [self.space.d_x(f) for f in self.Ht]

@@ -102,7 +102,6 @@ __all__ = [
     "ManifoldBranch",
     "ManifoldCurve",
     "manifold_branch",
-    "branch_of",
     "grow_manifold",
     "euler_poinsot_excess",
     "heteroclinic_line_of",

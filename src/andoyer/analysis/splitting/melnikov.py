@@ -100,7 +100,6 @@ __all__ = [
     "melnikov_closed_form",
     "melnikov_quadrature",
     "melnikov_function",
-    "melnikov_of",
     "predicted_splitting",
     "melnikov_rho",
     "melnikov_off_hess",
