@@ -253,7 +253,7 @@ def test_defaults_agree_with_the_api_or_say_why():
     scan_api = {"section": ("andoyer.integrate.fill:fill_section",),
                 "chaos_map": ("andoyer.analysis.chaos.lyapunov:chaos_map",),
                 "splitting": ("andoyer.analysis.splitting.measure:separatrix_splitting",),
-                "chaos_border": ("andoyer.analysis.chaos.chaos_border:chaos_border",)}
+                "chaos_border": ("andoyer.analysis.chaos.border:chaos_border",)}
     pairs += [(f"scan:{k}", paths, {n: o.default for n, o in TASKS[k].options.items()})
               for k, paths in scan_api.items()]
     for where, paths, defaults in pairs:

@@ -12,7 +12,7 @@ import pytest
 import andoyer
 from andoyer import RigidBody
 from andoyer.analysis.chaos.alignment import gali, sali
-from andoyer.analysis.chaos.chaos_border import chaos_border, chaos_border_map
+from andoyer.analysis.chaos.border import chaos_border, chaos_border_map
 from andoyer.analysis.splitting.measure import splitting_vs_epsilon
 from andoyer.analysis.splitting.melnikov import melnikov_off_hess
 from andoyer.integrate import budget

@@ -443,7 +443,7 @@ def border_store(tmp_path_factory) -> Path:
 
 
 def test_border_scan_points_are_the_public_api_result(border_store):
-    from andoyer.analysis.chaos.chaos_border import chaos_border
+    from andoyer.analysis.chaos.border import chaos_border
 
     ds = xr.open_zarr(border_store).load()
     assert ds.epsilon.attrs["units"] == "rad" and ds.chaotic_fraction.dims == ("mu", "epsilon")

@@ -18,7 +18,7 @@ topic, imported on demand (``from andoyer.analysis.chaos.lyapunov import indicat
 - :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.lyapunov` (FLI, MEGNO,
   chaos maps), :mod:`~andoyer.analysis.chaos.alignment` (SALI, GALI),
   :mod:`~andoyer.analysis.chaos.frequency` (NAFF, frequency drift),
-  :mod:`~andoyer.analysis.chaos.chaos_border`;
+  :mod:`~andoyer.analysis.chaos.border`;
 - :mod:`~andoyer.analysis.splitting`, splitting of the separatrices:
   :mod:`~andoyer.analysis.splitting.periodic`, :mod:`~andoyer.analysis.splitting.section_map`,
   :mod:`~andoyer.analysis.splitting.manifolds`, :mod:`~andoyer.analysis.splitting.measure`,

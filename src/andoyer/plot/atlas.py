@@ -353,7 +353,7 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     ----------
     ds : xarray.Dataset
         The store of a ``chaos_border`` scan (``xarray.open_zarr``), or the result of
-        :func:`andoyer.analysis.chaos.chaos_border.chaos_border_map`.
+        :func:`andoyer.analysis.chaos.border.chaos_border_map`.
     x, y : str, optional
         Swept dims across and up (default ``epsilon`` and ``mu`` when swept, else the
         first two swept dims).

@@ -4,7 +4,7 @@ separatrix against the turn ``epsilon`` of the centre of mass, the chaotic fract
 
 Every panel takes a dataset of the analysis layer
 (:func:`andoyer.analysis.splitting.measure.splitting_vs_epsilon`,
-:func:`andoyer.analysis.chaos.chaos_border.chaos_border_map`,
+:func:`andoyer.analysis.chaos.border.chaos_border_map`,
 :func:`andoyer.analysis.chaos.frequency.frequency_map`).
 """
 
@@ -91,7 +91,7 @@ def plot_border_of_chaos(splitting: xr.Dataset, border: xr.Dataset,
     splitting : xarray.Dataset
         From :func:`andoyer.analysis.splitting.measure.splitting_vs_epsilon`.
     border : xarray.Dataset
-        From :func:`andoyer.analysis.chaos.chaos_border.chaos_border_map`.
+        From :func:`andoyer.analysis.chaos.border.chaos_border_map`.
     frequencies : xarray.Dataset
         From :func:`andoyer.analysis.chaos.frequency.frequency_map`.
     width : float, default 7.5

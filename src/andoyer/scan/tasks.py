@@ -20,7 +20,7 @@ Registered kinds (:data:`TASKS`):
     predicted by Melnikov (sweep mu, and A, B, C, to see how it scales; sweep epsilon
     to split the Hess branch ``theta1 = 0``).
 ``chaos_border``
-    :func:`andoyer.analysis.chaos.chaos_border.chaos_border`: the chaotic fraction of the
+    :func:`andoyer.analysis.chaos.border.chaos_border`: the chaotic fraction of the
     section plane from MEGNO (threshold from the regular free top) and the width of the
     chaotic layer around the former Hess separatrix; sweep ``mu`` and ``epsilon`` for
     the border of chaos (``andoyer atlas`` draws it).
@@ -426,9 +426,9 @@ def _splitting_bodies(options: Mapping[str, Any], bodies: list[RigidBody],
 def _border_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any],
                   integ: Integrator) -> xr.Dataset | Empty:
     """Chaotic fraction and layer width by
-    :func:`~andoyer.analysis.chaos.chaos_border.chaos_border` (one thread; tolerance
+    :func:`~andoyer.analysis.chaos.border.chaos_border` (one thread; tolerance
     ``min(rtol, atol)``)."""
-    from andoyer.analysis.chaos.chaos_border import chaos_border
+    from andoyer.analysis.chaos.border import chaos_border
     from andoyer.integrate.section import Section
 
     sec = Section.parse(options["section"])

@@ -4,8 +4,7 @@
 The public functions and classes of its modules are names of this package too
 (``from andoyer.analysis.chaos import indicators, chaos_map, sali, naff``), imported on
 first use so that the light modules (:mod:`.registry`, read by the CLI's argument parser)
-stay light. ``chaos_border`` is also the name of its module: import it from there
-(``from andoyer.analysis.chaos.chaos_border import chaos_border``).
+stay light.
 """
 
 from __future__ import annotations
@@ -18,10 +17,11 @@ if TYPE_CHECKING:
     from andoyer.analysis.chaos.alignment import gali as gali
     from andoyer.analysis.chaos.alignment import initial_tangents as initial_tangents
     from andoyer.analysis.chaos.alignment import sali as sali
-    from andoyer.analysis.chaos.chaos_border import chaos_border_map as chaos_border_map
-    from andoyer.analysis.chaos.chaos_border import hess_line as hess_line
-    from andoyer.analysis.chaos.chaos_border import layer_width as layer_width
-    from andoyer.analysis.chaos.chaos_border import regular_reference as regular_reference
+    from andoyer.analysis.chaos.border import chaos_border as chaos_border
+    from andoyer.analysis.chaos.border import chaos_border_map as chaos_border_map
+    from andoyer.analysis.chaos.border import hess_line as hess_line
+    from andoyer.analysis.chaos.border import layer_width as layer_width
+    from andoyer.analysis.chaos.border import regular_reference as regular_reference
     from andoyer.analysis.chaos.frequency import Lines as Lines
     from andoyer.analysis.chaos.frequency import frequency_drift as frequency_drift
     from andoyer.analysis.chaos.frequency import frequency_map as frequency_map
@@ -45,8 +45,8 @@ EXPORTS = {"indicators": "lyapunov", "chaos_map": "lyapunov", "output_times": "l
            "TANGENT_SPACES": "specs", "INDICATORS": "registry", "IndicatorSpec": "registry",
            "chosen": "registry", "sali": "alignment", "gali": "alignment",
            "alignment_indices": "alignment", "initial_tangents": "alignment",
-           "chaos_border_map": "chaos_border", "regular_reference": "chaos_border",
-           "layer_width": "chaos_border", "hess_line": "chaos_border", "Lines": "frequency",
+           "chaos_border": "border", "chaos_border_map": "border", "regular_reference": "border",
+           "layer_width": "border", "hess_line": "border", "Lines": "frequency",
            "naff": "frequency", "frequency_drift": "frequency",
            "orbit_frequencies": "frequency", "frequency_map": "frequency",
            "resonance_label": "frequency"}

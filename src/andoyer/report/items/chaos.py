@@ -105,7 +105,7 @@ def border(ctx: Context) -> Result:
     """
     import numpy as np
 
-    from andoyer.analysis.chaos.chaos_border import chaos_border_map
+    from andoyer.analysis.chaos.border import chaos_border_map
     from andoyer.analysis.chaos.frequency import frequency_map
     from andoyer.analysis.splitting.measure import splitting_vs_epsilon
     from andoyer.analysis.unperturbed.separatrix import separatrix_energy

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.chaos.chaos_border import chaos_border, hess_line, layer_width
+from andoyer.analysis.chaos.border import chaos_border, hess_line, layer_width
 
 HEAVY = RigidBody.hess(3.0, 1.0, 2.0, mu=1.0)
 
