@@ -1,8 +1,8 @@
 """The Hess case: the Hess solution, its periods, the pendulums and their Floquet multipliers.
 
 The functions and classes of its modules are names of this package too, but for
-``hess_solution`` and ``hess_periods``, which are the names of their modules: import them
-from there (``from andoyer.analysis.hess.hess_solution import hess_solution``).
+``hess_solution``, the name of its module: import it from there
+(``from andoyer.analysis.hess.hess_solution import hess_solution``).
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from andoyer.analysis.hess.pendulum import pendulum_state as pendulum_state
     from andoyer.analysis.hess.pendulum import physical_pendulum as physical_pendulum
     from andoyer.analysis.hess.pendulum import require_pendulum_body as require_pendulum_body
+    from andoyer.analysis.hess.periods import hess_periods as hess_periods
     from andoyer.analysis.hess.reduced import classify_motion as classify_motion
     from andoyer.analysis.hess.reduced import cubic_roots as cubic_roots
     from andoyer.analysis.hess.reduced import drift_rate as drift_rate
@@ -44,7 +45,8 @@ if TYPE_CHECKING:
 EXPORTS = {"Floquet": "floquet", "Monodromy": "floquet", "floquet_multipliers": "floquet",
            "floquet_scan": "floquet", "hess_rotation_multiplier": "floquet", "monodromy": "floquet",
            "physical_pendulum_monodromy": "floquet", "hess_state": "hess_solution",
-           "signed_to_hess": "hess_solution", "paper_pendulum_potential": "pendulum",
+           "signed_to_hess": "hess_solution", "hess_periods": "periods",
+           "paper_pendulum_potential": "pendulum",
            "pendulum_energy": "pendulum", "pendulum_modulus": "pendulum", "pendulum_motion":
            "pendulum", "pendulum_period": "pendulum", "pendulum_potential": "pendulum",
            "pendulum_solution": "pendulum", "pendulum_state": "pendulum", "physical_pendulum":

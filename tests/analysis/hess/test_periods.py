@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.hess.hess_periods import hess_periods
+from andoyer.analysis.hess.periods import hess_periods
 
 PAPER = RigidBody.paper()
 
