@@ -172,6 +172,12 @@ def test_page_toggle_draws_caches_and_reports_errors() -> None:
         assert json.loads(e.state_div.text)["chains"] == ref.n_chains > 0
         np.testing.assert_array_equal(e.chain_points.data["x"], ref.points_x)
         assert len(e.chain_centres.data["xs"]) == ref.n_chains
+        # the chains' colours have a legend: one entry per chain label, in its colour
+        legend = e.fig.legend[0]
+        entry = next(i for i in legend.items
+                     if any(r.data_source is e.chain_centres for r in i.renderers))
+        assert entry.label.field == "label" and list(e.chain_centres.data["label"]) \
+            == list(ref.labels)
         assert e.png()[:4] == b"\x89PNG"                       # the export draws them too
         e.w_h.value = e.settings.h + 0.01                     # a new level: new chains
         e.wait()

@@ -156,8 +156,9 @@ class ExplorerLayout(ExplorerBase):
         self.chain_separatrices = ColumnDataSource(chains["separatrices"],
                                                    name="andoyer-chain-separatrices")
         self.chain_points = ColumnDataSource(chains["points"], name="andoyer-chain-points")
+        # legend_field: one legend entry per chain (its label, e.g. 7:1, in its colour).
         fig.multi_line("xs", "ys", source=self.chain_centres, color="colour",
-                       line_dash="dashed", line_width=1.0)
+                       line_dash="dashed", line_width=1.0, legend_field="label")
         fig.multi_line("xs", "ys", source=self.chain_separatrices, color="colour",
                        line_width=0.8)
         fig.scatter("x", "y", source=self.chain_points, marker="marker", size=8,
@@ -168,6 +169,7 @@ class ExplorerLayout(ExplorerBase):
         seeds.nonselection_glyph = seeds.glyph.clone()
         legend = fig.legend[0]
         legend.orientation = "horizontal"
+        legend.ncols = 3                        # rows of three: the chains' entries wrap
         legend.label_text_font_size = "9pt"
         legend.border_line_alpha = 0.0
         fig.add_layout(legend, "below")
