@@ -13,7 +13,7 @@ topic, imported on demand (``from andoyer.analysis.chaos.lyapunov import indicat
   :mod:`~andoyer.analysis.unperturbed.euler_poinsot`;
 - :mod:`~andoyer.analysis.hess`, the Hess solution and the pendulum:
   :mod:`~andoyer.analysis.hess.reduced`,
-  :mod:`~andoyer.analysis.hess.hess_solution`, :mod:`~andoyer.analysis.hess.periods`,
+  :mod:`~andoyer.analysis.hess.solution`, :mod:`~andoyer.analysis.hess.periods`,
   :mod:`~andoyer.analysis.hess.pendulum`, :mod:`~andoyer.analysis.hess.floquet`;
 - :mod:`~andoyer.analysis.chaos`: :mod:`~andoyer.analysis.chaos.lyapunov` (FLI, MEGNO,
   chaos maps), :mod:`~andoyer.analysis.chaos.alignment` (SALI, GALI),

@@ -1,6 +1,6 @@
 """The Hess solution and the physical pendulum: periods, the reduced portrait, stability.
 
-Datasets in (built by ``andoyer paper`` from :mod:`andoyer.analysis.hess.hess_solution` and
+Datasets in (built by ``andoyer paper`` from :mod:`andoyer.analysis.hess.solution` and
 :mod:`andoyer.analysis.hess.pendulum`), a figure out; nothing computed here.
 """
 

@@ -8,7 +8,7 @@ import pytest
 from flint import arb
 
 from andoyer import RigidBody
-from andoyer.analysis.hess.hess_solution import hess_solution
+from andoyer.analysis.hess.solution import hess_solution
 from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_momentum
 from andoyer.integrate import poincare, propagate
 from andoyer.integrate.validated.arithmetic import BodySpec, field_terms, working_precision

@@ -1,8 +1,6 @@
 """The Hess case: the Hess solution, its periods, the pendulums and their Floquet multipliers.
 
-The functions and classes of its modules are names of this package too, but for
-``hess_solution``, the name of its module: import it from there
-(``from andoyer.analysis.hess.hess_solution import hess_solution``).
+The functions and classes of its modules are names of this package too.
 """
 
 from __future__ import annotations
@@ -20,8 +18,6 @@ if TYPE_CHECKING:
     from andoyer.analysis.hess.floquet import (
         physical_pendulum_monodromy as physical_pendulum_monodromy,
     )
-    from andoyer.analysis.hess.hess_solution import hess_state as hess_state
-    from andoyer.analysis.hess.hess_solution import signed_to_hess as signed_to_hess
     from andoyer.analysis.hess.pendulum import paper_pendulum_potential as paper_pendulum_potential
     from andoyer.analysis.hess.pendulum import pendulum_energy as pendulum_energy
     from andoyer.analysis.hess.pendulum import pendulum_modulus as pendulum_modulus
@@ -40,12 +36,15 @@ if TYPE_CHECKING:
     from andoyer.analysis.hess.reduced import period as period
     from andoyer.analysis.hess.reduced import reduced_field as reduced_field
     from andoyer.analysis.hess.reduced import reduced_hamiltonian as reduced_hamiltonian
+    from andoyer.analysis.hess.solution import hess_solution as hess_solution
+    from andoyer.analysis.hess.solution import hess_state as hess_state
+    from andoyer.analysis.hess.solution import signed_to_hess as signed_to_hess
 
 #: Name -> the module of this package that defines it (imported on first use).
 EXPORTS = {"Floquet": "floquet", "Monodromy": "floquet", "floquet_multipliers": "floquet",
            "floquet_scan": "floquet", "hess_rotation_multiplier": "floquet", "monodromy": "floquet",
-           "physical_pendulum_monodromy": "floquet", "hess_state": "hess_solution",
-           "signed_to_hess": "hess_solution", "hess_periods": "periods",
+           "physical_pendulum_monodromy": "floquet", "hess_state": "solution",
+           "signed_to_hess": "solution", "hess_solution": "solution", "hess_periods": "periods",
            "paper_pendulum_potential": "pendulum",
            "pendulum_energy": "pendulum", "pendulum_modulus": "pendulum", "pendulum_motion":
            "pendulum", "pendulum_period": "pendulum", "pendulum_potential": "pendulum",

@@ -14,7 +14,7 @@ horizontal. With ``gamma = (sin(vartheta - phi0), cos(vartheta - phi0), 0)`` and
 (``vartheta`` is the angle of the upward vertical in the body plane ``Oxy``, shifted
 by ``phi0`` so that the potential ``mu (r, gamma)`` is ``mu sin(vartheta)``). The
 Hess solution at ``M = 0`` reduces to the same pendulum in ``(theta2, J2)``
-(:mod:`andoyer.analysis.hess.hess_solution`), so the closed forms of this module serve both:
+(:mod:`andoyer.analysis.hess.solution`), so the closed forms of this module serve both:
 :func:`pendulum_solution` solves ``H = c p^2/2 + mu sin q`` with Jacobi elliptic
 functions (``scipy.special.ellipj``, parameter convention ``m = k^2``).
 

@@ -1,5 +1,5 @@
 """Periods of the Hess solution against the energy: the closed form through complete
-elliptic integrals K(m) (:func:`andoyer.analysis.hess.hess_solution.period`) beside periods
+elliptic integrals K(m) (:func:`andoyer.analysis.hess.solution.period`) beside periods
 measured on integrated Euler-Poisson orbits (crossings of a level of ``|G|``).
 
 Examples
@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 from scipy.optimize import brentq
 
-from andoyer.analysis.hess.hess_solution import cubic_roots, energy_minimum, period
+from andoyer.analysis.hess.solution import cubic_roots, energy_minimum, period
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.hess import from_hess
 from andoyer.integrate import Section, poincare

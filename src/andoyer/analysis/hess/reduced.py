@@ -10,7 +10,7 @@ derived from Eq. (1) by :func:`derive_reduced_hamiltonian`): its field, the drif
 ``psi``, the energy minimum, the kind of motion on a level, the roots of
 ``P(u) = mu^2 (u - M^2) - u (h - c u/2)^2`` (``u = J2^2``) and the period
 ``T = 4 K(m) / (c sqrt(u_c - u_a))``. The closed-form motion built on them is
-:mod:`andoyer.analysis.hess.hess_solution` (which re-exports these names).
+:mod:`andoyer.analysis.hess.solution` (which re-exports these names).
 
 References
 ----------

@@ -32,7 +32,7 @@ angles ``z-x-z``).
 * :func:`heteroclinic_cycle`: the Hess case at ``M = 0`` (and bodies turned off the Hess
   direction, from the separatrices of their nearest Hess body). On the Hess relation (3)
   (``theta1 = 0``) every rotation of ``theta2`` is heteroclinic: ``L/G`` goes from
-  ``+1`` to ``-1`` (:mod:`andoyer.analysis.hess.hess_solution`), from the pendulum-like
+  ``+1`` to ``-1`` (:mod:`andoyer.analysis.hess.solution`), from the pendulum-like
   rotation ``P+`` about ``+z`` to ``P-`` about ``-z``; the other unperturbed separatrix
   ``theta1 = 4 phi0`` takes ``P-`` back to ``P+`` and splits for ``mu > 0``: its orbit
   here is the asymptotic motion near the split separatrices. Both are integrated with

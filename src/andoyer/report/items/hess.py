@@ -52,8 +52,8 @@ def solutions(ctx: Context) -> Result:
     import xarray as xr
 
     from andoyer.analysis.hess.floquet import floquet_scan, hess_rotation_multiplier
-    from andoyer.analysis.hess.hess_solution import reduced_hamiltonian
     from andoyer.analysis.hess.periods import hess_periods
+    from andoyer.analysis.hess.solution import reduced_hamiltonian
     from andoyer.integrate.engines.base import Capability
     from andoyer.plot.solutions import plot_solutions
 

@@ -16,7 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from andoyer import RigidBody
-from andoyer.analysis.hess.hess_solution import (
+from andoyer.analysis.hess.solution import (
     MOTIONS,
     classify_motion,
     cubic_roots,
