@@ -43,15 +43,15 @@ if TYPE_CHECKING:
 #: Name -> the module of this package that defines it (imported on first use).
 EXPORTS = {"Floquet": "floquet", "Monodromy": "floquet", "floquet_multipliers": "floquet",
            "floquet_scan": "floquet", "hess_rotation_multiplier": "floquet", "monodromy": "floquet",
-           "physical_pendulum_monodromy": "floquet", "hess_state": "solution",
-           "signed_to_hess": "solution", "hess_solution": "solution", "hess_periods": "periods",
-           "paper_pendulum_potential": "pendulum",
-           "pendulum_energy": "pendulum", "pendulum_modulus": "pendulum", "pendulum_motion":
-           "pendulum", "pendulum_period": "pendulum", "pendulum_potential": "pendulum",
-           "pendulum_solution": "pendulum", "pendulum_state": "pendulum", "physical_pendulum":
-           "pendulum", "require_pendulum_body": "pendulum", "classify_motion": "reduced",
-           "cubic_roots": "reduced", "drift_rate": "reduced", "energy_minimum": "reduced", "period":
-           "reduced", "reduced_field": "reduced", "reduced_hamiltonian": "reduced"}
+           "physical_pendulum_monodromy": "floquet", "hess_state": "solution", "signed_to_hess":
+           "solution", "hess_solution": "solution", "hess_periods": "periods",
+           "paper_pendulum_potential": "pendulum", "pendulum_energy": "pendulum",
+           "pendulum_modulus": "pendulum", "pendulum_motion": "pendulum", "pendulum_period":
+           "pendulum", "pendulum_potential": "pendulum", "pendulum_solution": "pendulum",
+           "pendulum_state": "pendulum", "physical_pendulum": "pendulum", "require_pendulum_body":
+           "pendulum", "classify_motion": "reduced", "cubic_roots": "reduced", "drift_rate":
+           "reduced", "energy_minimum": "reduced", "period": "reduced", "reduced_field": "reduced",
+           "reduced_hamiltonian": "reduced"}
 
 __all__ = sorted(EXPORTS)
 

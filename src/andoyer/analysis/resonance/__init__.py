@@ -26,6 +26,9 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form as birkhoff_normal_form
     from andoyer.analysis.resonance.birkhoff import normal_form_frequency as normal_form_frequency
+    from andoyer.analysis.resonance.deprit import JetSpace as JetSpace
+    from andoyer.analysis.resonance.deprit import lie_deprit as lie_deprit
+    from andoyer.analysis.resonance.deprit import transform as transform
     from andoyer.analysis.resonance.measure import measure_island as measure_island
     from andoyer.analysis.resonance.near_centre import resonant_normal_form as resonant_normal_form
     from andoyer.analysis.resonance.predict import FreeTopTorus as FreeTopTorus
@@ -35,6 +38,7 @@ if TYPE_CHECKING:
     from andoyer.analysis.resonance.predict import (
         section_rotation_number as section_rotation_number,
     )
+    from andoyer.analysis.resonance.second_order import SecondOrderChain as SecondOrderChain
     from andoyer.analysis.resonance.second_order import island_prediction as island_prediction
     from andoyer.analysis.resonance.torus import Torus as Torus
     from andoyer.analysis.resonance.torus import free_top_phase as free_top_phase
@@ -45,7 +49,9 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "measure_island": "measure", "resonant_normal_form": "near_centre", "resonance_widths":
            "predict", "resonant_tori": "predict", "section_rotation_number": "predict", "Torus":
            "torus", "free_top_phase": "torus", "sample_torus": "torus", "free_top_at_gap":
-           "predict", "FreeTopTorus": "predict", "island_prediction": "second_order"}
+           "predict", "FreeTopTorus": "predict", "island_prediction": "second_order", "JetSpace":
+           "deprit", "lie_deprit": "deprit", "transform": "deprit", "SecondOrderChain":
+           "second_order"}
 
 __all__ = sorted(EXPORTS)
 

@@ -47,6 +47,8 @@ if TYPE_CHECKING:
     from andoyer.analysis.splitting.periodic import orbits_dataset as orbits_dataset
     from andoyer.analysis.splitting.periodic import pendulum_rotation as pendulum_rotation
     from andoyer.analysis.splitting.periodic import rotation_orbit as rotation_orbit
+    from andoyer.analysis.splitting.problem import SplittingProblem as SplittingProblem
+    from andoyer.analysis.splitting.problem import splitting_problem as splitting_problem
     from andoyer.analysis.splitting.section_map import Crossing as Crossing
     from andoyer.analysis.splitting.section_map import RotationSection as RotationSection
     from andoyer.analysis.splitting.section_map import SectionReturn as SectionReturn
@@ -78,8 +80,9 @@ EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_p
            "certificate", "write_certificate": "certificate", "read_certificate": "certificate",
            "verify_certificate": "certificate", "CertifiedMelnikov": "certified", "MelnikovZero":
            "certified", "certified_melnikov": "certified", "melnikov_coefficient": "certified",
-           "heteroclinic_orbit_balls": "certified",
-           "HyperbolicRotation": "hyperbolic", "certified_rotation": "hyperbolic"}
+           "heteroclinic_orbit_balls": "certified", "HyperbolicRotation": "hyperbolic",
+           "certified_rotation": "hyperbolic", "SplittingProblem": "problem", "splitting_problem":
+           "problem"}
 
 __all__ = sorted(EXPORTS)
 
