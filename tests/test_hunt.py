@@ -106,7 +106,7 @@ RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerAngles", "EulerPoisso
            "CertifiedMelnikov", "MelnikovZero", "HyperbolicRotation"}
 #: Public names that take no user input worth hunting (documented acceptance).
 NO_INPUT = {"derive_reduced_hamiltonian": "no arguments (a SymPy derivation)",
-            "paper_check": "n and seed are hunted in tests/analysis/paper/test_paper_check.py"}
+            "paper_check": "n and seed are hunted in tests/analysis/paper/test_check.py"}
 
 
 def _public_modules():

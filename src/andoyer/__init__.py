@@ -1,7 +1,7 @@
 """andoyer: the heavy rigid body (Hess gyroscope) in Andoyer-Deprit variables."""
 
 from andoyer._version import __version__ as __version__
-from andoyer.analysis.paper.paper_check import paper_check as paper_check
+from andoyer.analysis.paper.check import paper_check as paper_check
 from andoyer.body import RigidBody as RigidBody
 from andoyer.charts import Singular as Singular
 from andoyer.charts import area_integral as area_integral

@@ -10,7 +10,7 @@ import pytest
 from andoyer import RigidBody, from_hess, to_andoyer
 from andoyer.analysis.chaos.frequency import naff
 from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map, indicators
-from andoyer.analysis.paper.paper_check import paper_check
+from andoyer.analysis.paper.check import paper_check
 from andoyer.analysis.splitting.melnikov import melnikov_function, melnikov_rho
 from andoyer.analysis.unperturbed.portraits import portrait_andoyer
 from andoyer.analysis.unperturbed.separatrix import separatrix_on_level

@@ -15,7 +15,7 @@ ORDER = 20
 
 
 def run(args: argparse.Namespace) -> int:
-    from andoyer.analysis.paper.paper_check import paper_check
+    from andoyer.analysis.paper.check import paper_check
     from andoyer.io.tables import format_table
 
     if args.points < 1:

@@ -2,7 +2,7 @@
 
 :func:`format_table` takes a fixed-point set (:mod:`andoyer.analysis.unperturbed.fixed_points`), the
 Euler-Poisson equilibria (:mod:`andoyer.analysis.unperturbed.equilibria`) or the rows of the paper
-check (:mod:`andoyer.analysis.paper.paper_check`) and returns the table the report writes and
+check (:mod:`andoyer.analysis.paper.check`) and returns the table the report writes and
 the command line prints.
 """
 
@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from andoyer.analysis.paper.paper_check import CheckRow
+    from andoyer.analysis.paper.check import CheckRow
     from andoyer.analysis.unperturbed.equilibria import EquilibriumSet
     from andoyer.analysis.unperturbed.fixed_points import FixedPointSet
 
@@ -52,7 +52,7 @@ def format_table(result: FixedPointSet | EquilibriumSet | Sequence[CheckRow]) ->
     result : FixedPointSet, EquilibriumSet or sequence of CheckRow
         What to tabulate (:func:`andoyer.analysis.unperturbed.fixed_points.fixed_points`,
         :func:`~andoyer.analysis.unperturbed.equilibria.euler_poisson_equilibria`,
-        :func:`~andoyer.analysis.paper.paper_check.paper_check`).
+        :func:`~andoyer.analysis.paper.check.paper_check`).
 
     Examples
     --------

@@ -1,8 +1,6 @@
 """The paper itself: the check of its printed formulas and the trajectories of Fig. 3.
 
-The functions and classes of its modules are names of this package too, but for
-``paper_check``, the name of its module:
-``from andoyer.analysis.paper.paper_check import paper_check``.
+The functions and classes of its modules are names of this package too.
 """
 
 from __future__ import annotations
@@ -11,14 +9,16 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from andoyer.analysis.paper.paper_check import CheckRow as CheckRow
-    from andoyer.analysis.paper.paper_check import Formula as Formula
+    from andoyer.analysis.paper.check import CheckRow as CheckRow
+    from andoyer.analysis.paper.check import Formula as Formula
+    from andoyer.analysis.paper.check import paper_check as paper_check
     from andoyer.analysis.paper.trajectories import fig3_section as fig3_section
     from andoyer.analysis.paper.trajectories import fig3_trajectories as fig3_trajectories
     from andoyer.analysis.paper.trajectories import zoom_box as zoom_box
 
 #: Name -> the module of this package that defines it (imported on first use).
-EXPORTS = {"CheckRow": "paper_check", "Formula": "paper_check", "fig3_section": "trajectories",
+EXPORTS = {"CheckRow": "check", "Formula": "check", "paper_check": "check",
+           "fig3_section": "trajectories",
            "fig3_trajectories": "trajectories", "zoom_box": "trajectories"}
 
 __all__ = sorted(EXPORTS)

@@ -24,7 +24,7 @@ def paper_check(ctx: Context) -> Result:
     ctx : Context
         Output folder, body, engine, quick.
     """
-    from andoyer.analysis.paper.paper_check import paper_check as check
+    from andoyer.analysis.paper.check import paper_check as check
     from andoyer.io.tables import format_table
 
     rows = check(n=50 if ctx.quick else 200)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from andoyer import paper_check
-from andoyer.analysis.paper import paper_check as pc
+from andoyer.analysis.paper import check as pc
 from andoyer.cli import main
 
 
