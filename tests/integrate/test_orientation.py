@@ -18,7 +18,7 @@ the digits shown, e.g. route A 5.3e-11, Lagrange rate 2.7e-14; closing note
   over 20 periods against ``euler_poinsot_frequencies``: 1.2e-14 / 2.4e-15 / 9.9e-15
   (relative);
 * Lagrange top: nutation inside the roots of the cubic, the mean precession rate over
-  20 nutation periods against :func:`andoyer.analysis.space.lagrange_top.lagrange_top`: 5.1e-14 /
+  20 nutation periods against :func:`andoyer.analysis.space.lagrange.lagrange_top`: 5.1e-14 /
   2.6e-14 / 4.7e-14 (relative);
 * Kovalevskaya and Goryachev-Chaplygin integrals over t = 100: 9.5e-13 / 3.5e-13 / 9.6e-13
   and 1.2e-12 / 5.2e-13 / 1.2e-12 (of max(|K0|, 1)); ``(R G)_Z = M``: 4.1e-13 at most.
@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 
 from andoyer import RigidBody
-from andoyer.analysis.space.lagrange_top import lagrange_top
+from andoyer.analysis.space.lagrange import lagrange_top
 from andoyer.analysis.unperturbed.euler_poinsot import euler_poinsot_frequencies
 from andoyer.charts.rotation import (
     andoyer_rotation,

@@ -30,7 +30,7 @@ topic, imported on demand (``from andoyer.analysis.chaos.lyapunov import indicat
   :mod:`~andoyer.analysis.paper.trajectories` (Fig. 3) and
   :mod:`~andoyer.analysis.paper.check` (every printed formula against the derivation);
 - :mod:`~andoyer.analysis.space`, the body in space:
-  :mod:`~andoyer.analysis.space.lagrange_top` (the Lagrange top in closed form),
+  :mod:`~andoyer.analysis.space.lagrange` (the Lagrange top in closed form),
   :mod:`~andoyer.analysis.space.inertial` (axis traces, precession and nutation, the
   herpolhode, the Hess heteroclinic cycle in space).
 

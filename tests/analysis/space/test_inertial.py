@@ -20,7 +20,7 @@ from andoyer.analysis.space.inertial import (
     heteroclinic_cycle,
     precession_nutation,
 )
-from andoyer.analysis.space.lagrange_top import lagrange_top
+from andoyer.analysis.space.lagrange import lagrange_top
 from andoyer.integrate import attitude
 
 ENGINE = "numba"
