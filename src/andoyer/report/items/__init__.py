@@ -1,7 +1,7 @@
 """The report's items in report order: key, title, builder, measured cost.
 
 The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.space`,
-:mod:`.chaos`);
+:mod:`.perturbed`, :mod:`.resonance`);
 each item's prose is ``templates/items/<key>.html.j2``.
 
 Examples
@@ -13,7 +13,7 @@ Examples
 from __future__ import annotations
 
 from andoyer.report.base import Item
-from andoyer.report.items import chaos, hess, resonance, space, unperturbed
+from andoyer.report.items import hess, perturbed, resonance, space, unperturbed
 
 __all__ = ["ITEMS"]
 
@@ -28,9 +28,9 @@ ITEMS: list[Item] = [
     Item("space", "Beyond the paper: the Hess motions in space, the heteroclinic cycle",
          space.space, 5.0),
     Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
-         chaos.manifolds, 2.2),
-    Item("chaos", "Beyond the paper: chaos maps (FLI)", chaos.chaos, 6.2),
-    Item("border", "Beyond the paper: the border of chaos near the Hess case", chaos.border,
+         perturbed.manifolds, 2.2),
+    Item("chaos", "Beyond the paper: chaos maps (FLI)", perturbed.chaos, 6.2),
+    Item("border", "Beyond the paper: the border of chaos near the Hess case", perturbed.border,
          4.6),
     Item("resonances", "Beyond the paper: resonances predicted, then measured",
          resonance.resonances, 12.0),

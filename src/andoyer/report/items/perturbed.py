@@ -1,5 +1,5 @@
-"""Items beyond the paper: the splitting of the separatrices and the Melnikov function,
-chaos maps (FLI), and the border of chaos near the Hess case.
+"""Items of the perturbed body, beyond the paper: the splitting of the separatrices and the
+Melnikov function, chaos maps (FLI), and the border of chaos near the Hess case.
 
 Each builder computes with :mod:`andoyer.analysis`, draws with :mod:`andoyer.plot` and
 returns a :class:`~andoyer.report.base.Result`; its prose is
