@@ -307,7 +307,6 @@ def modules_named_like_their_functions(sources):
 #: Today's modules named like a function they export; rename them, do not grow this list.
 NAMED_LIKE_A_FUNCTION = {
     "andoyer.analysis.splitting.certified_melnikov defines certified_melnikov",
-    "andoyer.report.items.space defines space",
     "andoyer.scan defines scan",
 }
 

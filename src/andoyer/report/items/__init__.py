@@ -1,6 +1,6 @@
 """The report's items in report order: key, title, builder, measured cost.
 
-The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.space`,
+The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.inertial`,
 :mod:`.perturbed`, :mod:`.resonance`);
 each item's prose is ``templates/items/<key>.html.j2``.
 
@@ -13,7 +13,7 @@ Examples
 from __future__ import annotations
 
 from andoyer.report.base import Item
-from andoyer.report.items import hess, perturbed, resonance, space, unperturbed
+from andoyer.report.items import hess, inertial, perturbed, resonance, unperturbed
 
 __all__ = ["ITEMS"]
 
@@ -26,7 +26,7 @@ ITEMS: list[Item] = [
     Item("fig3", "Fig. 3 — trajectories of (16) near the separatrix, and the section "
          "θ2 = 0", hess.fig3, 2.0),
     Item("space", "Beyond the paper: the Hess motions in space, the heteroclinic cycle",
-         space.space, 5.0),
+         inertial.space, 5.0),
     Item("manifolds", "Beyond the paper: separatrix splitting and the Melnikov function",
          perturbed.manifolds, 2.2),
     Item("chaos", "Beyond the paper: chaos maps (FLI)", perturbed.chaos, 6.2),

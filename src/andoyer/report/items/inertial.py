@@ -1,4 +1,4 @@
-"""Item of the body in space: the Hess motions in the laboratory and the heteroclinic
+"""Item of the body in inertial space: the Hess motions in the laboratory and the heteroclinic
 cycle between the two pendulum-like rotations.
 
 The builder computes with :mod:`andoyer.analysis.space`, draws with
