@@ -305,14 +305,15 @@ def modules_named_like_their_functions(sources):
 
 
 #: Today's modules named like a function they export; rename them, do not grow this list.
+#: ``andoyer.scan`` (the package, whose ``scan`` is also the CLI command) is left: renaming
+#: a whole layer is wider than one module. The list is exact: a renamed module leaves it.
 NAMED_LIKE_A_FUNCTION = {
-    "andoyer.analysis.splitting.certified_melnikov defines certified_melnikov",
     "andoyer.scan defines scan",
 }
 
 
 def test_no_module_is_named_like_a_function_it_exports():
-    assert set(modules_named_like_their_functions(_package_sources())) <= NAMED_LIKE_A_FUNCTION
+    assert set(modules_named_like_their_functions(_package_sources())) == NAMED_LIKE_A_FUNCTION
 
 
 def test_the_name_rule_catches_a_module_named_like_its_function():
