@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 from andoyer import progress
 from andoyer.progress import Progress
 
@@ -48,3 +50,17 @@ def test_default_stays_quiet_and_silenced_wins(capsys):
         inner.close()
     assert not bar.enabled and not inner.plain
     assert capsys.readouterr().err == ""
+
+
+def test_an_imported_kernel_module_is_no_notebook(capsys):
+    """Importing ipykernel (a test or a library may) does not make a pipe a notebook:
+    plain lines stay plain."""
+    pytest.importorskip("ipykernel")
+    import ipykernel.kernelapp  # noqa: F401
+
+    bar = Progress(2, "after ipykernel", enabled=True)
+    bar.update(2)
+    bar.close()
+    err = capsys.readouterr().err
+    assert bar.plain is False and "\r" not in err, err  # closed: plain turned off
+    assert err.splitlines() == [err.splitlines()[-1]] and err.startswith("[2/2] ")

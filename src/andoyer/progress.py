@@ -53,9 +53,16 @@ def silenced() -> Iterator[None]:
         _SILENCED.reset(token)
 
 
+def _in_notebook() -> bool:
+    """Whether this process is a running Jupyter kernel (importing ipykernel is not)."""
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None
+    return shell is not None and getattr(shell, "kernel", None) is not None
+
+
 def on_terminal() -> bool:
     """Whether a bar can redraw itself: stderr is a terminal, or this is a notebook."""
-    if "ipykernel" in sys.modules:
+    if _in_notebook():
         return True
     isatty = getattr(sys.stderr, "isatty", None)
     return bool(isatty and isatty())
