@@ -10,6 +10,9 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from andoyer.analysis.splitting.certificate import prove_certificate as prove_certificate
+    from andoyer.analysis.splitting.certificate import (
+        prove_transversal_certificate as prove_transversal_certificate,
+    )
     from andoyer.analysis.splitting.certificate import read_certificate as read_certificate
     from andoyer.analysis.splitting.certificate import verify_certificate as verify_certificate
     from andoyer.analysis.splitting.certificate import write_certificate as write_certificate
@@ -61,6 +64,12 @@ if TYPE_CHECKING:
     from andoyer.analysis.splitting.section_map import rotation_energy as rotation_energy
     from andoyer.analysis.splitting.section_map import section_coords as section_coords
     from andoyer.analysis.splitting.section_map import section_state as section_state
+    from andoyer.analysis.splitting.transversal import LocalManifold as LocalManifold
+    from andoyer.analysis.splitting.transversal import TransversalProof as TransversalProof
+    from andoyer.analysis.splitting.transversal import (
+        local_unstable_manifold as local_unstable_manifold,
+    )
+    from andoyer.analysis.splitting.transversal import prove_transversal as prove_transversal
 
 #: Name -> the module of this package that defines it (imported on first use).
 EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_poinsot_excess":
@@ -82,7 +91,9 @@ EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_p
            "certified", "certified_melnikov": "certified", "melnikov_coefficient": "certified",
            "heteroclinic_orbit_balls": "certified", "HyperbolicRotation": "hyperbolic",
            "certified_rotation": "hyperbolic", "SplittingProblem": "problem", "splitting_problem":
-           "problem"}
+           "problem", "LocalManifold": "transversal", "TransversalProof": "transversal",
+           "local_unstable_manifold": "transversal", "prove_transversal": "transversal",
+           "prove_transversal_certificate": "certificate"}
 
 __all__ = sorted(EXPORTS)
 

@@ -46,13 +46,23 @@ from andoyer.integrate.validated.arithmetic import (
     working_precision,
 )
 
-__all__ = ["FORMAT", "KIND", "prove_certificate", "write_certificate", "read_certificate",
+__all__ = ["FORMAT", "KIND", "KIND_TRANSVERSAL", "prove_certificate",
+           "prove_transversal_certificate", "write_certificate", "read_certificate",
            "verify_certificate"]
 
 #: The ``format`` field of every andoyer certificate.
 FORMAT = "andoyer-certificate"
 #: The kind of statement this module writes and verifies.
 KIND = "melnikov-first-order-transversality"
+#: The kind of the finite-``mu`` theorem (:mod:`andoyer.analysis.splitting.transversal`).
+KIND_TRANSVERSAL = "heteroclinic-transversality"
+#: The fields a finite-``mu`` certificate must have.
+FIELDS_TRANSVERSAL = ("format", "version", "kind", "statement", "body", "mu_interval",
+                      "level", "precision_bits", "order", "libraries", "local_manifold",
+                      "piece", "boxes", "run_seconds", "digest")
+#: The recorded balls a verification recomputes and compares, as text.
+TRANSVERSAL_BOXES = ("multiplier", "expansion", "cone_derivative", "ends_gamma3",
+                     "point_box", "crossing_time", "slope", "angle")
 #: The fields a certificate must have.
 FIELDS = ("format", "version", "kind", "statement", "body", "mu_interval", "level",
           "branch", "sheet", "precision_bits", "libraries", "heteroclinic_line",
@@ -246,6 +256,8 @@ def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[st
     if data.get("format") != FORMAT:
         raise CertificateError(f"not an andoyer certificate (format {data.get('format')!r}, "
                                f"expected {FORMAT!r})")
+    if data.get("kind") == KIND_TRANSVERSAL:
+        return _verify_transversal(data)
     missing = [k for k in FIELDS if k not in data]
     if missing:
         raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
@@ -326,3 +338,152 @@ def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[st
         digits = -math.log10(float(abs(Z).rad()) / float(abs(Z).mid()))
     return {"statement": data["statement"], "zeros": len(zeros), "digits": digits,
             "bits": bits}
+
+
+# ----------------------------------------------------------------------------- finite mu
+def _transversal_boxes(proof: Any) -> dict[str, Any]:
+    lm = proof.manifold
+    return {"multiplier": lm.multiplier, "expansion": lm.expansion,
+            "cone_derivative": list(lm.derivative), "ends_gamma3": list(proof.ends_gamma3),
+            "point_box": list(proof.point_box), "crossing_time": proof.crossing_time,
+            "slope": proof.slope, "angle": proof.angle}
+
+
+def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
+                                  radius: float = 3e-5, side: int = 1, which: int = 0,
+                                  half_width: float = 1e-9,
+                                  bits: int = 128, order: int = 24) -> dict[str, Any]:
+    """Prove the finite-``mu`` theorem (:func:`~andoyer.analysis.splitting.transversal.
+    prove_transversal`) and return its certificate.
+
+    Parameters
+    ----------
+    body : RigidBody or BodySpec
+        A body with ``mu > 0`` and its centre of mass in the (e1, e2) plane.
+    G : str, default "1"
+        The level ``h = c G^2 / 2``.
+    rotation, radius, side, which, half_width, bits, order
+        As in :func:`~andoyer.analysis.splitting.transversal.prove_transversal`.
+
+    Raises
+    ------
+    ValueError
+        When the proof does not close; the message names the step and its widths.
+    """
+    from andoyer._version import __version__
+    from andoyer.analysis.splitting.transversal import prove_transversal
+
+    spec = spec_of(body)
+    try:
+        proof = prove_transversal(spec, G=G, rotation=rotation, radius=radius, side=side,
+                                  which=which,
+                                  half_width=half_width, bits=bits, order=order)
+    except ArithmeticError as exc:
+        raise ValueError(f"the finite-mu proof does not close: {exc}") from None
+    if not proof.proved:
+        raise ValueError("the finite-mu proof does not close: " + _failure(proof.widths))
+    lm = proof.manifold
+    cert: dict[str, Any] = {
+        "format": FORMAT, "version": 1, "kind": KIND_TRANSVERSAL,
+        "statement": proof.statement,
+        "body": spec.as_dict(),
+        "mu_interval": {"lower": spec.mu, "upper": spec.mu, "open": False,
+                        "note": "the decimal mu itself"},
+        "level": {"G": proof.G, "area": "0"},
+        "precision_bits": proof.bits, "order": proof.order,
+        "libraries": {"python-flint": FLINT_VERSION, "andoyer": __version__},
+        "local_manifold": {"rotation": lm.rotation, "frame": [list(r) for r in lm.frame],
+                           "radius": lm.radius, "kappa": lm.kappa},
+        "piece": {"side": proof.side, "u": list(proof.piece)},
+        "boxes": _transversal_boxes(proof),
+        "run_seconds": round(proof.seconds, 1),
+    }
+    cert["digest"] = _digest(cert)
+    return cert
+
+
+def _failure(widths: dict[str, float]) -> str:
+    return ("the ends' gamma3 " + f"{widths['end_gamma3_a_mid']:.3g} +/- "
+            f"{widths['end_gamma3_a']:.2g} and {widths['end_gamma3_b_mid']:.3g} +/- "
+            f"{widths['end_gamma3_b']:.2g} (need opposite signs); the tangent's gamma3 "
+            f"{widths['tangent_gamma3_mid']:.3g} +/- {widths['tangent_gamma3']:.2g} and "
+            f"the slope {widths['slope_mid']:.3g} +/- {widths['slope']:.2g} (need != 0); "
+            f"the piece's image {widths['piece_image']:.2g} wide")
+
+
+def _verify_transversal(data: dict[str, Any]) -> dict[str, Any]:
+    from andoyer.analysis.splitting.transversal import (
+        local_unstable_manifold,
+        prove_transversal,
+    )
+
+    missing = [k for k in FIELDS_TRANSVERSAL if k not in data]
+    if missing:
+        raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
+    if data["version"] != 1:
+        raise CertificateError(f"unknown certificate kind {data['kind']!r} version "
+                               f"{data['version']!r} (this andoyer verifies "
+                               f"{KIND_TRANSVERSAL!r} 1)")
+    libs = data["libraries"]
+    theirs = libs.get("python-flint") if isinstance(libs, dict) else None
+    if theirs != FLINT_VERSION:
+        raise CertificateError(f"the certificate's balls were computed by python-flint "
+                               f"{theirs}; this is python-flint {FLINT_VERSION}: verify it "
+                               "with the same version (pip install python-flint==" +
+                               f"{theirs})")
+    if data["digest"] != _digest(data):
+        raise CertificateError("the certificate was altered: its SHA-256 digest does not "
+                               "match its content")
+    try:
+        b = data["body"]
+        spec = BodySpec(b["A"], b["B"], b["C"], b["branch"], b["epsilon"], b["mu"])
+        G = str(data["level"]["G"])
+        bits = int(data["precision_bits"])
+        order = int(data["order"])
+        lmd = data["local_manifold"]
+        frame = tuple(tuple(float(x) for x in row) for row in lmd["frame"])
+        radius, kappa = float(lmd["radius"]), float(lmd["kappa"])
+        rotation = int(lmd["rotation"])
+        side = int(data["piece"]["side"])
+        u_a, u_b = (float(x) for x in data["piece"]["u"])
+        boxes = data["boxes"]
+        if not isinstance(boxes, dict):
+            raise TypeError("boxes")
+    except (KeyError, TypeError) as exc:
+        raise CertificateError(f"the certificate's body, level, manifold or piece lacks "
+                               f"{exc}") from None
+    except ValueError as exc:
+        raise CertificateError(f"the certificate's body is not valid: {exc}") from None
+    if data["mu_interval"] != {"lower": spec.mu, "upper": spec.mu, "open": False,
+                               "note": "the decimal mu itself"}:
+        raise CertificateError("the mu interval must be the body's mu "
+                               f"{spec.mu}; this one claims {data['mu_interval']!r}")
+    if not 64 <= bits <= 4096 or not 8 <= order <= 60:
+        raise CertificateError(f"precision_bits {bits} or order {order} out of range")
+    if len(frame) != 2 or any(len(r) != 2 for r in frame):
+        raise CertificateError("local_manifold.frame must be a 2 x 2 matrix")
+    try:
+        lm = local_unstable_manifold(spec, G=G, rotation=rotation, radius=radius, bits=bits,
+                                     order=order, frame=frame, kappa=kappa)
+        if not lm.holds:
+            raise CertificateError(f"the cone condition fails on the recorded box N "
+                                   f"(radius {radius}, kappa {kappa})")
+        proof = prove_transversal(spec, G=G, side=side, piece=(u_a, u_b), manifold=lm,
+                                  bits=bits, order=order)
+    except (ValueError, ArithmeticError, ZeroDivisionError) as exc:
+        if isinstance(exc, CertificateError):
+            raise
+        raise CertificateError(f"the recorded manifold or piece does not prove the "
+                               f"theorem: {exc}") from None
+    if not proof.proved:
+        raise CertificateError("the recorded piece does not prove the theorem: "
+                               + _failure(proof.widths))
+    again = _transversal_boxes(proof)
+    for key in TRANSVERSAL_BOXES:
+        if boxes.get(key) != again[key]:
+            raise CertificateError(f"the recorded box {key!r} is not what the recorded "
+                                   f"manifold and piece give: recomputed {again[key]!r}")
+    if data["statement"] != proof.statement:
+        raise CertificateError("the statement does not match the recomputed theorem")
+    return {"statement": proof.statement, "angle": proof.angle, "bits": bits,
+            "seconds": proof.seconds, "kind": KIND_TRANSVERSAL}

@@ -634,7 +634,8 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
                        *, radius: float | Sequence[float] = 0.0, direction: int = 1,
                        order: int = 30, bits: int = 128, h_max: float = 1.0,
                        tol: float = 1e-30, t_max: float = 1000.0, skip: float = 0.0,
-                       backward: bool = False) -> PoincareCrossing:
+                       backward: bool = False, frame: Sequence[Sequence[Any]] | None = None,
+                       coords: Sequence[Any] | None = None) -> PoincareCrossing:
     """The certified first crossing of the set ``y0 +- radius`` through ``(w, y) = c``.
 
     Parameters
@@ -660,6 +661,11 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
     backward : bool, default False
         Follow the flow backward in time (``time`` is then the elapsed time ``> 0`` of the
         backward flow; ``direction`` refers to the backward motion).
+    frame, coords : optional
+        A parallelepiped instead of the box: the set ``y0 + frame @ coords`` with
+        ``frame`` a ``6 x 6`` matrix of numbers or balls (rows) and ``coords`` six balls
+        (Lohner's representation from the start: a long side along one column is
+        carried by the variational matrix, not wrapped). ``radius`` must then be 0.
 
     Returns
     -------
@@ -696,8 +702,13 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
         n = 6
         Q = arb_mat([[arb(1) if i == j else arb(0) for j in range(n)] for i in range(n)])
         Dm, Dd = Q, arb_mat(n, n)
+        if frame is not None or coords is not None:
+            Q, r = _frame(frame, coords, radius)
+            m, r = _absorb(m, Q, r)
+            Dm, Dd = arb_mat([[arb(1) if i == j else arb(0) for j in range(n)]
+                              for i in range(n)]), arb_mat(n, n)
         t = 0.0
-        hull = [m[i] + r[i] for i in range(n)]
+        hull = [m[i] + x for i, x in enumerate(_vec(Q, r))]
 
         def s_of(y: Vector) -> Any:
             return sum((w[i] * y[i] for i in range(n)), arb(0)) - c
@@ -743,6 +754,37 @@ def validated_poincare(body: Any, y0: Sequence[Any], weights: Sequence[float], v
             hull = [m[i] + hull_l[i] for i in range(n)]
             t += h
     raise ArithmeticError(f"no certified crossing of the section before t_max = {t_max}")
+
+
+def _frame(frame: Any, coords: Any, radius: Any) -> tuple[arb_mat, Vector]:
+    """The initial Lohner frame ``Q`` and coordinates ``r`` of ``y0 + Q r``."""
+    if frame is None or coords is None:
+        raise ValueError("frame and coords go together")
+    if not (isinstance(radius, int | float) and radius == 0.0):
+        raise ValueError("radius must be 0 when frame and coords give the set")
+    rows = [list(row) for row in frame]
+    if len(rows) != 6 or any(len(row) != 6 for row in rows):
+        raise ValueError("frame must be a 6 x 6 matrix (invertible)")
+    Q = arb_mat([[x if isinstance(x, arb) else arb(x) for x in row] for row in rows])
+    r = [x if isinstance(x, arb) else arb(x) for x in coords]
+    if len(r) != 6 or not all(x.is_finite() for x in r):
+        raise ValueError("coords must be six finite balls")
+    return Q, r
+
+
+def _absorb(m: Vector, Q: arb_mat, r: Vector) -> tuple[Vector, Vector]:
+    """Make ``Q`` a point matrix and ``m`` a point: ``m + Q r = m' + Q' r'`` as sets
+    (``Q``'s and ``m``'s radii move into ``r`` through ``Q'^-1``)."""
+    n = len(m)
+    Qm = arb_mat([[arb(Q[i, j].mid()) for j in range(n)] for i in range(n)])
+    exact = all(Q[i, j].rad() == 0 for i in range(n) for j in range(n))
+    mm = [arb(x.mid()) for x in m]
+    if exact and all(x.rad() == 0 for x in m):
+        return mm, r
+    Qinv = Qm.inv()
+    extra = [(m[i] - mm[i]) + sum(((Q[i, j] - Qm[i, j]) * r[j] for j in range(n)), arb(0))
+             for i in range(n)]
+    return mm, [a + b for a, b in zip(r, _vec(Qinv, extra), strict=True)]
 
 
 def _locate(st: _Step, f: QuadraticField, s_of: Any, dB: arb, order: int, m: Vector,
