@@ -68,7 +68,8 @@ def on_terminal() -> bool:
     return bool(isatty and isatty())
 
 
-def plain_line(done: int, total: int, label: str, seconds: float) -> str:
+def plain_line(done: int, total: int, label: str, seconds: float,
+               postfix: str | None = None) -> str:
     """The line a bar prints in place of a redraw where stderr is no terminal.
 
     Parameters
@@ -79,14 +80,19 @@ def plain_line(done: int, total: int, label: str, seconds: float) -> str:
         What the bar counts.
     seconds : float
         Time since the bar started.
+    postfix : str, optional
+        The bar's fixed text (e.g. a dashboard address), after a semicolon.
 
     Examples
     --------
     >>> plain_line(3, 12, "chaos map", 4.25)
     '[3/12] chaos map: 25 %, 4.2 s'
+    >>> plain_line(2, 4, "scan", 0.0, "dashboard http://127.0.0.1:8787/status")
+    '[2/4] scan: 50 %, 0.0 s; dashboard http://127.0.0.1:8787/status'
     """
     pct = 100.0 * done / total if total else 100.0
-    return f"[{done}/{total}] {label}: {pct:.0f} %, {seconds:.1f} s"
+    line = f"[{done}/{total}] {label}: {pct:.0f} %, {seconds:.1f} s"
+    return f"{line}; {postfix}" if postfix else line
 
 
 @cache
@@ -123,8 +129,8 @@ class Progress:
             # resource tracker, which prints "leaked semaphore" on stderr. Bars of
             # andoyer need a thread lock only.
             tqdm.set_lock(threading.RLock())
-        self.total, self.done = int(total), 0
-        self.label = label
+        self.total, self.done = int(total), int(initial)
+        self.label, self._postfix = label, postfix
         if _SILENCED.get():
             enabled = False
         #: Plain lines instead of a bar: asked for, where stderr is a pipe or a file.
@@ -132,7 +138,7 @@ class Progress:
         if self.plain:
             enabled = False
         self._t0 = self._last = time.perf_counter()
-        self._tenth = 0
+        self._tenth = 10 * self.done // self.total if self.total else 0
         # tqdm's disable=None hides the bar when the stream is not a terminal.
         self._bar: Any = tqdm(total=self.total, desc=label, file=sys.stderr, initial=initial,
                               disable=None if enabled is None else not enabled,
@@ -149,7 +155,8 @@ class Progress:
             now = time.perf_counter()
             if tenth > self._tenth and now - self._last >= PLAIN_INTERVAL_S:
                 self._tenth, self._last = tenth, now
-                self.write(plain_line(self.done, self.total, self.label, now - self._t0))
+                self.write(plain_line(self.done, self.total, self.label, now - self._t0,
+                                      self._postfix))
 
     def write(self, line: str) -> None:
         """Print ``line`` on stderr above the bar (also when the bar is hidden)."""
@@ -169,7 +176,7 @@ class Progress:
         if self.plain:
             self.plain = False
             self.write(plain_line(self.done, self.total, self.label,
-                                  time.perf_counter() - self._t0))
+                                  time.perf_counter() - self._t0, self._postfix))
         self._bar.close()
 
     def __enter__(self) -> Progress:
