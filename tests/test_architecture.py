@@ -151,7 +151,6 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "explore/ui.py": "explore/test_explore.py",
     "integrate/budget.py": "test_guards.py",
     "integrate/plane_sampling.py": "integrate/test_fill.py",
-    "integrate/section.py": "integrate/test_api.py",
     "integrate/variational.py": "integrate/test_tangent.py",
     "io/netcdf.py": "integrate/test_api.py",
     "plot/atlas.py": "scan/test_scan.py",

@@ -42,7 +42,7 @@ _LAZY = {
     "poincare": "andoyer.integrate.api",
     "initial_states": "andoyer.integrate.api",
     "integrate_canonical": "andoyer.integrate.api",
-    "Section": "andoyer.integrate.section",
+    "Section": "andoyer.integrate.engines.values",
     "fill_section": "andoyer.integrate.fill",
     "propagate_hess_manifold": "andoyer.integrate.hess_manifold",
     "chaos_map": "andoyer.analysis.chaos.lyapunov",

@@ -21,10 +21,12 @@ Examples
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from dataclasses import dataclass
+from typing import Literal, NamedTuple
 
 __all__ = ["Symbol", "NOTATION", "Coordinate", "COORDINATES", "COORDINATE", "CHART_COORDS",
            "ANGLES", "SectionCoordinate", "SECTION_COORDINATES", "SECTION_ANGLES",
+           "SectionPlane", "SECTION_PLANES",
            "section_symbol", "storage_name", "coordinates", "label", "Term", "TERMS", "VOCABULARY"]
 
 
@@ -204,6 +206,71 @@ SECTION_COORDINATES: dict[str, SectionCoordinate] = {s.code: s for s in (
 #: The angles of the charts a section can be taken on.
 SECTION_ANGLES = tuple(k for k, s in SECTION_COORDINATES.items()
                        if s.needs and s.chart is not None)
+
+
+@dataclass(frozen=True)
+class SectionPlane:
+    """The plane of a filled section: ``coord = const`` spans two coordinates of its
+    chart, and the remaining action is solved from ``H = h``.
+
+    Coordinates are ordered ``(plane x, section angle, plane y, solved action, area
+    constant)``: ``storage`` gives their dataset names, ``symbols`` their ASCII names,
+    ``text`` the axis labels ``(x, y, action, section coordinate)`` in plain Unicode.
+
+    Attributes
+    ----------
+    chart : {"andoyer", "hess"}
+        The chart whose coordinates span the plane.
+    coord : str
+        The section coordinate (``"g"`` or ``"theta2"``).
+    storage : tuple of 5 str
+        Dataset names of ``(plane x, section angle, plane y, solved action, area
+        constant)``.
+    symbols : tuple of 5 str
+        Their ASCII names.
+    text : tuple of 4 str
+        Axis labels ``(x, y, action, section coordinate)`` in plain Unicode.
+    equations : str
+        The paper's equations of the chart (e.g. ``"(7)"``, ``"(14)"``).
+    """
+
+    chart: Literal["andoyer", "hess"]
+    coord: str
+    storage: tuple[str, str, str, str, str]
+    symbols: tuple[str, str, str, str, str]
+    text: tuple[str, str, str, str]
+    equations: str
+
+    @property
+    def x(self) -> str:
+        """Storage name of the horizontal axis."""
+        return self.storage[0]
+
+    @property
+    def y(self) -> str:
+        """Storage name of the vertical axis."""
+        return self.storage[2]
+
+    @property
+    def action(self) -> str:
+        """Storage name of the action solved from ``H = h``."""
+        return self.storage[3]
+
+
+#: Section coordinate -> its plane: the one definition (fill, explorer, plots).
+SECTION_PLANES: dict[str, SectionPlane] = {
+    "g": SectionPlane("andoyer", "g",
+                      ("l_angle", "g_angle", "L_action", "G_action", "M_action"),
+                      ("l", "g", "L", "G", "M"), ("l", "L", "G", "g"),
+                      "H of Eq. (7) in the Andoyer-Deprit variables (5)-(6) of Kyrychenko; "
+                      "section g = const, G solved from H(l, g, L, G, M) = h"),
+    "theta2": SectionPlane("hess", "theta2",
+                           ("theta1", "theta2", "J1", "J2", "J3"),
+                           ("theta1", "theta2", "J1", "J2", "J3"), ("θ1", "J1", "J2", "θ2"),
+                           "H in the Hess variables (14)-(15) of Kyrychenko (the Hamiltonian "
+                           "after Eq. (15)); section theta2 = const, J2 solved from "
+                           "H(theta1, theta2, J1, J2, J3 = M) = h"),
+}
 
 
 def section_symbol(code: str) -> str:

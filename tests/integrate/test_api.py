@@ -5,9 +5,9 @@ import pytest
 import xarray as xr
 
 from andoyer import RigidBody, from_andoyer, to_hess
+from andoyer.integrate import Section
 from andoyer.integrate.api import integrate_canonical, poincare, propagate
 from andoyer.integrate.engines import available_engines, get_engine
-from andoyer.integrate.section import Section
 from andoyer.io import write_netcdf
 
 BODY = RigidBody.paper()

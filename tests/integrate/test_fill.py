@@ -34,7 +34,7 @@ H_TWO = 0.009
 
 @dataclass(frozen=True)
 class DuckSection:
-    """Stands for andoyer.integrate.section.Section: only .coord and .value are used."""
+    """Stands for andoyer.integrate.Section: only .coord and .value are used."""
 
     coord: str
     value: float

@@ -18,7 +18,7 @@ from andoyer.charts.euler_poisson import momentum_bound
 from andoyer.errors import SingularPassageWarning
 from andoyer.integrate import Section, poincare
 from andoyer.integrate.api import RESIDUAL_BOUND
-from andoyer.integrate.section import SECTION_SINGULAR_RTOL
+from andoyer.integrate.engines.values import SECTION_SINGULAR_RTOL
 
 BODY = RigidBody.paper()
 HESS_LIBRATION = from_hess(BODY, [0.0, 4.0, 0.03, 0.1, 0.0])

@@ -26,7 +26,7 @@ from andoyer.kernels.generated.equations import SECTION_KINDS
 
 hy = pytest.importorskip("heyoka")
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
-from andoyer.integrate.engines.base import SectionEvent, Tolerance  # noqa: E402
+from andoyer.integrate.engines.base import Tolerance  # noqa: E402
 from andoyer.integrate.engines.numba_engine import NumbaEngine  # noqa: E402
 
 TOL12 = Tolerance(1e-12, 1e-12)
@@ -44,7 +44,7 @@ def orbits(n: int) -> np.ndarray:
 
 def test_scheduled_batches_agree_with_scalar_integrators() -> None:
     y0 = orbits(13)
-    args = (P, SectionEvent("G3", 0.0, 1), 40, 3e3, TOL12)
+    args = (P, Section("G3", 0.0, 1), 40, 3e3, TOL12)
     scalar = he.HeyokaEngine(batch_size=1, n_threads=1).crossings(y0, *args)
     batch = he.HeyokaEngine(batch_size=4, n_threads=2).crossings(y0, *args)
     assert len(set(np.round(scalar.t[:, -1] / scalar.t[:, 0], 1))) > 5  # varied orbits
@@ -56,11 +56,11 @@ def test_scheduled_batches_agree_with_scalar_integrators() -> None:
 def test_orbits_that_never_cross_and_orbits_done_in_the_pilot() -> None:
     y0 = orbits(6)
     eng = he.HeyokaEngine(batch_size=4, n_threads=2)
-    never = eng.crossings(y0, P, SectionEvent("G3", 5.0, 1), 10, 200.0, TOL12)
+    never = eng.crossings(y0, P, Section("G3", 5.0, 1), 10, 200.0, TOL12)
     np.testing.assert_array_equal(never.count, 0)
     assert np.all(np.isnan(never.t))
-    few = eng.crossings(y0, P, SectionEvent("G3", 0.0, 1), 1, 1e4, TOL12)
-    ref = he.HeyokaEngine(batch_size=1).crossings(y0, P, SectionEvent("G3", 0.0, 1), 1, 1e4, TOL12)
+    few = eng.crossings(y0, P, Section("G3", 0.0, 1), 1, 1e4, TOL12)
+    ref = he.HeyokaEngine(batch_size=1).crossings(y0, P, Section("G3", 0.0, 1), 1, 1e4, TOL12)
     np.testing.assert_allclose(few.t, ref.t, rtol=0, atol=1e-9)
 
 
@@ -99,8 +99,8 @@ def test_numba_does_not_count_an_initial_state_on_the_section() -> None:
     h = float(energy(BODY, from_andoyer([0.3, 0.0, 0.3, 1.0, 0.0])))
     y0 = fill_section(BODY, h, 0.0, ("theta2", 0.0), n_orbits=6)["y0"].values  # on theta2 = 0
     k = SECTION_KINDS.index("theta2")
-    nb = NumbaEngine().crossings(y0, P, SectionEvent.from_kind(k, 0.0, 0), 3, 1e3, TOL12)
-    hk = he.HeyokaEngine().crossings(y0, P, SectionEvent.from_kind(k, 0.0, 0), 3, 1e3, TOL12)
+    nb = NumbaEngine().crossings(y0, P, Section.from_kind(k, 0.0, 0), 3, 1e3, TOL12)
+    hk = he.HeyokaEngine().crossings(y0, P, Section.from_kind(k, 0.0, 0), 3, 1e3, TOL12)
     assert np.all(nb.t[:, 0] > 1e-3)
     np.testing.assert_allclose(nb.t, hk.t, rtol=0, atol=1e-8)
 

@@ -40,16 +40,19 @@ def test_the_check_catches_a_wrong_sign():
 
 
 def test_every_section_table_is_derived_from_the_one_table():
-    from andoyer.integrate import section
-    from andoyer.integrate.engines.values import REVERSIBLE
+    from andoyer.integrate.engines.values import ALL_KINDS, REVERSIBLE, Section
     from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
     from andoyer.plot.section import LABELS  # noqa: F401 (the plot layer imports)
     from andoyer.symbolic import sections
 
     table = SECTION_COORDINATES
     assert REVERSIBLE == {k: s.reversal for k, s in table.items() if s.reversal is not None}
-    assert section.ANGLES == sections.ANGLES == SECTION_ANGLES
-    assert section._CHART_OF == {k: s.chart for k, s in table.items() if s.chart}
-    assert section._ANGLE_NEEDS == {k: s.needs for k, s in table.items() if s.needs}
+    assert tuple(k for k in ALL_KINDS if Section(k).is_angle) == sections.ANGLES \
+        == SECTION_ANGLES
+    assert {k: Section(k).chart for k in ALL_KINDS} == {k: s.chart for k, s in table.items()}
+    # Where each coordinate is undefined: the table's singular sets, read by the section.
+    y = [[0.0, 0.0, 1e-9, 0.0, 0.0, 1.0]]  # G -> 0: every angle undefined
+    assert {k for k in ALL_KINDS if Section(k).defined_distance(y, 1.0)[0] < 1e-6} \
+        == {k for k, s in table.items() if s.needs}
     assert set(sections.EXTRA_ANGLES) == {k for k, s in table.items() if s.chart is None}
     assert set(table) == set(SECTION_KINDS) | set(EXTRA_SECTION_KINDS)

@@ -17,8 +17,7 @@ Conventions (the SymPy derivation of the attitude flow,
   .. math:: \gamma = (\sin\theta \sin\varphi,\ \sin\theta \cos\varphi,\ \cos\theta);
 
   ``phi = atan2(gamma1, gamma2)`` is the section angle ``psi`` of
-  :mod:`andoyer.integrate.section` (a name kept for compatibility), *not* the
-  precession.
+  :class:`andoyer.integrate.engines.values.Section`, *not* the precession.
 
 Precession and the Andoyer-Deprit node. From the kinematics of ``z-x-z`` angles,
 ``omega_1 = psi' sin theta sin phi + theta' cos phi`` and ``omega_2 = psi' sin theta

@@ -259,7 +259,7 @@ class Inputs(NamedTuple):
     chart: str | None
     """Its chart (``euler_poisson``, ``andoyer``, ``hess``), or None."""
     section: Any
-    """The :class:`~andoyer.integrate.section.Section` of ``--section``, or None."""
+    """The :class:`~andoyer.integrate.engines.values.Section` of ``--section``, or None."""
     h: float | None
     """The energy level: ``--energy``, or the default level of the body and ``--M``."""
 
@@ -303,8 +303,7 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
     y0, chart = given if given is not None else (None, None)
     section = h = None
     if level and given is None:
-        from andoyer.integrate import budget
-        from andoyer.integrate.section import Section
+        from andoyer.integrate import Section, budget
 
         section = Section.parse(args.section)
         h = args.h

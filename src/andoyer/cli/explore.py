@@ -20,7 +20,7 @@ ORDER = 45
 
 def run(args: argparse.Namespace) -> int:
     from andoyer.explore.server import serve
-    from andoyer.integrate.section import Section
+    from andoyer.integrate import Section
 
     body = body_from_args(args)
     section = Section.parse(args.section)

@@ -21,7 +21,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer.explore.state import Settings, SharedCache
-from andoyer.integrate.section import Section
+from andoyer.integrate import Section
 from andoyer.validation import integer
 
 __all__ = ["ChainOverlay", "chain_overlay", "shared_chain_overlay", "CHAINS_MAX_ORDER",

@@ -37,10 +37,11 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from andoyer.body import RigidBody
+from andoyer.integrate import Section
 from andoyer.integrate.engines import ENGINES
 from andoyer.integrate.fill import default_h
-from andoyer.integrate.section import SECTION_PLANES, Section
-from andoyer.integrate.section import SectionPlane as Plane
+from andoyer.notation import SECTION_PLANES
+from andoyer.notation import SectionPlane as Plane
 from andoyer.validation import finite as _finite
 from andoyer.validation import integer
 
@@ -64,7 +65,7 @@ PALETTE: tuple[str, ...] = (
 RootChoice = Literal["smallest", "largest", "all"]
 
 
-#: The section planes (one definition: :data:`andoyer.integrate.section.SECTION_PLANES`).
+#: The section planes (one definition: :data:`andoyer.notation.SECTION_PLANES`).
 PLANES: dict[str, Plane] = SECTION_PLANES
 
 
@@ -175,7 +176,7 @@ def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: f
     M : float, default 0.0
         Area constant ``(G, gamma) = M``.
     section : Section or str, default "theta2=0"
-        The section (:meth:`andoyer.integrate.section.Section.parse`).
+        The section (:meth:`andoyer.integrate.engines.values.Section.parse`).
     n_crossings : int, default 500
         Crossings per orbit.
     engine : str, optional

@@ -85,7 +85,7 @@ from andoyer.explore.state import (
     Stage,
     shared_plane_view,
 )
-from andoyer.integrate.section import Section
+from andoyer.integrate import Section
 
 __all__ = ["Explorer"]
 

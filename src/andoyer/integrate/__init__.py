@@ -15,12 +15,12 @@ if TYPE_CHECKING:
     from andoyer.integrate.api import integrate_canonical as integrate_canonical
     from andoyer.integrate.api import poincare as poincare
     from andoyer.integrate.api import propagate as propagate
+    from andoyer.integrate.engines.values import Section as Section
     from andoyer.integrate.fill import fill_section as fill_section
     from andoyer.integrate.hess_manifold import (
         propagate_hess_manifold as propagate_hess_manifold,
     )
     from andoyer.integrate.orientation import attitude as attitude
-    from andoyer.integrate.section import Section as Section
 
 _LAZY = {
     "attitude": "andoyer.integrate.orientation",
@@ -30,7 +30,7 @@ _LAZY = {
     "propagate": "andoyer.integrate.api",
     "fill_section": "andoyer.integrate.fill",
     "propagate_hess_manifold": "andoyer.integrate.hess_manifold",
-    "Section": "andoyer.integrate.section",
+    "Section": "andoyer.integrate.engines.values",
 }
 
 __all__ = ["Section", "attitude", "fill_section", "initial_states", "integrate_canonical",

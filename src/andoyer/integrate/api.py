@@ -27,14 +27,15 @@ from andoyer.errors import SingularPassageWarning
 from andoyer.integrate import budget
 from andoyer.integrate.engines import EngineLike, resolve_engine
 from andoyer.integrate.engines.base import (
+    SECTION_SINGULAR_RTOL,
     Capability,
     Crossings,
     Engine,
     Params,
+    Section,
     Tolerance,
 )
 from andoyer.integrate.results import provenance, states_dataset
-from andoyer.integrate.section import SECTION_SINGULAR_RTOL, Section
 from andoyer.notation import coordinates, storage_name
 from andoyer.progress import Progress
 from andoyer.validation import integer, positive, real_array
@@ -390,7 +391,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     SingularPassageWarning
         When an orbit passes through a singular set of an angle section: ``G -> 0``
         (relative to ``momentum_scale``), ``L -> +-G`` or ``|M| -> G`` (relative to
-        ``|G|``), closer than :data:`~andoyer.integrate.section.SECTION_SINGULAR_RTOL`.
+        ``|G|``), closer than :data:`~andoyer.integrate.engines.values.SECTION_SINGULAR_RTOL`.
         The angle is undefined there and the section function vanishes identically, so
         such a root is no crossing: it is counted apart and the orbit continued. Every
         M = 0 libration of the Hess solution passes G = 0; section it by a smooth
@@ -414,6 +415,10 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     sec = Section.parse(section) if isinstance(section, str) else section
     if not isinstance(sec, Section):
         raise ValueError(f"section must be a Section or a string like 'g=0', got {section!r}")
+    if sec.chart is None:
+        raise ValueError(f"section {sec.coord!r} is no chart's coordinate (the phase of gamma "
+                         "of the section maps of andoyer.analysis.splitting): poincare takes "
+                         "a coordinate of the Euler-Poisson, Andoyer-Deprit or Hess chart")
     if sec.chart == "hess":
         body.require_planar(f"the Hess-chart section {sec.coord!r}")
     n_crossings = integer("n_crossings", n_crossings, 1)
@@ -513,9 +518,9 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         The body (where the section's angle is undefined).
     """
     m = y.shape[0]
-    event, tolerance = sec.event(), Tolerance(rtol, atol)
+    tolerance = Tolerance(rtol, atol)
     if not sec.is_angle:  # smooth coordinates: every root is a crossing
-        return eng.crossings(y, params, event, n, t_end, tolerance), [[] for _ in range(m)]
+        return eng.crossings(y, params, sec, n, t_end, tolerance), [[] for _ in range(m)]
     T = np.full((m, n), np.nan)
     Y = np.full((m, n, 6), np.nan)
     count = np.zeros(m, dtype=np.int64)
@@ -527,7 +532,7 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         # Bound the engine's scratch arrays ((orbits, ask, 7) floats) before the call.
         ask = max(1, min(ask, _MAX_SCRATCH // (56 * max(1, active.size))))
         t0 = float(start_t[active].min())
-        cr = eng.crossings(start_y[active], params, event, ask, t_end - t0, tolerance)
+        cr = eng.crossings(start_y[active], params, sec, ask, t_end - t0, tolerance)
         # Classify every root of this round at once (NaN padding replaced by a dummy
         # state, masked out): a Python loop runs over orbits only, never over crossings.
         tt = cr.t + start_t[active][:, None]
@@ -565,10 +570,11 @@ def _residual_values(sec: Section, body: RigidBody, y: NDArray[np.float64]
                      ) -> NDArray[np.float64]:
     """``sin(angle - value)`` (or ``coord - value``) at Euler-Poisson states ``y``."""
     # Roots on the singular set are classified apart (singular passages): no warning here.
+    chart = str(sec.chart)  # a chart's coordinate: poincare refuses psi
     x = {"hess": lambda: to_hess(body, y, with_mask=True)[0],
          "andoyer": lambda: to_andoyer(y, with_mask=True)[0],
-         "euler_poisson": lambda: y}[sec.chart]()
-    v = x[..., coordinates(sec.chart).index(sec.coord)]
+         "euler_poisson": lambda: y}[chart]()
+    v = x[..., coordinates(chart).index(sec.coord)]
     return np.sin(v - sec.value) if sec.is_angle else v - sec.value
 
 

@@ -40,6 +40,7 @@ from andoyer.charts.euler_poisson import STATE, energy
 from andoyer.charts.hess import from_hess
 from andoyer.dynamics import vector_field
 from andoyer.integrate import budget
+from andoyer.integrate.engines.base import Section
 from andoyer.integrate.plane_sampling import (
     accessible_box,
     grid_points,
@@ -47,8 +48,8 @@ from andoyer.integrate.plane_sampling import (
     qmc_points,
 )
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.integrate.section import SECTION_PLANES, Section, SectionPlane
 from andoyer.kernels.generated import equations as K
+from andoyer.notation import SECTION_PLANES, SectionPlane
 from andoyer.validation import box, integer
 from andoyer.validation import finite as _finite
 from andoyer.validation import positive as _positive

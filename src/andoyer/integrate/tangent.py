@@ -32,7 +32,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     EngineBase,
     Params,
-    SectionEvent,
+    Section,
     Tolerance,
 )
 
@@ -260,6 +260,6 @@ def tangent_crossings(y0: ArrayLike, w0: ArrayLike, params: Params, kind: int,
     """
     eng = _engine(engine, Capability.TANGENT_CROSSINGS, tolerance_factor, max_steps)
     flow = eng.tangent(y0, w0, params, Tolerance.single(tol),
-                       event=SectionEvent.from_kind(kind, value, direction),
+                       event=Section.from_kind(kind, value, direction),
                        n_crossings=n_crossings, t_max=t_max)
     return TangentCrossings(flow.t, flow.y, flow.w, flow.count, flow.ok)

@@ -16,14 +16,13 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from andoyer.atomic import atomic_path
-from andoyer.integrate.section import SECTION_PLANES
-from andoyer.notation import ANGLES, COORDINATES, section_symbol
+from andoyer.notation import ANGLES, COORDINATES, SECTION_PLANES, section_symbol
 from andoyer.plot.style import colour_scale
 
 __all__ = ["plot_section", "save_figure", "PLANES", "LABELS"]
 
 #: Section coordinate (code or storage name) -> storage names of the plane (x, y),
-#: from the one definition :data:`andoyer.integrate.section.SECTION_PLANES`.
+#: from the one definition :data:`andoyer.notation.SECTION_PLANES`.
 PLANES: dict[str, tuple[str, str]] = {
     **{k: (p.x, p.y) for k, p in SECTION_PLANES.items()},
     **{p.storage[1]: (p.x, p.y) for p in SECTION_PLANES.values()},

@@ -202,7 +202,7 @@ def _attrs(cfg: ScanConfig, first_attrs: Mapping[str, Any]) -> dict[str, Any]:
         for k in _BODY_COORDS:
             attrs[f"body_{k}"] = f"swept: coordinate {k}"
     if cfg.task in ("section", "chaos_map"):
-        from andoyer.integrate.section import Section
+        from andoyer.integrate import Section
 
         attrs.update(Section.parse(dict(cfg.task_options)["section"]).attrs())
     for k, v in cfg.fixed.items():

@@ -195,7 +195,7 @@ def _positive(key: str, v: Any) -> float:
 
 def _section_text(fillable: bool) -> Callable[[str, Any], str]:
     def check(key: str, v: Any) -> str:
-        from andoyer.integrate.section import Section
+        from andoyer.integrate import Section
 
         if not isinstance(v, str):
             raise ValueError(f"{key} must be a string like 'theta2=0' or 'g=0:-', got {v!r}")
@@ -267,9 +267,9 @@ def _section_point(body: RigidBody, h: float, M: float, options: Mapping[str, An
     its singular passages (no crossings) are not stored.
     """
     from andoyer.errors import SingularPassageWarning
+    from andoyer.integrate import Section
     from andoyer.integrate.api import poincare
     from andoyer.integrate.fill import fill_section
-    from andoyer.integrate.section import Section
 
     sec = Section.parse(options["section"])
     n, k = int(options["n_orbits"]), int(options["n_crossings"])
@@ -315,7 +315,7 @@ def _chaos_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any]
     """Chaos indicator over the section plane, :func:`andoyer.analysis.chaos.lyapunov.chaos_map`
     (one thread; heyoka's tolerance ``min(rtol, atol)``)."""
     from andoyer.analysis.chaos import lyapunov as chaos
-    from andoyer.integrate.section import Section
+    from andoyer.integrate import Section
     sec = Section.parse(options["section"])
     try:
         ds = chaos.chaos_map(
@@ -429,7 +429,7 @@ def _border_point(body: RigidBody, h: float, M: float, options: Mapping[str, Any
     :func:`~andoyer.analysis.chaos.border.chaos_border` (one thread; tolerance
     ``min(rtol, atol)``)."""
     from andoyer.analysis.chaos.border import chaos_border
-    from andoyer.integrate.section import Section
+    from andoyer.integrate import Section
 
     sec = Section.parse(options["section"])
     try:

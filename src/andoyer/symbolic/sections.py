@@ -21,7 +21,7 @@ coordinates: ``psi = atan2(gamma1, gamma2)``, the phase of the vertical about th
 axis 3 (the sections of the rotations about the middle axis,
 :mod:`andoyer.analysis.splitting.section_map`), ``(cos psi, sin psi) ~ (gamma2, gamma1)``. They are
 generated after the chart kinds (kernels take them by index) but are not offered as
-coordinates of :class:`andoyer.integrate.section.Section`.
+coordinates of :class:`andoyer.integrate.engines.values.Section`.
 
 The pairs come from the inverse chart maps of :mod:`andoyer.charts.andoyer_deprit`:
 ``(cos l, sin l) ~ (G2, G1)`` and

@@ -18,8 +18,8 @@ from andoyer import RigidBody
 from andoyer.analysis.chaos.frequency import naff
 from andoyer.analysis.resonance.measure import _Probe, measure_island
 from andoyer.analysis.resonance.predict import ResonantChain, resonant_rows
+from andoyer.integrate import Section
 from andoyer.integrate.api import propagate
-from andoyer.integrate.section import Section
 
 
 def _nearest_line(body, y, p, q, t_end):

@@ -169,7 +169,7 @@ def test_stable_and_unstable_angles_match_the_torus_route():
     # the sign of the twist from the polynomial picks the same equilibrium of the
     # pendulum as the elliptic-integral twist does (R7), for both copies of the chain
     from andoyer.analysis.resonance.predict import ResonantChain, resonant_rows
-    from andoyer.integrate.section import Section
+    from andoyer.integrate import Section
 
     body = _body(2.3)
     for sign in (1, -1):

@@ -39,7 +39,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     Engine,
     Params,
-    SectionEvent,
+    Section,
     Tolerance,
 )
 from andoyer.integrate.engines.lazy import heyoka_available
@@ -96,8 +96,8 @@ def params(body: RigidBody) -> Params:
     return body.engine_params
 
 
-def ev(coord: str, value: float = 0.0, direction: int = 0) -> SectionEvent:
-    return SectionEvent(coord, value, direction)
+def ev(coord: str, value: float = 0.0, direction: int = 0) -> Section:
+    return Section(coord, value, direction)
 
 
 def integrals(body: RigidBody, y: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:

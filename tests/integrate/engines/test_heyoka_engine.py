@@ -30,7 +30,7 @@ from andoyer import (  # noqa: E402
 )
 from andoyer.integrate.engines import heyoka_engine as he  # noqa: E402
 from andoyer.integrate.engines import heyoka_integrators as hi  # noqa: E402
-from andoyer.integrate.engines.base import ALL_KINDS, SectionEvent, Tolerance  # noqa: E402
+from andoyer.integrate.engines.base import ALL_KINDS, Section, Tolerance  # noqa: E402
 from andoyer.integrate.engines.heyoka_engine import HeyokaEngine  # noqa: E402
 from andoyer.kernels.generated.equations import SECTION_KINDS, ep_field, section  # noqa: E402
 
@@ -160,7 +160,7 @@ def test_crossings_on_section_with_direction(name: str, direction: int,
     body = BODIES[name]
     k = kind("G3")
     eng = HeyokaEngine(batch_size=batch_size)
-    c = eng.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.05, direction), 30, 1e4, TOL12)
+    c = eng.crossings(Y0, params(body), Section.from_kind(k, 0.05, direction), 30, 1e4, TOL12)
     assert c.t.shape == (len(Y0), 30) and c.y.shape == (len(Y0), 30, 6)
     np.testing.assert_array_equal(c.count, 30)
     assert np.all(np.diff(c.t, axis=1) > 0) and np.all(c.t[:, 0] > 0)
@@ -194,7 +194,7 @@ def test_crossings_match_scipy_events(section_name: str, value: float) -> None:
         w_ref = np.array([section(k, *ref.sol(t), phi0, value, cv, sv)[1] for t in t_ref])
         t_ref = t_ref[(w_ref > 0) & (t_ref > 0)]
         c = HeyokaEngine(batch_size=1).crossings(
-            y0[None], params(body), SectionEvent.from_kind(k, value, 1), t_ref.size + 5,
+            y0[None], params(body), Section.from_kind(k, value, 1), t_ref.size + 5,
             t_max, TOL12)
         assert c.count[0] == t_ref.size
         np.testing.assert_allclose(c.t[0, :t_ref.size], t_ref, rtol=0, atol=1e-8)
@@ -206,7 +206,7 @@ def test_crossings_match_scipy_events(section_name: str, value: float) -> None:
 def test_angle_sections_no_spurious_wrap_crossing(section_name: str, value: float) -> None:
     body = BODIES["paper"]  # the Hess chart needs e3 = 0
     k = kind(section_name)
-    c = HeyokaEngine().crossings(Y0, params(body), SectionEvent.from_kind(k, value, 0), 40,
+    c = HeyokaEngine().crossings(Y0, params(body), Section.from_kind(k, value, 0), 40,
                                  3e3, TOL12)
     assert np.all(c.count > 0)
     y = c.y[~np.isnan(c.t)]
@@ -231,7 +231,7 @@ def test_batch_lanes_refilled_agree_with_scalar() -> None:
     x = np.column_stack([np.linspace(0.1, 6.0, 9), np.linspace(0.3, 5.0, 9),
                          np.linspace(-0.7, 0.7, 9), np.ones(9), np.linspace(-0.5, 0.4, 9)])
     y0 = from_andoyer(x)
-    args = (params(body), SectionEvent("gamma3", 0.1, 1), 25, 500.0, TOL12)
+    args = (params(body), Section("gamma3", 0.1, 1), 25, 500.0, TOL12)
     scalar = HeyokaEngine(batch_size=1, n_threads=2).crossings(y0, *args)
     batch = HeyokaEngine(batch_size=4, n_threads=2).crossings(y0, *args)
     np.testing.assert_array_equal(batch.count, scalar.count)
@@ -242,13 +242,13 @@ def test_batch_lanes_refilled_agree_with_scalar() -> None:
 def test_stops_after_n_crossings_and_pads_with_nan(engine: HeyokaEngine) -> None:
     body = BODIES["paper"]
     k = kind("G3")
-    many = engine.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.0, 1), 12, 1e4, TOL12)
+    many = engine.crossings(Y0, params(body), Section.from_kind(k, 0.0, 1), 12, 1e4, TOL12)
     np.testing.assert_array_equal(many.count, 12)
     # between two crossings of each orbit, not on one (a crossing at t_cut itself is a
     # round-off toss-up)
     t_cut = float(np.median(0.5 * (many.t[:, 4] + many.t[:, 5])))
     assert np.min(np.abs(many.t - t_cut)) > 1e-6
-    few = engine.crossings(Y0, params(body), SectionEvent.from_kind(k, 0.0, 1), 12, t_cut, TOL12)
+    few = engine.crossings(Y0, params(body), Section.from_kind(k, 0.0, 1), 12, t_cut, TOL12)
     expected = (many.t <= t_cut).sum(axis=1)
     np.testing.assert_array_equal(few.count, expected)
     for i, n in enumerate(few.count):
@@ -259,20 +259,20 @@ def test_stops_after_n_crossings_and_pads_with_nan(engine: HeyokaEngine) -> None
 def test_initial_state_on_the_section_is_not_a_crossing(engine: HeyokaEngine) -> None:
     body = BODIES["paper"]
     y0 = from_andoyer([0.3, 1.1, 0.0, 1.0, -0.4])  # L = G3 = 0
-    c = engine.crossings(y0[None], params(body), SectionEvent("G3", 0.0, 0), 3, 1e3, TOL12)
+    c = engine.crossings(y0[None], params(body), Section("G3", 0.0, 0), 3, 1e3, TOL12)
     assert c.t[0, 0] > 1e-3
 
 
 def test_zero_crossings_and_bad_arguments(engine: HeyokaEngine) -> None:
     p = params(BODIES["paper"])
-    c = engine.crossings(Y0, p, SectionEvent("G3", 0.0, 1), 0, 10.0, TOL12)
+    c = engine.crossings(Y0, p, Section("G3", 0.0, 1), 0, 10.0, TOL12)
     assert c.t.shape == (3, 0) and c.y.shape == (3, 0, 6) and np.all(c.count == 0)
     with pytest.raises(ValueError, match="kind"):
-        engine.crossings(Y0, p, SectionEvent.from_kind(len(ALL_KINDS), 0.0, 1), 5, 10.0, TOL12)
+        engine.crossings(Y0, p, Section.from_kind(len(ALL_KINDS), 0.0, 1), 5, 10.0, TOL12)
     with pytest.raises(ValueError, match="direction"):
-        engine.crossings(Y0, p, SectionEvent.from_kind(0, 0.0, 2), 5, 10.0, TOL12)
+        engine.crossings(Y0, p, Section.from_kind(0, 0.0, 2), 5, 10.0, TOL12)
     with pytest.raises(ValueError, match="t_max"):
-        engine.crossings(Y0, p, SectionEvent.from_kind(0, 0.0, 1), 5, -1.0, TOL12)
+        engine.crossings(Y0, p, Section.from_kind(0, 0.0, 1), 5, -1.0, TOL12)
     with pytest.raises(ValueError, match="params"):
         engine.propagate(Y0, np.array([0.0, 1.0]), p[:7], TOL12)
 

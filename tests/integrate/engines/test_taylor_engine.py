@@ -13,7 +13,7 @@ import pytest
 
 from andoyer import RigidBody
 from andoyer.integrate.engines import get_engine
-from andoyer.integrate.engines.base import SectionEvent, Tolerance
+from andoyer.integrate.engines.base import Section, Tolerance
 from andoyer.integrate.engines.taylor_engine import TaylorEngine
 
 
@@ -61,7 +61,7 @@ def test_random_states_agree_with_the_numba_engine(near_axis: float) -> None:
     b = get_engine("numba").propagate(y0, t, p, Tolerance(1e-13, 1e-13))
     assert np.max(np.abs(a - b)) < 1e-9
     for name, value in (("l", 0.5), ("G3", 0.0), ("theta2", 0.0)):
-        event = SectionEvent(name, value, 0)
+        event = Section(name, value, 0)
         ca = TaylorEngine().crossings(y0, p, event, 4, 100.0, Tolerance(1e-12, 1e-12))
         cb = get_engine("numba").crossings(y0, p, event, 4, 100.0, Tolerance(1e-13, 1e-13))
         np.testing.assert_array_equal(ca.count, cb.count)

@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 
 from andoyer import RigidBody, from_andoyer
 from andoyer.integrate.engines import get_engine
-from andoyer.integrate.engines.base import SectionEvent, Tolerance
+from andoyer.integrate.engines.base import Section, Tolerance
 from andoyer.integrate.engines.lazy import heyoka_available
 from andoyer.kernels import common
 from andoyer.kernels.dop853 import flow as dop853
@@ -98,7 +98,7 @@ def test_random_states_agree_with_numba_and_heyoka(body: RigidBody) -> None:
                 ("theta2", 0.0), ("G", 1.0)]
     for name, value in sections:
         for direction in (1, -1, 0):
-            event = SectionEvent(name, value, direction)
+            event = Section(name, value, direction)
             c = taylor.crossings(y0, p, event, 8, 60.0, tol)
             for other, (engine, other_tol) in others.items():
                 r = engine.crossings(y0, p, event, 8, 60.0, other_tol)

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from andoyer import RigidBody
 from andoyer.integrate.engines import taylor_engine
-from andoyer.integrate.engines.base import SectionEvent, Tolerance
+from andoyer.integrate.engines.base import Section, Tolerance
 from andoyer.integrate.engines.taylor_engine import TaylorEngine
 from andoyer.kernels import common
 from andoyer.kernels.dop853 import flow as dop853
@@ -126,13 +126,13 @@ def test_the_engine_runs_many_orbits_of_a_component_section_on_lanes(
     tol = Tolerance(1e-12, 1e-12)
     y0 = random_states(LANES + 1, np.random.default_rng(5))
     engine = TaylorEngine()
-    engine.crossings(y0, p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
+    engine.crossings(y0, p, Section("G3", 0.0, 1), 5, 100.0, tol)
     assert calls == []  # 45 crossings asked: the scalar kernel (no lane kernel to compile)
     monkeypatch.setattr(taylor_engine, "LANE_CROSSINGS_FROM", 5 * (LANES + 1))
-    c = engine.crossings(y0, p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
+    c = engine.crossings(y0, p, Section("G3", 0.0, 1), 5, 100.0, tol)
     assert calls == [LANES + 1]
-    one = engine.crossings(y0[:1], p, SectionEvent("G3", 0.0, 1), 5, 100.0, tol)
-    engine.crossings(y0, p, SectionEvent("theta2", 0.0, 1), 5, 100.0, tol)
+    one = engine.crossings(y0[:1], p, Section("G3", 0.0, 1), 5, 100.0, tol)
+    engine.crossings(y0, p, Section("theta2", 0.0, 1), 5, 100.0, tol)
     assert calls == [LANES + 1]  # one orbit, and an angle section: the scalar kernel
     assert c.count[0] == one.count[0] >= 1
     assert np.nanmax(np.abs(c.t[0] - one.t[0])) < 1e-11

@@ -58,10 +58,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from andoyer.analysis.chaos.lyapunov import IndicatorRun, MapGrid, chaos_map
 from andoyer.body import RigidBody, checks_body
+from andoyer.integrate import Section
 from andoyer.integrate.engines import resolve_engine
 from andoyer.integrate.engines.base import Capability
 from andoyer.integrate.results import describe_variables
-from andoyer.integrate.section import Section
 from andoyer.validation import checks_arguments, finite, finite_array, flag, grid, integer, positive
 
 __all__ = ["chaos_border", "chaos_border_map", "regular_reference", "layer_width", "hess_line",

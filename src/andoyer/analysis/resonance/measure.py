@@ -45,11 +45,10 @@ from andoyer.analysis.resonance.predict import (
 from andoyer.analysis.resonance.torus import free_top_phase
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
-from andoyer.integrate import budget
+from andoyer.integrate import Section, budget
 from andoyer.integrate.api import poincare
 from andoyer.integrate.fill import section_roots
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.integrate.section import Section
 from andoyer.validation import finite, integer, positive
 
 __all__ = ["measure_island"]

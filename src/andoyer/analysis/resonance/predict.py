@@ -119,9 +119,8 @@ from andoyer.analysis.unperturbed.euler_poinsot import (
     euler_poinsot_momentum,
 )
 from andoyer.body import RigidBody, checks_body
-from andoyer.integrate import budget
+from andoyer.integrate import Section, budget
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.integrate.section import Section
 from andoyer.validation import finite, integer, positive
 
 __all__ = ["resonant_tori", "resonance_widths", "section_rotation_number", "free_top_at_gap",

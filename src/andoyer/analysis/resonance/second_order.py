@@ -437,8 +437,8 @@ def island_prediction(body: Any, h: float, M: float, resonance: str, *, order_mu
     import xarray as xr
 
     from andoyer.analysis.resonance.predict import check_level_args, resonant_rows
+    from andoyer.integrate import Section
     from andoyer.integrate.results import describe_variables, provenance
-    from andoyer.integrate.section import Section
     from andoyer.validation import finite, integer
 
     h, M, _ = check_level_args(body, h, M, 2)

@@ -35,7 +35,7 @@ and knows nothing of datasets, charts or bodies.
     states (n, m, 6); ``[:, 0]`` must equal ``y0``.
 ``_crossings(y0, par, event, n_crossings, t_max, tolerance)``
     The first ``n_crossings`` roots after ``t = T_START`` (:mod:`andoyer.kernels.common`)
-    of the section function ``f`` of ``event`` (a :class:`SectionEvent`) in its
+    of the section function ``f`` of ``event`` (a :class:`Section`) in its
     direction with margin ``w > 0``, integrating at most to ``t_max > 0``; each root
     located so that ``|f| <= 1e-12`` (relative to the scale of f). If ``"crossings"``
     is ``native_backward`` it also receives ``t_max < 0`` (a backward flow: roots at
@@ -111,11 +111,12 @@ from andoyer.integrate.engines.values import PAR as PAR
 from andoyer.integrate.engines.values import PARAMETERS as PARAMETERS
 from andoyer.integrate.engines.values import REVERSAL as REVERSAL
 from andoyer.integrate.engines.values import REVERSIBLE as REVERSIBLE
+from andoyer.integrate.engines.values import SECTION_SINGULAR_RTOL as SECTION_SINGULAR_RTOL
 from andoyer.integrate.engines.values import TOLERANCE_FACTOR as TOLERANCE_FACTOR
 from andoyer.integrate.engines.values import Capability as Capability
 from andoyer.integrate.engines.values import Crossings as Crossings
 from andoyer.integrate.engines.values import Params as Params
-from andoyer.integrate.engines.values import SectionEvent as SectionEvent
+from andoyer.integrate.engines.values import Section as Section
 from andoyer.integrate.engines.values import TangentFlow as TangentFlow
 from andoyer.integrate.engines.values import Tolerance as Tolerance
 from andoyer.integrate.engines.values import check_tolerance_factor as check_tolerance_factor
@@ -124,7 +125,8 @@ from andoyer.integrate.engines.values import unit_vectors as unit_vectors
 from andoyer.validation import MAX_MOMENTUM, integer, positive
 
 __all__ = [
-    "Capability", "SectionEvent", "Tolerance", "Crossings", "TangentFlow", "Engine",
+    "Capability", "Section", "SECTION_SINGULAR_RTOL", "Tolerance", "Crossings", "TangentFlow",
+    "Engine",
     "EngineBase", "PARAMETERS", "PAR", "runtime_parameters", "REVERSIBLE", "REVERSAL",
     "TOLERANCE_FACTOR", "check_tolerance_factor", "Params", "ALL_KINDS", "unit_vectors",
     "ATTITUDE_REVERSAL",
@@ -209,7 +211,7 @@ class EngineBase:
         raise NotImplementedError
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
-                   event: SectionEvent, n_crossings: int, t_max: float,
+                   event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         raise NotImplementedError
 
@@ -219,7 +221,7 @@ class EngineBase:
         raise NotImplementedError
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           par: NDArray[np.float64], event: Section, n_crossings: int,
                            t_max: float, tolerance: Tolerance,
                            extended_precision: bool) -> TangentFlow:
         raise NotImplementedError
@@ -358,7 +360,7 @@ class EngineBase:
                                                      2.0 * times[0] - times, par, tol)
         return out[..., :6], out[..., 6:]
 
-    def crossings(self, y0: ArrayLike, params: ArrayLike, event: SectionEvent,
+    def crossings(self, y0: ArrayLike, params: ArrayLike, event: Section,
                   n_crossings: int, t_max: float, tolerance: Tolerance, *,
                   backward: bool = False) -> Crossings:
         """The first ``n_crossings`` crossings of ``event`` after t = 0, integrating at
@@ -386,7 +388,7 @@ class EngineBase:
 
     def tangent(self, y0: ArrayLike, w0: ArrayLike, params: ArrayLike,
                 tolerance: Tolerance, *, t: ArrayLike | None = None,
-                event: SectionEvent | None = None, n_crossings: int = 1,
+                event: Section | None = None, n_crossings: int = 1,
                 t_max: float | None = None, backward: bool = False,
                 renormalise: bool = True, scale: float | None = None,
                 extended_precision: bool = False) -> TangentFlow:
@@ -405,7 +407,7 @@ class EngineBase:
             Output times, ``t[0]`` the initial time (the MEGNO quadratures weigh
             ``t + delta``: start at 0 for indicators), increasing (or decreasing:
             backward, then ``megno`` is None).
-        event : SectionEvent, optional
+        event : Section, optional
             Instead of ``t``: stop at its crossings (``TANGENT_CROSSINGS``).
         n_crossings : int
             Crossings wanted (with ``event``).
@@ -536,9 +538,9 @@ def _tolerance(tolerance: Any) -> Tolerance:
     return tolerance
 
 
-def _event(event: Any) -> SectionEvent:
-    if not isinstance(event, SectionEvent):
-        raise TypeError(f"event must be a SectionEvent, got {event!r}")
+def _event(event: Any) -> Section:
+    if not isinstance(event, Section):
+        raise TypeError(f"event must be a Section, got {event!r}")
     return event
 
 

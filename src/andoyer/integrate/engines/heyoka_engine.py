@@ -98,7 +98,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
     EngineBase,
-    SectionEvent,
+    Section,
     TangentFlow,
     Tolerance,
 )
@@ -504,7 +504,7 @@ class HeyokaEngine(EngineBase):
                                                 self._batch(y0.shape[0]), self.n_threads)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           par: NDArray[np.float64], event: Section, n_crossings: int,
                            t_max: float, tolerance: Tolerance,
                            extended_precision: bool) -> TangentFlow:
         """The fundamental matrix stopped by a terminal event, in double or extended
@@ -544,7 +544,7 @@ class HeyokaEngine(EngineBase):
         return np.stack(rows)
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
-                   event: SectionEvent, n_crossings: int, t_max: float,
+                   event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         kind, direction, tol = event.kind, event.direction, tolerance.tol
         n = y0.shape[0]

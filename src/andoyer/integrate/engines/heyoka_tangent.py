@@ -61,7 +61,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from andoyer.integrate.engines.base import PAR, SectionEvent, TangentFlow, unit_vectors
+from andoyer.integrate.engines.base import PAR, Section, TangentFlow, unit_vectors
 from andoyer.integrate.engines.heyoka_symbolic import (
     coefficient_tangent_system,
     coefficient_values,
@@ -516,7 +516,7 @@ def _polish(kind: int, y: NDArray[np.float64], t: float, par: NDArray[np.float64
 
 
 def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
-                     par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                     par: NDArray[np.float64], event: Section, n_crossings: int,
                      t_max: float, tol: float, extended: bool) -> TangentFlow:
     """The first crossings of ``event`` with ``w_i = Phi w_i(0)`` there; ``t_max < 0``
     integrates backward (the event's direction is in physical time).
@@ -529,7 +529,7 @@ def matrix_crossings(y0: NDArray[np.float64], w0: NDArray[np.float64],
         Initial tangent vectors.
     par : ndarray
         Runtime parameters (:data:`~andoyer.integrate.engines.base.PAR` order).
-    event : SectionEvent
+    event : Section
         The section and its crossing direction.
     n_crossings : int
         Crossings wanted per orbit.

@@ -33,7 +33,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
     EngineBase,
-    SectionEvent,
+    Section,
     TangentFlow,
     Tolerance,
     check_tolerance_factor,
@@ -162,7 +162,7 @@ class NumbaEngine(EngineBase):
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
-                   event: SectionEvent, n_crossings: int, t_max: float,
+                   event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         rtol, atol = tolerance.scaled(self.tolerance_factor)
         tc, yc, count, info = flow.locate_crossings(
@@ -190,7 +190,7 @@ class NumbaEngine(EngineBase):
                            ok)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           par: NDArray[np.float64], event: Section, n_crossings: int,
                            t_max: float, tolerance: Tolerance,
                            extended_precision: bool) -> TangentFlow:
         n, k = w0.shape[:2]

@@ -34,7 +34,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
     EngineBase,
-    SectionEvent,
+    Section,
     TangentFlow,
     Tolerance,
     check_tolerance_factor,
@@ -102,12 +102,12 @@ class _Tangent:
         return out
 
 
-class _SectionEvent:
+class _SectionFunction:
     """A ``solve_ivp`` event: the section function f; ``direction`` as SciPy reads it."""
 
     terminal = False
 
-    def __init__(self, event: SectionEvent, par: NDArray[np.float64]) -> None:
+    def __init__(self, event: Section, par: NDArray[np.float64]) -> None:
         self.args = (float(par[7]), event.value, math.cos(event.value),
                      math.sin(event.value))
         self.kind = event.kind
@@ -188,7 +188,7 @@ class ScipyEngine(EngineBase):
         return out
 
     def _crossings(self, y: NDArray[np.float64], par: NDArray[np.float64],
-                   section_event: SectionEvent, n_crossings: int, t_max: float,
+                   section_event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         """SciPy's events cannot require the margin ``w > 0``, so roots are collected
         over windows of growing length and filtered afterwards."""
@@ -197,7 +197,7 @@ class ScipyEngine(EngineBase):
         y_out = np.full((n, m, 6), np.nan)
         count = np.zeros(n, dtype=np.int64)
         fun = _Field(par)
-        event = _SectionEvent(section_event, par)
+        event = _SectionFunction(section_event, par)
         for i in range(n):
             t, state, window = 0.0, y[i], _FIRST_WINDOW
             while count[i] < m and t < t_max:

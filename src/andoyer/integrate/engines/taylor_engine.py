@@ -45,7 +45,7 @@ from andoyer.integrate.engines.base import (
     Capability,
     Crossings,
     EngineBase,
-    SectionEvent,
+    Section,
     TangentFlow,
     Tolerance,
     unit_vectors,
@@ -178,7 +178,7 @@ class TaylorEngine(EngineBase):
         return out
 
     def _crossings(self, y0: NDArray[np.float64], par: NDArray[np.float64],
-                   event: SectionEvent, n_crossings: int, t_max: float,
+                   event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         """Crossings on each step's polynomial; from :data:`LANES_FROM` orbits and
         :data:`LANE_CROSSINGS_FROM` crossings asked on, a state component's section
@@ -227,7 +227,7 @@ class TaylorEngine(EngineBase):
                            out[..., -2:], count, ok)
 
     def _tangent_crossings(self, y0: NDArray[np.float64], w0: NDArray[np.float64],
-                           par: NDArray[np.float64], event: SectionEvent, n_crossings: int,
+                           par: NDArray[np.float64], event: Section, n_crossings: int,
                            t_max: float, tolerance: Tolerance,
                            extended_precision: bool) -> TangentFlow:
         n, k = w0.shape[:2]

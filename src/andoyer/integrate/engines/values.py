@@ -1,11 +1,14 @@
 r"""The values that cross the engine seam (:mod:`andoyer.integrate.engines.base`):
-what an engine can do (:class:`Capability`), a tolerance (:class:`Tolerance`), a section
-as an engine sees it (:class:`SectionEvent`), the runtime parameters (:data:`PARAMETERS`,
+what an engine can do (:class:`Capability`), a tolerance (:class:`Tolerance`), a
+Poincare section (:class:`Section`), the runtime parameters (:data:`PARAMETERS`,
 :func:`runtime_parameters`), the time reversal of (1) and what engines return
 (:class:`Crossings`, :class:`TangentFlow`).
 
 They are importable from :mod:`andoyer.integrate.engines.base` as well (the seam's one
 page); this module holds them so that the contract page stays the contract.
+:class:`Section` is the one section class of users (``andoyer.Section``, re-exported by
+:mod:`andoyer.integrate`) and engines alike: it lives here, at the seam, because engines
+import nothing above it.
 
 Runtime parameters
 ==================
@@ -19,18 +22,23 @@ from __future__ import annotations
 
 import enum
 import math
+import numbers
+import re
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from andoyer.charts.andoyer_deprit import singular_distances
+from andoyer.errors import ArgumentTypeError
 from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
-from andoyer.notation import SECTION_COORDINATES
+from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES, SECTION_PLANES, SectionPlane
 from andoyer.validation import integer, positive
 
 __all__ = [
-    "Capability", "SectionEvent", "Tolerance", "Crossings", "TangentFlow", "PARAMETERS",
+    "Capability", "Section", "SECTION_SINGULAR_RTOL", "Tolerance", "Crossings", "TangentFlow",
+    "PARAMETERS",
     "PAR", "runtime_parameters", "REVERSIBLE", "REVERSAL", "ATTITUDE_REVERSAL",
     "TOLERANCE_FACTOR", "check_tolerance_factor", "Params", "ALL_KINDS", "unit_vectors",
     "MAX_STEPS", "MAX_THREADS", "MAX_CHUNK", "MAX_BATCH",
@@ -39,7 +47,7 @@ __all__ = [
 #: (a, b, c, mu, e1, e2, e3, phi0)
 Params = tuple[float, float, float, float, float, float, float, float]
 
-#: Every section coordinate an engine can stop on (index = ``SectionEvent.kind``).
+#: Every section coordinate an engine can stop on (index = :attr:`Section.kind`).
 ALL_KINDS: tuple[str, ...] = (*SECTION_KINDS, *EXTRA_SECTION_KINDS)
 
 #: The runtime parameters ``par[i]`` of every engine, in this order.
@@ -174,47 +182,126 @@ def _tolerance_value(name: str, value: Any, low: float) -> float:
     return v
 
 
+#: A crossing of an angle section counts only where the state's relative distance to
+#: every singular set the angle depends on (G = 0 relative to the orbit's momentum
+#: scale, L = +-G, ``|M| = G``) exceeds this: closer, the angle is resolved no better than
+#: (state error) / distance, i.e. to worse than ~1e-6 rad, and at the set itself it is
+#: undefined (a "singular passage", reported apart from the crossings).
+SECTION_SINGULAR_RTOL = 1e-6
+
+#: ``"coord=value"`` with an optional direction ``":+"``, ``":-"`` or ``":0"``.
+_SECTION_TEXT = re.compile(r"\s*(\w+)\s*=\s*([^:\s]+)\s*(?::\s*([+-]?[01]?|[+-]))?\s*")
+_DIRECTIONS = {None: 1, "": 1, "+": 1, "+1": 1, "1": 1, "-": -1, "-1": -1, "0": 0}
+
+
 @dataclass(frozen=True)
-class SectionEvent:
-    """A section ``coord = value`` crossed in ``direction`` (as diffrax's ``Event``).
+class Section:
+    r"""The Poincare section ``coord = value`` crossed in ``direction``: what users pass
+    to :func:`~andoyer.integrate.poincare` and what engines stop on (as diffrax's ``Event``).
+
+    The section function is that of :func:`andoyer.kernels.generated.equations.section`:
+    ``f = coord - value`` for a smooth coordinate; for an angle ``f = sin(angle - value)``
+    times a positive factor, a crossing counting only where ``cos(angle - value) > 0``,
+    so the wrap at 2 pi makes no spurious crossing (:mod:`andoyer.symbolic.sections`).
 
     Parameters
     ----------
     coord : str
-        A name of :data:`ALL_KINDS` (``"G3"``, ``"theta2"``, ``"psi"``, ...): the
-        section function ``f`` and margin ``w`` are
-        :func:`andoyer.kernels.generated.equations.section` of that kind.
-    value : float
-        The section value (an angle in rad for angle sections).
-    direction : {+1, -1, 0}
-        Sign of ``df/dt`` at the crossing in physical time (0: both).
+        A section coordinate of :data:`ALL_KINDS`: of the Euler-Poisson chart (``"G1"``
+        .. ``"gamma3"``), the Andoyer-Deprit variables (5)-(6) (``"l"``, ``"g"``, ``"L"``,
+        ``"G"``), the Hess variables (14) (``"theta1"``, ``"theta2"``, ``"J1"``,
+        ``"J2"``), or the phase ``"psi"`` of gamma (the section maps of
+        :mod:`andoyer.analysis.splitting`; no chart's); not ``M`` or ``J3``, constants
+        of motion. Each is a row of :data:`andoyer.notation.SECTION_COORDINATES`.
+    value : float, default 0
+        The plane ``coord = value``; a chart's angle is reduced to ``[0, 2 pi)``.
+    direction : {1, -1, 0}, default 1
+        The sign of ``df/dt`` at a crossing in physical time: ``coord`` increasing (1),
+        decreasing (-1), or both (0). The default is a Poincare section as the paper
+        takes it, crossings in one chosen direction: the map ``P`` of the section to
+        itself then returns each point to the same side (the report's sections, such
+        as the chaos maps' ``theta2 = 0``, count the angle increasing). Both directions
+        (0) interleave ``P`` with the half-return; engines' root finding takes them
+        when asked, never by default.
 
     Examples
     --------
-    >>> ev = SectionEvent("G3", 0.0, 1)
-    >>> ev.kind, ev.reversed()
-    (2, SectionEvent(coord='G3', value=-0.0, direction=1))
+    >>> Section("theta2", 0.0)
+    Section(coord='theta2', value=0.0, direction=1)
+    >>> Section.parse("G3=0:-")
+    Section(coord='G3', value=0.0, direction=-1)
+    >>> Section.from_kind(2, 0.0, 0) == Section("G3", 0.0, 0)
+    True
+    >>> Section("g", 7.0).value == 7.0 - 2 * math.pi
+    True
+    >>> Section("G3", 0.0, 1).reversed()
+    Section(coord='G3', value=-0.0, direction=1)
+    >>> Section("M", 0.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown section coordinate 'M'; choose one of G1, G2, ..., theta2, psi (M ...
     """
 
     coord: str
     value: float = 0.0
-    direction: int = 0
+    direction: int = 1
 
     def __post_init__(self) -> None:
+        if not isinstance(self.coord, str):
+            raise ArgumentTypeError(f"section coordinate must be a name such as 'theta2', "
+                                    f"got {self.coord!r}")
         if self.coord not in ALL_KINDS:
             raise ValueError(f"unknown section coordinate {self.coord!r}; choose one of "
-                             f"{', '.join(ALL_KINDS)}")
+                             f"{', '.join(ALL_KINDS)} (M and J3 are constants of motion)")
+        if isinstance(self.value, bool | str | bytes) or not isinstance(
+                self.value, numbers.Real):
+            raise ArgumentTypeError(f"section value must be a number, got {self.value!r}")
         v = float(self.value)
         if not math.isfinite(v):
-            raise ValueError(f"section value must be finite, got {self.value!r}")
+            raise ValueError(f"section value must be finite, got {v!r}")
+        d = self.direction
+        if isinstance(d, bool) or not isinstance(d, numbers.Real) or d not in (-1, 0, 1):
+            raise ValueError(f"section direction must be +1, -1 or 0, got {d!r}")
+        if self.coord in SECTION_ANGLES:
+            v = math.remainder(v, 2 * math.pi) % (2 * math.pi)
         object.__setattr__(self, "value", v)
-        if isinstance(self.direction, bool) or self.direction not in (-1, 0, 1):
-            raise ValueError(f"direction must be -1, 0 or +1, got {self.direction!r}")
-        object.__setattr__(self, "direction", int(self.direction))
+        object.__setattr__(self, "direction", int(d))
 
     @classmethod
-    def from_kind(cls, kind: int, value: float = 0.0, direction: int = 0) -> SectionEvent:
-        """The event of section index ``kind`` (into :data:`ALL_KINDS`).
+    def parse(cls, text: str) -> Section:
+        """The section ``"coord=value"``, with an optional ``":+"``, ``":-"`` or ``":0"``
+        direction (default ``+``), as the command line, scan configs and the explorer
+        write it.
+
+        Parameters
+        ----------
+        text : str
+            The section: ``"theta2=0"``, ``"theta2=1.5:+"``, ``"G3=0:-"``.
+
+        Examples
+        --------
+        >>> Section.parse("theta2=1.5:-").direction
+        -1
+        """
+        if not isinstance(text, str):
+            raise ArgumentTypeError(f"section must be a string such as 'g=0', got {text!r}")
+        m = _SECTION_TEXT.fullmatch(text)
+        if not m:
+            raise ValueError(f"cannot parse section {text!r}; write e.g. 'g=0', "
+                             "'theta2=1.5:+' or 'G3=0:-'")
+        coord, value, d = m.groups()
+        direction = _DIRECTIONS.get(d)
+        if direction is None:
+            raise ValueError(f"bad section direction {d!r} in {text!r}; use +, - or 0")
+        try:
+            val = float(value)
+        except ValueError:
+            raise ValueError(f"section value {value!r} in {text!r} is not a number") from None
+        return cls(coord, val, direction)
+
+    @classmethod
+    def from_kind(cls, kind: int, value: float = 0.0, direction: int = 1) -> Section:
+        """The section of the kernels' section index ``kind`` (into :data:`ALL_KINDS`).
 
         Parameters
         ----------
@@ -222,8 +309,13 @@ class SectionEvent:
             Index into :data:`ALL_KINDS` (the kernels' section kind).
         value : float, default 0
             The section's value (``coord = value``).
-        direction : {0, +1, -1}
-            Crossings in both directions (0), upward (+1) or downward (-1).
+        direction : {1, -1, 0}, default 1
+            As for :class:`Section`.
+
+        Examples
+        --------
+        >>> Section.from_kind(13)
+        Section(coord='theta2', value=0.0, direction=1)
         """
         k = integer("kind", kind, 0, len(ALL_KINDS) - 1)
         return cls(ALL_KINDS[k], value, direction)
@@ -233,19 +325,87 @@ class SectionEvent:
         """Index of :attr:`coord` into :data:`ALL_KINDS` (the kernels' section kind)."""
         return ALL_KINDS.index(self.coord)
 
-    def reversed(self) -> SectionEvent:
-        """The event that the reversed orbit ``R y(-t)`` crosses where ``y`` crosses this
-        one (see the module notes); ``ValueError`` for a section without that symmetry."""
+    @property
+    def chart(self) -> str | None:
+        """The chart :attr:`coord` belongs to (``"euler_poisson"``, ``"andoyer"``,
+        ``"hess"``; None for ``psi``, no chart's coordinate)."""
+        return SECTION_COORDINATES[self.coord].chart
+
+    @property
+    def is_angle(self) -> bool:
+        """Whether :attr:`coord` is an angle of a chart (``l``, ``g``, ``theta1``,
+        ``theta2``: its value is taken mod 2 pi)."""
+        return self.coord in SECTION_ANGLES
+
+    @property
+    def plane(self) -> SectionPlane:
+        """The plane filled on this section (``g`` and ``theta2`` sections only).
+
+        >>> Section.parse("theta2=0").plane.x
+        'theta1'
+        """
+        if self.coord not in SECTION_PLANES:
+            raise ValueError(f"a section of {self.coord!r} has no filled plane: choose 'g' "
+                             "(plane (l, L)) or 'theta2' (plane (theta1, J1))")
+        return SECTION_PLANES[self.coord]
+
+    def reversed(self) -> Section:
+        """The section the reversed orbit ``R y(-t)`` crosses where ``y`` crosses this
+        one (``R`` is :data:`REVERSAL`; the sign is :data:`REVERSIBLE`'s);
+        ``ValueError`` for a section without that symmetry."""
         s = REVERSIBLE.get(self.coord)
         if s is None:
             raise ValueError(
                 f"a backward flow to the {self.coord!r} section needs an engine with a "
                 f"native backward flow; time reversal maps only "
                 f"{', '.join(REVERSIBLE)} sections onto themselves")
-        return SectionEvent(self.coord, s * self.value, -s * self.direction)
+        return Section(self.coord, s * self.value, -s * self.direction)
+
+    def defined_distance(self, y: ArrayLike, scale: ArrayLike) -> NDArray[np.float64]:
+        """Relative distance of Euler-Poisson states to where the coordinate is undefined.
+
+        ``inf`` for the smooth coordinates (``G1``, ..., ``J2``, ``psi``: defined
+        everywhere they are used); for an angle the smallest
+        :func:`~andoyer.charts.andoyer_deprit.singular_distances` column it depends on
+        (:attr:`andoyer.notation.SectionCoordinate.needs`), ``G`` measured against
+        ``scale`` (the orbit's momentum scale,
+        :func:`~andoyer.charts.euler_poisson.momentum_bound`). A crossing closer than
+        :data:`SECTION_SINGULAR_RTOL` is a singular passage, not a crossing.
+
+        Parameters
+        ----------
+        y : array_like, shape (..., 6)
+            Euler-Poisson states.
+        scale : array_like
+            The momentum scale of each state's orbit (broadcast against ``y[..., 0]``).
+
+        Examples
+        --------
+        >>> y = [[0.0, 0.6, 0.8, 0.0, 0.0, 1.0], [0.0, 0.0, 1e-9, 0.0, 0.0, 1.0]]
+        >>> Section("l", 0.0).defined_distance(y, 1.0).round(12).tolist()
+        [0.6, 0.0]
+        >>> Section("G3", 0.0).defined_distance(y, 1.0).tolist()
+        [inf, inf]
+        """
+        arr = np.asarray(y, dtype=float)
+        needs = SECTION_COORDINATES[self.coord].needs
+        if not needs:
+            return np.full(arr.shape[:-1], np.inf)
+        d = singular_distances(arr, scale)
+        return np.min(d[..., list(needs)], axis=-1)
+
+    def attrs(self) -> dict[str, str | float | int]:
+        """Flat attributes for datasets (``section_coord``, ``section_value``,
+        ``section_direction`` and, for a chart's coordinate, ``section_chart``)."""
+        out: dict[str, str | float | int] = {
+            "section_coord": self.coord, "section_value": self.value,
+            "section_direction": self.direction}
+        if self.chart is not None:
+            out["section_chart"] = self.chart
+        return out
 
 
-def runtime_parameters(params: ArrayLike, event: SectionEvent | None = None,
+def runtime_parameters(params: ArrayLike, event: Section | None = None,
                        scale: float = 1.0) -> NDArray[np.float64]:
     """The runtime parameters :data:`PARAMETERS` of a body, a section and a scale.
 
@@ -255,7 +415,7 @@ def runtime_parameters(params: ArrayLike, event: SectionEvent | None = None,
     ----------
     params : sequence of 8 floats
         ``(a, b, c, mu, e1, e2, e3, phi0)`` (:attr:`RigidBody.engine_params`).
-    event : SectionEvent, optional
+    event : Section, optional
         Its value fills ``value, cos value, sin value`` (0, 1, 0 without).
     scale : float
         ``T`` of the MEGNO quadratures (``par[PAR["inv_scale"]] = 1/T``).
