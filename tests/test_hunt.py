@@ -203,6 +203,10 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "measure_island": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3), "h": 1.0,
                        "resonance": "3:1", "axis": 1, "n_crossings": 60, "n_seeds": 1,
                        "n_rounds": 1, "engine": "numba"},
+    "periodic_orbit_normal_form": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-2), "h": 1.0,
+                                   "seed": [0.0, 0.0], "degree": 3, "engine": "numba"},
+    "orbit_rotation_numbers": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=1e-2), "h": 1.0,
+                               "amplitudes": [0.05], "n_returns": 64, "engine": "numba"},
     "resonant_normal_form": {"body": RigidBody(2.5, 1.0, 2.0, 1e-3, (0.6, 0.48, 0.64)),
                              "h": 1.0, "resonance": "2:1", "axis": 2},
     "splitting_vs_epsilon": {"body": HESS, "n_phase": 8},
@@ -226,14 +230,23 @@ OVERRIDES: dict[str, dict[str, Any]] = {
 LAZY_USERS = {"verify_certificate", "write_certificate", "grow_manifold",
               "measure_splitting", "splitting_at", "orbits_dataset",
               "axis_trace", "precession_nutation", "herpolhode", "normal_form_frequency",
-              "gyroscope_plotly", "gyroscope_animation"}
+              "gyroscope_plotly", "gyroscope_animation", "orbit_rotation_numbers"}
 LAZY = {
     "branch": lambda: _manifold()[0], "wu": lambda: _manifold()[1],
     "ws": lambda: _manifold()[2], "orbits": lambda: [_manifold()[0].orbit],
     "nf": lambda: _normal_form(), "I": lambda: [0.01],
     "ds": lambda: _attitude_dataset(),
     "cert": lambda: _certificate(),
+    "normal_form": lambda: _periodic_normal_form(),
 }
+
+
+@functools.cache
+def _periodic_normal_form() -> xr.Dataset:
+    from andoyer.analysis.resonance.normal_form import periodic_orbit_normal_form
+
+    return periodic_orbit_normal_form(RigidBody.hess(3.0, 1.0, 2.0, mu=1e-2), 1.0, 0.0,
+                                      [0.0, 0.0], degree=3, engine="numba")
 
 
 @functools.cache

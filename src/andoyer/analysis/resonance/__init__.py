@@ -13,6 +13,9 @@
   Poincare sections of the perturbed flow;
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
   at its centres (Lie series), the frequencies as functions of the action;
+- :mod:`~andoyer.analysis.resonance.normal_form` (``periodic_orbit_normal_form``,
+  ``orbit_rotation_numbers``): the Birkhoff normal form of the perturbed section map at an
+  elliptic periodic orbit (jet transport), its twist against NAFF rotation numbers;
 - :mod:`~andoyer.analysis.resonance.near_centre` (``resonant_normal_form``): near a
   centre, where the two frequencies resonate, the Birkhoff polynomial plus the resonant
   harmonic (a pendulum).
@@ -31,6 +34,12 @@ if TYPE_CHECKING:
     from andoyer.analysis.resonance.deprit import transform as transform
     from andoyer.analysis.resonance.measure import measure_island as measure_island
     from andoyer.analysis.resonance.near_centre import resonant_normal_form as resonant_normal_form
+    from andoyer.analysis.resonance.normal_form import (
+        orbit_rotation_numbers as orbit_rotation_numbers,
+    )
+    from andoyer.analysis.resonance.normal_form import (
+        periodic_orbit_normal_form as periodic_orbit_normal_form,
+    )
     from andoyer.analysis.resonance.predict import FreeTopTorus as FreeTopTorus
     from andoyer.analysis.resonance.predict import free_top_at_gap as free_top_at_gap
     from andoyer.analysis.resonance.predict import resonance_widths as resonance_widths
@@ -51,7 +60,8 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "torus", "free_top_phase": "torus", "sample_torus": "torus", "free_top_at_gap":
            "predict", "FreeTopTorus": "predict", "island_prediction": "second_order", "JetSpace":
            "deprit", "lie_deprit": "deprit", "transform": "deprit", "SecondOrderChain":
-           "second_order"}
+           "second_order", "periodic_orbit_normal_form": "normal_form",
+           "orbit_rotation_numbers": "normal_form"}
 
 __all__ = sorted(EXPORTS)
 
