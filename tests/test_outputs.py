@@ -141,15 +141,15 @@ def test_commands_refuse_an_output_another_run_writes(tmp_path, capsys, other_pr
 
 
 def test_scan_never_replaces_a_store_under_a_live_writer(tmp_path, other_process):
-    from andoyer.scan.run import scan
+    from andoyer.scan.run import run_scan
 
     cfg = {"parameters": {"mu": [0.01, 0.1], "h": 0.3},
            "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3}}
     store = tmp_path / "s.zarr"
-    scan(cfg, store, scheduler="serial", progress=False)
+    run_scan(cfg, store, scheduler="serial", progress=False)
     before = sorted(p.relative_to(store) for p in store.rglob("*"))
     holder = other_process(store)
     for overwrite in (False, True):
         with pytest.raises(OutputInUseError, match=f"pid {holder.pid}"):
-            scan(cfg, store, scheduler="serial", overwrite=overwrite, progress=False)
+            run_scan(cfg, store, scheduler="serial", overwrite=overwrite, progress=False)
     assert sorted(p.relative_to(store) for p in store.rglob("*")) == before

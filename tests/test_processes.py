@@ -226,11 +226,11 @@ def _done_chunks(store: Path) -> int:
 def _resume_is_exact(cwd: Path) -> None:
     """The interrupted store, resumed (what the same command does, here in-process and
     serially), equals a store computed in one go."""
-    from andoyer.scan.run import scan
+    from andoyer.scan.run import run_scan
 
-    report = scan(cwd / "cfg.toml", cwd / "s.zarr", scheduler="serial", progress=False)
+    report = run_scan(cwd / "cfg.toml", cwd / "s.zarr", scheduler="serial", progress=False)
     assert report.resumed >= 1 or report.computed == report.tasks
-    scan(cwd / "cfg.toml", cwd / "whole.zarr", scheduler="serial", progress=False)
+    run_scan(cwd / "cfg.toml", cwd / "whole.zarr", scheduler="serial", progress=False)
     _same_store(cwd / "whole.zarr", cwd / "s.zarr")
 
 

@@ -21,7 +21,7 @@ import xarray as xr
 
 from andoyer.cli import main
 from andoyer.errors import DamagedFileError, DamagedStoreWarning, NoSpaceError
-from andoyer.scan import load_config, scan
+from andoyer.scan import load_config, run_scan
 from andoyer.scan.store import CHECKSUM, open_store, verify
 
 # Three points along mu, one task each; 2 orbits x 3 crossings (seconds to run).
@@ -33,7 +33,7 @@ SMALL = {"parameters": {"mu": [0.01, 0.1, 0.3], "h": 0.3},
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory) -> Path:
     store = tmp_path_factory.mktemp("damage") / "reference.zarr"
-    scan(SMALL, store, scheduler="serial", progress=False)
+    run_scan(SMALL, store, scheduler="serial", progress=False)
     return store
 
 
@@ -117,7 +117,7 @@ def test_resume_names_and_recomputes_lost_and_damaged_points(store, reference):
     ok = _chunk(store, "theta1", 2).read_bytes()
     with pytest.warns(DamagedStoreWarning, match=r"2 chunk\(s\).*point mu = 0.01: G3 is "
                                                  r"missing.*point mu = 0.1: empty is damaged"):
-        report = scan(SMALL, store, scheduler="serial", progress=False)
+        report = run_scan(SMALL, store, scheduler="serial", progress=False)
     assert (report.resumed, report.computed) == (1, 2)
     assert _chunk(store, "theta1", 2).read_bytes() == ok  # the good point untouched
     assert verify(store) == []
@@ -139,10 +139,10 @@ def test_full_disk_while_writing_a_chunk_leaves_it_unmarked(reference, tmp_path,
 
     monkeypatch.setattr(xr.Dataset, "to_zarr", full)
     with pytest.raises(NoSpaceError, match=f"no space left on {store}"):
-        scan(SMALL, store, scheduler="serial", progress=False)
+        run_scan(SMALL, store, scheduler="serial", progress=False)
     monkeypatch.setattr(xr.Dataset, "to_zarr", write)
     assert xr.open_zarr(store).done.values.tolist() == [True, False, False]
-    report = scan(SMALL, store, scheduler="serial", progress=False)
+    report = run_scan(SMALL, store, scheduler="serial", progress=False)
     assert (report.resumed, report.computed) == (1, 2)
     _same(store, reference)
 

@@ -27,7 +27,7 @@ from andoyer.cli import main
 from andoyer.integrate import fill_section, poincare
 from andoyer.integrate.engines import default_engine_name
 from andoyer.integrate.engines.base import Capability
-from andoyer.scan import estimate_cost, load_config, scan
+from andoyer.scan import estimate_cost, load_config, run_scan
 from andoyer.scan.cost import check_size
 from andoyer.scan.store import Schema, Variable, _check_names
 
@@ -78,7 +78,7 @@ def assert_same_store(a: Path | xr.Dataset, b: Path | xr.Dataset, *,
 def reference(tmp_path_factory) -> Path:
     """The tiny scan, run serially."""
     store = tmp_path_factory.mktemp("scan") / "reference.zarr"
-    report = scan(TINY, store, scheduler="serial", progress=False)
+    report = run_scan(TINY, store, scheduler="serial", progress=False)
     assert (report.tasks, report.computed, report.resumed) == (4, 4, 0)
     return store
 
@@ -159,7 +159,7 @@ def test_case_collisions_are_refused():
 def test_cluster_gives_the_serial_store(reference, client, tmp_path):
     """2 workers, tasks of 2 points each: the serial store to the bit."""
     cfg = _with(TINY, "store", chunks={"h": 2})
-    report = scan(cfg, tmp_path / "cluster.zarr", client=client, max_in_flight=1,
+    report = run_scan(cfg, tmp_path / "cluster.zarr", client=client, max_in_flight=1,
                   progress=False)
     assert (report.tasks, report.computed) == (2, 2)
     assert xr.open_zarr(tmp_path / "cluster.zarr").theta1.encoding["chunks"] == (1, 2, 5, 20)
@@ -186,7 +186,7 @@ def test_resume_recomputes_unmarked_chunks_only(reference, tmp_path):
     # Chunk (1, 0): marked done -> trusted, not recomputed (garbage stays).
     _region_write(store, "J1", 99.0, mu=1, h_level=0)
     (store / "J1" / "c" / "leftover.abc.partial").write_bytes(b"x")
-    report = scan(TINY, store, scheduler="serial", progress=False)
+    report = run_scan(TINY, store, scheduler="serial", progress=False)
     assert (report.resumed, report.computed) == (3, 1)
     ds = xr.open_zarr(store).load()
     ref = xr.open_zarr(reference).load()
@@ -195,7 +195,7 @@ def test_resume_recomputes_unmarked_chunks_only(reference, tmp_path):
     assert float(ds.J1[1, 0].max()) == 99.0
     assert not list(store.rglob("*.partial"))
     # A complete store: nothing to do.
-    assert scan(TINY, store, scheduler="serial").computed == 0
+    assert run_scan(TINY, store, scheduler="serial").computed == 0
 
 
 def test_chunk_cut_between_data_and_mark_is_recomputed(reference, tmp_path, monkeypatch):
@@ -213,14 +213,14 @@ def test_chunk_cut_between_data_and_mark_is_recomputed(reference, tmp_path, monk
     monkeypatch.setattr(xr.Dataset, "to_zarr", cut)
     store = tmp_path / "s.zarr"
     with pytest.raises(RuntimeError, match="power cut"):
-        scan(TINY, store, scheduler="serial", progress=False)
+        run_scan(TINY, store, scheduler="serial", progress=False)
     # Layout, then (data, mark) per chunk; the second mark never came.
     assert [c == ("done",) for c in calls[1:]] == [False, True, False, True]
     assert "theta1" in calls[1] and "empty" in calls[1]
     monkeypatch.setattr(xr.Dataset, "to_zarr", write)
     done = xr.open_zarr(store).done.values
     assert done.sum() == 1
-    report = scan(TINY, store, scheduler="serial", progress=False)
+    report = run_scan(TINY, store, scheduler="serial", progress=False)
     assert (report.resumed, report.computed) == (1, 3)
     assert_same_store(reference, store)
 
@@ -245,8 +245,8 @@ def test_resume_refuses_another_configuration(reference, tmp_path):
     with pytest.raises(ValueError, match=r"another configuration \(parameters.mu: \[0.01, "
                                          r"0.3\] in the store, \[0.01\] now; task.n_crossings: "
                                          r"20 in the store, 30 now\).*--overwrite"):
-        scan(other, store, scheduler="serial")
-    report = scan(other, store, scheduler="serial", overwrite=True, progress=False)
+        run_scan(other, store, scheduler="serial")
+    report = run_scan(other, store, scheduler="serial", overwrite=True, progress=False)
     assert report.computed == 2 and xr.open_zarr(store).sizes["crossing"] == 30
 
 
@@ -256,7 +256,7 @@ def test_never_removes_what_is_not_a_scan_store(tmp_path):
     (folder / "precious.txt").write_text("keep")
     for overwrite in (False, True):
         with pytest.raises(ValueError, match="not an andoyer scan store"):
-            scan(TINY, folder, scheduler="serial", overwrite=overwrite)
+            run_scan(TINY, folder, scheduler="serial", overwrite=overwrite)
     assert (folder / "precious.txt").read_text() == "keep"
 
 
@@ -285,7 +285,7 @@ def test_killed_process_resumes_to_the_same_store(tmp_path):
     assert 1 <= partial < 8, "the scan was not interrupted mid-way"
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=300, check=True)
     assert f"{8 - partial} computed now, {partial} done before" in out.stdout
-    scan(cfg, tmp_path / "whole.zarr", scheduler="serial", progress=False)
+    run_scan(cfg, tmp_path / "whole.zarr", scheduler="serial", progress=False)
     assert_same_store(tmp_path / "whole.zarr", store)
 
 
@@ -300,7 +300,7 @@ def test_worker_killed_mid_task_loses_nothing(reference, tmp_path):
         pids = c.run(os.getpid)
         out: dict = {}
         thread = threading.Thread(target=lambda: out.update(
-            report=scan(TINY, store, client=c, max_in_flight=2, progress=False)))
+            report=run_scan(TINY, store, client=c, max_in_flight=2, progress=False)))
         thread.start()
         deadline = time.monotonic() + 60
         busy: list = []
@@ -321,7 +321,7 @@ def test_points_that_miss_the_section_are_stored_empty(tmp_path):
     # At M = 0.5 the level h = 0.041 lies below the section's minimum of H (~0.0418).
     cfg = {"parameters": {"mu": 0.01, "M": 0.5, "h": [0.041, 0.05]},
            "task": {"kind": "section", "n_orbits": 3, "n_crossings": 5}}
-    report = scan(cfg, tmp_path / "e.zarr", scheduler="serial", progress=False)
+    report = run_scan(cfg, tmp_path / "e.zarr", scheduler="serial", progress=False)
     assert len(report.empty) == 1 and "does not intersect the section" in report.empty[0][1]
     ds = xr.open_zarr(tmp_path / "e.zarr").load()
     assert list(ds.empty.values) == [True, False] and bool(ds.done.all())
@@ -329,7 +329,7 @@ def test_points_that_miss_the_section_are_stored_empty(tmp_path):
     assert bool(ds.theta1[1].notnull().any())
     nothing = _with(cfg, "parameters", h=[0.0405, 0.041])
     with pytest.raises(ValueError, match="no point of the scan had anything to compute"):
-        scan(nothing, tmp_path / "n.zarr", scheduler="serial")
+        run_scan(nothing, tmp_path / "n.zarr", scheduler="serial")
     assert not (tmp_path / "n.zarr").exists()
 
 
@@ -401,7 +401,7 @@ CHAOS = {"parameters": {"mu": [0.01, 0.3], "h": 0.5},
 @pytest.fixture(scope="module")
 def chaos_store(tmp_path_factory) -> Path:
     store = tmp_path_factory.mktemp("chaos") / "chaos.zarr"
-    scan(CHAOS, store, scheduler="serial", progress=False)
+    run_scan(CHAOS, store, scheduler="serial", progress=False)
     return store
 
 
@@ -439,7 +439,7 @@ BORDER = {"body": {"kind": "hess", "name": "rho~1"},
 @pytest.fixture(scope="module")
 def border_store(tmp_path_factory) -> Path:
     store = tmp_path_factory.mktemp("border") / "border.zarr"
-    scan(BORDER, store, scheduler="serial", progress=False)
+    run_scan(BORDER, store, scheduler="serial", progress=False)
     return store
 
 
@@ -482,7 +482,7 @@ def test_splitting_scan_scales_with_mu(tmp_path):
     cfg = {"parameters": {"mu": [0.005, 0.01]},
            "task": {"kind": "splitting", "n_phase": 8, "delta": 1e-4,
                     "branch": "theta1=4phi0"}}
-    ds = scan(cfg, tmp_path / "s.zarr", scheduler="serial", progress=False).open().load()
+    ds = run_scan(cfg, tmp_path / "s.zarr", scheduler="serial", progress=False).open().load()
     direct = separatrix_splitting(RigidBody.paper(), [0.01], n_phase=8, delta=1e-4,
                                   branch="theta1=4phi0")
     assert np.array_equal(ds.Delta_G[1].values, direct["splitting"].Delta_G[0].values)

@@ -16,7 +16,7 @@ def run(args: argparse.Namespace) -> int:
 
     from andoyer.scan.config import STORAGE_NAMES, load_config
     from andoyer.scan.cost import check_size
-    from andoyer.scan.run import scan, summary
+    from andoyer.scan.run import run_scan, summary
     from andoyer.scan.store import check_store
 
     cfg = load_config(args.config)
@@ -33,10 +33,11 @@ def run(args: argparse.Namespace) -> int:
              None: "on a local cluster"}.get(args.scheduler, f"on {args.scheduler}")
     print(f"store {store}, computed {where}; interrupt at will: the same command resumes")
     try:
-        report = scan(cfg, store, scheduler=args.scheduler, n_workers=args.workers,
-                      overwrite=args.overwrite, retries=args.retries,
-                      progress=None if args.progress is None else args.progress,
-                      max_core_hours=args.max_core_hours, max_store_gb=args.max_store_gb)
+        report = run_scan(cfg, store, scheduler=args.scheduler, n_workers=args.workers,
+                          overwrite=args.overwrite, retries=args.retries,
+                          progress=None if args.progress is None else args.progress,
+                          max_core_hours=args.max_core_hours,
+                          max_store_gb=args.max_store_gb)
     except KeyboardInterrupt as exc:  # the boundary prints it, with how to resume
         from andoyer.errors import Interrupted
 

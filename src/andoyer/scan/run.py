@@ -43,7 +43,7 @@ from andoyer.scan.store import (
 from andoyer.scan.tasks import TASKS, Empty
 from andoyer.validation import integer
 
-__all__ = ["scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB",
+__all__ = ["run_scan", "summary", "ScanReport", "DEFAULT_MAX_CORE_HOURS", "DEFAULT_MAX_STORE_GB",
            "ChunkResult", "run_point", "run_chunk"]
 
 #: The only interface the servers of a local cluster listen on.
@@ -209,13 +209,15 @@ def _dashboard(client: Any) -> str | None:
 
 
 # ---------------------------------------------------------------------- the scan
-def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
-         store: str | os.PathLike[str], *, scheduler: str | None = None,
-         client: Any = None, n_workers: int | None = None, overwrite: bool = False,
-         retries: int = 2, max_in_flight: int | None = None, progress: bool | None = None,
-         max_core_hours: float = DEFAULT_MAX_CORE_HOURS,
-         max_store_gb: float = DEFAULT_MAX_STORE_GB) -> ScanReport:
-    """Run a parameter scan and stream its results into a Zarr store.
+def run_scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
+             store: str | os.PathLike[str], *, scheduler: str | None = None,
+             client: Any = None, n_workers: int | None = None, overwrite: bool = False,
+             retries: int = 2, max_in_flight: int | None = None,
+             progress: bool | None = None,
+             max_core_hours: float = DEFAULT_MAX_CORE_HOURS,
+             max_store_gb: float = DEFAULT_MAX_STORE_GB) -> ScanReport:
+    """Run a parameter scan and stream its results into a Zarr store (what
+    ``andoyer scan CONFIG.toml`` runs).
 
     Parameters
     ----------
@@ -256,7 +258,7 @@ def scan(config: ScanConfig | str | os.PathLike[str] | dict[str, Any],
     >>> cfg = {"parameters": {"mu": [0.01, 0.1], "h": 0.3},
     ...        "task": {"kind": "section", "n_orbits": 2, "n_crossings": 3}}
     >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     report = scan(cfg, pathlib.Path(tmp) / "s.zarr", scheduler="serial")
+    ...     report = run_scan(cfg, pathlib.Path(tmp) / "s.zarr", scheduler="serial")
     ...     ds = report.open()
     ...     print(report.computed, dict(ds.sizes), bool(ds.done.all()))
     2 {'mu': 2, 'orbit': 2, 'crossing': 3, 'component': 6} True
@@ -343,7 +345,7 @@ def summary(report: ScanReport) -> str:
     Parameters
     ----------
     report : ScanReport
-        What :func:`scan` returned.
+        What :func:`run_scan` returned.
     """
     lines = [f"wrote {report.store}: {report.tasks} tasks ({report.computed} computed now, "
              f"{report.resumed} done before) in {report.seconds:.1f} s"]
