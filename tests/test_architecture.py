@@ -174,6 +174,7 @@ COVERED_ELSEWHERE: dict[str, str] = {
     "scan/tasks.py": "scan/test_scan.py",
     "symbolic/hamiltonian.py": "analysis/hess/test_solution.py",
     "kernels/simd.py": "kernels/taylor/test_lanes.py",
+    "kernels/taylor/lane_sections.py": "kernels/taylor/test_lane_crossings.py",
     "kernels/dop853/attitude.py": "integrate/test_orientation.py",
     "kernels/dop853/coefficients.py": "kernels/dop853/test_flow.py",
     "kernels/dop853/fields.py": "symbolic/test_codegen.py",

@@ -31,7 +31,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
-__all__ = ["LANES", "cauchy", "combine", "advance"]
+__all__ = ["LANES", "cauchy", "combine", "advance", "series_product", "series_linear"]
 
 #: Orbits per vector (one AVX-512 register of doubles; two AVX2 ones).
 LANES = 8
@@ -43,8 +43,10 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
 
     Parameters
     ----------
-    m : ndarray, shape (rows, LANES)
-        The products (C-contiguous).
+    m : ndarray, shape (rows, LANES) or (order + 1, rows, LANES)
+        The products (C-contiguous): ``m[r]``, or ``m[k, r]`` of a three-dimensional
+        ``m`` (a section tape's lane jets, :mod:`andoyer.kernels.taylor.lane_sections`:
+        ``m`` may be ``u``, its row ``(k, r)`` read by none of the products).
     u, v : ndarray, shape (order + 1, 6, LANES)
         Lane jets (C-contiguous; may be the same array).
     k : int
@@ -62,12 +64,13 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
     >>> float(m[0, 0]), float(m[1, 7])
     (3.0, 3.0)
     """
+    out = m[k] if m.ndim == 3 else m
     for i in range(0, len(products), 3):
         r, a, b = products[i:i + 3]
         s = u[0, a] * v[k, b]
         for j in range(1, k + 1):
             s = s + u[j, a] * v[k - j, b]
-        m[r] = s
+        out[r] = s
 
 
 def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
@@ -113,7 +116,8 @@ def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any)
                 builder.store(builder.call(fma, [load(pu), load(pv), builder.load(accs[p])]),
                               accs[p])
         for p in range(n):
-            pm = pointer(mt, m_, [triple[3 * p], zero])
+            at = [k_i, triple[3 * p], zero] if mt.ndim == 3 else [triple[3 * p], zero]
+            pm = pointer(mt, m_, at)
             builder.store(builder.load(accs[p]), builder.bitcast(pm, vec.as_pointer()), align=8)
         return context.get_dummy_value()
 
@@ -339,5 +343,234 @@ def _advance_overload(X: Any, order: Any, h: Any) -> Any:
 
     def impl(X: Any, order: Any, h: Any) -> None:
         _advance(X, order, h)
+
+    return impl
+
+
+def series_product(U: Any, n: int, a: int, b: int, order: int) -> None:
+    """``U[k, n, :] = sum_{j <= k} U[j, a, :] * U[k - j, b, :]`` for ``k = 0 .. order``:
+    the product node of a section tape on lane jets (the lane counterpart of
+    :func:`andoyer.kernels.taylor.sections.cauchy`).
+
+    Parameters
+    ----------
+    U : ndarray, shape (order + 1, nodes, LANES)
+        The tape's lane jets (C-contiguous); row ``n`` is written, rows ``a, b < n``
+        read.
+    n, a, b : int
+        The product's node and its two factors.
+    order : int
+        The highest order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> U = np.zeros((3, 3, LANES))
+    >>> U[:, 0] = 1.0
+    >>> U[:, 1] = 2.0
+    >>> series_product(U, 2, 0, 1, 2)
+    >>> U[:, 2, 0].tolist()
+    [2.0, 4.0, 6.0]
+    """
+    for k in range(order + 1):
+        s = U[0, a] * U[k, b]
+        for j in range(1, k + 1):
+            s = s + U[j, a] * U[k - j, b]
+        U[k, n] = s
+
+
+def _series_product_typer(typingctx: Any, U: Any, n: Any, a: Any, b: Any, order: Any) -> Any:
+    """The vector code of :func:`series_product`: four orders ``k0 .. k0 + 3`` at a time
+    (four independent chains of fused multiply-adds, as the scalar tape's products),
+    each order's sum over ``j`` in ascending order. The four factors ``U[k0 + i - j, b]``
+    of one ``j`` are three of the previous ``j``'s, shifted: kept in registers, so a
+    step of ``j`` loads two vectors for four multiply-adds (the loads, not the
+    multiply-adds, bound the lane jets)."""
+    sig = types.void(U, n, a, b, order)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        ut, nt, at, bt, ot = signature.args
+        u_, n_, a_, b_, o_ = args
+        intp = context.get_value_type(types.intp)
+        vec = ir.VectorType(ir.DoubleType(), LANES)
+        fma = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        arr = context.make_array(ut)(context, builder, u_)
+        shape = cgutils.unpack_tuple(builder, arr.shape)
+        strides = cgutils.unpack_tuple(builder, arr.strides)
+        n_i = context.cast(builder, n_, nt, types.intp)
+        a_i = context.cast(builder, a_, at, types.intp)
+        b_i = context.cast(builder, b_, bt, types.intp)
+        order_i = context.cast(builder, o_, ot, types.intp)
+        zero = ir.Constant(intp, 0)
+
+        def const(v: int) -> Any:
+            return ir.Constant(intp, v)
+
+        def pointer(k: Any, node: Any) -> Any:
+            p = cgutils.get_item_pointer2(context, builder, data=arr.data, shape=shape,
+                                          strides=strides, layout=ut.layout,
+                                          inds=[k, node, zero])
+            return builder.bitcast(p, vec.as_pointer())
+
+        def load(k: Any, node: Any) -> Any:
+            return builder.load(pointer(k, node), align=8)
+
+        accs = [cgutils.alloca_once(builder, vec) for _ in range(4)]
+        ys = [cgutils.alloca_once(builder, vec) for _ in range(4)]
+        zvec = ir.Constant(vec, [0.0] * LANES)
+        count = builder.add(order_i, const(1))
+        groups = builder.sdiv(count, const(4))
+        with cgutils.for_range(builder, groups, intp=intp) as group:
+            k0 = builder.mul(group.index, const(4))
+            for i in range(4):
+                builder.store(zvec, accs[i])
+                builder.store(load(builder.add(k0, const(i)), b_i), ys[i])
+            with cgutils.for_range(builder, builder.add(k0, const(1)), intp=intp) as loop:
+                j = loop.index
+                x = load(j, a_i)
+                y = [builder.load(p) for p in ys]
+                for i in range(4):
+                    builder.store(builder.call(fma, [x, y[i], builder.load(accs[i])]), accs[i])
+                # the next j's factors: U[k0 - j - 1, b] (row 0 again after the last j,
+                # unused), then this j's first three
+                nxt = builder.sub(builder.sub(k0, j), const(1))
+                nxt = builder.select(builder.icmp_signed("<", nxt, zero), zero, nxt)
+                builder.store(load(nxt, b_i), ys[0])
+                for i in range(1, 4):
+                    builder.store(y[i - 1], ys[i])
+            for r in range(1, 4):  # the triangle of orders k0 + 1 .. k0 + 3 past j = k0
+                x = load(builder.add(k0, const(r)), a_i)
+                for i in range(r, 4):
+                    y0 = load(const(i - r), b_i)
+                    builder.store(builder.call(fma, [x, y0, builder.load(accs[i])]), accs[i])
+            for i, acc in enumerate(accs):
+                builder.store(builder.load(acc), pointer(builder.add(k0, const(i)), n_i),
+                              align=8)
+        start = builder.mul(groups, const(4))
+        with cgutils.for_range_slice(builder, start, count, const(1), intp=intp) as (k, _):
+            builder.store(zvec, accs[0])
+            with cgutils.for_range(builder, builder.add(k, const(1)), intp=intp) as loop:
+                j = loop.index
+                x = load(j, a_i)
+                y0 = load(builder.sub(k, j), b_i)
+                builder.store(builder.call(fma, [x, y0, builder.load(accs[0])]), accs[0])
+            builder.store(builder.load(accs[0]), pointer(k, n_i), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_series_product: Any = intrinsic(_series_product_typer)
+
+
+@overload(series_product, jit_options={"nogil": True})
+def _series_product_overload(U: Any, n: Any, a: Any, b: Any, order: Any) -> Any:
+    """Compiled :func:`series_product`: the intrinsic (a C-contiguous float64 array)."""
+    if not (isinstance(U, types.Array) and U.dtype == types.float64 and U.layout == "C"
+            and U.ndim == 3):
+        return None
+
+    def impl(U: Any, n: Any, a: Any, b: Any, order: Any) -> None:
+        _series_product(U, n, a, b, order)
+
+    return impl
+
+def series_linear(U: Any, n: int, S: Any, a: int, ca: float, b: int, cb: float,
+                  k: int) -> None:
+    """``U[k, n, :] = ca * S[k, a, :] + cb * S[k, b, :]`` (without the second term when
+    ``b < 0``): order ``k`` of the linear node of a section tape on lane jets (``S`` is
+    ``U``), or of a variable node (``S`` the state's lane jets, ``ca = 1``).
+
+    Parameters
+    ----------
+    U : ndarray, shape (order + 1, nodes, LANES)
+        The tape's lane jets (C-contiguous); ``U[k, n]`` is written.
+    n : int
+        The node written.
+    S : ndarray, shape (order + 1, rows, LANES)
+        The rows read (C-contiguous).
+    a, b : int
+        The rows of ``S`` combined (``b < 0``: one term).
+    ca, cb : float
+        Their coefficients.
+    k : int
+        The order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> U = np.ones((2, 3, LANES))
+    >>> series_linear(U, 2, U, 0, 2.0, 1, 3.0, 1)
+    >>> series_linear(U, 1, U, 0, 4.0, -1, 0.0, 0)
+    >>> float(U[1, 2, 0]), float(U[0, 1, 7]), float(U[1, 1, 7])
+    (5.0, 4.0, 1.0)
+    """
+    U[k, n] = ca * S[k, a] + cb * S[k, b] if b >= 0 else ca * S[k, a]
+
+
+def _series_linear_typer(typingctx: Any, U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any,
+                         cb: Any, k: Any) -> Any:
+    """The vector code of :func:`series_linear` (``ca * S_a + cb * S_b`` as one product
+    and one fused multiply-add, as the scalar tape's contraction)."""
+    sig = types.void(U, n, S, a, ca, b, cb, k)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        ut, nt, st, at, cat, bt, cbt, ot = signature.args
+        u_, n_, s_, a_, ca_, b_, cb_, o_ = args
+        intp = context.get_value_type(types.intp)
+        vec = ir.VectorType(ir.DoubleType(), LANES)
+        fma = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        zero = ir.Constant(intp, 0)
+
+        def pointer(aryty: Any, ary: Any, k: Any, row: Any) -> Any:
+            arr = context.make_array(aryty)(context, builder, ary)
+            p = cgutils.get_item_pointer2(
+                context, builder, data=arr.data, shape=cgutils.unpack_tuple(builder, arr.shape),
+                strides=cgutils.unpack_tuple(builder, arr.strides), layout=aryty.layout,
+                inds=[k, row, zero])
+            return builder.bitcast(p, vec.as_pointer())
+
+        def splat(x: Any) -> Any:
+            v = ir.Constant(vec, ir.Undefined)
+            for lane in range(LANES):
+                v = builder.insert_element(v, x, ir.Constant(ir.IntType(32), lane))
+            return v
+
+        n_i = context.cast(builder, n_, nt, types.intp)
+        a_i = context.cast(builder, a_, at, types.intp)
+        b_i = context.cast(builder, b_, bt, types.intp)
+        k = context.cast(builder, o_, ot, types.intp)
+        va = splat(context.cast(builder, ca_, cat, types.float64))
+        vb = splat(context.cast(builder, cb_, cbt, types.float64))
+        two = builder.icmp_signed(">=", b_i, zero)
+        x = builder.load(pointer(st, s_, k, a_i), align=8)
+        with builder.if_else(two) as (then, otherwise):
+            with then:
+                y = builder.load(pointer(st, s_, k, b_i), align=8)
+                v = builder.call(fma, [va, x, builder.fmul(vb, y)])
+                builder.store(v, pointer(ut, u_, k, n_i), align=8)
+            with otherwise:
+                builder.store(builder.fmul(va, x), pointer(ut, u_, k, n_i), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_series_linear: Any = intrinsic(_series_linear_typer)
+
+
+@overload(series_linear, jit_options={"nogil": True})
+def _series_linear_overload(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb: Any,
+                            k: Any) -> Any:
+    """Compiled :func:`series_linear`: the intrinsic (C-contiguous float64 arrays)."""
+    for ary in (U, S):
+        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
+                and ary.layout == "C" and ary.ndim == 3):
+            return None
+
+    def impl(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb: Any, k: Any) -> None:
+        _series_linear(U, n, S, a, ca, b, cb, k)
 
     return impl

@@ -101,6 +101,38 @@ def test_simd_fallbacks_equal_the_compiled_intrinsics() -> None:
         assert m0[1, 3] == pytest.approx(sum(u[j, 5, 3] * v[k - j, 0, 3] for j in range(k + 1)))
 
 
+def test_section_tape_intrinsics_equal_their_fallbacks() -> None:
+    """The tape's product node at every order count around the groups of four orders
+    (0 .. 9, 15, 19), its linear node with one and two terms, the lane jets' products
+    written into a three-dimensional ``m``."""
+    rng = np.random.default_rng(8)
+
+    @numba.njit
+    def compiled(U, S, order):  # noqa: ANN001, ANN202
+        simd.series_product(U, 3, 1, 2, order)
+        for k in range(order + 1):
+            simd.series_linear(U, 4, S, 5, 0.5, 2, -2.0, k)
+            simd.series_linear(U, 5, U, 3, 3.0, -1, 0.0, k)
+            simd.cauchy(U, U, U, k, (6, 0, 1, 7, 2, 2))
+
+    for order in (*range(10), 15, 19):
+        U = rng.normal(size=(order + 1, 8, L))
+        S = rng.normal(size=(order + 1, 6, L))
+        V = U.copy()
+        compiled(U, S, order)
+        simd.series_product(V, 3, 1, 2, order)
+        for k in range(order + 1):
+            simd.series_linear(V, 4, S, 5, 0.5, 2, -2.0, k)
+            simd.series_linear(V, 5, V, 3, 3.0, -1, 0.0, k)
+            simd.cauchy(V, V, V, k, (6, 0, 1, 7, 2, 2))
+        np.testing.assert_allclose(U, V, rtol=1e-13, atol=1e-13)
+        k = order
+        assert U[k, 3, 5] == pytest.approx(sum(U[j, 1, 5] * U[k - j, 2, 5]
+                                               for j in range(k + 1)))
+        assert U[k, 7, 0] == pytest.approx(sum(U[j, 2, 0] * U[k - j, 2, 0]
+                                               for j in range(k + 1)))
+
+
 @pytest.mark.parametrize("k", [0, 1, 2])
 def test_orbits_take_the_scalar_steps(body: RigidBody, k: int) -> None:
     p = np.asarray(body.engine_params, dtype=float)

@@ -25,9 +25,10 @@ vectors (``6 + 6 k`` floats: the FLI map's route).
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
 renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of 8
 orbits in one vector instruction, each orbit with its own steps (the scalar kernel's),
-at a fraction of the scalar kernel's CPU per orbit-step; so do the crossings of a state
-component's section (``G3 = c`` ...) of many states alone
-(:mod:`andoyer.kernels.taylor.lane_crossings`; measured:
+at a fraction of the scalar kernel's CPU per orbit-step; so do the crossings of many
+states alone, of every section (a state component's, ``G3 = c``, and the angles',
+``theta2 = c``, whose section function's jet runs on the lanes too:
+:mod:`andoyer.kernels.taylor.lane_crossings`; measured:
 benchmarks/NOTES.md#taylor-lane-crossings).
 
 The machine code is cached on disk (:mod:`andoyer.kernels.cache`): the first process on
@@ -181,16 +182,13 @@ class TaylorEngine(EngineBase):
                    event: Section, n_crossings: int, t_max: float,
                    tolerance: Tolerance) -> Crossings:
         """Crossings on each step's polynomial; from :data:`LANES_FROM` orbits and
-        :data:`LANE_CROSSINGS_FROM` crossings asked on, a state component's section
-        (``G3 = c`` ...) runs on SIMD lanes
-        (:mod:`andoyer.kernels.taylor.lane_crossings`: the lanes' steps, the scalar
-        kernel's section search lane by lane)."""
+        :data:`LANE_CROSSINGS_FROM` crossings asked on, on SIMD lanes
+        (:mod:`andoyer.kernels.taylor.lane_crossings`: the lanes' steps and section jets,
+        the scalar kernel's root isolation lane by lane), every section kind."""
         p = self._kernel_params(par)
         kernels: Any = flow
         if y0.shape[0] >= LANES_FROM and y0.shape[0] * n_crossings >= LANE_CROSSINGS_FROM:
-            lanes = _lane_crossings()
-            if lanes.component(event.kind, float(p[7]), event.value) >= 0:
-                kernels = lanes
+            kernels = _lane_crossings()
         tc, yc, count, info = kernels.locate_crossings(
             y0, p, event.kind, event.value, event.direction, n_crossings, t_max,
             tolerance.tol, self.max_steps, threads=self.n_threads,

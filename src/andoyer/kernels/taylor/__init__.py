@@ -8,7 +8,9 @@
 * :mod:`~andoyer.kernels.taylor.tangent` -- the renormalised tangent flow with MEGNO;
 * :mod:`~andoyer.kernels.taylor.lanes`, :mod:`~andoyer.kernels.taylor.lane_crossings`
   -- eight orbits per step on SIMD lanes (the vector intrinsics of
-  :mod:`andoyer.kernels.simd`, which the generated lane recurrences call too).
+  :mod:`andoyer.kernels.simd`, which the generated lane recurrences call too), every
+  section's crossings on them; :mod:`~andoyer.kernels.taylor.lane_sections` -- a
+  section tape's jet and the section step on the lanes.
 
 Importing the package loads nothing; each module compiles (or loads) its machine code
 when it is imported.

@@ -1,35 +1,43 @@
 r"""Section crossings on SIMD lanes: :func:`andoyer.kernels.taylor.flow.locate_crossings` of
-many orbits (states alone) for the section of a state component (``G3 = c``,
-``gamma_i = c``, ``L = c``, ...), the jets of :data:`~andoyer.kernels.taylor.lanes.LANES`
-orbits in one vector instruction.
+many orbits (states alone), the jets of :data:`~andoyer.kernels.taylor.lanes.LANES`
+orbits in one vector instruction, for every section kind.
 
 The steps are those of :mod:`andoyer.kernels.taylor.lanes` (each lane its own Jorba-Zou
 step and time, lanes refilled from the block's queue of orbits, the generated lane jets
-and the vector step end); the section search is the scalar kernel's, lane by lane:
+and the vector step end); the section search is the scalar kernel's, lane by lane.
+Two entry points, chosen by the section:
 
-* the section's jet is the lane's column of the state's jet, its end value ``P(h)`` and
-  root bound from :func:`~andoyer.kernels.taylor.sections.end_and_bound` (the scalar
-  kernel's arithmetic, so a lane's section values are the scalar ones for the same
-  step), the end value carried over to the lane's next step;
-* a step whose polynomial may reach zero (a few % of steps) runs the scalar root
-  isolation (:func:`~andoyer.kernels.taylor.sections.isolate`, the boundary rules of
-  :func:`~andoyer.kernels.taylor.sections.step_bernstein`) and, for each root, the
-  scalar kernel's ``record`` (the polish by one Newton step in time, the margin and
-  ``T_START`` tests) on a copy of that lane's jets.
+* **A state component** (``G3 = c``, ``gamma_i = c``, ``L = c``:
+  :func:`crossings_on_lanes`): the section's jet is the lane's column of the state's
+  jet, its end value ``P(h)`` and root bound from
+  :func:`~andoyer.kernels.taylor.sections.end_and_bound` (the scalar kernel's
+  arithmetic), the end value carried over to the lane's next step; the lanes' end values
+  and bounds are one vector Horner loop (:func:`_end_and_bound`).
+* **A section with a tape** (the angles theta2, g, l, theta1, psi, both directions;
+  ``G``, ``J1``, ``J2``: :func:`tape_crossings_on_lanes`): the section function's jet of
+  every lane from one lane-parallel pass of its tape
+  (:func:`~andoyer.kernels.taylor.lane_sections.lane_tape_jet`: the tape's products as
+  vector multiply-add chains), each lane's step with that jet in it (the scalar
+  :func:`~andoyer.kernels.taylor.jets.section_step_size`), the end value ``f_b`` the
+  tape at the step's end state (one more lane-parallel pass, at order 0: the scalar
+  kernel's rule, not ``P(h)``), the bound of the step's polynomial by a vector Horner
+  loop (:func:`_bounds`).
 
-So a lane takes the steps of :mod:`andoyer.kernels.taylor.lanes` (the scalar kernel's to
-round-off: its vector code may contract the jets' sums differently) and finds the
-crossings the scalar kernel finds on them. Sections that are not a state component
-(their jets from a tape, and a step size that counts them) and states with tangent
+In both, a step whose polynomial may reach zero (a few % of steps) runs the scalar root
+isolation (:func:`~andoyer.kernels.taylor.sections.isolate`, the boundary rules of
+:func:`~andoyer.kernels.taylor.sections.step_bernstein`) and, for each root, the scalar
+kernel's ``record`` (the polish by one Newton step in time, the margin and ``T_START``
+tests) on a copy of that lane's jets. So a lane takes the scalar kernel's steps (to
+round-off: the vector code may contract the jets' sums differently) and finds the
+crossings the scalar kernel finds on them -- every root of the section function,
+including an angle's passages through its chart's singular set (``G = 0``,
+``L = +-G``, ``|M| = G``), which :func:`andoyer.integrate.api.section_crossings`
+reports apart, never as crossings, whichever kernel found them. States with tangent
 vectors stay on the scalar kernel.
 
-The lanes' section values (end value and root bound of every lane's step) are one
-vector Horner loop over the lanes (:func:`_end_and_bound`), each lane's operations the
-scalar ones; only a lane whose step may hold a root leaves the vector code.
-
-On many crossings of a component section these lanes take less than half the scalar
-kernel's time, the same steps as the scalar kernel (measured:
-benchmarks/NOTES.md#taylor-lane-crossings).
+On many crossings these lanes take less than half (a component section) and about
+0.6 (an angle section) of the scalar kernel's time, the same steps as the scalar
+kernel (measured: benchmarks/NOTES.md#taylor-lane-crossings).
 """
 
 from __future__ import annotations
@@ -49,10 +57,16 @@ from andoyer.kernels.common import (
     source_stamp,
 )
 from andoyer.kernels.generated import recurrences
-from andoyer.kernels.taylor import flow, jets, lanes, sections
+from andoyer.kernels.taylor import flow, jets, lane_sections, lanes, sections
 from andoyer.kernels.taylor.jets import fill_constants, step_to
+from andoyer.kernels.taylor.lane_sections import (
+    lane_section_step,
+    lane_tape_jet,
+    section_step_space,
+)
 from andoyer.kernels.taylor.lanes import (
     LANES,
+    aligned,
     lane_advance,
     lane_load,
     lane_state_jets,
@@ -64,10 +78,12 @@ from andoyer.kernels.taylor.sections import (
     isolation_space,
     linear_component,
     section_tape,
+    tape_value,
 )
 from andoyer.kernels.threads import over_orbits
 
-__all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossings_block"]
+__all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossings_block",
+           "lane_tape_crossings_block"]
 
 _L = LANES
 _N = N_STATE
@@ -76,7 +92,7 @@ _record = flow.STATE.record
 #: Hash of every source the compiled entry point depends on (its cache key).
 LANE_CROSSINGS_STAMP = source_stamp(
     recurrences.__file__, flow.__file__, sections.__file__, jets.__file__, lanes.__file__,
-    simd.__file__, common.__file__, __file__)
+    lane_sections.__file__, simd.__file__, common.__file__, __file__)
 
 
 def component(kind: int, phi0: float, value: float) -> int:
@@ -239,8 +255,141 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
                 busy -= 1
 
 
+@kernel_jit
+def _bounds(U, node, order, hs, bound):
+    r"""``bound[lane]``: :math:`B = \sum_{k \ge 1} |f^{[k]}| h^k` of the section jet
+    ``U[:, node, lane]`` on every lane's step ``hs[lane]``, the bound of
+    :func:`~andoyer.kernels.taylor.sections.end_and_bound` (each lane's operations the
+    scalar ones, the lanes side by side)."""
+    for lane in range(_L):
+        bound[lane] = abs(U[order, node, lane])
+    for k in range(order - 1, 0, -1):
+        for lane in range(_L):
+            bound[lane] = bound[lane] * hs[lane] + abs(U[k, node, lane])
+    for lane in range(_L):
+        bound[lane] = bound[lane] * hs[lane]
+
+
+@kernel_jit
+def _start_value(ftape, fC, X, lane, Y, u):
+    """The section function at ``lane``'s current state (its next step's ``f_a``): the
+    scalar :func:`~andoyer.kernels.taylor.sections.tape_value`."""
+    for c in range(_N):
+        Y[0, c] = X[0, 0, c, lane]
+    return tape_value(ftape, fC, Y, u)
+
+
+@kernel_jit
+def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
+                            tc, zc, count, info):
+    """:func:`crossings_on_lanes` for a section with a tape (not a state component):
+    the section jet of every lane from one lane-parallel pass of the tape
+    (:func:`~andoyer.kernels.taylor.lane_sections.lane_tape_jet`), each lane's step with
+    that jet in it (:func:`~andoyer.kernels.taylor.lane_sections.lane_section_step`), the
+    end value ``f_b`` the tape at the step's end state (one more lane-parallel pass at
+    order 0), and the scalar kernel's root isolation and ``record`` on a lane whose step
+    may hold a root -- as :func:`andoyer.kernels.taylor.flow.locate_crossings`."""
+    n_crossings = tc.shape[1]
+    n = order + 1
+    nodes = ftape.shape[0]
+    last = nodes - 1
+    X = aligned(n * _N * _L).reshape((1, n, _N, _L))
+    m = aligned(recurrences.LANE_PRODUCTS * _L).reshape((recurrences.LANE_PRODUCTS, _L))
+    U = aligned(n * nodes * _L).reshape((n, nodes, _L))
+    V = aligned(nodes * _L).reshape((1, nodes, _L))
+    start = np.empty((_N, _L))
+    h = np.empty(_L)
+    hs = aligned(_L)
+    t = np.zeros(_L)
+    t1 = np.zeros(_L)
+    fa = np.zeros(_L)
+    bound = np.zeros(_L)
+    orbit = np.full(_L, -1, dtype=np.int64)
+    Xo, uo = section_step_space(order, nodes)
+    # the scalar section search's work space (one lane at a time)
+    Xs = np.empty((1, n, _N))
+    a = np.empty(n)
+    u = np.empty((max(nodes, wtape.shape[0]), n))
+    ytmp = np.empty(_N)
+    P = np.empty((1, 2, _N))
+    Y = np.empty((1, _N))
+    W = bernstein_weights(order)
+    stack, lo_s, hi_s, left, roots = isolation_space(order)
+    nothing = np.empty(0)
+    nxt = 0
+    busy = 0
+    for lane in range(_L):
+        orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                       info, nothing)
+        if orbit[lane] >= 0:
+            fa[lane] = _start_value(ftape, fC, X, lane, Y, u)
+            busy += 1
+    while busy > 0:
+        lane_state_jets(X, order, q, m)
+        lane_tape_jet(ftape, fC, X[0], order, U)
+        for lane in range(_L):  # each lane's step (0 on idle and ended lanes)
+            i = orbit[lane]
+            hs[lane] = 0.0
+            if i < 0:
+                continue
+            info[i, 3] += 1
+            h[lane] = lane_section_step(X, U, order, ftape, lane, Xo, uo)
+            status, t1[lane], hs[lane] = step_to(t[lane], t_max, h[lane])
+            if status != SUCCESS:
+                info[i, 0] = status
+                orbit[lane] = -2  # ended: refilled below
+                continue
+        _bounds(U, last, order, hs, bound)
+        for c in range(_N):
+            for lane in range(_L):
+                start[c, lane] = X[0, 0, c, lane]
+        lane_advance(X, order, hs)
+        lane_tape_jet(ftape, fC, X[0], 0, V)  # f at the steps' ends: the next f_a
+        for lane in range(_L):  # the scalar section search where a root may be
+            i = orbit[lane]
+            if i < 0:
+                continue
+            f0 = fa[lane]
+            fb = V[0, last, lane]
+            fa[lane] = fb
+            a0 = U[0, last, lane]
+            if ((f0 > 0.0 and fb > 0.0) or (f0 < 0.0 and fb < 0.0)) and (
+                    abs(f0) > 1.000001 * (bound[lane] + abs(f0 - a0))):
+                continue
+            for k in range(n):
+                a[k] = U[k, last, lane]
+            found = isolate(a, order, hs[lane], W, f0, fb, direction, stack, lo_s, hi_s,
+                            left, roots)
+            if found > 0:
+                for k in range(n):
+                    for c in range(_N):
+                        Xs[0, k, c] = X[0, k, c, lane] if k > 0 else start[c, lane]
+            for r in range(found):
+                if count[i] < n_crossings:
+                    count[i] = _record(Xs, order, q, t[lane], hs[lane], roots[r], ftape, fC,
+                                       wtape, wC, a, tc[i], zc[i], count[i], ytmp, P, Y, u)
+        for lane in range(_L):  # ended orbits give their lane to the next one
+            i = orbit[lane]
+            if i == -1:
+                continue
+            if i >= 0:
+                info[i, 1] += 1
+                t[lane] = t1[lane]
+                if count[i] < n_crossings and t[lane] < t_max:
+                    if info[i, 1] < max_steps:
+                        continue
+                    info[i, 0] = MAX_STEPS
+            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                           info, nothing)
+            t[lane] = 0.0
+            if orbit[lane] < 0:
+                busy -= 1
+            else:
+                fa[lane] = _start_value(ftape, fC, X, lane, Y, u)
+
+
 def _build(stamp: str) -> Any:
-    """The cached entry point (the closure over ``stamp`` keys the cache, as in
+    """The cached entry points (the closure over ``stamp`` keys the cache, as in
     :func:`andoyer.kernels.taylor.flow._build`)."""
 
     @exact_jit
@@ -253,10 +402,21 @@ def _build(stamp: str) -> Any:
         crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, tc,
                            zc, count, info)
 
-    return lane_crossings_block
+    @exact_jit
+    def lane_tape_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
+                                  max_steps, tc, zc, count, info):
+        """:func:`locate_crossings` of a block of orbits on the calling thread, for a
+        section with a tape (:func:`tape_crossings_on_lanes`)."""
+        _ = len(stamp)  # keys the cache
+        q = np.empty(recurrences.N_CONSTANTS)
+        fill_constants(p, q)
+        tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max,
+                                max_steps, tc, zc, count, info)
+
+    return lane_crossings_block, lane_tape_crossings_block
 
 
-lane_crossings_block = _build(LANE_CROSSINGS_STAMP)
+lane_crossings_block, lane_tape_crossings_block = _build(LANE_CROSSINGS_STAMP)
 
 
 def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, direction: int,
@@ -264,7 +424,8 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
                      block: int | None = None, threads: int | None = None
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`andoyer.kernels.taylor.flow.locate_crossings` of states alone (n, 6) on SIMD
-    lanes, for a section whose :func:`component` is not -1 (else ValueError).
+    lanes, for any section: a state component's (:func:`component` not -1) by its
+    column of the state's jet, any other by its tape's jet on the lanes.
 
     Costs: the module notes.
 
@@ -307,13 +468,14 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     >>> t, z, count, info = locate_crossings(z0, p, 2, 0.0, 0, 3, 1000.0, 1e-12, 10**6)
     >>> count.tolist() == [3] * 9, bool(np.all(np.abs(z[:, :, 2]) < 1e-14))
     (True, True)
+    >>> t, z, count, info = locate_crossings(z0, p, 13, 0.0, 1, 3, 1000.0, 1e-12, 10**6)
+    >>> count.tolist() == [3] * 9  # theta2 = 0, upward
+    True
     """
     import numba
 
     if z0.ndim != 2 or z0.shape[1] != _N:
         raise ValueError(f"z0 must have shape (n, {_N}) (states alone), got {z0.shape}")
-    if component(int(kind), float(p[7]), float(value)) < 0:
-        raise ValueError(f"the section kind {kind} is not a state component")
     n = z0.shape[0]
     tc = np.full((n, int(n_crossings)), np.nan)
     zc = np.full((n, int(n_crossings), _N), np.nan)
@@ -323,7 +485,10 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
     m = numba.get_num_threads() if threads is None else int(threads)
     size = lanes.block_size(n, m) if block is None else int(block)
-    over_orbits(lane_crossings_block, n, (z0,), (tc, zc, count, info),
-                (p, flow.order_for(tol), ftape, fC, wtape, wC, int(direction),
-                 float(t_max), int(max_steps)), block=size, threads=m)
+    order = flow.order_for(tol)
+    kernel = (lane_crossings_block if component(int(kind), float(p[7]), float(value)) >= 0
+              else lane_tape_crossings_block)
+    over_orbits(kernel, n, (z0,), (tc, zc, count, info),
+                (p, order, ftape, fC, wtape, wC, int(direction), float(t_max),
+                 int(max_steps)), block=size, threads=m)
     return tc, zc, count, info

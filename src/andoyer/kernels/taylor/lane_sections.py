@@ -1,0 +1,111 @@
+r"""Section tapes on SIMD lanes: the jet of a section function ``f(y(t))`` of
+:data:`~andoyer.kernels.taylor.lanes.LANES` orbits at once, and each lane's step with
+that jet in it -- the lane counterparts of :func:`~andoyer.kernels.taylor.sections.tape_jet`
+and :func:`~andoyer.kernels.taylor.jets.section_step_size`, for the crossings of a
+section that is not a state component (the angles theta2, g, l, theta1, psi; ``G``,
+``J1``, ``J2``) in :mod:`andoyer.kernels.taylor.lane_crossings`.
+
+The tape's jets of all lanes are one array ``U[k, node, lane]`` (lane innermost, as the
+state's lane jets ``X[k, i, lane]``), evaluated node by node as the scalar interpreter
+does, every node's orders in one vector loop:
+
+* a variable or linear node is one vector multiply (and a fused multiply-add) per order
+  (:func:`andoyer.kernels.simd.series_linear`);
+* a product node is the Cauchy product of two earlier nodes, four orders at a time
+  (four independent chains of vector multiply-adds,
+  :func:`andoyer.kernels.simd.series_product`), the scalar tape's order of terms;
+* the square root's recurrence ``r^[k] = (a^[k] - sum_{0<j<k} r^[j] r^[k-j]) / (2 r^[0])``
+  takes its sum from the lanes' Cauchy product of order ``k``
+  (:func:`andoyer.kernels.simd.cauchy`) with ``r^[k]`` zero while it is summed (the
+  terms ``j = 0, k`` vanish), then one division per lane.
+
+Each lane's operations are the scalar interpreter's up to the contraction of sums into
+fused multiply-adds, so a lane's section jet is the scalar one to round-off. The step of
+each lane is :func:`~andoyer.kernels.taylor.jets.section_step_size` itself, on a copy of
+the few coefficients it reads (:func:`lane_section_step`): the scalar kernel's
+arithmetic, so a lane takes the scalar kernel's steps.
+
+Plain Numba functions compiled into the entry point of
+:mod:`andoyer.kernels.taylor.lane_crossings` (whose cache key hashes this file too).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from andoyer.kernels import simd
+from andoyer.kernels.common import N_STATE, kernel_jit
+from andoyer.kernels.taylor.jets import section_step_size
+from andoyer.kernels.taylor.sections import LIN, MUL, VAR
+
+__all__ = ["lane_tape_jet", "lane_section_step", "section_step_space"]
+
+_L = simd.LANES
+_N = N_STATE
+
+
+@kernel_jit
+def lane_tape_jet(tape, C, x, order, U):
+    """``U[k, n, lane]``: the jets to ``order`` of the tape's nodes along the state's
+    lane jets ``x[k, i, lane]``, node by node (the module notes). At ``order`` 0: the
+    tape's values at the states ``x[0]``
+    (:func:`~andoyer.kernels.taylor.sections.tape_value` of every lane)."""
+    for n in range(tape.shape[0]):
+        op = tape[n, 0]
+        a = tape[n, 1]
+        b = tape[n, 2]
+        if op == VAR:
+            for k in range(order + 1):
+                simd.series_linear(U, n, x, a, 1.0, -1, 0.0, k)
+        elif op == LIN:
+            ca = C[tape[n, 3]]
+            cb = C[tape[n, 4]] if b >= 0 else 0.0
+            for k in range(order + 1):
+                simd.series_linear(U, n, U, a, ca, b, cb, k)
+            if tape[n, 5] >= 0:
+                cc = C[tape[n, 5]]
+                for lane in range(_L):
+                    U[0, n, lane] += cc
+        elif op == MUL:
+            simd.series_product(U, n, a, b, order)
+        else:  # _SQRT
+            for lane in range(_L):
+                U[0, n, lane] = math.sqrt(U[0, a, lane])
+            for k in range(1, order + 1):
+                for lane in range(_L):
+                    U[k, n, lane] = 0.0  # so that the terms j = 0, k of the sum vanish
+                simd.cauchy(U, U, U, k, (n, n, n))
+                for lane in range(_L):  # an idle lane's zero state: NaN, unused
+                    d = 2.0 * U[0, n, lane]
+                    v = U[k, a, lane] - U[k, n, lane]
+                    U[k, n, lane] = v / d if d != 0.0 else np.nan
+
+
+@kernel_jit
+def section_step_space(order, nodes):
+    """Work space of :func:`lane_section_step`: one block of jets and one tape's jets
+    of one orbit."""
+    return np.zeros((1, order + 1, _N)), np.zeros((nodes, order + 1))
+
+
+@kernel_jit
+def lane_section_step(X, U, order, tape, lane, Xs, us):
+    """The step of ``lane``: :func:`~andoyer.kernels.taylor.jets.section_step_size` of
+    its state's jets ``X[0, :, :, lane]`` and its section jet ``U[:, :, lane]``, on
+    copies (``Xs``, ``us`` from :func:`section_step_space`) of the coefficients that
+    function reads -- the scalar kernel's arithmetic, bit for bit on the same jets."""
+    last = tape.shape[0] - 1
+    for i in range(_N):
+        Xs[0, 0, i] = X[0, 0, i, lane]
+        Xs[0, order - 1, i] = X[0, order - 1, i, lane]
+        Xs[0, order, i] = X[0, order, i, lane]
+    us[last, order - 1] = U[order - 1, last, lane]
+    us[last, order] = U[order, last, lane]
+    a = tape[last, 1]
+    b = tape[last, 2]
+    us[a, 0] = U[0, a, lane]
+    if b >= 0:
+        us[b, 0] = U[0, b, lane]
+    return section_step_size(Xs, order, tape, us)
