@@ -209,7 +209,10 @@ def _only_reexports(path: Path) -> bool:
             continue
         targets = (node.targets if isinstance(node, ast.Assign)
                    else [node.target] if isinstance(node, ast.AnnAssign) else [])
-        if targets and all(getattr(t, "id", "") in REEXPORT_NAMES for t in targets):
+        # ``__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)`` serves the table too
+        names = [e for t in targets for e in (t.elts if isinstance(t, ast.Tuple) else [t])]
+        if names and all(getattr(t, "id", "") in REEXPORT_NAMES | REEXPORT_FUNCTIONS
+                         for t in names):
             continue
         return False
     return True
@@ -280,6 +283,18 @@ def test_the_mirror_rule_catches_an_untested_module(tmp_path, monkeypatch):
     assert untested_modules() == ["pkg/a.py"]
     (tmp_path / "tests" / "pkg" / "test_a.py").write_text("")
     assert untested_modules() == []
+
+
+def test_a_lazy_reexport_table_is_only_reexports(tmp_path):
+    lazy = ('"""Doc."""\nfrom typing import TYPE_CHECKING\n'
+            "from andoyer.analysis._exports import lazy_exports\n"
+            "if TYPE_CHECKING:\n    from .a import f as f\n"
+            'EXPORTS = {"f": "a"}\n__all__ = sorted(EXPORTS)\n'
+            "__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)\n")
+    (tmp_path / "lazy.py").write_text(lazy)
+    (tmp_path / "more.py").write_text(lazy + "x, __dir__ = 1, 2\n")
+    assert _only_reexports(tmp_path / "lazy.py")
+    assert not _only_reexports(tmp_path / "more.py")
 
 
 def modules_named_like_their_functions(sources):

@@ -9,8 +9,9 @@ stay light.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.chaos.alignment import alignment_indices as alignment_indices
@@ -53,14 +54,4 @@ EXPORTS = {"indicators": "lyapunov", "chaos_map": "lyapunov", "output_times": "l
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.chaos' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.chaos.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)

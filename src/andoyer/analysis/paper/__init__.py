@@ -5,8 +5,9 @@ The functions and classes of its modules are names of this package too.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.paper.check import CheckRow as CheckRow
@@ -23,14 +24,4 @@ EXPORTS = {"CheckRow": "check", "Formula": "check", "paper_check": "check",
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.paper' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.paper.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)

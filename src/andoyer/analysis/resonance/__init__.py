@@ -23,8 +23,9 @@
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.resonance.birkhoff import birkhoff_normal_form as birkhoff_normal_form
@@ -65,14 +66,4 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.resonance' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.resonance.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)

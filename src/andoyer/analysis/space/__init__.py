@@ -9,8 +9,9 @@ The functions of its modules are names of this package too.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.space.inertial import axis_trace as axis_trace
@@ -25,14 +26,4 @@ EXPORTS = {"axis_trace": "inertial", "herpolhode": "inertial", "heteroclinic_cyc
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.space' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.space.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)

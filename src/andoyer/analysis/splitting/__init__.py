@@ -5,8 +5,9 @@ this package too (``from andoyer.analysis.splitting import separatrix_splitting`
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.splitting.certificate import prove_certificate as prove_certificate
@@ -97,14 +98,4 @@ EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_p
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.splitting' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.splitting.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)

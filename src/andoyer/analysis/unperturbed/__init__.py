@@ -3,8 +3,9 @@ phase portraits."""
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from andoyer.analysis._exports import lazy_exports
 
 if TYPE_CHECKING:
     from andoyer.analysis.unperturbed.equilibria import EquilibriumSet as EquilibriumSet
@@ -68,14 +69,4 @@ EXPORTS = {"EquilibriumSet": "equilibria", "EulerPoissonEquilibrium": "equilibri
 
 __all__ = sorted(EXPORTS)
 
-
-def __getattr__(name: str) -> Any:
-    if name not in EXPORTS:
-        raise AttributeError(f"module 'andoyer.analysis.unperturbed' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"andoyer.analysis.unperturbed.{EXPORTS[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, EXPORTS)
