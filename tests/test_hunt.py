@@ -210,6 +210,9 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "resonant_normal_form": {"body": RigidBody(2.5, 1.0, 2.0, 1e-3, (0.6, 0.48, 0.64)),
                              "h": 1.0, "resonance": "2:1", "axis": 2},
     "splitting_vs_epsilon": {"body": HESS, "n_phase": 8},
+    "last_torus": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=2e-3), "h": 1.0, "head": (2,),
+                   "axis": 2, "n_convergents": 1, "progress": False},
+    "convergents": {"head": (2,), "n": 3}, "noble_number": {"head": (2,)},
     # the attitude API: quaternions (scalar first), rotation matrices, Euler angles
     **{f: {"q": [0.9, 0.1, -0.3, 0.2]} for f in ("quaternion_conjugate", "rotation_matrix",
                                                  "euler_angles")},

@@ -49,6 +49,7 @@ COMMAND_API = {
                    "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
                    "andoyer.analysis.resonance.near_centre:resonant_normal_form",
                    "andoyer.analysis.resonance.second_order:island_prediction"),
+    "last-torus": ("andoyer.analysis.resonance.residues:last_torus",),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.

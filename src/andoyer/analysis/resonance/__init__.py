@@ -9,6 +9,9 @@
   (Deprit's triangle) on jets in the action with Fourier coefficients in the angles;
 - :mod:`~andoyer.analysis.resonance.second_order` (``island_prediction``): the chain's
   stable point, width and libration frequency to second order in ``mu`` from it;
+- :mod:`~andoyer.analysis.resonance.residues` (``last_torus``): Greene's residues of the
+  periodic orbits of a noble torus's convergents and the critical ``mu`` at which it
+  breaks, beside the chains' overlap estimate;
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
   Poincare sections of the perturbed flow;
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
@@ -48,6 +51,9 @@ if TYPE_CHECKING:
     from andoyer.analysis.resonance.predict import (
         section_rotation_number as section_rotation_number,
     )
+    from andoyer.analysis.resonance.residues import convergents as convergents
+    from andoyer.analysis.resonance.residues import last_torus as last_torus
+    from andoyer.analysis.resonance.residues import noble_number as noble_number
     from andoyer.analysis.resonance.second_order import SecondOrderChain as SecondOrderChain
     from andoyer.analysis.resonance.second_order import island_prediction as island_prediction
     from andoyer.analysis.resonance.torus import Torus as Torus
@@ -62,7 +68,8 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "predict", "FreeTopTorus": "predict", "island_prediction": "second_order", "JetSpace":
            "deprit", "lie_deprit": "deprit", "transform": "deprit", "SecondOrderChain":
            "second_order", "periodic_orbit_normal_form": "normal_form",
-           "orbit_rotation_numbers": "normal_form"}
+           "orbit_rotation_numbers": "normal_form", "last_torus": "residues",
+           "convergents": "residues", "noble_number": "residues"}
 
 __all__ = sorted(EXPORTS)
 
