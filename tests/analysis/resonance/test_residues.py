@@ -65,6 +65,9 @@ def test_the_symmetry_reverses_the_flow_and_fixes_the_lines():
     np.testing.assert_allclose(xs[:, 0], x[:, 0], atol=1e-12)
     np.testing.assert_allclose(np.mod(xs[:, 1] + x[:, 1], 2 * np.pi), np.pi, atol=1e-12)
     np.testing.assert_allclose(xs[:, 2:], x[:, 2:] * np.array([-1.0, 1.0, 1.0]), atol=1e-12)
+    from andoyer.analysis.splitting.transversal import REVERSOR
+
+    assert tuple(SYMMETRY) == REVERSOR                  # one reversor
     # the fixed set on g = pi/2: L = 0
     on = from_andoyer([0.4, np.pi / 2, 0.0, 1.3, 0.2])
     np.testing.assert_allclose(SYMMETRY * on, on, atol=1e-15)

@@ -107,10 +107,9 @@ from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.integrate import budget
 from andoyer.integrate.engines import EngineLike, resolve_engine
-from andoyer.integrate.engines.base import Capability, EngineBase, SectionEvent, Tolerance
+from andoyer.integrate.engines.base import Capability, EngineBase, Section, Tolerance
 from andoyer.integrate.fill import section_roots
 from andoyer.integrate.results import describe_variables, provenance
-from andoyer.integrate.section import Section
 from andoyer.progress import Progress
 from andoyer.validation import integer, positive
 
@@ -123,7 +122,9 @@ THRESHOLD = 0.25
 MAX_PERIOD = 5000
 #: Most convergents asked for.
 MAX_CONVERGENTS = 16
-#: The reversing symmetry of (1) for ``e3 = 0`` (G2): ``y(-t) = S y(t; S y0)``.
+#: The reversing symmetry of (1) for ``e3 = 0`` (G2): ``y(-t) = S y(t; S y0)``; the
+#: reversor of :mod:`andoyer.analysis.splitting.transversal` (``REVERSOR``, checked on the
+#: SymPy field there), as an array (that module loads python-flint).
 SYMMETRY = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
 #: Points of the free-top rotation number on a symmetry line where the root is bracketed.
 _GRID = 24
@@ -289,7 +290,7 @@ class _Level:
         self.evaluations += 1
         try:
             cr = self.engine.crossings(y[None], self.body.engine_params,
-                                       SectionEvent("g", g_end, 1), k, self.t_max(k),
+                                       Section("g", g_end, 1), k, self.t_max(k),
                                        self.tol)
         except FloatingPointError:
             return math.nan
@@ -377,7 +378,7 @@ class _Level:
             return None
         try:
             flow = self.engine.tangent(y[None], np.eye(6), self.body.engine_params, self.tol,
-                                       event=SectionEvent("g", g0, 1), n_crossings=q,
+                                       event=Section("g", g0, 1), n_crossings=q,
                                        t_max=self.t_max(q), renormalise=False)
         except FloatingPointError:
             return None
