@@ -16,7 +16,7 @@ import pytest
 
 from andoyer import RigidBody
 from andoyer.analysis.chaos.frequency import naff
-from andoyer.analysis.resonance.measure import _Probe, measure_island
+from andoyer.analysis.resonance.measure import _Probe, island_rotation_numbers, measure_island
 from andoyer.analysis.resonance.predict import ResonantChain, resonant_rows
 from andoyer.integrate import Section
 from andoyer.integrate.api import propagate
@@ -64,3 +64,62 @@ def test_edges_of_the_chain_near_the_centre_agree_with_naff():
     # RigidBody(2.2, 1, 2, r = (0.6, 0.48, 0.64)), 2:1 about y near the centre, mu = 1e-2
     # (Delta I / I* = 0.62): large librations, where the strongest line is a sideband
     _check_edges(RigidBody(2.2, 1.0, 2.0, 1e-2, (0.6, 0.48, 0.64)), "2:1", 2)
+
+
+# ----------------------------------------------------------- measurement that scales
+HESS = RigidBody.hess(3.0, 1.0, 2.0, mu=1e-3)
+
+
+def test_island_chosen_stable_search_skipped_naff_route_agrees():
+    # the 3:1 chain about x has 3 stable points on g = 0; the line through the second one
+    # measures the same half-width (2.560e-3), by either route; no Brent search: 6 engine
+    # calls instead of 31 (29 orbits instead of 54)
+    m = measure_island(HESS, 1.0, 0.0, "3:1", axis=1, island=1, n_seeds=2, n_rounds=2,
+                       stable=False, engine="numba")
+    assert m.attrs["island"] == 1 and m.attrs["n_islands"] == 3
+    assert m.attrs["stable_search"] == "skipped" and np.isnan(float(m.stable_s))
+    first = measure_island(HESS, 1.0, 0.0, "3:1", axis=1, n_seeds=2, n_rounds=2,
+                           stable=False, engine="numba")
+    assert abs(m.attrs["stable_phase"] - first.attrs["stable_phase"]) > 0.5
+    unc = float(m.edge_uncertainty) + float(first.edge_uncertainty)
+    assert abs(float(m.measured_half_width) - float(first.measured_half_width)) < 2 * unc
+    assert abs(float(m.measured_half_width) / float(m.predicted_half_width) - 1) < 0.04
+    naff_route = measure_island(HESS, 1.0, 0.0, "3:1", axis=1, island=1, n_seeds=2,
+                                n_rounds=2, stable=False, route="naff", engine="numba")
+    assert float(naff_route.measured_half_width) == float(m.measured_half_width)
+    inside = naff_route.seed_locked.values
+    offset = np.abs(naff_route.seed_rotation.values - 1.0 / 3.0)
+    assert np.all(offset[inside] < 1e-6) and np.all(offset[~inside] > 1e-5)
+
+
+def test_island_rotation_numbers_lock_at_p_over_q():
+    r = island_rotation_numbers(HESS, 1.0, 0.0, "3:1", [0.0, 2e-3, -2e-3, 3e-3, -3e-3],
+                                axis=1, n_crossings=300, engine="numba")
+    assert r.locked.values.tolist() == [True, True, True, False, False]
+    assert (r.locked == r.psi_locked).all()
+    off = np.abs(r.rotation_offset.values)
+    assert np.all(off[:3] < 1e-5) and np.all(off[3:] > 1e-3), off   # 6e-9..2e-6; 1.4e-2
+
+
+def test_measure_island_refuses_bad_choices_naming_them():
+    with pytest.raises(ValueError, match="island"):
+        measure_island(HESS, 1.0, 0.0, "3:1", axis=1, island=3)
+    with pytest.raises(ValueError, match="route"):
+        measure_island(HESS, 1.0, 0.0, "3:1", axis=1, route="psi")
+    with pytest.raises(ValueError, match="stable"):
+        measure_island(HESS, 1.0, 0.0, "3:1", axis=1, stable="yes")
+    with pytest.raises(ValueError, match="s must"):
+        island_rotation_numbers(HESS, 1.0, 0.0, "3:1", [[0.0]], axis=1)
+
+
+@pytest.mark.slow
+def test_second_order_chain_measured_against_its_prediction():
+    # 5:2 about x (p = 2: no width at first order): predicted at second order (S4)
+    # 3.0207e-4, measured 3.0236e-4 (+0.10 %, edge uncertainty 0.4 %), 32 s
+    m = measure_island(HESS, 1.0, 0.0, "5:2", axis=1, n_seeds=3, n_rounds=4, stable=False,
+                       engine="numba")
+    assert int(m.predicted_order) == 2
+    pred, meas = float(m.predicted_half_width), float(m.measured_half_width)
+    assert abs(meas - pred) < 0.01 * pred + 2 * float(m.edge_uncertainty)
+    # the second-order stable point (-9.70e-5) lies inside the island, near its centre
+    assert abs(float(m.predicted_stable_s_2) - float(m.centre_offset)) < 0.05 * meas

@@ -13,7 +13,8 @@
   periodic orbits of a noble torus's convergents and the critical ``mu`` at which it
   breaks, beside the chains' overlap estimate;
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
-  Poincare sections of the perturbed flow;
+  Poincare sections of the perturbed flow (any island of the chain, ``p >= 2`` chains
+  against their second-order width), and the NAFF route (``island_rotation_numbers``);
 - :mod:`~andoyer.analysis.resonance.birkhoff`: the Birkhoff normal form of the free top
   at its centres (Lie series), the frequencies as functions of the action;
 - :mod:`~andoyer.analysis.resonance.normal_form` (``periodic_orbit_normal_form``,
@@ -36,6 +37,9 @@ if TYPE_CHECKING:
     from andoyer.analysis.resonance.deprit import JetSpace as JetSpace
     from andoyer.analysis.resonance.deprit import lie_deprit as lie_deprit
     from andoyer.analysis.resonance.deprit import transform as transform
+    from andoyer.analysis.resonance.measure import (
+        island_rotation_numbers as island_rotation_numbers,
+    )
     from andoyer.analysis.resonance.measure import measure_island as measure_island
     from andoyer.analysis.resonance.near_centre import resonant_normal_form as resonant_normal_form
     from andoyer.analysis.resonance.normal_form import (
@@ -69,7 +73,8 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "deprit", "lie_deprit": "deprit", "transform": "deprit", "SecondOrderChain":
            "second_order", "periodic_orbit_normal_form": "normal_form",
            "orbit_rotation_numbers": "normal_form", "last_torus": "residues",
-           "convergents": "residues", "noble_number": "residues"}
+           "convergents": "residues", "noble_number": "residues",
+           "island_rotation_numbers": "measure"}
 
 __all__ = sorted(EXPORTS)
 
