@@ -99,7 +99,8 @@ def main(argv: list[str] | None = None) -> int:
     load1 = os.getloadavg()
     bare = statistics.median(cpu["bare flow (lanes)"])
     print(f"{n} orbits, {N} crossings of theta2 = 0 asked, T = {T:.1f}, tol {tol:g}, "
-          f"one thread, {args.repeat} rounds; load {load0[0]:.2f} -> {load1[0]:.2f}")
+          f"one thread, {lanes.LANES} lanes, {args.repeat} rounds; "
+          f"load {load0[0]:.2f} -> {load1[0]:.2f}")
     print(f"{'run':34s} {'CPU ms':>9s} {'steps':>9s} {'ns/step':>8s} {'/ bare':>7s}")
     for label, values in cpu.items():
         med = statistics.median(values)

@@ -19,11 +19,22 @@ multiply-add, in the same order of ``j``).
 
 Plain Python when Numba is disabled (:func:`cauchy` is an ordinary function whose
 compiled version is the intrinsic, through :func:`numba.extending.overload`).
+
+The lane count :data:`LANES` is one vector register of doubles of the CPU the code is
+compiled for, chosen once, when this module is imported (:func:`lane_width`): 8 where
+the CPU has AVX-512, 4 with AVX or AVX2, 2 otherwise; the environment variable
+:data:`LANES_ENV` (``ANDOYER_LANES``: 2, 4, 8 or 16) overrides it, e.g. to measure one
+width on a CPU that has another, or where ``NUMBA_CPU_NAME`` compiles for another CPU.
+The width enters the cache key of every entry point compiled with it
+(:mod:`andoyer.kernels.taylor.lanes`), and the results agree across widths to
+round-off: each lane's arithmetic does not depend on how many lanes run beside it.
 """
 
 from __future__ import annotations
 
 import functools
+import os
+from collections.abc import Mapping
 from typing import Any
 
 from llvmlite import ir
@@ -31,10 +42,66 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
-__all__ = ["LANES", "cauchy", "combine", "advance", "series_product", "series_linear"]
+__all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "cauchy", "combine", "advance",
+           "series_product", "series_linear"]
 
-#: Orbits per vector (one AVX-512 register of doubles; two AVX2 ones).
-LANES = 8
+#: Environment variable that sets the lane count (one of :data:`WIDTHS`).
+LANES_ENV = "ANDOYER_LANES"
+#: Lane counts the vector code may be compiled for.
+WIDTHS = (2, 4, 8, 16)
+
+
+def lane_width(environ: Mapping[str, str] | None = None,
+               features: Mapping[str, bool] | None = None) -> int:
+    """Orbits per vector: :data:`LANES_ENV` if set, else one vector register of doubles
+    of the CPU (8 with AVX-512, 4 with AVX or AVX2, else 2).
+
+    Parameters
+    ----------
+    environ : mapping, optional
+        The environment (default ``os.environ``).
+    features : mapping, optional
+        CPU features by LLVM's names (default the host's,
+        :func:`llvmlite.binding.get_host_cpu_features`).
+
+    Returns
+    -------
+    int
+        One of :data:`WIDTHS`.
+
+    Raises
+    ------
+    ValueError
+        If :data:`LANES_ENV` is set to something else than one of :data:`WIDTHS`.
+
+    Examples
+    --------
+    >>> lane_width({}, {"avx512f": True, "avx2": True})
+    8
+    >>> lane_width({}, {"avx512f": False, "avx2": True}), lane_width({}, {})
+    (4, 2)
+    >>> lane_width({"ANDOYER_LANES": "4"}, {"avx512f": True})
+    4
+    """
+    value = (os.environ if environ is None else environ).get(LANES_ENV, "").strip()
+    if value:
+        if value not in {str(w) for w in WIDTHS}:
+            raise ValueError(f"{LANES_ENV}={value!r}: the lane count must be one of "
+                             f"{', '.join(map(str, WIDTHS))}")
+        return int(value)
+    if features is None:
+        import llvmlite.binding as ll
+
+        features = dict(ll.get_host_cpu_features())
+    if features.get("avx512f"):
+        return 8
+    if features.get("avx2") or features.get("avx"):
+        return 4
+    return 2
+
+
+#: Orbits per vector: one vector register of doubles of this CPU (:func:`lane_width`).
+LANES = lane_width()
 
 
 def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
@@ -61,7 +128,7 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
     >>> x = np.ones((3, 6, LANES))
     >>> m = np.zeros((2, LANES))
     >>> cauchy(m, x, x, 2, (0, 1, 2, 1, 0, 0))
-    >>> float(m[0, 0]), float(m[1, 7])
+    >>> float(m[0, 0]), float(m[1, LANES - 1])
     (3.0, 3.0)
     """
     out = m[k] if m.ndim == 3 else m
@@ -151,7 +218,7 @@ def combine(y: Any, m: Any, k: int, c: tuple[float, ...], terms: tuple[int, ...]
     >>> m = np.full((1, LANES), 3.0)
     >>> combine(y, m, 0, (2.0,), (0, 0, 0, 0, 0, 1, 5, 0) + tuple(
     ...     v for i in range(1, 6) for v in (i, 1, i, 0)))
-    >>> float(y[1, 0, 0]), float(y[1, 5, 3])
+    >>> float(y[1, 0, 0]), float(y[1, 5, LANES - 1])
     (8.0, 2.0)
     """
     rows: dict[int, Any] = {}
@@ -277,7 +344,7 @@ def advance(X: Any, order: int, h: Any) -> None:
     >>> import numpy as np
     >>> X = np.ones((1, 3, 6, LANES))
     >>> advance(X, 2, np.full(LANES, 2.0))
-    >>> float(X[0, 0, 5, 7])
+    >>> float(X[0, 0, 5, LANES - 1])
     7.0
     """
     for b in range(X.shape[0]):
@@ -503,7 +570,7 @@ def series_linear(U: Any, n: int, S: Any, a: int, ca: float, b: int, cb: float,
     >>> U = np.ones((2, 3, LANES))
     >>> series_linear(U, 2, U, 0, 2.0, 1, 3.0, 1)
     >>> series_linear(U, 1, U, 0, 4.0, -1, 0.0, 0)
-    >>> float(U[1, 2, 0]), float(U[0, 1, 7]), float(U[1, 1, 7])
+    >>> float(U[1, 2, 0]), float(U[0, 1, LANES - 1]), float(U[1, 1, LANES - 1])
     (5.0, 4.0, 1.0)
     """
     U[k, n] = ca * S[k, a] + cb * S[k, b] if b >= 0 else ca * S[k, a]

@@ -7,7 +7,8 @@
   (states, tangent vectors, attitude; output times and crossings);
 * :mod:`~andoyer.kernels.taylor.tangent` -- the renormalised tangent flow with MEGNO;
 * :mod:`~andoyer.kernels.taylor.lanes`, :mod:`~andoyer.kernels.taylor.lane_crossings`
-  -- eight orbits per step on SIMD lanes (the vector intrinsics of
+  -- one vector register of orbits per step on SIMD lanes (8 with AVX-512, 4 with
+  AVX2: :func:`andoyer.kernels.simd.lane_width`; the vector intrinsics of
   :mod:`andoyer.kernels.simd`, which the generated lane recurrences call too), every
   section's crossings on them; :mod:`~andoyer.kernels.taylor.lane_sections` -- a
   section tape's jet and the section step on the lanes.

@@ -89,10 +89,11 @@ _L = LANES
 _N = N_STATE
 _record = flow.STATE.record
 
-#: Hash of every source the compiled entry point depends on (its cache key).
+#: Hash of every source the compiled entry points depend on, and the lane count (their
+#: cache key).
 LANE_CROSSINGS_STAMP = source_stamp(
     recurrences.__file__, flow.__file__, sections.__file__, jets.__file__, lanes.__file__,
-    lane_sections.__file__, simd.__file__, common.__file__, __file__)
+    lane_sections.__file__, simd.__file__, common.__file__, __file__) + f"-lanes{LANES}"
 
 
 def component(kind: int, phi0: float, value: float) -> int:

@@ -2,7 +2,8 @@ r"""The Taylor method of :mod:`andoyer.kernels.taylor.flow` on ``LANES`` orbits 
 
 The scalar kernel computes the jet of one orbit at a time: every Cauchy product of
 the recurrences of the field (1) is a scalar multiply-add, so the machine's vector
-units (AVX-512: 8 doubles) idle. Here the jets of :data:`LANES` orbits are one array
+units (AVX-512: 8 doubles, AVX2: 4) idle. Here the jets of :data:`LANES` orbits (one
+vector register of this CPU, :func:`andoyer.kernels.simd.lane_width`) are one array
 ``X[block, k, i, lane]`` with the lane index innermost and a compile-time trip count,
 and the generated lane recurrences (``ep_taylor_jet_lanes``,
 ``ep_taylor_tangent_jet_lanes`` of :mod:`andoyer.kernels.generated.recurrences`, written
@@ -81,9 +82,10 @@ _L = LANES
 _N = N_STATE
 _P = recurrences.LANE_PRODUCTS
 
-#: Hash of every source the compiled entry point depends on (its cache key).
+#: Hash of every source the compiled entry point depends on, and the lane count (its
+#: cache key: code compiled for another width is another entry).
 LANES_STAMP = source_stamp(recurrences.__file__, __file__, simd.__file__, sections.__file__,
-                           jets.__file__, common.__file__)
+                           jets.__file__, common.__file__) + f"-lanes{LANES}"
 
 _jet = kernel_jit(recurrences.ep_taylor_jet_lanes)
 _tangent_jet = kernel_jit(recurrences.ep_taylor_tangent_jet_lanes)
@@ -314,8 +316,8 @@ def block_size(n: int, threads: int) -> int:
     --------
     >>> block_size(984, 2)
     123
-    >>> block_size(10, 2)
-    16
+    >>> block_size(10, 2) == 2 * LANES
+    True
     """
     return max(2 * _L, -(-n // (4 * max(1, threads))))
 
