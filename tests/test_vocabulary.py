@@ -48,7 +48,8 @@ COMMAND_API = {
     "resonances": ("andoyer.analysis.resonance.predict:resonance_widths",
                    "andoyer.integrate.fill:fill_section", "andoyer.integrate.api:poincare",
                    "andoyer.analysis.resonance.near_centre:resonant_normal_form",
-                   "andoyer.analysis.resonance.second_order:island_prediction"),
+                   "andoyer.analysis.resonance.second_order:island_prediction",
+                   "andoyer.analysis.resonance.normal_form:periodic_orbit_normal_form"),
     "last-torus": ("andoyer.analysis.resonance.residues:last_torus",),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
@@ -233,6 +234,8 @@ DEFAULTS_ON_PURPOSE = {
                                 "the API takes its best order, 2",
     ("resonances", "n_orbits"): "0: no section drawn under the chains unless asked (the "
                                 "prediction itself integrates nothing)",
+    ("resonances", "degree"): "0: no normal form of the section map unless asked (it "
+                              "integrates; the API's 5 is the degree when it is)",
     ("resonances", "order"): "0: no normal form unless asked (the API's 8 is the degree "
                              "when it is)",
     ("scan:section", "n_orbits"): "a grid of points: fewer orbits per point (cost)",

@@ -416,6 +416,8 @@ TERMS: tuple[Term, ...] = (
     Term("max_order", "largest order p + q of the p/q resonances (island chains) listed"),
     Term("order", "degree N of the normal form in the distance to the centre (even)"),
     Term("order_mu", "order in mu of the Lie-Deprit normal form of the island chains"),
+    Term("degree", "degree N of the section map's Taylor polynomial (jet transport) and its "
+                   "Birkhoff normal form at an elliptic periodic orbit"),
     Term("head", "partial quotients of a noble rotation number before its tail of ones"),
     Term("axis", "body axis (1 or 2) of the regime of tori"),
     Term("n_convergents", "continued-fraction convergents p/q followed"),

@@ -118,3 +118,27 @@ def test_resonances_order_mu_writes_the_chains_to_second_order(tmp_path, capsys)
     err = capsys.readouterr().err
     assert "--order-mu needs mu > 0" in err and "Traceback" not in err
     assert not (tmp_path / "z.nc").exists()
+
+
+def test_resonances_degree_writes_the_normal_forms_at_the_moved_centres(tmp_path, capsys):
+    """--degree 5: the Birkhoff normal form of the section map at the level's centres
+    moved by mu (periodic_orbit_normal_form); on Hess(3, 1, 2) the rotation about x is a
+    1:1 resonance (W = 1 at the centre), named and skipped; about y omega0 = 0.4227491,
+    tau_1 = 0.17657 at mu = 1e-2."""
+    out = tmp_path / "res.nc"
+    assert main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+                 "--mu", "0.01", "--energy", "1", "--max-order", "3", "--degree", "5",
+                 "--engine", "numba", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "normal forms of the section map" in text and "res-twist.nc" in text
+    assert "not taken: axis 1" in text
+    ds = xr.open_dataset(tmp_path / "res-twist.nc")
+    assert ds.centre.values.tolist() == [2]
+    assert float(ds.rotation.sel(centre=2)) == pytest.approx(0.4227491, abs=1e-7)
+    assert float(ds.twist.sel(centre=2, order=1)) == pytest.approx(0.17657, rel=1e-4)
+    with pytest.raises(SystemExit) as exc:
+        main(["resonances", "--degree", "2", "--out", str(tmp_path / "z.nc")])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "--degree must be 0" in err and "Traceback" not in err
+    assert not (tmp_path / "z.nc").exists()

@@ -23,6 +23,7 @@ ORDER = 48
 
 #: The ending of the normal forms' NetCDF beside ``--out`` (``--order``).
 NORMAL_FORM = "-normal-form.nc"
+TWIST = "-twist.nc"
 #: The ending of the chains to order N in mu beside ``--out`` (``--order-mu``).
 ORDER_MU = "-order-mu.nc"
 
@@ -117,6 +118,38 @@ def _normal_forms(body: Any, h: float, M: float, pred: Any, order: int) -> Any:
     return out
 
 
+def _twists(body: Any, h: float, M: float, g_star: float, degree: int, engine: Any
+            ) -> tuple[Any, list[str]]:
+    """The Birkhoff normal form of the section map at the level's two centres moved by
+    ``mu`` (the rotations about x and y: seeds ``(pi/2, 0)``, ``(0, 0)``), on dim
+    ``centre``; a centre the normal form cannot take is named in the second value."""
+    import math
+
+    import xarray as xr
+
+    from andoyer.analysis.resonance import periodic_orbit_normal_form
+
+    parts, skipped = [], []
+    for axis, seed in ((1, (math.pi / 2, 0.0)), (2, (0.0, 0.0))):
+        try:
+            nf = periodic_orbit_normal_form(body, h, M, seed, degree=degree, g_star=g_star,
+                                            engine=engine)
+        except ValueError as exc:
+            skipped.append(f"axis {axis}: {exc}")
+            continue
+        keep = ["fixed_l", "fixed_L", "fixed_G", "rotation", "residue", "twist",
+                "small_divisor", "radial_defect"]
+        parts.append(nf[keep].expand_dims(centre=[axis]))
+    if not parts:
+        return None, skipped
+    out = xr.concat(parts, dim="centre")
+    out["centre"].attrs.update(long_name="body axis of the free top's centre", units="1")
+    out.attrs.update({k: v for k, v in parts[0].attrs.items()
+                      if not k.startswith(("eigenvector", "dual", "conjugacy", "normal_form"))})
+    out.attrs["skipped"] = "; ".join(skipped)
+    return out, skipped
+
+
 def run(args: argparse.Namespace) -> int:
     import math
 
@@ -131,8 +164,13 @@ def run(args: argparse.Namespace) -> int:
     if args.order and (args.order % 2 or args.order < 4):
         raise ValueError(f"--order must be 0 (no normal form) or even, 4 to 16 (the normal "
                          f"form has whole powers of the action), got {args.order}")
+    if args.degree and args.degree < 3:
+        raise ValueError(f"--degree must be 0 (none) or 3 to 15, got {args.degree}")
+    if args.degree and not args.section.startswith("g="):
+        raise ValueError(f"--degree needs a section g = g* (the plane (l, L)), got "
+                         f"--section {args.section!r}")
     beside = (".png",) + ((NORMAL_FORM,) if args.order else ()) \
-        + ((ORDER_MU,) if args.order_mu else ())
+        + ((ORDER_MU,) if args.order_mu else ()) + ((TWIST,) if args.degree else ())
     inputs = inputs_from_args(args, level=True, beside=beside)
     out, body, h = inputs.out, inputs.body, inputs.h
     assert h is not None
@@ -152,6 +190,14 @@ def run(args: argparse.Namespace) -> int:
         if orders is not None:
             written.append(out.with_name(out.stem + ORDER_MU))
             write_netcdf(orders, written[-1])
+    twists: Any = None
+    skipped: list[str] = []
+    if args.degree:
+        twists, skipped = _twists(body, h, args.M, inputs.section.value, args.degree,
+                                  args.engine)
+        if twists is not None:
+            written.append(out.with_name(out.stem + TWIST))
+            write_netcdf(twists, written[-1])
     ax = None
     if args.n_orbits:
         import warnings
@@ -190,6 +236,8 @@ def run(args: argparse.Namespace) -> int:
         _print_normal_forms(nfs)
     if args.order_mu:
         _print_orders(orders, args.order_mu)
+    if args.degree:
+        _print_twists(twists, skipped, args.degree)
     print(f"wrote {', '.join(str(p) for p in written)} and {png}")
     return 0
 
@@ -219,6 +267,20 @@ def _print_normal_forms(nfs: Any) -> None:
                 else f"{'(2nd order)':>13} {'':>13} {'':>9}")
         print(f"  {f'{int(r.q)}:{int(r.p)}':>6} {int(r.axis):>4} {int(r.sign):>4} "
               f"{float(r.nf_action):10.4e} {float(r.nf_G_action):12.8f} {text}")
+
+
+def _print_twists(twists: Any, skipped: list[str], degree: int) -> None:
+    print(f"normal forms of the section map at the centres moved by mu (jet transport, "
+          f"degree {degree}; rho(I) = omega0 + tau_1 I + ...):")
+    if twists is not None:
+        for c in twists.centre.values:
+            t = twists.sel(centre=c)
+            taus = ", ".join(f"{float(v):.6g}" for v in t.twist.values[1:])
+            print(f"  axis {int(c)}: (l, L) = ({float(t.fixed_l):.8f}, {float(t.fixed_L):+.8f}),"
+                  f" omega0 = {float(t.rotation):.8f}, residue = {float(t.residue):.6f}, "
+                  f"tau = {taus}")
+    for text in skipped:
+        print(f"  not taken: {text}")
 
 
 def _print_orders(orders: Any, order_mu: int) -> None:
@@ -274,6 +336,10 @@ def register(sub: Any) -> None:
                   "(stable point on a seed line with the size of the next order, "
                   f"half-width, libration frequency), written beside --out as *{ORDER_MU}; "
                   "default 0: none")
+    add_term(p, "degree", type=count(0, 15), default=0,
+             help="degree N (3 to 15) of the Birkhoff normal form of the section map at the "
+                  "level's two centres moved by mu (rotation number and twist coefficients "
+                  f"in the action), written beside --out as *{TWIST}; default 0: none")
     add_term(p, "n_orbits", type=count(0), default=0,
              help="orbits of a section drawn under the chains (default 0: none)")
     add_term(p, "n_crossings", type=count(1), default=300,

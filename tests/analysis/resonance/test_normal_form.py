@@ -27,7 +27,7 @@ def _slope(degree, amps=AMPS, body=BODY):
     return nf, r, float(np.polyfit(np.log(amps), np.log(err), 1)[0])
 
 
-@pytest.mark.parametrize("degree", [3, 5])
+@pytest.mark.parametrize("degree", [3, pytest.param(5, marks=pytest.mark.slow)])
 def test_rotation_error_falls_like_the_degree_predicts(degree):
     # measured: slope 4.17 (N = 3), 6.00 (N = 5), 8.05 (N = 7; slow test); |P(x) - x| of the
     # fixed point 9e-18, the radial defect (area) 1e-16
