@@ -150,6 +150,11 @@ HOW: dict[str, Way] = {
         Way("cli", ("resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
                     "0.001", "--energy", "1", "--max-order", "5"), "as written",
             expect=("resonances.nc", "resonances.png")),
+    "andoyer last-torus --body hess --A 3 --B 1 --C 2 --mu 0.001 --energy 1 --n-convergents 4 "
+    "--mu-range 0.001 0.1": Way(
+        "cli", ("last-torus", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
+                "0.001", "--energy", "1", "--n-convergents", "1"),
+        "one convergent, no search in mu", expect=("last-torus.nc",)),
     "andoyer resonances --max-order 10": Way(
         "cli", ("resonances", "--max-order", "10"), "as written",
         expect=("resonances.nc", "resonances.png")),

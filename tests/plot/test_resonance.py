@@ -24,3 +24,20 @@ def test_plot_resonances_draws_every_chain():
 def test_plot_resonances_refuses_other_datasets():
     with pytest.raises(ValueError, match="resonance_widths"):
         plot_resonances(xr.Dataset({"x": ("a", [1.0])}))
+
+
+def test_plot_residues_draws_the_resolved_residues():
+    """One line per dataset, only the residues above the integration's resolution, and the
+    threshold 1/4."""
+    from andoyer.analysis.resonance import last_torus
+    from andoyer.plot.resonance import plot_residues
+
+    body = RigidBody.hess(3.0, 1.0, 2.0, mu=2e-3)
+    ds = last_torus(body, 1.0, head=(2,), axis=2, n_convergents=2, progress=False)
+    low = ds.copy()
+    low["residue_resolution_elliptic"] = ds.residue_elliptic * 2    # nothing resolved
+    ax = plot_residues([ds, low])
+    assert len(ax.lines) == 3
+    np.testing.assert_allclose(ax.lines[0].get_ydata(), ds.residue_elliptic.values)
+    assert len(ax.lines[1].get_xdata()) == 0
+    assert ax.lines[2].get_ydata()[0] == 0.25 and ax.get_yscale() == "log"

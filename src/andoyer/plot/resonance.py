@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import colour_scale
 
-__all__ = ["plot_resonances"]
+__all__ = ["plot_resonances", "plot_residues"]
 
 
 def _broken(x: NDArray[np.float64], y: NDArray[np.float64], period: float
@@ -96,4 +96,41 @@ def plot_resonances(ds: xr.Dataset, *, ax: Axes | None = None, separatrices: boo
                      f"M = {ds.attrs.get('M', float('nan')):g}, "
                      f"{ds.attrs.get('section', '')}, mu = {ds.attrs.get('body_mu', 0):g}",
                      fontsize=8)
+    return ax
+
+
+def plot_residues(datasets: list[xr.Dataset], *, ax: Axes | None = None) -> Axes:
+    """Draw the elliptic residues of the convergents of
+    :func:`~andoyer.analysis.resonance.residues.last_torus` datasets against their period
+    ``q`` (log-log), one line per dataset (its ``mu``), with Greene's threshold 1/4 (G5).
+
+    Parameters
+    ----------
+    datasets : list of xarray.Dataset
+        ``last_torus`` results (of one torus at several ``mu``).
+    ax : matplotlib Axes, optional
+        Where to draw (default: a new figure's).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        ax = Figure(figsize=(5.0, 3.8), layout="constrained").add_subplot()
+    for i, ds in enumerate(datasets):
+        R = np.abs(ds.residue_elliptic.values)
+        floor = ds.residue_resolution_elliptic.values
+        keep = np.isfinite(R) & (R > floor)          # above the integration's error only
+        ax.plot(ds.q.values[keep], R[keep], "o-", color=f"C{i}", ms=3.5,
+                label=f"$\\mu$ = {float(ds.attrs['body_mu']):.4g}")
+    ax.axhline(0.25, color="0.3", ls="--", lw=0.8, label="1/4 (Greene)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("q (period of the convergent p/q)")
+    ax.set_ylabel("elliptic residue R")
+    ax.legend(fontsize=7)
     return ax

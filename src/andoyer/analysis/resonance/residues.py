@@ -130,13 +130,15 @@ SYMMETRY = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
 _GRID = 24
 #: The grid spans the band between the main chains widened by this fraction each way.
 _MARGIN = 0.5
+#: ``|F|`` (rad of phase) below which Brent's answer is a root, not a jump of the winding.
+_ROOT_F = 1e-6
 #: Half-orbit evaluations allowed per orbit (grid + Brent), for the cost estimate.
 _EVALUATIONS = _GRID + 60
 #: A residue below this many times ``tol |Phi(T)|`` is the integration's error, not the
 #: orbit's (``residue_resolution``).
 _RESOLUTION = 100.0
 #: Evaluations of the residues in ``mu`` per convergent (the steps and Brent's).
-_MU_EVALUATIONS = 32
+_MU_EVALUATIONS = 40
 #: The factor of the steps in ``mu`` from the guess until the residue crosses 1/4.
 _MU_STEP = 1.15
 
@@ -325,18 +327,16 @@ class _Level:
                 return self._closed(root, g0, p, q)
         f = np.array([self.half(float(x), g0, p, q) for x in ls])
         ok = np.isfinite(f[:-1]) & np.isfinite(f[1:])
-        if not ok.any():
-            return None
-        # F grows by ~pi q dW between grid points; a jump well above that is a lost winding
-        jump = max(math.pi, 4.0 * float(np.median(np.abs(np.diff(f))[ok])))
+        # every sign change: a jump of the winding (F by 2 pi) is no root, and Brent's
+        # answer there is refused by the size of F (:meth:`_brent`)
         brackets = [i for i in range(ls.size - 1)
-                    if ok[i] and np.sign(f[i]) != np.sign(f[i + 1])
-                    and abs(f[i] - f[i + 1]) < jump]
-        if not brackets:
-            return None
-        i = min(brackets, key=lambda j: abs(0.5 * (ls[j] + ls[j + 1]) - target))
-        root = self._brent(float(ls[i]), float(ls[i + 1]), g0, p, q)
-        return None if root is None else self._closed(root, g0, p, q)
+                    if ok[i] and np.sign(f[i]) != np.sign(f[i + 1])]
+        for i in sorted(brackets, key=lambda j: abs(0.5 * (ls[j] + ls[j + 1]) - target)):
+            root = self._brent(float(ls[i]), float(ls[i + 1]), g0, p, q)
+            orbit = None if root is None else self._closed(root, g0, p, q)
+            if orbit is not None and orbit.winding == p:
+                return orbit
+        return None
 
     def _local(self, near: float, g0: float, p: int, q: int, ls: NDArray[np.float64]
                ) -> float | None:
@@ -348,7 +348,7 @@ class _Level:
             for s in (1.0, -1.0):
                 x = near + s * step
                 f1 = self.half(x, g0, p, q)
-                if np.isfinite(f1) and np.sign(f1) != np.sign(f0) and abs(f1 - f0) < math.pi:
+                if np.isfinite(f1) and np.sign(f1) != np.sign(f0):
                     return self._brent(min(near, x), max(near, x), g0, p, q)
             step *= 3.0
         return None
@@ -365,10 +365,12 @@ class _Level:
             return v
 
         try:
-            return float(brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps,
+            root = float(brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps,
                                 maxiter=80))
         except (_LostError, RuntimeError):
             return None
+        # a root of F is one to rounding; a jump of the winding leaves F ~ pi there
+        return root if abs(self.half(root, g0, p, q)) < _ROOT_F else None
 
     def _closed(self, l0: float, g0: float, p: int, q: int) -> _Orbit | None:
         """The whole orbit from ``l0`` with its state-transition matrix: residue (G4),
@@ -732,7 +734,7 @@ def _critical(body: RigidBody, h: float, M: float, axis: int, band: tuple[float,
                 continue
             if np.sign(gv) != np.sign(gu):
                 a, b = sorted((u, v))
-                w = brentq(g, a, b, xtol=1e-7, maxiter=8)
+                w = brentq(g, a, b, xtol=1e-6, maxiter=40)
                 _, hyp = residues(math.exp(w))
                 out = (float(math.exp(w)), hyp.residue if hyp is not None else math.nan)
                 break
