@@ -290,7 +290,7 @@ class SectionJet:
         point, unwrapped to the nearest turn of ``l0``) and ``L``.
     error : ndarray, shape (degree + 1,)
         Per degree, the largest change of a coefficient of ``l`` or ``L`` between the
-        steps ``n_steps / 2`` and ``n_steps``.
+        steps ``n_steps / 2`` and ``n_steps`` (NaN without the estimate).
     n_steps : int
         Runge-Kutta steps of (J2).
     time : float
@@ -381,8 +381,8 @@ def _flow(field: _Field, y0: NDArray[np.float64], T: float, n_steps: int, coord:
 
 
 def section_map_jet(body: Any, h: float, M: float, g_star: float, l0: float, L0: float,
-                    G0: float, T: float, *, degree: int, n_steps: int, phi0: float = 0.0
-                    ) -> SectionJet:
+                    G0: float, T: float, *, degree: int, n_steps: int, phi0: float = 0.0,
+                    error_estimate: bool = True) -> SectionJet:
     """The section map of ``g = g*`` on ``H = h`` about ``(l0, L0)`` as jets of degree
     ``degree`` (J1)-(J4), with the error estimate of (J2) at half the steps.
 
@@ -406,6 +406,9 @@ def section_map_jet(body: Any, h: float, M: float, g_star: float, l0: float, L0:
         Runge-Kutta steps to ``T`` (even: the error estimate takes half as many).
     phi0 : float
         The body's ``phi0`` (the section functions take it; ``g`` sections ignore it).
+    error_estimate : bool
+        Repeat (J2)-(J4) with half the steps for ``error``; ``False``: ``error`` NaN, half
+        the cost (a Newton iteration's Jacobian needs no estimate).
 
     Returns
     -------
@@ -428,7 +431,7 @@ def section_map_jet(body: Any, h: float, M: float, g_star: float, l0: float, L0:
     field = _Field(body, basis)
     y0 = _initial_state(body, basis, h, M, g_star, l0, L0, G0)
     results = []
-    for n in (n_steps // 2, n_steps):
+    for n in ((n_steps // 2, n_steps) if error_estimate else (n_steps,)):
         y, t = _flow(field, y0, T, n, "g", g_star, phi0)
         G1, G2, G3 = (Jet(c, basis) for c in y[:3])
         lb = math.atan2(float(G1.value), float(G2.value))
@@ -437,7 +440,11 @@ def section_map_jet(body: Any, h: float, M: float, g_star: float, l0: float, L0:
         lb += 2 * math.pi * round((l0 - lb) / (2 * math.pi))
         lj = d + lb
         results.append((lj.c, G3.c.copy(), t))
-    (l1, L1, _), (l2, L2, t2) = results
-    diff = np.maximum(np.abs(l2 - l1), np.abs(L2 - L1))
-    err = np.array([diff[basis.total == k].max() for k in range(degree + 1)])
+    l2, L2, t2 = results[-1]
+    if error_estimate:
+        l1, L1, _t1 = results[0]
+        diff = np.maximum(np.abs(l2 - l1), np.abs(L2 - L1))
+        err = np.array([diff[basis.total == k].max() for k in range(degree + 1)])
+    else:
+        err = np.full(degree + 1, np.nan)
     return SectionJet(basis, l2, L2, err, n_steps, t2, float(G0))

@@ -97,8 +97,8 @@ class _Map:
         self.body, self.h, self.M, self.g_star = body, h, M, g_star
         self.period, self.engine, self.tol, self.G = period, engine, tol, G
 
-    def jet(self, l0: float, L0: float, degree: int, n_steps: int | None
-            ) -> tuple[SectionJet, float]:
+    def jet(self, l0: float, L0: float, degree: int, n_steps: int | None,
+            error_estimate: bool = True) -> tuple[SectionJet, float]:
         G0 = _root(self.body, self.h, self.M, self.g_star, l0, L0, self.G)
         _l, _L, t = _section_points(self.body, self.h, self.M, self.g_star, np.array([l0]),
                                     np.array([L0]), np.array([G0]), self.period, self.engine,
@@ -110,7 +110,8 @@ class _Map:
         steps = n_steps if n_steps is not None else 2 * max(16, math.ceil(
             40.0 * T * max(self.body.a, self.body.b, self.body.c) * G0 / (2 * math.pi)))
         return section_map_jet(self.body, self.h, self.M, self.g_star, l0, L0, G0, T,
-                               degree=degree, n_steps=steps, phi0=self.body.phi0), G0
+                               degree=degree, n_steps=steps, phi0=self.body.phi0,
+                               error_estimate=error_estimate), G0
 
 
 def _fixed_point(m: _Map, l0: float, L0: float, n_steps: int | None
@@ -118,7 +119,7 @@ def _fixed_point(m: _Map, l0: float, L0: float, n_steps: int | None
     x = np.array([l0, L0])
     step = np.array([np.inf, np.inf])
     for _ in range(_NEWTON):
-        jet, _G = m.jet(float(x[0]), float(x[1]), 1, n_steps)
+        jet, _G = m.jet(float(x[0]), float(x[1]), 1, n_steps, error_estimate=False)
         f = np.array([jet.l[0] - x[0], jet.L[0] - x[1]])
         step = np.linalg.solve(jet.matrix() - np.eye(2), -f)
         if not np.max(np.abs(step)) < 0.5:
