@@ -80,3 +80,22 @@ def test_inputs_are_checked_naming_the_argument():
         periodic_orbit_normal_form(BODY, 1.0, 0.0, (0.0, 5.0))          # off the level
     with pytest.raises(ValueError, match="normal_form"):
         orbit_rotation_numbers(BODY, 1.0, 0.0, None, [0.1])
+
+
+@pytest.mark.slow
+def test_chain_stable_orbit_of_period_three():
+    # the 3:1 chain about x of Hess(3, 1, 2) at mu = 1e-2: its stable orbit is a fixed point
+    # of P^3 (residue 0.565, omega0 0.27080, tau_1 -12.43); degree 5 on amplitudes 15-60 %
+    # of the half-width: slope 6.41 (measured; 4.09 at N = 3, 7.92 at N = 7)
+    from andoyer.analysis.resonance import resonance_widths
+
+    w = resonance_widths(BODY, 1.0, 0.0, "g=0", max_order=5)
+    r = w.where((w.label == "3:1") & (w.axis == 1) & (w.sign == 1), drop=True).isel(resonance=0)
+    hw = float(r.half_width)
+    nf = periodic_orbit_normal_form(BODY, 1.0, 0.0, (float(r.stable_x[0]), float(r.stable_y[0])),
+                                    period=3, degree=5, engine="numba", G=float(r.G_action))
+    assert float(nf.residue) == pytest.approx(0.5652, abs=1e-3)
+    amps = np.geomspace(0.15 * hw, 0.6 * hw, 5)
+    rot = orbit_rotation_numbers(BODY, 1.0, 0.0, nf, amps, n_returns=4096, engine="numba")
+    slope = np.polyfit(np.log(amps), np.log(np.abs(rot.rotation_error.values)), 1)[0]
+    assert abs(slope - 6.0) < 0.6, slope
