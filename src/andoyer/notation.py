@@ -409,6 +409,9 @@ TERMS: tuple[Term, ...] = (
          "'theta1=4phi0'", "branch"),
     Term("sheet", "which orbit of the heteroclinic line: +1, or -1 for theta1 + 2 pi"),
     Term("digits", "correct significant digits asked of a certified (ball) result"),
+    Term("kind", "which theorem a certificate states: 'melnikov' (first order in mu) or "
+         "'transversal' (at a finite mu)"),
+    Term("rotation", "whose unstable manifold a finite-mu proof follows: +1 (P+) or -1 (P-)"),
     Term("n_phase", "phases g of the splitting grid (even)", "n_phase"),
     Term("delta", "distance of the fundamental domains from the periodic orbits", "delta"),
     Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),

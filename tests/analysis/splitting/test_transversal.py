@@ -186,3 +186,17 @@ def test_failure_message_names_the_widths():
          "slope_mid": 1e-3, "slope": 1e-2, "piece_image": 1e-5}
     text = _failure(w)
     assert "opposite signs" in text and "1e-05" in text
+
+
+@pytest.mark.slow
+def test_paper_body_line_4phi0_closes_and_its_hess_line_does_not():
+    """The paper's body at mu = 0.01 (4 min per rotation): W^u(P-) crosses W^s(P+) at the
+    measured angle -9.905e-7 (separatrix_splitting, theta1 = 4 phi0); on the Hess line
+    (W^u(P+), the invariant Hess surface) the slope's ball holds 0."""
+    spec = BodySpec("2.5", "2.0", "2.2", 1, "0", "0.01")
+    split = tr.prove_transversal(spec, rotation=-1, half_width=1e-11, t_max=400.0)
+    assert split.proved
+    angle = arb(split.angle)
+    assert angle.rad() < 1e-8 and abs(float(angle.mid()) + 9.905e-7) < 1e-9
+    hess = tr.prove_transversal(spec, rotation=1, half_width=1e-11, t_max=400.0)
+    assert not hess.proved and arb(hess.slope).contains(0)

@@ -18,8 +18,12 @@ with the recorded ball; the Krawczyk test on each recorded box with the recomput
 the two boxes distinct modulo ``2 pi`` (a nonzero trigonometric polynomial of degree 1 has
 exactly two zeros per period). Any altered parameter or box is rejected.
 
-The ``mu`` interval is ``(0, mu*)`` with ``mu*`` not bounded: a bound needs the validated
-manifolds of the finite-``mu`` proof (stage 3 of the issue), which this kind does not carry.
+The ``mu`` interval of that kind is ``(0, mu*)`` with ``mu*`` not bounded. The second kind,
+``heteroclinic-transversality`` (:func:`prove_transversal_certificate`), states the theorem
+of :mod:`andoyer.analysis.splitting.transversal` at a given decimal ``mu``: it records the
+local manifold's frame, box and cone slope, the piece carried and every ball the proof
+produced; :func:`verify_certificate` re-runs the proof from those (no search) and requires
+each recomputed ball to be the recorded one.
 """
 
 from __future__ import annotations

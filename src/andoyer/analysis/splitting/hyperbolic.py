@@ -16,7 +16,8 @@ section ``gamma2 = 0``) from the state with ``gamma = (1, 0, 0)``:
   integral ``(G, gamma)``), ``lambda > 1`` and ``1/lambda``: the orbit is hyperbolic.
 
 This is the first step of a computer-assisted proof of transversal splitting at finite
-``mu`` (see :mod:`andoyer.analysis.splitting.certificate` for what is not yet proved).
+``mu``; :mod:`andoyer.analysis.splitting.transversal` proves the rest (local manifold,
+transport, intersection).
 """
 
 from __future__ import annotations

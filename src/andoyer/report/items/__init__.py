@@ -1,7 +1,7 @@
 """The report's items in report order: key, title, builder, measured cost.
 
 The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.inertial`,
-:mod:`.perturbed`, :mod:`.resonance`, :mod:`.torus`);
+:mod:`.perturbed`, :mod:`.resonance`, :mod:`.torus`, :mod:`.proof`);
 each item's prose is ``templates/items/<key>.html.j2``.
 
 Examples
@@ -13,7 +13,15 @@ Examples
 from __future__ import annotations
 
 from andoyer.report.base import Item
-from andoyer.report.items import hess, inertial, perturbed, resonance, torus, unperturbed
+from andoyer.report.items import (
+    hess,
+    inertial,
+    perturbed,
+    proof,
+    resonance,
+    torus,
+    unperturbed,
+)
 
 __all__ = ["ITEMS"]
 
@@ -36,6 +44,8 @@ ITEMS: list[Item] = [
          resonance.resonances, 12.0),
     Item("last-torus", "Beyond the paper: where the last torus breaks (Greene's residues)",
          torus.last_torus, 25.0),
+    Item("proof", "Beyond the paper: the splitting proved (Melnikov zeros; transversality "
+         "at finite μ)", proof.proof, 60.0),
     Item("paper-check", "Every printed formula against the derivation",
          unperturbed.paper_check, 0.0),
 ]
