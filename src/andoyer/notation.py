@@ -412,6 +412,8 @@ TERMS: tuple[Term, ...] = (
     Term("kind", "which theorem a certificate states: 'melnikov' (first order in mu) or "
          "'transversal' (at a finite mu)"),
     Term("rotation", "whose unstable manifold a finite-mu proof follows: +1 (P+) or -1 (P-)"),
+    Term("mu_radius", "half-width of the mu interval a finite-mu proof covers at once"),
+    Term("half_width", "relative half-width of the piece of W^u a finite-mu proof carries"),
     Term("n_phase", "phases g of the splitting grid (even)", "n_phase"),
     Term("delta", "distance of the fundamental domains from the periodic orbits", "delta"),
     Term("psi0", "section psi = atan2(gamma1, gamma2) = psi0 of the rotation orbits"),

@@ -26,16 +26,18 @@ def run(args: argparse.Namespace) -> int:
         if args.mu is None:
             raise ValueError("--kind transversal needs --mu (a decimal > 0), e.g. --mu 0.05")
         spec = BodySpec(args.A, args.B, args.C, 1, args.epsilon, args.mu)
-        cert = prove_transversal_certificate(spec, G=args.G, rotation=args.rotation)
+        cert = prove_transversal_certificate(spec, G=args.G, rotation=args.rotation,
+                                             mu_radius=args.mu_radius,
+                                             half_width=args.half_width)
         write_certificate(cert, out)
         print(f"wrote {out} in {cert['run_seconds']:.0f} s: {cert['statement']}\n"
               f"check it with andoyer verify {out}")
         return 0
     if not 5 <= args.digits <= 200:
         raise ValueError(f"--digits must lie in [5, 200], got {args.digits}")
-    if args.mu is not None:
-        raise ValueError("--mu belongs to --kind transversal (the first-order statement "
-                         "holds for mu in (0, mu*))")
+    if args.mu is not None or args.mu_radius != "0":
+        raise ValueError("--mu and --mu-radius belong to --kind transversal (the "
+                         "first-order statement holds for mu in (0, mu*))")
     spec = BodySpec(args.A, args.B, args.C, 1, args.epsilon)
     cert = prove_certificate(spec, branch=args.branch, sheet=args.sheet, J2=args.G,
                              digits=args.digits)
@@ -69,6 +71,12 @@ def register(sub: Any) -> None:
                   "epsilon != 0)")
     add_term(p, "sheet", type=int, choices=(1, -1), default=1,
              help="which orbit of the line (default 1; -1: theta1 + 2 pi)")
+    add_term(p, "mu_radius", default="0",
+             help="--kind transversal: prove it for every mu in [mu - r, mu + r] (a decimal; "
+                  "default 0; e.g. 5e-8 with --half-width 1e-4)")
+    add_term(p, "half_width", type=float, default=1e-9,
+             help="--kind transversal: relative half-width of the piece of W^u carried "
+                  "(default 1e-9; larger for a mu interval)")
     add_term(p, "rotation", type=int, choices=(1, -1), default=1,
              help="--kind transversal: whose unstable manifold, P+ (1, default) or P- (-1)")
     add_term(p, "G", default="1", help="the level h = c G^2/2, G = J2 (a decimal; default 1)")

@@ -200,3 +200,24 @@ def test_paper_body_line_4phi0_closes_and_its_hess_line_does_not():
     assert angle.rad() < 1e-8 and abs(float(angle.mid()) + 9.905e-7) < 1e-9
     hess = tr.prove_transversal(spec, rotation=1, half_width=1e-11, t_max=400.0)
     assert not hess.proved and arb(hess.slope).contains(0)
+
+
+def test_mu_interval_is_exact_decimals_and_refuses_a_wide_radius():
+    assert tr.mu_interval({"mu": "0.05", "mu_radius": "5e-8"}) == ("0.04999995", "0.05000005")
+    assert tr.mu_interval({"mu": "0.05"}) == ("0.05", "0.05")
+    spec = tr._spec(SPEC, "1e-9")
+    with working_precision(128):
+        mu = spec.balls(128).mu
+        assert mu.contains(arb("0.050000001")) and mu.contains(arb("0.049999999"))
+        assert not mu.contains(arb("0.050000002"))
+    with pytest.raises(ValueError, match="mu_radius"):
+        tr._spec(SPEC, "0.03")
+
+
+@pytest.mark.slow
+def test_theorem_for_a_mu_interval():
+    """Every mu in [0.05 - 5e-8, 0.05 + 5e-8] at once: the ends' gamma3 widen by the mu
+    ball (~1e3 mu_radius), so the piece is 1e5 times longer than at one mu."""
+    proof = tr.prove_transversal(SPEC, mu_radius="5e-8", half_width=1e-4)
+    assert proof.proved and "every mu in [0.04999995, 0.05000005]" in proof.statement
+    assert arb(proof.angle).contains(arb("-0.0037482582"))

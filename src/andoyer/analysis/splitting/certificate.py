@@ -354,7 +354,8 @@ def _transversal_boxes(proof: Any) -> dict[str, Any]:
 
 
 def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
-                                  radius: float = 3e-5, side: int = 1, which: int = 0,
+                                  radius: float = 3e-5, mu_radius: str = "0",
+                                  side: int = 1, which: int = 0,
                                   half_width: float = 1e-9,
                                   bits: int = 128, order: int = 24) -> dict[str, Any]:
     """Prove the finite-``mu`` theorem (:func:`~andoyer.analysis.splitting.transversal.
@@ -366,7 +367,7 @@ def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
         A body with ``mu > 0`` and its centre of mass in the (e1, e2) plane.
     G : str, default "1"
         The level ``h = c G^2 / 2``.
-    rotation, radius, side, which, half_width, bits, order
+    rotation, radius, mu_radius, side, which, half_width, bits, order
         As in :func:`~andoyer.analysis.splitting.transversal.prove_transversal`.
 
     Raises
@@ -375,12 +376,12 @@ def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
         When the proof does not close; the message names the step and its widths.
     """
     from andoyer._version import __version__
-    from andoyer.analysis.splitting.transversal import prove_transversal
+    from andoyer.analysis.splitting.transversal import mu_interval, prove_transversal
 
     spec = spec_of(body)
     try:
         proof = prove_transversal(spec, G=G, rotation=rotation, radius=radius, side=side,
-                                  which=which,
+                                  mu_radius=mu_radius, which=which,
                                   half_width=half_width, bits=bits, order=order)
     except ArithmeticError as exc:
         raise ValueError(f"the finite-mu proof does not close: {exc}") from None
@@ -390,9 +391,8 @@ def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
     cert: dict[str, Any] = {
         "format": FORMAT, "version": 1, "kind": KIND_TRANSVERSAL,
         "statement": proof.statement,
-        "body": spec.as_dict(),
-        "mu_interval": {"lower": spec.mu, "upper": spec.mu, "open": False,
-                        "note": "the decimal mu itself"},
+        "body": proof.body,
+        "mu_interval": _mu_claim(mu_interval(proof.body)),
         "level": {"G": proof.G, "area": "0"},
         "precision_bits": proof.bits, "order": proof.order,
         "libraries": {"python-flint": FLINT_VERSION, "andoyer": __version__},
@@ -404,6 +404,13 @@ def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
     }
     cert["digest"] = _digest(cert)
     return cert
+
+
+def _mu_claim(bounds: tuple[str, str]) -> dict[str, Any]:
+    lo, hi = bounds
+    return {"lower": lo, "upper": hi, "open": False,
+            "note": "the decimal mu itself" if lo == hi else "every mu of the closed "
+            "interval at once (the field's coefficients are balls)"}
 
 
 def _failure(widths: dict[str, float]) -> str:
@@ -418,6 +425,7 @@ def _failure(widths: dict[str, float]) -> str:
 def _verify_transversal(data: dict[str, Any]) -> dict[str, Any]:
     from andoyer.analysis.splitting.transversal import (
         local_unstable_manifold,
+        mu_interval,
         prove_transversal,
     )
 
@@ -441,6 +449,7 @@ def _verify_transversal(data: dict[str, Any]) -> dict[str, Any]:
     try:
         b = data["body"]
         spec = BodySpec(b["A"], b["B"], b["C"], b["branch"], b["epsilon"], b["mu"])
+        mu_radius = str(b.get("mu_radius", "0"))
         G = str(data["level"]["G"])
         bits = int(data["precision_bits"])
         order = int(data["order"])
@@ -458,22 +467,27 @@ def _verify_transversal(data: dict[str, Any]) -> dict[str, Any]:
                                f"{exc}") from None
     except ValueError as exc:
         raise CertificateError(f"the certificate's body is not valid: {exc}") from None
-    if data["mu_interval"] != {"lower": spec.mu, "upper": spec.mu, "open": False,
-                               "note": "the decimal mu itself"}:
-        raise CertificateError("the mu interval must be the body's mu "
-                               f"{spec.mu}; this one claims {data['mu_interval']!r}")
+    try:
+        claim = _mu_claim(mu_interval({"mu": spec.mu, "mu_radius": mu_radius}))
+    except ArithmeticError:
+        raise CertificateError(f"the body's mu_radius {mu_radius!r} is not a decimal") from None
+    if data["mu_interval"] != claim:
+        raise CertificateError(f"the mu interval must be {claim['lower']}..{claim['upper']} "
+                               f"(the body's mu and mu_radius); this one claims "
+                               f"{data['mu_interval']!r}")
     if not 64 <= bits <= 4096 or not 8 <= order <= 60:
         raise CertificateError(f"precision_bits {bits} or order {order} out of range")
     if len(frame) != 2 or any(len(r) != 2 for r in frame):
         raise CertificateError("local_manifold.frame must be a 2 x 2 matrix")
     try:
         lm = local_unstable_manifold(spec, G=G, rotation=rotation, radius=radius, bits=bits,
-                                     order=order, frame=frame, kappa=kappa)
+                                     order=order, frame=frame, kappa=kappa,
+                                     mu_radius=mu_radius)
         if not lm.holds:
             raise CertificateError(f"the cone condition fails on the recorded box N "
                                    f"(radius {radius}, kappa {kappa})")
         proof = prove_transversal(spec, G=G, side=side, piece=(u_a, u_b), manifold=lm,
-                                  bits=bits, order=order)
+                                  bits=bits, order=order, mu_radius=mu_radius)
     except (ValueError, ArithmeticError, ZeroDivisionError) as exc:
         if isinstance(exc, CertificateError):
             raise

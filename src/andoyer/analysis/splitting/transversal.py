@@ -61,7 +61,7 @@ from andoyer.integrate.validated.arithmetic import (
 from andoyer.integrate.validated.taylor import quadratic_field, validated_poincare
 from andoyer.validation import integer
 
-__all__ = ["LocalManifold", "local_unstable_manifold",
+__all__ = ["LocalManifold", "local_unstable_manifold", "mu_interval",
            "TransversalProof", "prove_transversal"]
 
 #: The reversor of (1) for a centre of mass in the (e1, e2) plane (signs of the state).
@@ -189,6 +189,8 @@ class LocalManifold:
     ----------
     rotation : int
         -1 for ``P-`` (``G3 < 0``), +1 for ``P+``.
+    mu_radius : str
+        It holds for every ``mu`` within this of the body's.
     frame : tuple of tuple of float
         ``E`` (rows): ``(G2, gamma3) = E (u, v)``.
     radius : float
@@ -208,6 +210,7 @@ class LocalManifold:
     """
 
     rotation: int
+    mu_radius: str
     frame: tuple[tuple[float, float], ...]
     radius: float
     kappa: float
@@ -228,7 +231,8 @@ def _return_map_derivative(spec: BodySpec, st: _Setting, x: list[arb], order: in
 
 
 def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
-                            radius: float = 3e-5, bits: int = 128, order: int = 30,
+                            radius: float = 3e-5, mu_radius: str = "0", bits: int = 128,
+                            order: int = 30,
                             frame: Any = None, kappa: float | None = None) -> LocalManifold:
     """Prove the cone condition for the return map of ``P-`` on a box ``N`` of ``W^u``.
 
@@ -242,6 +246,9 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
         ``P+`` (``G3 > 0``) or ``P-``.
     radius : float, default 3e-5
         ``r``: ``N = [-r, r]^2`` in the eigen-coordinates ``(u, v)``.
+    mu_radius : str, default "0"
+        Prove it for every ``mu`` in ``[mu - mu_radius, mu + mu_radius]`` at once (a
+        decimal; the field's coefficients become balls).
     bits, order : int
         Working precision and Taylor order.
     frame : 2 x 2 floats, optional
@@ -262,7 +269,7 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
     True
     """
     start = time.perf_counter()
-    spec = _spec(body)
+    spec = _spec(body, mu_radius)
     G = decimal("G", G, positive=True, maximum=1e3)
     bits = precision("bits", bits)
     order = integer("order", order, 8, 60)
@@ -286,7 +293,8 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
         x = _hull_box(st, E, r, r)
         DF = Einv * _return_map_derivative(spec, st, x, order) * E
         holds, kap, m = _cone(DF, radius, kappa)
-    return LocalManifold(rotation=rotation, frame=frame, radius=float(radius), kappa=kap,
+    return LocalManifold(rotation=rotation, mu_radius=getattr(spec, "mu_radius", "0"),
+                         frame=frame, radius=float(radius), kappa=kap,
                          expansion=ball_text(m, 20),
                          derivative=tuple(ball_text(DF[i, j], 20) for i in range(2)
                                           for j in range(2)),
@@ -317,7 +325,29 @@ def _rotation(rotation: Any) -> int:
     return int(rotation)
 
 
-def _spec(body: Any) -> BodySpec:
+@dataclass(frozen=True)
+class _MuBall(BodySpec):
+    """A body whose ``mu`` is every number of ``[mu - mu_radius, mu + mu_radius]``: its
+    balls (the field's coefficients, the chart) enclose them all at once."""
+
+    mu_radius: str = "0"
+
+    def balls(self, bits: int) -> Any:
+        import dataclasses
+
+        bb = super().balls(bits)
+        with working_precision(bits):
+            mu = bb.mu + arb(0, float(arb(self.mu_radius).upper()))
+        return dataclasses.replace(bb, mu=mu)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The spec as JSON-ready values, with ``mu_radius``."""
+        return {**super().as_dict(), "mu_radius": self.mu_radius}
+
+
+def _spec(body: Any, mu_radius: Any = "0") -> BodySpec:
+    from decimal import Decimal
+
     from andoyer.integrate.validated.arithmetic import spec_of
 
     if not isinstance(body, BodySpec):
@@ -326,7 +356,34 @@ def _spec(body: Any) -> BodySpec:
     spec = spec_of(body)
     if not float(spec.mu) > 0.0:
         raise ValueError(f"body: mu must be > 0 for P- to be hyperbolic, got {spec.mu}")
-    return spec
+    if isinstance(spec, _MuBall):
+        return spec
+    mu_radius = decimal("mu_radius", mu_radius)
+    if not 0 <= Decimal(mu_radius) < Decimal(spec.mu) / 2:
+        raise ValueError(f"mu_radius must be >= 0 and below mu/2 = {float(spec.mu) / 2:g}, "
+                         f"got {mu_radius}")
+    if Decimal(mu_radius) == 0:
+        return spec
+    return _MuBall(spec.A, spec.B, spec.C, spec.branch, spec.epsilon, spec.mu, mu_radius)
+
+
+def mu_interval(body: dict[str, Any]) -> tuple[str, str]:
+    """``[mu - mu_radius, mu + mu_radius]`` of a proof's body, as exact decimals.
+
+    Parameters
+    ----------
+    body : dict
+        :attr:`TransversalProof.body`.
+
+    Examples
+    --------
+    >>> mu_interval({"mu": "0.05", "mu_radius": "1e-9"})
+    ('0.049999999', '0.050000001')
+    """
+    from decimal import Decimal
+
+    mu, rad = Decimal(str(body["mu"])), Decimal(str(body.get("mu_radius", "0")))
+    return str(mu - rad), str(mu + rad)
 
 
 # ----------------------------------------------------------------------------- search
@@ -499,6 +556,10 @@ class TransversalProof:
     order: int
     flint_version: str = FLINT_VERSION
 
+    def _mu_text(self) -> str:
+        lo, hi = mu_interval(self.body)
+        return f"mu={self.body['mu']}" if lo == hi else f"every mu in [{lo}, {hi}]"
+
     @property
     def statement(self) -> str:
         """The theorem in words."""
@@ -506,7 +567,7 @@ class TransversalProof:
         u, s = ("P-", "P+") if self.manifold.rotation == -1 else ("P+", "P-")
         return (f"For the body A={b['A']}, B={b['B']}, C={b['C']} with its centre of mass "
                 f"turned by epsilon={b['epsilon']} off the Hess direction (branch "
-                f"{b['branch']} of (2)), mu={b['mu']}, on the level h = c G^2/2 with "
+                f"{b['branch']} of (2)), {self._mu_text()}, on the level h = c G^2/2 with "
                 f"G={self.G}, (G, gamma) = 0, |gamma| = 1: the unstable manifold of the "
                 f"rotation {u} and the stable manifold of {s} intersect "
                 "transversally at a point of the box X on L = G3 = 0 (gamma3 = 0 there), "
@@ -514,7 +575,7 @@ class TransversalProof:
 
 
 def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: float = 3e-5,
-                      side: int = 1,
+                      side: int = 1, mu_radius: str = "0",
                       which: int = 0, half_width: float = 1e-9, bits: int = 128,
                       order: int = 24, t_max: float = 200.0,
                       piece: tuple[float, float] | None = None,
@@ -536,6 +597,10 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
         The local manifold's box ``N = [-r, r]^2``.
     side : {+1, -1}, default 1
         Which branch of ``W^u_loc`` (``u > 0`` or ``u < 0``).
+    mu_radius : str, default "0"
+        Prove it for every ``mu`` in ``[mu - mu_radius, mu + mu_radius]`` (a decimal);
+        the ends' ``gamma3`` then widen by about ``1e3 mu_radius``, so ``half_width``
+        must grow with it.
     which : int, default 0
         Which sign change of ``gamma3`` on the fundamental domain ``[r/lambda, r]``.
     half_width : float, default 1e-9
@@ -563,7 +628,7 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
     True
     """
     start = time.perf_counter()
-    spec = _spec(body)
+    spec = _spec(body, mu_radius)
     if isinstance(side, bool) or side not in (1, -1):
         raise ValueError(f"side must be +1 or -1, got {side!r}")
     which = integer("which", which, 0, 10)
@@ -575,6 +640,9 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
     rotation = _rotation(rotation if manifold is None else manifold.rotation)
     lm = manifold if manifold is not None else local_unstable_manifold(
         spec, G=G, rotation=rotation, radius=radius, bits=bits, order=order)
+    if lm.mu_radius != getattr(spec, "mu_radius", "0"):
+        raise ValueError(f"manifold was proved for mu_radius {lm.mu_radius}, not "
+                         f"{getattr(spec, 'mu_radius', '0')}")
     if not lm.holds:
         raise ArithmeticError(f"the cone condition fails on N = [-{lm.radius:g}, "
                               f"{lm.radius:g}]^2 (kappa = {lm.kappa:g}, DF(N) = "
