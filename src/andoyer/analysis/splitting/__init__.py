@@ -70,6 +70,7 @@ if TYPE_CHECKING:
     from andoyer.analysis.splitting.transversal import (
         local_unstable_manifold as local_unstable_manifold,
     )
+    from andoyer.analysis.splitting.transversal import mu_interval as mu_interval
     from andoyer.analysis.splitting.transversal import prove_transversal as prove_transversal
 
 #: Name -> the module of this package that defines it (imported on first use).
@@ -94,6 +95,7 @@ EXPORTS = {"ManifoldBranch": "manifolds", "ManifoldCurve": "manifolds", "euler_p
            "certified_rotation": "hyperbolic", "SplittingProblem": "problem", "splitting_problem":
            "problem", "LocalManifold": "transversal", "TransversalProof": "transversal",
            "local_unstable_manifold": "transversal", "prove_transversal": "transversal",
+           "mu_interval": "transversal",
            "prove_transversal_certificate": "certificate"}
 
 __all__ = sorted(EXPORTS)

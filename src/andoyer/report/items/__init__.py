@@ -1,7 +1,7 @@
 """The report's items in report order: key, title, builder, measured cost.
 
 The builders are grouped by subject (:mod:`.unperturbed`, :mod:`.hess`, :mod:`.inertial`,
-:mod:`.perturbed`, :mod:`.resonance`, :mod:`.torus`, :mod:`.proof`);
+:mod:`.perturbed`, :mod:`.resonance`, :mod:`.torus`, :mod:`.theorems`);
 each item's prose is ``templates/items/<key>.html.j2``.
 
 Examples
@@ -17,8 +17,8 @@ from andoyer.report.items import (
     hess,
     inertial,
     perturbed,
-    proof,
     resonance,
+    theorems,
     torus,
     unperturbed,
 )
@@ -45,7 +45,7 @@ ITEMS: list[Item] = [
     Item("last-torus", "Beyond the paper: where the last torus breaks (Greene's residues)",
          torus.last_torus, 25.0),
     Item("proof", "Beyond the paper: the splitting proved (Melnikov zeros; transversality "
-         "at finite μ)", proof.proof, 60.0),
+         "at finite μ)", theorems.proof, 60.0),
     Item("paper-check", "Every printed formula against the derivation",
          unperturbed.paper_check, 0.0),
 ]
