@@ -130,6 +130,11 @@ HOW: dict[str, Way] = {
     "andoyer prove --epsilon 0.1 --branch theta1=0 --out near-hess.json": Way(
         "cli", ("prove", "--epsilon", "0.1", "--branch", "theta1=0", "--digits", "12",
                 "--out", "near-hess.json"), "12 digits, not 30", expect=("near-hess.json",)),
+    "andoyer prove --kind transversal --B 1.0 --C 1.6 --epsilon 0.1 --mu 0.05 --out "
+    "theorem.json": Way("cli", ("prove", "--kind", "transversal", "--B", "1.0", "--C", "1.6",
+                                "--epsilon", "0.1", "--mu", "0.05", "--out", "theorem.json"),
+                        "as written (the finite-mu proof, ~30 s)", slow=True,
+                        expect=("theorem.json",)),
     "andoyer section": Way("cli", ("section", *SMALL_SECTION), "3 orbits x 10 crossings",
                            expect=("section.nc", "section.png")),
     "andoyer section --energy 0.25 --section g=0 --n-orbits 40 --n-crossings 500 "
