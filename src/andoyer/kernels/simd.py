@@ -28,6 +28,8 @@ width on a CPU that has another, or where ``NUMBA_CPU_NAME`` compiles for anothe
 The width enters the cache key of every entry point compiled with it
 (:mod:`andoyer.kernels.taylor.lanes`), and the results agree across widths to
 round-off: each lane's arithmetic does not depend on how many lanes run beside it.
+So does the CPU model the vector code is tuned for (:func:`lane_tuning`, :func:`tune`:
+on AMD Zen an Intel model's scheduling, 2-4x faster lane jets).
 """
 
 from __future__ import annotations
@@ -42,8 +44,8 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
-__all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "cauchy", "combine", "advance",
-           "series_product", "series_linear"]
+__all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "TUNE", "TUNE_ENV", "lane_tuning",
+           "tune", "cauchy", "combine", "advance", "series_product", "series_linear"]
 
 #: Environment variable that sets the lane count (one of :data:`WIDTHS`).
 LANES_ENV = "ANDOYER_LANES"
@@ -103,6 +105,97 @@ def lane_width(environ: Mapping[str, str] | None = None,
 #: Orbits per vector: one vector register of doubles of this CPU (:func:`lane_width`).
 LANES = lane_width()
 
+#: Environment variable that sets the CPU model the lanes' code is tuned for
+#: (:func:`lane_tuning`).
+TUNE_ENV = "ANDOYER_LANE_TUNE"
+
+
+def lane_tuning(environ: Mapping[str, str] | None = None, cpu: str | None = None) -> str:
+    """The CPU model whose instruction scheduling the lane kernels are compiled with
+    (LLVM's per-function ``tune-cpu``; the instructions themselves stay those of the
+    CPU), or ``""`` for the target CPU's own.
+
+    On AMD Zen (LLVM's ``znver*``), whose scheduling models made LLVM spill the lane
+    jets' addresses and run their Cauchy products 2-4x slower than under an Intel
+    model (measured: benchmarks/NOTES.md#lane-width), ``"haswell"``; elsewhere ``""``.
+    :data:`TUNE_ENV` (``ANDOYER_LANE_TUNE``) overrides it: a CPU name LLVM knows, or
+    ``host`` for the CPU's own.
+
+    Parameters
+    ----------
+    environ : mapping, optional
+        The environment (default ``os.environ``).
+    cpu : str, optional
+        The CPU Numba compiles for (default ``NUMBA_CPU_NAME``, else the host's,
+        :func:`llvmlite.binding.get_host_cpu_name`).
+
+    Returns
+    -------
+    str
+        A CPU name, or ``""``.
+
+    Examples
+    --------
+    >>> lane_tuning({}, "znver4"), lane_tuning({}, "skylake-avx512")
+    ('haswell', '')
+    >>> lane_tuning({"ANDOYER_LANE_TUNE": "host"}, "znver4")
+    ''
+    >>> lane_tuning({"ANDOYER_LANE_TUNE": "icelake-server"}, "znver4")
+    'icelake-server'
+    """
+    value = (os.environ if environ is None else environ).get(TUNE_ENV, "").strip()
+    if value:
+        return "" if value == "host" else value
+    if cpu is None:
+        cpu = (os.environ if environ is None else environ).get("NUMBA_CPU_NAME", "").strip()
+        if not cpu or cpu == "host":
+            import llvmlite.binding as ll
+
+            cpu = str(ll.get_host_cpu_name())
+    return "haswell" if cpu.startswith("znver") else ""
+
+
+#: The CPU model the lanes' code is tuned for (:func:`lane_tuning`; ``""``: the CPU's own).
+TUNE = lane_tuning()
+if any(c in TUNE for c in '"\\ '):
+    raise ValueError(f"{TUNE_ENV}={TUNE!r} is not a CPU name")
+
+
+def _tune(builder: Any) -> None:
+    """Mark the function being lowered with the tuning :data:`TUNE`."""
+    if TUNE:
+        set.add(builder.function.attributes, f'"tune-cpu"="{TUNE}"')
+
+
+def tune() -> None:
+    """Compile the calling function with the lanes' tuning :data:`TUNE` (LLVM's
+    ``tune-cpu`` attribute; nothing in Python): every lane kernel calls it, so the
+    tuning holds wherever LLVM inlines them.
+
+    Examples
+    --------
+    >>> tune()
+    """
+
+
+def _tune_typer(typingctx: Any) -> Any:
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
+        return context.get_dummy_value()
+
+    return types.void(), codegen
+
+
+_tune_intrinsic: Any = intrinsic(_tune_typer)
+
+
+@overload(tune, jit_options={"nogil": True})
+def _tune_overload() -> Any:
+    def impl() -> None:
+        _tune_intrinsic()
+
+    return impl
+
 
 def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
     """The Cauchy products ``m[r, :] = sum_j u[j, a, :] * v[k - j, b, :]`` over
@@ -149,6 +242,7 @@ def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any)
     n = len(products) // 3
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
         mt, ut, vt, kt, pt = signature.args
         m_, u_, v_, k_, p_ = args
         intp = context.get_value_type(types.intp)
@@ -242,6 +336,7 @@ def _combine_typer(ints: tuple[int, ...], typingctx: Any, y: Any, m: Any, k: Any
     sig = types.void(y, m, k, c)
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
         yt, mt, kt, ct = signature.args
         y_, m_, k_, c_ = args
         intp = context.get_value_type(types.intp)
@@ -360,6 +455,7 @@ def _advance_typer(typingctx: Any, X: Any, order: Any, h: Any) -> Any:
     sig = types.void(X, order, h)
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
         xt, ot, ht = signature.args
         x_, o_, h_ = args
         intp = context.get_value_type(types.intp)
@@ -456,6 +552,7 @@ def _series_product_typer(typingctx: Any, U: Any, n: Any, a: Any, b: Any, order:
     sig = types.void(U, n, a, b, order)
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
         ut, nt, at, bt, ot = signature.args
         u_, n_, a_, b_, o_ = args
         intp = context.get_value_type(types.intp)
@@ -583,6 +680,7 @@ def _series_linear_typer(typingctx: Any, U: Any, n: Any, S: Any, a: Any, ca: Any
     sig = types.void(U, n, S, a, ca, b, cb, k)
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
         ut, nt, st, at, cat, bt, cbt, ot = signature.args
         u_, n_, s_, a_, ca_, b_, cb_, o_ = args
         intp = context.get_value_type(types.intp)

@@ -1,10 +1,12 @@
 """The lane count (:func:`andoyer.kernels.simd.lane_width`): chosen from the CPU, set by
 ``ANDOYER_LANES``, part of the lane kernels' cache key, and without effect on the
-results beyond round-off.
+results beyond round-off; so the lanes' tuning (:func:`andoyer.kernels.simd.lane_tuning`:
+an Intel model's scheduling on AMD Zen, ``ANDOYER_LANE_TUNE``).
 
 * the choice: AVX-512 8, AVX/AVX2 4, else 2; the variable overrides it; a bad value is
   refused naming the variable;
-* the cache keys of the lane entry points name the width;
+* the tuning: ``haswell`` on ``znver*``, else the CPU's own; the variable overrides it;
+* the cache keys of the lane entry points name the width and the tuning;
 * (slow) a process with another width (4 here where the CPU has 8, else 8) gives the
   same steps (``info``) and, to round-off, the same states, tangent vectors and
   crossings (G3 = 0 and theta2 = 0) as this process: each lane's arithmetic does not
@@ -41,9 +43,19 @@ def test_the_width_follows_the_cpu_unless_set() -> None:
         assert simd.LANES == simd.lane_width()
 
 
-def test_the_width_keys_the_lane_caches() -> None:
+def test_the_tuning_follows_the_cpu_unless_set() -> None:
+    assert simd.lane_tuning({}, "znver4") == simd.lane_tuning({}, "znver2") == "haswell"
+    assert simd.lane_tuning({}, "skylake-avx512") == simd.lane_tuning({}, "haswell") == ""
+    assert simd.lane_tuning({"ANDOYER_LANE_TUNE": "host"}, "znver4") == ""
+    assert simd.lane_tuning({"ANDOYER_LANE_TUNE": " x86-64 "}, "znver4") == "x86-64"
+    assert simd.lane_tuning({"NUMBA_CPU_NAME": "znver3"}) == "haswell"
+    if not os.environ.get(simd.TUNE_ENV):
+        assert simd.TUNE == simd.lane_tuning()
+
+
+def test_the_width_and_tuning_key_the_lane_caches() -> None:
     for stamp in (lanes.LANES_STAMP, lane_crossings.LANE_CROSSINGS_STAMP):
-        assert stamp.endswith(f"-lanes{simd.LANES}")
+        assert stamp.endswith(f"-lanes{simd.LANES}-tune{simd.TUNE}")
 
 
 _RUN = textwrap.dedent("""

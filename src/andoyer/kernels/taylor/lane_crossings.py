@@ -89,11 +89,12 @@ _L = LANES
 _N = N_STATE
 _record = flow.STATE.record
 
-#: Hash of every source the compiled entry points depend on, and the lane count (their
+#: Hash of every source the compiled entry points depend on, the lane count and tuning (their
 #: cache key).
 LANE_CROSSINGS_STAMP = source_stamp(
     recurrences.__file__, flow.__file__, sections.__file__, jets.__file__, lanes.__file__,
-    lane_sections.__file__, simd.__file__, common.__file__, __file__) + f"-lanes{LANES}"
+    lane_sections.__file__, simd.__file__, common.__file__, __file__
+) + f"-lanes{LANES}-tune{simd.TUNE}"
 
 
 def component(kind: int, phi0: float, value: float) -> int:
@@ -123,6 +124,7 @@ def component(kind: int, phi0: float, value: float) -> int:
 def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
     """The next orbit of the queue (from ``nxt``) that needs a step, loaded into
     ``lane``: ``(orbit, next)``, orbit -1 (the lane zeroed) when none is left."""
+    simd.tune()
     while nxt < z0.shape[0]:
         i = nxt
         nxt += 1
@@ -144,6 +146,7 @@ def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
     ``bound`` the bounds. Each lane's operations are the scalar ones, in the same order;
     the lanes run side by side (vector code: one Horner chain for all lanes, not one
     after the other)."""
+    simd.tune()
     for lane in range(_L):
         c = ca * X[0, order, comp, lane]
         fb[lane] = c
@@ -164,6 +167,7 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
     """The first ``tc.shape[1]`` crossings in ``(0, t_max]`` of the orbits ``z0`` (n, 6)
     of a state component's section (tapes ``ftape, fC`` and margin ``wtape, wC``), as
     :func:`andoyer.kernels.taylor.flow.locate_crossings` (see the module notes)."""
+    simd.tune()  # the lanes' scheduling (simd.lane_tuning)
     n_crossings = tc.shape[1]
     n = order + 1
     comp, ca, cc = linear_component(ftape, fC)
@@ -262,6 +266,7 @@ def _bounds(U, node, order, hs, bound):
     ``U[:, node, lane]`` on every lane's step ``hs[lane]``, the bound of
     :func:`~andoyer.kernels.taylor.sections.end_and_bound` (each lane's operations the
     scalar ones, the lanes side by side)."""
+    simd.tune()
     for lane in range(_L):
         bound[lane] = abs(U[order, node, lane])
     for k in range(order - 1, 0, -1):
@@ -275,6 +280,7 @@ def _bounds(U, node, order, hs, bound):
 def _start_value(ftape, fC, X, lane, Y, u):
     """The section function at ``lane``'s current state (its next step's ``f_a``): the
     scalar :func:`~andoyer.kernels.taylor.sections.tape_value`."""
+    simd.tune()
     for c in range(_N):
         Y[0, c] = X[0, 0, c, lane]
     return tape_value(ftape, fC, Y, u)
@@ -290,6 +296,7 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
     end value ``f_b`` the tape at the step's end state (one more lane-parallel pass at
     order 0), and the scalar kernel's root isolation and ``record`` on a lane whose step
     may hold a root -- as :func:`andoyer.kernels.taylor.flow.locate_crossings`."""
+    simd.tune()  # the lanes' scheduling (simd.lane_tuning)
     n_crossings = tc.shape[1]
     n = order + 1
     nodes = ftape.shape[0]
@@ -397,6 +404,7 @@ def _build(stamp: str) -> Any:
     def lane_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
                              tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits on the calling thread."""
+        simd.tune()
         _ = len(stamp)  # keys the cache
         q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
@@ -408,6 +416,7 @@ def _build(stamp: str) -> Any:
                                   max_steps, tc, zc, count, info):
         """:func:`locate_crossings` of a block of orbits on the calling thread, for a
         section with a tape (:func:`tape_crossings_on_lanes`)."""
+        simd.tune()
         _ = len(stamp)  # keys the cache
         q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)

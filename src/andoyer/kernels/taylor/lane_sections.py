@@ -52,6 +52,7 @@ def lane_tape_jet(tape, C, x, order, U):
     lane jets ``x[k, i, lane]``, node by node (the module notes). At ``order`` 0: the
     tape's values at the states ``x[0]``
     (:func:`~andoyer.kernels.taylor.sections.tape_value` of every lane)."""
+    simd.tune()
     for n in range(tape.shape[0]):
         op = tape[n, 0]
         a = tape[n, 1]
@@ -87,6 +88,7 @@ def lane_tape_jet(tape, C, x, order, U):
 def section_step_space(order, nodes):
     """Work space of :func:`lane_section_step`: one block of jets and one tape's jets
     of one orbit."""
+    simd.tune()
     return np.zeros((1, order + 1, _N)), np.zeros((nodes, order + 1))
 
 
@@ -96,6 +98,7 @@ def lane_section_step(X, U, order, tape, lane, Xs, us):
     its state's jets ``X[0, :, :, lane]`` and its section jet ``U[:, :, lane]``, on
     copies (``Xs``, ``us`` from :func:`section_step_space`) of the coefficients that
     function reads -- the scalar kernel's arithmetic, bit for bit on the same jets."""
+    simd.tune()
     last = tape.shape[0] - 1
     for i in range(_N):
         Xs[0, 0, i] = X[0, 0, i, lane]

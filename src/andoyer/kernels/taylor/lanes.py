@@ -82,10 +82,10 @@ _L = LANES
 _N = N_STATE
 _P = recurrences.LANE_PRODUCTS
 
-#: Hash of every source the compiled entry point depends on, and the lane count (its
+#: Hash of every source the compiled entry point depends on, the lane count and tuning (its
 #: cache key: code compiled for another width is another entry).
 LANES_STAMP = source_stamp(recurrences.__file__, __file__, simd.__file__, sections.__file__,
-                           jets.__file__, common.__file__) + f"-lanes{LANES}"
+                           jets.__file__, common.__file__) + f"-lanes{LANES}-tune{simd.TUNE}"
 
 _jet = kernel_jit(recurrences.ep_taylor_jet_lanes)
 _tangent_jet = kernel_jit(recurrences.ep_taylor_tangent_jet_lanes)
@@ -95,6 +95,7 @@ _tangent_jet = kernel_jit(recurrences.ep_taylor_tangent_jet_lanes)
 def lane_jets(X, order, q, m):
     """Jets to ``order`` of the state ``X[0]`` and the tangent vectors ``X[1:]`` of every
     lane (rows ``X[:, 0]`` are the current values); ``m`` scratch (LANE_PRODUCTS, LANES)."""
+    simd.tune()
     _jet(X[0], order, q, m)
     for b in range(1, X.shape[0]):
         _tangent_jet(X[0], X[b], order, q, m)
@@ -104,6 +105,7 @@ def lane_jets(X, order, q, m):
 def lane_state_jets(X, order, q, m):
     """:func:`lane_jets` of states alone (``X`` of one block): a caller that never
     carries tangent vectors compiles no tangent jets (0.3 s of a cold first section)."""
+    simd.tune()
     _jet(X[0], order, q, m)
 
 
@@ -113,6 +115,7 @@ def lane_steps(X, order, h, a1, a2, tot):
     for every lane (NaN where a value or coefficient is not finite). ``a1, a2, tot``
     scratch (LANES,): the least ``m / |x^[p-1]|``, ``m / |x^[p]|`` over the blocks (the
     powers are monotonic, so the least radius is the radius of the least ratio)."""
+    simd.tune()
     for lane in range(_L):
         a1[lane] = np.inf
         a2[lane] = np.inf
@@ -150,12 +153,14 @@ def lane_advance(X, order, h):
     """Rows 0 of every lane's jets = the values at ``t0 + h[lane]`` (vector code,
     :func:`andoyer.kernels.simd.advance`: faster than the scalar loops; measured:
     benchmarks/NOTES.md#taylor-lanes)."""
+    simd.tune()
     simd.advance(X, order, h)
 
 
 @kernel_jit
 def lane_horner(X, order, lane, tau, out):
     """``out[6 b + i]`` = block ``b`` of ``lane`` at ``t0 + tau``."""
+    simd.tune()
     for b in range(X.shape[0]):
         for i in range(_N):
             v = X[b, order, i, lane]
@@ -168,6 +173,7 @@ def lane_horner(X, order, lane, tau, out):
 def lane_load(X, lane, z):
     """Rows 0 of ``lane``'s jets = the state ``z`` (zeros when ``z`` is empty: an idle
     lane)."""
+    simd.tune()
     for b in range(X.shape[0]):
         for i in range(_N):
             X[b, 0, i, lane] = z[_N * b + i] if z.shape[0] else 0.0
@@ -180,6 +186,7 @@ def take_orbit(z0, t_out, max_steps, X, lane, nxt, out, info, nothing):
     are finished here as the scalar kernel finishes them. Returns ``(orbit, j, next)``:
     the orbit (-1: none left, the lane is zeroed by the empty ``nothing``), its next
     output index, the queue's next orbit."""
+    simd.tune()
     k = t_out.shape[0]
     while nxt < z0.shape[0]:
         i = nxt
@@ -209,6 +216,7 @@ def aligned(n):
     """``n`` zeros starting on a 64-byte boundary, so that each lane vector is one
     cache line (vector loads straddling two lines slow the Cauchy products down;
     measured: benchmarks/NOTES.md#taylor-lanes)."""
+    simd.tune()
     buf = np.zeros(n + 8)
     start = ((-buf.ctypes.data) // 8) % 8
     return buf[start:start + n]
@@ -218,6 +226,7 @@ def aligned(n):
 def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
     """The orbits ``z0`` (n, 6 + 6 k) to the output times ``t_out``: ``out[i, j]`` and
     ``info[i]`` as :func:`andoyer.kernels.taylor.flow.propagate` (see the module notes)."""
+    simd.tune()  # the lanes' scheduling (simd.lane_tuning)
     k = t_out.shape[0]
     t_end = t_out[k - 1]
     nb = z0.shape[1] // _N
@@ -290,6 +299,7 @@ def _build(stamp: str) -> Any:
     @exact_jit
     def lanes_block(z0, t, p, order, max_steps, out, info):
         """:func:`propagate` of a block of orbits on the calling thread."""
+        simd.tune()
         _ = len(stamp)  # keys the cache
         q = np.empty(recurrences.N_CONSTANTS)
         fill_constants(p, q)
