@@ -81,6 +81,14 @@ def test_cone_condition_accepts_a_hyperbolic_block_and_refuses_a_sheared_one():
         assert not tr._cone(sheared, 1e-5, None)[0]
 
 
+def test_saddle_test_reads_trace_and_determinant():
+    with working_precision(64):
+        lam, ok = tr._saddle(arb_mat([[arb(18), arb(1)], [arb(0), arb(1) / 18]]))
+        assert ok and lam.contains(18)
+        assert not tr._saddle(arb_mat([[arb(2), arb(0)], [arb(0), arb(1.5)]]))[1]
+        assert not tr._saddle(arb_mat([[arb(0), arb(-1)], [arb(1), arb(0)]]))[1]
+
+
 def test_local_manifold_cone_on_a_small_box():
     lm = tr.local_unstable_manifold(SPEC, radius=1e-6, order=20)
     assert lm.holds and lm.kappa < 1e-4

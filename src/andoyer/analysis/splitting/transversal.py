@@ -202,9 +202,10 @@ class LocalManifold:
     derivative : tuple of str
         ``DF(N)`` in ``(u, v)`` (4 balls, rows).
     multiplier : str
-        The unstable multiplier of ``DF(p)`` (a ball).
+        The unstable eigenvalue of ``DF(p)`` (a ball; the other is proved inside the
+        unit circle: ``p`` is a saddle).
     holds : bool
-        Whether the cone condition was proved.
+        Whether ``p`` is proved a saddle and the cone condition holds on ``N``.
     seconds : float
         Run time.
     """
@@ -288,11 +289,12 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
             frame = tuple(tuple(float(x) for x in row) for row in V)
         E = _mat(frame)
         Einv = E.inv()
-        lam = (Einv * M0 * E)[0, 0]
+        lam, saddle = _saddle(Einv * M0 * E)
         r = arb(0, float(radius))
         x = _hull_box(st, E, r, r)
         DF = Einv * _return_map_derivative(spec, st, x, order) * E
         holds, kap, m = _cone(DF, radius, kappa)
+        holds = holds and saddle
     return LocalManifold(rotation=rotation, mu_radius=getattr(spec, "mu_radius", "0"),
                          frame=frame, radius=float(radius), kappa=kap,
                          expansion=ball_text(m, 20),
@@ -300,6 +302,19 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
                                           for j in range(2)),
                          multiplier=ball_text(lam, 20), holds=holds,
                          seconds=time.perf_counter() - start)
+
+
+def _saddle(M: arb_mat) -> tuple[arb, bool]:
+    """The eigenvalues of the ``2 x 2`` ball matrix ``M = DF(p)``: real, ``lambda+ > 1``
+    and ``|lambda-| < 1`` (from the trace and the determinant); returns ``lambda+``."""
+    tr = M[0, 0] + M[1, 1]
+    det = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
+    disc = tr * tr - 4 * det
+    if not disc > 0:
+        return arb(0), False
+    root = disc.sqrt()
+    hi, lo = (tr + root) / 2, (tr - root) / 2
+    return hi, bool(hi > 1 and abs(lo) < 1)
 
 
 def _cone(DF: arb_mat, radius: float, kappa: float | None) -> tuple[bool, float, arb]:
