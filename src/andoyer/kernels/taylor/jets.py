@@ -31,6 +31,9 @@ __all__ = ["fill_constants", "state_jets", "tangent_jets", "attitude_jets",
 #: (:func:`section_step_size`): near ``G = 0`` an angle's section function has jets
 #: growing without bound (its ``|G|`` factor), where it is undefined anyway.
 SECTION_STEP_FLOOR = 1.0 / 16.0
+#: Its inverse, exactly (a power of two: multiplying by it is dividing by the floor, bit
+#: for bit, without a division's latency in the step size's chain).
+_INV_FLOOR = 16.0
 
 
 # Helpers: compiled into the entry points that call them (not cached on their own,
@@ -149,11 +152,11 @@ def section_step_size(X, order, tape, u):
     c = m / max(m, scale)
     cap = 1.0
     for _ in range(order - 1):
-        cap /= SECTION_STEP_FLOOR
+        cap *= _INV_FLOOR
     if a1 * c > n1:
         n1 = min(a1 * c, n1 * cap)
     if a2 * c > n2:
-        n2 = min(a2 * c, n2 * cap / SECTION_STEP_FLOOR)
+        n2 = min(a2 * c, n2 * cap * _INV_FLOOR)
     rho = np.inf
     if n1 > 0.0:
         rho = (m / n1) ** (1.0 / (order - 1))
