@@ -149,6 +149,26 @@ def _skip_type_aliases(app, what, name, obj, skip, options):  # noqa: ANN001, AR
     return skip
 
 
+#: The module whose page autodoc is writing (set by its docstring, read for its members).
+_DOCUMENTING: list[str] = [""]
+
+
+def _note_module(app, what, name, obj, options, lines):  # noqa: ANN001, ARG001
+    if what == "module":
+        _DOCUMENTING[0] = name
+
+
+def _skip_reexported_classes(app, what, name, obj, skip, options):  # noqa: ANN001, ARG001
+    """A package's page lists the classes it re-exports (its ``__all__``) without
+    describing them again: autodoc would add the defining module's name as a second
+    (canonical) description of each, a duplicate of the module's own page."""
+    module = sys.modules.get(_DOCUMENTING[0])
+    if (what == "module" and module is not None and hasattr(module, "__path__")
+            and isinstance(obj, type) and obj.__module__ != module.__name__):
+        return True
+    return _skip_type_aliases(app, what, name, obj, skip, options)
+
+
 def _offline_note(app):  # noqa: ANN001
     if not DOCS_ONLINE:
         from sphinx.util import logging
@@ -180,7 +200,8 @@ def _stamp_autosummary(app, exception):  # noqa: ANN001
 
 
 def setup(app):  # noqa: ANN001, ANN201
-    app.connect("autodoc-skip-member", _skip_type_aliases)
+    app.connect("autodoc-process-docstring", _note_module)
+    app.connect("autodoc-skip-member", _skip_reexported_classes)
     app.connect("builder-inited", _offline_note)
     if _api_sources_unchanged():
         from sphinx.ext.autosummary import process_generate_options

@@ -8,18 +8,19 @@ state whose six components are jets needs nothing but products of jets: an expli
 Runge-Kutta step on jets is the same step on the variational equations of every order
 ``<= N`` at once (the truncation commutes with the arithmetic). On the section
 ``g = g*`` of the level ``H = h`` with area constant ``M`` the plane coordinates
-``(l, L)`` are canonical (the reduced map (R2) of :mod:`andoyer.analysis.resonance.
-predict` preserves ``dl ^ dL``), and the map is built in four jet steps:
+``(l, L)`` are canonical (the reduced map (R2) of
+:mod:`andoyer.analysis.resonance.predict` preserves ``dl ^ dL``), and the map is built in
+four jet steps:
 
-(J1) the initial state: ``l = l0 + u``, ``L = L0 + v``, ``G`` solving ``H = h`` (chord
-     iterations on jets, each exact to one degree more), the state by the chart map
-     :func:`~andoyer.charts.andoyer_deprit.andoyer_to_ep_expr` evaluated on jets;
-(J2) the flow to the base orbit's ``n``-th crossing time ``T`` (crossings in the section's
-     direction) by fixed steps of the 8th-order DOP853 formula on jets;
-(J3) the crossing time ``T + tau(u, v)``: ``tau`` solves ``f(phi_tau(y)) = 0`` for the
-     section function ``f`` of :func:`andoyer.symbolic.sections.section_function` by chord
-     iterations, each a Runge-Kutta step of jet length ``tau``;
-(J4) the image point ``(l, L) = (atan2(G1, G2), G3)`` as jets.
+- (J1) the initial state: ``l = l0 + u``, ``L = L0 + v``, ``G`` solving ``H = h`` (chord
+  iterations on jets, each exact to one degree more), the state by the chart map
+  :func:`~andoyer.charts.andoyer_deprit.andoyer_to_ep_expr` evaluated on jets;
+- (J2) the flow to the base orbit's ``n``-th crossing time ``T`` (crossings in the section's
+  direction) by fixed steps of the 8th-order DOP853 formula on jets;
+- (J3) the crossing time ``T + tau(u, v)``: ``tau`` solves ``f(phi_tau(y)) = 0`` for the
+  section function ``f`` of :func:`andoyer.symbolic.sections.section_function` by chord
+  iterations, each a Runge-Kutta step of jet length ``tau``;
+- (J4) the image point ``(l, L) = (atan2(G1, G2), G3)`` as jets.
 
 The error of the coefficients is estimated by repeating (J2)-(J4) with twice the steps
 (8th order: the finer result is ``~2^8`` times closer than their difference).

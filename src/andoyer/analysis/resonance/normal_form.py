@@ -7,23 +7,23 @@ free top's centres moved by ``mu``, and the stable periodic orbits of the island
 degree ``N`` comes from jet transport (:mod:`andoyer.integrate.jet_transport`, (J1)-(J4));
 its Birkhoff normal form gives the rotation number as a function of the action:
 
-(P1) The fixed point by Newton on ``P^n(x) - x`` with the degree-1 jets (the Jacobian).
-(P2) ``x - x* = w v + conj(w v)`` with ``v`` the eigenvector of ``lambda =
-     exp(2 pi i omega0)`` (``0 < omega0 < 1/2``: the rotation in the ``w`` plane), scaled
-     so that the circle ``|w| = r`` encloses the area ``2 pi r^2`` (``|w|^2`` is the action
-     to first order); ``w' = F(w, wbar)``.
-(P3) Degree by degree ``d = 2 .. N``, the conjugacy ``w = Phi(z) = z + phi(z, zbar)`` and
-     the normal form ``G(z)``: with ``R`` the degree-``d`` part of ``F(Phi) - Phi(G)``
-     (lower degrees already set), the term ``z^j zbar^k`` is removed,
-     ``phi_jk = -R_jk / (lambda - lambda^(j - k))``, unless ``j - k = 1`` (resonant:
-     ``g_jk = R_jk``, ``phi_jk = 0``). ``G(z) = z (lambda + sum_k a_k |z|^(2k))``.
-(P4) ``rho(|z|^2) = arg(lambda + sum_k a_k |z|^(2k)) / (2 pi)`` (turns per iterate of
-     ``P^n``); its modulus is 1 to the order computed (the map preserves area:
-     ``radial_defect`` says by how much it is not).
-(P5) The action of the invariant curve ``|z| = r``: ``I = area / (2 pi) = sum_m m |W_m(r)|^2``
-     (``Phi(r e^(i t)) = sum_m W_m(r) e^(i m t)``), a series in ``r^2``; reverted and
-     composed, ``rho(I) = omega0 + tau_1 I + tau_2 I^2 + ...`` -- the twist coefficients,
-     invariant under symplectic changes of coordinates.
+- (P1) The fixed point by Newton on ``P^n(x) - x`` with the degree-1 jets (the Jacobian).
+- (P2) ``x - x* = w v + conj(w v)`` with ``v`` the eigenvector of ``lambda =
+  exp(2 pi i omega0)`` (``0 < omega0 < 1/2``: the rotation in the ``w`` plane), scaled
+  so that the circle ``|w| = r`` encloses the area ``2 pi r^2`` (``|w|^2`` is the action
+  to first order); ``w' = F(w, wbar)``.
+- (P3) Degree by degree ``d = 2 .. N``, the conjugacy ``w = Phi(z) = z + phi(z, zbar)`` and
+  the normal form ``G(z)``: with ``R`` the degree-``d`` part of ``F(Phi) - Phi(G)``
+  (lower degrees already set), the term ``z^j zbar^k`` is removed,
+  ``phi_jk = -R_jk / (lambda - lambda^(j - k))``, unless ``j - k = 1`` (resonant:
+  ``g_jk = R_jk``, ``phi_jk = 0``). ``G(z) = z (lambda + sum_k a_k |z|^(2k))``.
+- (P4) ``rho(|z|^2) = arg(lambda + sum_k a_k |z|^(2k)) / (2 pi)`` (turns per iterate of
+  ``P^n``); its modulus is 1 to the order computed (the map preserves area:
+  ``radial_defect`` says by how much it is not).
+- (P5) The action of the invariant curve ``|z| = r``: ``I = area / (2 pi) = sum_m m |W_m(r)|^2``
+  (``Phi(r e^(i t)) = sum_m W_m(r) e^(i m t)``), a series in ``r^2``; reverted and
+  composed, ``rho(I) = omega0 + tau_1 I + tau_2 I^2 + ...`` -- the twist coefficients,
+  invariant under symplectic changes of coordinates.
 
 Degree ``N = 2K + 1`` gives ``tau_1 .. tau_K``; the rotation number of an orbit of
 amplitude ``r`` errs by ``O(r^(2K + 2))`` (the next resonant term), which

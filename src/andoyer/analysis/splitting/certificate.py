@@ -358,8 +358,10 @@ def prove_transversal_certificate(body: Any, *, G: str = "1", rotation: int = 1,
                                   side: int = 1, which: int = 0,
                                   half_width: float = 1e-9,
                                   bits: int = 128, order: int = 24) -> dict[str, Any]:
-    """Prove the finite-``mu`` theorem (:func:`~andoyer.analysis.splitting.transversal.
-    prove_transversal`) and return its certificate.
+    """Prove the finite-``mu`` theorem and return its certificate.
+
+    The theorem is that of
+    :func:`~andoyer.analysis.splitting.transversal.prove_transversal`.
 
     Parameters
     ----------
