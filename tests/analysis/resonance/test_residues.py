@@ -178,3 +178,25 @@ def test_critical_mu_scales_with_the_level():
                      mu_range=(2e-3, 0.2), progress=False)
     np.testing.assert_allclose(two.mu_critical_convergent, 2 * one.mu_critical_convergent,
                                rtol=1e-4)
+
+
+@pytest.mark.slow
+def test_the_paper_body_breaks_near_its_separatrix():
+    """The paper's body on its level: the golden torus between the crowded chains 30:1 and
+    31:1 has mu_c = 0.0079 (< the paper's 0.01; the last change 5e-5), and at mu = 0.01 its
+    residues grow with q (Greene: broken), while the golden torus between the main chains
+    7:1 and 8:1 has residues falling to the integration's resolution."""
+    from andoyer.integrate.fill import default_h
+
+    body = RigidBody.paper()
+    h = default_h(body)
+    sep = last_torus(body, h, head=(30,), axis=1, n_convergents=5, mu_range=(1e-3, 0.03),
+                     progress=False)
+    assert 0.0075 < float(sep.mu_critical) < 0.0083
+    assert float(sep.mu_critical_error) < 2e-4
+    R = sep.residue_elliptic.values
+    assert sep.found_elliptic.all() and np.all(R[1:] > R[:-1]) and R[-1] > 1.0
+    main = last_torus(body, h, head=(7,), axis=1, n_convergents=3, progress=False)
+    Rm = np.abs(main.residue_elliptic.values)
+    assert Rm[0] < 1e-6 and Rm[1] < 1e-3 * Rm[0]
+    assert Rm[2] < 10 * float(main.residue_resolution_elliptic[2])

@@ -33,9 +33,11 @@ the ``q/2``-th crossing of ``g = pi/2`` (``q`` even) or the ``(q + 1)/2``-th cro
 line: a root in one dimension, bracketed and closed by Brent's method (far more robust
 than Newton in the plane, whose Jacobian ``DP^q - I`` is nearly singular on a thin
 chain). The function whose root is taken counts the winding too:
-``F(l0) = Phi(l0) - pi p`` with ``Phi`` the advance of the free-top phase ``phi1``
-(:func:`~andoyer.analysis.resonance.torus.free_top_phase`, ``phi1 = 0, pi`` exactly where
-``L = 0``) over the half orbit, unwrapped return by return (each ``~2 pi W < pi``): a
+``F(l0) = |Phi(l0)| - pi p`` with ``Phi`` the angle ``atan2(L, l - l_c)`` swept about the
+regime's centre ``l_c`` (``pi/2`` about axis 1, 0 about axis 2; the angle is 0 or ``pi``
+exactly where ``L = 0``) over the half orbit, unwrapped return by return (each step well
+below ``pi`` for ``W < 1/2``; the free-top phase would not do near the separatrix, where
+``mu`` moves a point's free-top torus across it): a
 root is a symmetric orbit of rotation number exactly ``p/q``, not one of its neighbours
 ``(p +- 1)/q``. For odd ``q`` both orbits of the chain (the elliptic and the hyperbolic)
 cross the line ``g = pi/2, L = 0``, one on each side of the centre; for even ``q`` one
@@ -60,7 +62,8 @@ critical ``mu_c`` they tend to a constant near ``1/4`` (0.2500888 for the golden
 elliptic orbits of the standard map). ``mu_c(q_j)``, where the elliptic residue of the
 ``j``-th convergent equals :data:`THRESHOLD` ``= 1/4``, converges to ``mu_c``
 geometrically (``convergence_ratio``, the ratio of successive changes, is measured, not
-assumed: 0.23-0.38 on the golden torus of Hess(3, 1, 2) about axis 1, h = 1); the
+assumed: 0.37 on the golden torus of Hess(3, 1, 2) about axis 1, h = 1, 0.39 on the
+paper's body between its chains 30:1 and 31:1); the
 estimate of ``mu_c`` is that of the largest ``q`` found, its error the change from the
 previous convergent found.
 
@@ -102,7 +105,6 @@ from andoyer.analysis.resonance.predict import (
     free_top_at_gap,
     resonant_rows,
 )
-from andoyer.analysis.resonance.torus import free_top_phase
 from andoyer.body import RigidBody, checks_body
 from andoyer.charts.andoyer_deprit import from_andoyer
 from andoyer.integrate import budget
@@ -127,9 +129,9 @@ MAX_CONVERGENTS = 16
 #: SymPy field there), as an array (that module loads python-flint).
 SYMMETRY = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
 #: Points of the free-top rotation number on a symmetry line where the root is bracketed.
-_GRID = 24
-#: The grid spans the band between the main chains widened by this fraction each way.
-_MARGIN = 0.5
+_GRID = 32
+#: The grid spans the band between the main chains widened by this factor each way.
+_MARGIN = 4.0
 #: ``|F|`` (rad of phase) below which Brent's answer is a root, not a jump of the winding.
 _ROOT_F = 1e-6
 #: Half-orbit evaluations allowed per orbit (grid + Brent), for the cost estimate.
@@ -280,6 +282,15 @@ class _Level:
         return 4.0 * returns * self.return_time + 100.0
 
     # ---------------------------------------------------------------- (G3)
+    def advance(self, mom: NDArray[np.float64]) -> float:
+        """The angle swept about the regime's centre in the plane ``(l, L)`` by the
+        momenta ``mom`` (one row per crossing), unwrapped crossing by crossing: the angle
+        ``atan2(L, l - l_c)`` is 0 or pi exactly where ``L = 0``."""
+        l = np.arctan2(mom[:, 0], mom[:, 1])
+        centre = math.pi / 2 if self.axis == 1 else 0.0
+        theta = np.arctan2(mom[:, 2], l - centre)
+        return float(np.sum(np.mod(np.diff(theta) + math.pi, 2.0 * math.pi) - math.pi))
+
     def half(self, l0: float, g0: float, p: int, q: int) -> float:
         """``F(l0) = Phi - pi p`` over the half orbit (NaN where it cannot be followed)."""
         y = self.seed(l0, g0)
@@ -299,21 +310,16 @@ class _Level:
         if int(cr.count[0]) < k:
             return math.nan
         mom = np.vstack([y[:3], cr.y[0, :, :3]])
-        try:
-            ph = free_top_phase(self.body, mom)
-        except ValueError:                     # a point on a separatrix: no phase
-            return math.nan
-        steps = np.mod(np.diff(ph) + math.pi, 2.0 * math.pi) - math.pi
-        return float(np.sum(steps)) - math.pi * p
+        return abs(self.advance(mom)) - math.pi * p
 
     def orbit(self, p: int, q: int, g0: float, side: int,
               near: float | None = None) -> _Orbit | None:
         """The symmetric ``p/q`` orbit on the line ``(g0, side)``: the root of ``F`` nearest
         ``near`` (or the free-top ``l`` of ``p/q``), then its residue (G4)."""
         w_lo, w_hi = self.band
-        width = w_hi - w_lo
-        Ws = np.linspace(max(w_lo - _MARGIN * width, 0.05 * w_lo),
-                         w_hi + _MARGIN * width, _GRID)
+        # geometric in the free-top W, well beyond the band: near the separatrix mu moves
+        # the chains by more than the band's width (the W beyond the centre's are dropped)
+        Ws = np.geomspace(w_lo / _MARGIN, w_hi * _MARGIN, _GRID)
         ls = np.array([x for x in (self._l_or_none(float(W), side) for W in Ws)
                        if x is not None])      # W beyond the centre's: no torus there
         if ls.size < 2:
@@ -389,8 +395,7 @@ class _Level:
         w = flow.w[0, -1]
         residue = (6.0 - float(np.trace(w))) / 4.0      # Tr is the same for w and w.T
         mom = np.vstack([y[:3], flow.y[0, :, :3]])
-        ph = free_top_phase(self.body, mom)
-        turns = float(np.sum(np.mod(np.diff(ph) + math.pi, 2 * math.pi) - math.pi)) / (2 * math.pi)
+        turns = abs(self.advance(mom)) / (2 * math.pi)
         # the trace's error: the integration's (tol per unit of |Phi|) and the closure's
         resolution = _RESOLUTION * self.tol.tol * max(1.0, float(np.linalg.norm(w)))
         return _Orbit(l0, g0, residue, float(flow.t[0, -1]),
@@ -400,24 +405,37 @@ class _Level:
              ) -> tuple[_Orbit | None, _Orbit | None]:
         """The elliptic and the hyperbolic symmetric ``p/q`` orbits (G3): on the lines
         ``g = pi/2`` either side of the centre (``q`` odd) or ``g = pi/2`` and ``3 pi/2``
-        on one side (``q`` even); the larger residue is the elliptic one."""
-        lines = ([(math.pi / 2, -1), (math.pi / 2, 1)] if q % 2
+        on one side (``q`` even), then on the other two lines while one is missing (near a
+        separatrix ``mu`` can push a line's root out of reach); the larger residue is the
+        elliptic one."""
+        first = ([(math.pi / 2, -1), (math.pi / 2, 1)] if q % 2
                  else [(math.pi / 2, -1), (3 * math.pi / 2, -1)])
-        found = []
-        for g0, side in lines:
+        others = ([(3 * math.pi / 2, -1), (3 * math.pi / 2, 1)] if q % 2
+                  else [(math.pi / 2, 1), (3 * math.pi / 2, 1)])
+        orbits: list[_Orbit] = []
+        for k, (g0, side) in enumerate(first + others):
+            if k == len(first) and len(orbits) == 2:
+                break
             near = None
             if previous is not None:
                 for o in previous:
                     if o is not None and o.g0 == g0 and self._side(o.l0) == side:
                         near = o.l0
-            found.append(self.orbit(p, q, g0, side, near))
-        orbits = [o for o in found if o is not None and o.winding == p]
+            o = self.orbit(p, q, g0, side, near)
+            if o is None or o.winding != p:
+                continue
+            kind = o.residue > 0
+            if k >= len(first) and any((x.residue > 0) == kind for x in orbits):
+                continue            # the type already found: the other lines add only it
+            orbits.append(o)
+            if k >= len(first) and len(orbits) == 2:
+                break
         if not orbits:
             return None, None
         if len(orbits) == 1:
-            o = orbits[0]
-            return (o, None) if o.residue > 0 else (None, o)
-        a, b = sorted(orbits, key=lambda o: -o.residue)
+            one = orbits[0]
+            return (one, None) if one.residue > 0 else (None, one)
+        a, b = sorted(orbits, key=lambda o: -o.residue)[:2]
         return a, b
 
     def _side(self, l0: float) -> int:

@@ -92,10 +92,27 @@ def last_torus(ctx: Context) -> Result:
         ds_rows = [(int(p), int(q), float(e), float(res)) for p, q, e, res in zip(
             ds.p.values, ds.q.values, ds.residue_elliptic.values,
             ds.residue_resolution_elliptic.values, strict=True)]
-        paper = {"h": h, "mu": body.mu, "rows": ds_rows, "mu_overlap": float(ds.mu_overlap)}
+        # near the separatrix the chains crowd: the golden torus between 30:1 and 31:1
+        sep = greene(body, h, head=(30,), axis=1, n_convergents=5, mu_range=(1e-3, 0.03),
+                     engine=engine, progress=False)
+        paper = {"h": h, "mu": body.mu, "rows": ds_rows, "mu_overlap": float(ds.mu_overlap),
+                 "sep_mu_c": float(sep.mu_critical), "sep_err": float(sep.mu_critical_error),
+                 "sep_overlap": float(sep.mu_overlap), "sep_ratio": float(sep.mu_ratio),
+                 "sep_residues": [float(x) for x in sep.residue_elliptic.values],
+                 "sep_q": [int(x) for x in sep.q.values]}
         for p, q, e, _res in ds_rows:
-            rows.append(["paper", f"{p}/{q}", f"{e:.4e}", "-", "-", "-", "-"])
+            rows.append(["paper (7:1, 8:1)", f"{p}/{q}", f"{e:.4e}", "-", "-", "-", "-"])
+        for i in range(sep.sizes["convergent"]):
+            r = sep.isel(convergent=i)
+            rows.append(["paper (30:1, 31:1)", f"{int(r.p)}/{int(r.q)}",
+                         f"{float(r.residue_elliptic):.4e}",
+                         f"{float(r.residue_hyperbolic):.4e}",
+                         f"{float(r.mu_critical_convergent):.6g}",
+                         f"{float(r.residue_hyperbolic_critical):+.4f}",
+                         f"{float(r.seconds):.1f}"])
         numbers["paper_mu_overlap"] = paper["mu_overlap"]
+        numbers["paper_separatrix_mu_critical"] = paper["sep_mu_c"]
+        numbers["paper_separatrix_mu_overlap"] = paper["sep_overlap"]
     return Result(
         files, numbers,
         {"engine": engine, "mu_c": mu_c, "err": float(crit.mu_critical_error),
