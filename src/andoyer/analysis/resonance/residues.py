@@ -138,7 +138,7 @@ _ROOT_F = 1e-6
 _EVALUATIONS = _GRID + 60
 #: A residue below this many times ``tol |Phi(T)|`` is the integration's error, not the
 #: orbit's (``residue_resolution``).
-_RESOLUTION = 100.0
+_RESOLUTION = 1.0
 #: Evaluations of the residues in ``mu`` per convergent (the steps and Brent's).
 _MU_EVALUATIONS = 40
 #: The factor of the steps in ``mu`` from the guess until the residue crosses 1/4.
@@ -472,10 +472,10 @@ _META = {
     "closure_elliptic": ("|y(T) - y_0|", "closure of the elliptic orbit after q returns",
                          "1", "(G3)"),
     "closure_hyperbolic": ("|y(T) - y_0|", "closure of the hyperbolic orbit", "1", "(G3)"),
-    "residue_resolution_elliptic": ("", "100 tol |Phi(T)|: a smaller |residue_elliptic| is "
+    "residue_resolution_elliptic": ("", "tol |Phi(T)|: a smaller |residue_elliptic| is "
                                     "the integration's error (rounding), not the orbit's",
                                     "1", "(G4)"),
-    "residue_resolution_hyperbolic": ("", "100 tol |Phi(T)| of the hyperbolic orbit", "1",
+    "residue_resolution_hyperbolic": ("", "tol |Phi(T)| of the hyperbolic orbit", "1",
                                       "(G4)"),
     "mu_critical_convergent": ("\\mu_c(q)", "mu at which the elliptic residue of this "
                                "convergent equals 1/4 (NaN: not in mu_range, or no orbit)",
