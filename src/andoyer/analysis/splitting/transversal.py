@@ -31,8 +31,13 @@ The proof, every number an Arb ball (python-flint):
 3. **Sign change**: ``gamma3`` at the crossing has opposite signs at the two ends, so the
    connected piece meets ``Fix R``: a heteroclinic point ``z`` in the image box ``X``.
 4. **Transversality**: the tangent ``DP chi' E (1, eta)``, ``|eta| <= kappa``, at ``z``
-   gives the slope ``sigma = dG/dg`` in a ball excluding 0, and the angle
+   has its ``gamma3`` and ``G`` components bounded away from 0 (so it and ``R`` of it
+   are independent), and gives the slope ``sigma = dG/dg`` and the angle
    ``2 atan(sigma)``.
+
+With ``mu_radius`` the body's ``mu`` is a ball: every coefficient, the chart and so every
+enclosure hold for all ``mu`` of ``[mu - mu_radius, mu + mu_radius]`` at once, and so does
+the theorem.
 """
 
 from __future__ import annotations
