@@ -23,8 +23,10 @@ extra jet variables of the same step); without renormalisation, the linear flow'
 vectors (``6 + 6 k`` floats: the FLI map's route).
 
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
-renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of 8
-orbits in one vector instruction, each orbit with its own steps (the scalar kernel's),
+renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of one
+vector register of orbits (8 with AVX-512, 4 with AVX2:
+:func:`andoyer.kernels.simd.lane_width`) in one vector instruction, each orbit with its
+own steps (the scalar kernel's),
 at a fraction of the scalar kernel's CPU per orbit-step; so do the crossings of many
 states alone, of every section (a state component's, ``G3 = c``, and the angles',
 ``theta2 = c``, whose section function's jet runs on the lanes too:

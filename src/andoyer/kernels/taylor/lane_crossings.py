@@ -35,9 +35,10 @@ including an angle's passages through its chart's singular set (``G = 0``,
 reports apart, never as crossings, whichever kernel found them. States with tangent
 vectors stay on the scalar kernel.
 
-On many crossings these lanes take less than half (a component section) and about
-0.6 (an angle section) of the scalar kernel's time, the same steps as the scalar
-kernel (measured: benchmarks/NOTES.md#taylor-lane-crossings).
+On many crossings these lanes take less than half the scalar kernel's time (about 0.35
+of it on a component section, 0.45 on an angle section, whose tape's jet is most of
+the rest), the same steps as the scalar kernel (measured:
+benchmarks/NOTES.md#taylor-lane-crossings).
 """
 
 from __future__ import annotations
