@@ -163,8 +163,11 @@ if any(c in TUNE for c in '"\\ '):
 
 def _tune(builder: Any) -> None:
     """Mark the function being lowered with the tuning :data:`TUNE`."""
-    if TUNE:
-        set.add(builder.function.attributes, f'"tune-cpu"="{TUNE}"')
+    attributes = builder.function.attributes
+    # llvmlite lists the attribute names it knows; a set is what it builds on (checked,
+    # so that another llvmlite only loses the tuning, a hint, never the kernel).
+    if TUNE and isinstance(attributes, set):
+        set.add(attributes, f'"tune-cpu"="{TUNE}"')
 
 
 def tune() -> None:
