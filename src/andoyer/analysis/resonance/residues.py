@@ -725,7 +725,7 @@ def _critical(body: RigidBody, h: float, M: float, axis: int, band: tuple[float,
         if pair[0] is not None:
             last.append(pair)
         calls[0] += 1
-        if calls[0] < _MU_EVALUATIONS:
+        if calls[0] <= _MU_EVALUATIONS:
             bar.update(1)
         return pair
 
@@ -759,5 +759,5 @@ def _critical(body: RigidBody, h: float, M: float, axis: int, band: tuple[float,
             u, gu = v, gv
     except (_LostError, RuntimeError):
         pass
-    bar.update(max(_MU_EVALUATIONS - 1 - calls[0], 0))
+    bar.update(max(_MU_EVALUATIONS - calls[0], 0))     # the bar counts _MU_EVALUATIONS each
     return out
