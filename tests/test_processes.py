@@ -74,6 +74,9 @@ COMMANDS: dict[str, list[str]] = {
                    "numba", "--out", "r.nc"],
     "animate": ["animate", "--andoyer", "0.3,0,0.3,1,0", "--frames", "400", "--out",
                 "g.gif"],
+    "last-torus": ["last-torus", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
+                   "0.001", "--energy", "1", "--n-convergents", "6", "--mu-range", "0.001",
+                   "0.1", "--engine", "numba", "--out", "t.nc"],
 }
 #: Commands the sweep leaves out, and why: ``explore`` has its own test below (it stops
 #: with exit 0); ``atlas`` draws a store in about a second (its only outputs are written

@@ -501,8 +501,7 @@ _META = {
 }
 
 
-@checks_body(ranges={"h": "energy", "M": "action", "n_convergents": "count",
-                     "tol": "tolerance"})
+@checks_body(ranges={"h": "energy", "M": "action", "tol": "tolerance"})
 def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int] = (2,),
                axis: int = 1, n_convergents: int = 6,
                mu_range: tuple[float, float] | None = None, tol: float = 1e-13,
