@@ -28,6 +28,7 @@ from andoyer.analysis.chaos.specs import IndicatorRun
 from andoyer.analysis.resonance.deprit import JetSpace
 from andoyer.cli import EXIT_CODES, main
 from andoyer.errors import CostLimitError
+from andoyer.integrate.validated.arithmetic import BodySpec
 
 B = RigidBody.paper()
 Y0 = [0.0, 0.0, 1.0, 0.0, 0.6, 0.8]
@@ -103,7 +104,8 @@ RECORDS = {"CheckRow", "Crossing", "EquilibriumSet", "EulerAngles", "EulerPoisso
            "EulerPoinsotFrequencies", "FixedPoint", "FixedPointSet", "Floquet", "Formula",
            "Lines", "ManifoldBranch", "ManifoldCurve", "Monodromy", "PermanentRotation",
            "RotationOrbit", "SectionReturn", "Singular", "Stability", "Torus",
-           "CertifiedMelnikov", "MelnikovZero", "HyperbolicRotation"}
+           "CertifiedMelnikov", "MelnikovZero", "HyperbolicRotation", "LocalManifold",
+           "TransversalProof"}
 #: Public names that take no user input worth hunting (documented acceptance).
 NO_INPUT = {"derive_reduced_hamiltonian": "no arguments (a SymPy derivation)",
             "paper_check": "n and seed are hunted in tests/analysis/paper/test_check.py"}
@@ -164,6 +166,8 @@ GOOD: dict[str, Any] = {
     "n_check": 2, "chaotic": np.ones((2, 6), bool), "accessible": np.ones((2, 6), bool),
     "theta1": (np.arange(6) + 0.5) * np.pi / 3,
 }
+#: The near-Hess body of the finite-mu proof (decimals).
+NEAR_HESS_SPEC = BodySpec("2.5", "1.0", "1.6", 1, "0.1", "0.05")
 #: Jets of degree 2 on a 4 x 1 Fourier grid (the Lie-Deprit triangle's arguments).
 _JETS = JetSpace(2, 4, 1)
 #: Where a function needs other values than the shared ones (and small sizes: cost guard).
@@ -176,6 +180,10 @@ OVERRIDES: dict[str, dict[str, Any]] = {
                          "engine": "numba", "mu": [0.01], "epsilon": [0.05]},
     "melnikov_off_hess": {"body": HESS, "epsilon": 0.05},
     "prove_certificate": {"branch": "theta1=4phi0", "digits": 10},
+    "local_unstable_manifold": {"body": NEAR_HESS_SPEC, "radius": 1e-6, "order": 12},
+    "prove_transversal": {"body": NEAR_HESS_SPEC},
+    "prove_transversal_certificate": {"body": NEAR_HESS_SPEC},
+    "mu_interval": {"body": {"mu": "0.05", "mu_radius": "0"}},
     "chosen": {"indicator": "both"},
     "lie_deprit": {"space": _JETS, "H": [_JETS.zeros()], "omega": [0.5, 1.0],
                    "resonance": (1, 2)},

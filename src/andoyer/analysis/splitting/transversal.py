@@ -276,6 +276,10 @@ def local_unstable_manifold(body: Any, *, G: str = "1", rotation: int = 1,
     """
     start = time.perf_counter()
     spec = _spec(body, mu_radius)
+    if frame is not None:
+        frame = _frame_arg(frame)
+    if kappa is not None:
+        kappa = _real("kappa", kappa, 0.0, 1.0)
     G = decimal("G", G, positive=True, maximum=1e3)
     bits = precision("bits", bits)
     order = integer("order", order, 8, 60)
@@ -339,6 +343,27 @@ def _cone(DF: arb_mat, radius: float, kappa: float | None) -> tuple[bool, float,
     return holds, float(kappa), m
 
 
+def _real(name: str, value: Any, lo: float, hi: float) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not (
+            math.isfinite(value) and lo < value <= hi):
+        raise ValueError(f"{name} must be a number in ({lo:g}, {hi:g}], got {value!r:.60}")
+    return float(value)
+
+
+def _frame_arg(frame: Any) -> tuple[tuple[float, float], ...]:
+    try:
+        if isinstance(frame, str | bool | bytes):
+            raise TypeError
+        rows = tuple(tuple(float(x) for x in row) for row in frame)
+    except (TypeError, ValueError):
+        raise ValueError(f"frame must be a 2 x 2 matrix of numbers, got {frame!r:.60}") from None
+    ok = len(rows) == 2 and all(len(r) == 2 for r in rows) and all(
+        math.isfinite(x) for r in rows for x in r)
+    if not ok or rows[0][0] * rows[1][1] - rows[0][1] * rows[1][0] == 0.0:
+        raise ValueError(f"frame must be an invertible 2 x 2 matrix, got {frame!r:.60}")
+    return rows
+
+
 def _rotation(rotation: Any) -> int:
     if isinstance(rotation, bool) or rotation not in (1, -1):
         raise ValueError(f"rotation must be -1 (P-) or +1 (P+), got {rotation!r}")
@@ -400,9 +425,15 @@ def mu_interval(body: dict[str, Any]) -> tuple[str, str]:
     >>> mu_interval({"mu": "0.05", "mu_radius": "1e-9"})
     ('0.049999999', '0.050000001')
     """
-    from decimal import Decimal
+    from decimal import Decimal, InvalidOperation
 
-    mu, rad = Decimal(str(body["mu"])), Decimal(str(body.get("mu_radius", "0")))
+    if not isinstance(body, dict) or "mu" not in body:
+        raise ValueError(f"body must be a proof's body (a dict with 'mu'), got {body!r:.60}")
+    try:
+        mu = Decimal(decimal("body['mu']", body["mu"]))
+        rad = Decimal(decimal("body['mu_radius']", body.get("mu_radius", "0")))
+    except InvalidOperation:
+        raise ValueError(f"body's mu and mu_radius must be decimals, got {body!r:.60}") from None
     return str(mu - rad), str(mu + rad)
 
 
@@ -426,7 +457,7 @@ def _float_flow(spec: BodySpec, bits: int) -> Any:
     return rhs
 
 
-def _float_crossing(rhs: Any, y0: np.ndarray, sign: int, t_max: float = 400.0
+def _float_crossing(rhs: Any, y0: np.ndarray, sign: int, t_max: float = 500.0
                     ) -> np.ndarray:
     """The first crossing of ``G3 = 0`` away from ``sign`` (floats)."""
     from scipy.integrate import solve_ivp
@@ -597,7 +628,7 @@ class TransversalProof:
 def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: float = 3e-5,
                       side: int = 1, mu_radius: str = "0",
                       which: int = 0, half_width: float = 1e-9, bits: int = 128,
-                      order: int = 24, t_max: float = 200.0,
+                      order: int = 24, t_max: float = 500.0,
                       piece: tuple[float, float] | None = None,
                       manifold: LocalManifold | None = None) -> TransversalProof:
     """Prove that ``W^u(P-)`` and ``W^s(P+)`` intersect transversally (the module's steps).
@@ -627,7 +658,7 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
         Relative half-width of the piece around the float zero ``u*``.
     bits, order : int
         Precision and Taylor order.
-    t_max : float, default 200
+    t_max : float, default 500
         The longest transport.
     piece : (float, float), optional
         ``[u_a, u_b]`` given (a certificate's): no search.
@@ -652,8 +683,21 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
     if isinstance(side, bool) or side not in (1, -1):
         raise ValueError(f"side must be +1 or -1, got {side!r}")
     which = integer("which", which, 0, 10)
-    if not (isinstance(half_width, float | int) and 0.0 < half_width <= 1e-3):
+    if isinstance(half_width, bool) or not (isinstance(half_width, float | int)
+                                            and 0.0 < half_width <= 1e-3):
         raise ValueError(f"half_width must be in (0, 1e-3], got {half_width!r}")
+    t_max = _real("t_max", t_max, 0.0, 1e4)
+    if manifold is not None and not isinstance(manifold, LocalManifold):
+        raise ArgumentTypeError(f"manifold must be a LocalManifold, got {manifold!r:.60}")
+    if piece is not None:
+        try:
+            if isinstance(piece, str | bool):
+                raise TypeError
+            piece = (float(piece[0]), float(piece[1]))
+            if len(piece) != 2 or not all(math.isfinite(x) for x in piece):
+                raise ValueError
+        except (TypeError, ValueError, IndexError):
+            raise ValueError(f"piece must be two numbers (u_a, u_b), got {piece!r:.60}") from None
     if not reversor_holds():
         raise ArithmeticError("the field (1) is not reversible under R: the proof's "
                               "premise fails")
