@@ -350,7 +350,7 @@ def _real(name: str, value: Any, lo: float, hi: float) -> float:
     return float(value)
 
 
-def _frame_arg(frame: Any) -> tuple[tuple[float, float], ...]:
+def _frame_arg(frame: Any) -> tuple[tuple[float, ...], ...]:
     try:
         if isinstance(frame, str | bool | bytes):
             raise TypeError
