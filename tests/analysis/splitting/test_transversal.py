@@ -25,7 +25,7 @@ FRAME = ((0.6029, -0.5949), (0.7978, 0.8038))
 
 def test_reversor_holds_exactly_and_a_wrong_one_does_not(monkeypatch):
     assert tr.reversor_holds()
-    monkeypatch.setattr(tr, "REVERSOR", (1, 1, -1, 1, 1, 1))
+    monkeypatch.setattr(tr, "E3_ZERO_REVERSAL", (1, 1, -1, 1, 1, 1))
     assert not tr.reversor_holds()
 
 

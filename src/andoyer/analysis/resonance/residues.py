@@ -115,7 +115,7 @@ from andoyer.integrate.results import describe_variables, provenance
 from andoyer.progress import Progress
 from andoyer.validation import integer, positive
 
-__all__ = ["last_torus", "convergents", "noble_number", "SYMMETRY", "THRESHOLD",
+__all__ = ["last_torus", "convergents", "noble_number", "THRESHOLD",
            "MAX_PERIOD", "MAX_CONVERGENTS"]
 
 #: Greene's threshold: the residue of the critical torus's convergents tends to ~1/4 (G5).
@@ -124,10 +124,6 @@ THRESHOLD = 0.25
 MAX_PERIOD = 5000
 #: Most convergents asked for.
 MAX_CONVERGENTS = 16
-#: The reversing symmetry of (1) for ``e3 = 0`` (G2): ``y(-t) = S y(t; S y0)``; the
-#: reversor of :mod:`andoyer.analysis.splitting.transversal` (``REVERSOR``, checked on the
-#: SymPy field there), as an array (that module loads python-flint).
-SYMMETRY = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
 #: Points of the free-top rotation number on a symmetry line where the root is bracketed.
 _GRID = 32
 #: The grid spans the band between the main chains widened by this factor each way.

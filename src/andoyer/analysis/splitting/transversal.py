@@ -52,6 +52,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from andoyer.errors import ArgumentTypeError
+from andoyer.integrate.engines.values import E3_ZERO_REVERSAL
 from andoyer.integrate.validated.arithmetic import (
     FLINT_VERSION,
     BodySpec,
@@ -69,8 +70,6 @@ from andoyer.validation import integer
 __all__ = ["LocalManifold", "local_unstable_manifold", "mu_interval",
            "TransversalProof", "prove_transversal"]
 
-#: The reversor of (1) for a centre of mass in the (e1, e2) plane (signs of the state).
-REVERSOR = (1, 1, -1, 1, 1, -1)
 #: The chart's free coordinates (G2, gamma3) and the dependent ones.
 FREE, DEPENDENT = (1, 5), (0, 2, 3, 4)
 #: The section of the return map near P-: gamma2 = 0.
@@ -98,7 +97,7 @@ def reversor_holds(e3_zero: bool = True) -> bool:
         for coef, idx in comp:
             if e3_zero and coef.subs(e3, 0) == 0:
                 continue
-            sign = REVERSOR[i] * math.prod(REVERSOR[j] for j in idx)
+            sign = E3_ZERO_REVERSAL[i] * math.prod(E3_ZERO_REVERSAL[j] for j in idx)
             if sign != -1:
                 return False
     return True

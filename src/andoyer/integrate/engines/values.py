@@ -36,7 +36,7 @@ from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KIN
 from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES, SECTION_PLANES, SectionPlane
 from andoyer.validation import integer, positive
 
-__all__ = [
+__all__ = ["E3_ZERO_REVERSAL",
     "Capability", "Section", "SECTION_SINGULAR_RTOL", "Tolerance", "Crossings", "TangentFlow",
     "PARAMETERS",
     "PAR", "runtime_parameters", "REVERSIBLE", "REVERSAL", "ATTITUDE_REVERSAL",
@@ -61,6 +61,10 @@ REVERSAL = np.array([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0])
 #: Time reversal of (1) with the attitude: ``omega`` flips with ``G`` and ``dq/dt`` with
 #: the time, so the quaternion is carried over unchanged (:meth:`EngineBase.attitude`).
 ATTITUDE_REVERSAL = np.concatenate([REVERSAL, np.ones(4)])
+#: The second reversing symmetry of (1), for a centre of mass with ``e3 = 0``:
+#: ``y(-t; y0) = S y(t; S y0)`` with ``S`` these signs (``G3`` and ``gamma3`` flip; checked
+#: on the SymPy field by :func:`andoyer.analysis.splitting.transversal.reversor_holds`).
+E3_ZERO_REVERSAL = np.array([1.0, 1.0, -1.0, 1.0, 1.0, -1.0])
 
 #: Section -> sign ``s`` with ``f(R y; s value) = s f(y; value)``: the sections a
 #: forward-only engine can run backward (momentum components and the angle g flip;
