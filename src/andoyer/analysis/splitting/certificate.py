@@ -229,6 +229,27 @@ def _ball(text: Any, what: str) -> arb:
         raise CertificateError(f"{what} is not a ball: {text!r}") from None
 
 
+def _check_envelope(data: dict[str, Any], fields: tuple[str, ...], kind: str) -> None:
+    """The checks every kind of certificate passes before its boxes are recomputed: its
+    fields, kind and version, the python-flint that computed it, its digest."""
+    missing = [k for k in fields if k not in data]
+    if missing:
+        raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
+    if data["kind"] != kind or data["version"] != 1:
+        raise CertificateError(f"unknown certificate kind {data['kind']!r} version "
+                               f"{data['version']!r} (this andoyer verifies {kind!r} 1)")
+    libs = data["libraries"]
+    theirs = libs.get("python-flint") if isinstance(libs, dict) else None
+    if theirs != FLINT_VERSION:
+        raise CertificateError(f"the certificate's balls were computed by python-flint "
+                               f"{theirs}; this is python-flint {FLINT_VERSION}: verify it "
+                               "with the same version (pip install python-flint==" +
+                               f"{theirs})")
+    if data["digest"] != _digest(data):
+        raise CertificateError("the certificate was altered: its SHA-256 digest does not "
+                               "match its content")
+
+
 def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[str, Any]:
     """Re-check a certificate independently of the search that wrote it.
 
@@ -262,22 +283,7 @@ def verify_certificate(cert: dict[str, Any] | str | os.PathLike[str]) -> dict[st
                                f"expected {FORMAT!r})")
     if data.get("kind") == KIND_TRANSVERSAL:
         return _verify_transversal(data)
-    missing = [k for k in FIELDS if k not in data]
-    if missing:
-        raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
-    if data["kind"] != KIND or data["version"] != 1:
-        raise CertificateError(f"unknown certificate kind {data['kind']!r} version "
-                               f"{data['version']!r} (this andoyer verifies {KIND!r} 1)")
-    libs = data["libraries"]
-    theirs = libs.get("python-flint") if isinstance(libs, dict) else None
-    if theirs != FLINT_VERSION:
-        raise CertificateError(f"the certificate's balls were computed by python-flint "
-                               f"{theirs}; this is python-flint {FLINT_VERSION}: verify it "
-                               "with the same version (pip install python-flint==" +
-                               f"{theirs})")
-    if data["digest"] != _digest(data):
-        raise CertificateError("the certificate was altered: its SHA-256 digest does not "
-                               "match its content")
+    _check_envelope(data, FIELDS, KIND)
     mu = data["mu_interval"]
     if mu != {"lower": "0", "upper": None, "open": True,
               "note": "first order in mu: mu* exists, no bound is proved"}:
@@ -431,23 +437,7 @@ def _verify_transversal(data: dict[str, Any]) -> dict[str, Any]:
         prove_transversal,
     )
 
-    missing = [k for k in FIELDS_TRANSVERSAL if k not in data]
-    if missing:
-        raise CertificateError(f"the certificate lacks the field(s) {', '.join(missing)}")
-    if data["version"] != 1:
-        raise CertificateError(f"unknown certificate kind {data['kind']!r} version "
-                               f"{data['version']!r} (this andoyer verifies "
-                               f"{KIND_TRANSVERSAL!r} 1)")
-    libs = data["libraries"]
-    theirs = libs.get("python-flint") if isinstance(libs, dict) else None
-    if theirs != FLINT_VERSION:
-        raise CertificateError(f"the certificate's balls were computed by python-flint "
-                               f"{theirs}; this is python-flint {FLINT_VERSION}: verify it "
-                               "with the same version (pip install python-flint==" +
-                               f"{theirs})")
-    if data["digest"] != _digest(data):
-        raise CertificateError("the certificate was altered: its SHA-256 digest does not "
-                               "match its content")
+    _check_envelope(data, FIELDS_TRANSVERSAL, KIND_TRANSVERSAL)
     try:
         b = data["body"]
         spec = BodySpec(b["A"], b["B"], b["C"], b["branch"], b["epsilon"], b["mu"])
