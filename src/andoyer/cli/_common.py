@@ -15,9 +15,9 @@ from andoyer.outputs import guard_file, guard_folder
 from andoyer.validation import finite, floats, integer
 from andoyer.validation import positive as _positive
 
-__all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_level_args",
-           "add_term", "add_state_args", "state_from_args", "floats", "output_file",
-           "output_folder", "distinct_outputs", "count", "real", "Inputs",
+__all__ = ["add_body_args", "body_from_args", "add_engine_args", "add_energy_args",
+           "add_level_args", "add_term", "add_state_args", "state_from_args", "floats",
+           "output_file", "output_folder", "distinct_outputs", "count", "real", "Inputs",
            "inputs_from_args", "ENGINE_HELP"]
 
 #: The body flags each --body takes (others are refused, not ignored): the presets'.
@@ -333,13 +333,18 @@ def add_engine_args(p: argparse.ArgumentParser, *, tolerances: bool = True) -> N
                  help="absolute tolerance (default 1e-12)")
 
 
-def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
-    """``--energy``, ``--M``, ``--section``: energy level ``h`` (``-h`` is help), area
-    constant and section."""
+def add_energy_args(p: argparse.ArgumentParser) -> None:
+    """``--energy``, ``--M``: energy level ``h`` (``-h`` is help) and area constant."""
     add_term(p, "h", type=real(), default=None, metavar="H",
              help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
     add_term(p, "M", type=real(), default=0.0,
              help="area constant (G, gamma) = M (default 0)")
+
+
+def add_level_args(p: argparse.ArgumentParser, *, directed: bool = True) -> None:
+    """:func:`add_energy_args` and ``--section``: energy level, area constant and
+    section."""
+    add_energy_args(p)
     add_term(p, "section", default="theta2=0",
              help="'theta2=VALUE' (plane theta1, J1) or 'g=VALUE' (plane l, L)"
                   + ("; append ':-' for the decreasing direction" if directed else "")

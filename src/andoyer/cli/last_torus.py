@@ -9,6 +9,7 @@ from typing import Any
 
 from andoyer.cli._common import (
     add_body_args,
+    add_energy_args,
     add_engine_args,
     add_term,
     count,
@@ -79,10 +80,7 @@ def register(sub: Any) -> None:
                                    "overlap mu of the two chains' first-order widths "
                                    "(andoyer.analysis.resonance.residues).")
     add_body_args(p)
-    add_term(p, "h", type=real(), default=None, metavar="H",
-             help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    add_term(p, "M", type=real(), default=0.0,
-             help="area constant (G, gamma) = M (default 0)")
+    add_energy_args(p)
     add_term(p, "head", type=_head, default=(2,), metavar="A1[,A2,...]",
              help="partial quotients of W before the tail of ones: N for the golden-mean "
                   "torus between the chains N:1 and (N+1):1 (default 2)")

@@ -10,11 +10,11 @@ from typing import Any
 
 from andoyer.cli._common import (
     add_body_args,
+    add_energy_args,
     add_engine_args,
     add_term,
     count,
     inputs_from_args,
-    real,
 )
 
 NAME = "resonances"
@@ -319,10 +319,7 @@ def register(sub: Any) -> None:
                                    "o stable, x unstable), over --n-orbits orbits of the "
                                    "section when asked.")
     add_body_args(p)
-    add_term(p, "h", type=real(), default=None, metavar="H",
-             help="energy level H = h (default: H of (l, g, L, G, M) = (0.3, 0, 0.3, 1, M))")
-    add_term(p, "M", type=real(), default=0.0,
-             help="area constant (G, gamma) = M (default 0)")
+    add_energy_args(p)
     add_term(p, "section", default="g=0",
              help="'g=VALUE' (plane l, L) or 'theta2=VALUE' (plane theta1, J1); append "
                   "':-' for the decreasing direction (default g=0)")
