@@ -43,9 +43,9 @@ ITEMS: list[Item] = [
     Item("resonances", "Beyond the paper: resonances predicted, then measured",
          resonance.resonances, 12.0),
     Item("last-torus", "Beyond the paper: where the last torus breaks (Greene's residues)",
-         torus.last_torus, 5.0),
+         torus.last_torus, 8.4),
     Item("proof", "Beyond the paper: the splitting proved (Melnikov zeros; transversality "
-         "at finite μ)", theorems.proof, 60.0),
+         "at finite μ)", theorems.proof, 6.0),
     Item("paper-check", "Every printed formula against the derivation",
          unperturbed.paper_check, 0.0),
 ]
