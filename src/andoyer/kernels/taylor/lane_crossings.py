@@ -141,6 +141,27 @@ def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
 
 
 @kernel_jit
+def _after_step(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, z0, X, nxt, info,
+                nothing):
+    """The lane's orbit after its step: ``(True, nxt)`` when it goes on (the step counted,
+    its time ``t1``); else the lane takes the next orbit of the queue (:func:`_take_orbit`,
+    ``orbit[lane]`` -1 when none is left, time 0): ``(False, next)``."""
+    simd.tune()
+    i = orbit[lane]
+    if i >= 0:
+        info[i, 1] += 1
+        t[lane] = t1[lane]
+        if count[i] < n_crossings and t[lane] < t_max:
+            if info[i, 1] < max_steps:
+                return True, nxt
+            info[i, 0] = MAX_STEPS
+    orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info,
+                                   nothing)
+    t[lane] = 0.0
+    return False, nxt
+
+
+@kernel_jit
 def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
     """:func:`~andoyer.kernels.taylor.sections.end_and_bound` of the section ``ca y_comp +
     cc`` on every lane at once (lane ``i``'s step ``hs[i]``): ``fb`` the end values,
@@ -246,16 +267,10 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
             i = orbit[lane]
             if i == -1:
                 continue
-            if i >= 0:
-                info[i, 1] += 1
-                t[lane] = t1[lane]
-                if count[i] < n_crossings and t[lane] < t_max:
-                    if info[i, 1] < max_steps:
-                        continue
-                    info[i, 0] = MAX_STEPS
-            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
-                                           info, nothing)
-            t[lane] = 0.0
+            goes_on, nxt = _after_step(lane, orbit, t, t1, count, n_crossings, t_max,
+                                       max_steps, z0, X, nxt, info, nothing)
+            if goes_on:
+                continue
             fa[lane] = ca * X[0, 0, comp, lane] + cc
             if orbit[lane] < 0:
                 busy -= 1
@@ -381,16 +396,10 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
             i = orbit[lane]
             if i == -1:
                 continue
-            if i >= 0:
-                info[i, 1] += 1
-                t[lane] = t1[lane]
-                if count[i] < n_crossings and t[lane] < t_max:
-                    if info[i, 1] < max_steps:
-                        continue
-                    info[i, 0] = MAX_STEPS
-            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
-                                           info, nothing)
-            t[lane] = 0.0
+            goes_on, nxt = _after_step(lane, orbit, t, t1, count, n_crossings, t_max,
+                                       max_steps, z0, X, nxt, info, nothing)
+            if goes_on:
+                continue
             if orbit[lane] < 0:
                 busy -= 1
             else:
