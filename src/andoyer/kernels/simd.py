@@ -161,6 +161,15 @@ if any(c in TUNE for c in '"\\ '):
     raise ValueError(f"{TUNE_ENV}={TUNE!r} is not a CPU name")
 
 
+def _vector_fma(builder: Any) -> tuple[Any, Any]:
+    """The lane vector type and LLVM's fused multiply-add on it, declared in the module of
+    ``builder``."""
+    vec = ir.VectorType(ir.DoubleType(), LANES)
+    fma = cgutils.get_or_insert_function(
+        builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+    return vec, fma
+
+
 def _tune(builder: Any) -> None:
     """Mark the function being lowered with the tuning :data:`TUNE`."""
     attributes = builder.function.attributes
@@ -259,9 +268,7 @@ def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any)
                 strides=cgutils.unpack_tuple(builder, arr.strides), layout=aryty.layout,
                 inds=inds)
 
-        vec = ir.VectorType(ir.DoubleType(), LANES)
-        fma = cgutils.get_or_insert_function(
-            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        vec, fma = _vector_fma(builder)
         zero = ir.Constant(intp, 0)
         k_i = context.cast(builder, k_, kt, types.intp)
 
@@ -345,9 +352,7 @@ def _combine_typer(ints: tuple[int, ...], typingctx: Any, y: Any, m: Any, k: Any
         intp = context.get_value_type(types.intp)
         coefs = [context.cast(builder, e, t, types.float64)
                  for e, t in zip(cgutils.unpack_tuple(builder, c_, len(ct)), ct, strict=True)]
-        vec = ir.VectorType(ir.DoubleType(), LANES)
-        fma = cgutils.get_or_insert_function(
-            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        vec, fma = _vector_fma(builder)
         zero = ir.Constant(intp, 0)
         k_i = context.cast(builder, k_, kt, types.intp)
         k1 = builder.add(k_i, ir.Constant(intp, 1))
@@ -462,9 +467,7 @@ def _advance_typer(typingctx: Any, X: Any, order: Any, h: Any) -> Any:
         xt, ot, ht = signature.args
         x_, o_, h_ = args
         intp = context.get_value_type(types.intp)
-        vec = ir.VectorType(ir.DoubleType(), LANES)
-        fma = cgutils.get_or_insert_function(
-            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        vec, fma = _vector_fma(builder)
         arr = context.make_array(xt)(context, builder, x_)
         shape = cgutils.unpack_tuple(builder, arr.shape)
         strides = cgutils.unpack_tuple(builder, arr.strides)
@@ -559,9 +562,7 @@ def _series_product_typer(typingctx: Any, U: Any, n: Any, a: Any, b: Any, order:
         ut, nt, at, bt, ot = signature.args
         u_, n_, a_, b_, o_ = args
         intp = context.get_value_type(types.intp)
-        vec = ir.VectorType(ir.DoubleType(), LANES)
-        fma = cgutils.get_or_insert_function(
-            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        vec, fma = _vector_fma(builder)
         arr = context.make_array(ut)(context, builder, u_)
         shape = cgutils.unpack_tuple(builder, arr.shape)
         strides = cgutils.unpack_tuple(builder, arr.strides)
@@ -687,9 +688,7 @@ def _series_linear_typer(typingctx: Any, U: Any, n: Any, S: Any, a: Any, ca: Any
         ut, nt, st, at, cat, bt, cbt, ot = signature.args
         u_, n_, s_, a_, ca_, b_, cb_, o_ = args
         intp = context.get_value_type(types.intp)
-        vec = ir.VectorType(ir.DoubleType(), LANES)
-        fma = cgutils.get_or_insert_function(
-            builder.module, ir.FunctionType(vec, [vec, vec, vec]), f"llvm.fma.v{LANES}f64")
+        vec, fma = _vector_fma(builder)
         zero = ir.Constant(intp, 0)
 
         def pointer(aryty: Any, ary: Any, k: Any, row: Any) -> Any:
