@@ -23,7 +23,9 @@ extra jet variables of the same step); without renormalisation, the linear flow'
 vectors (``6 + 6 k`` floats: the FLI map's route).
 
 Many orbits (from :data:`LANES_FROM` on; states alone or with tangent vectors, not
-renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`: the jets of one
+renormalised) run on SIMD lanes, :mod:`andoyer.kernels.taylor.lanes`, and so do
+renormalised tangent flows with the MEGNO quadratures
+(:mod:`andoyer.kernels.taylor.lane_tangent`: MEGNO maps, SALI/GALI): the jets of one
 vector register of orbits (8 with AVX-512, 4 with AVX2:
 :func:`andoyer.kernels.simd.lane_width`) in one vector instruction, each orbit with its
 own steps (the scalar kernel's),
@@ -92,6 +94,12 @@ def _tangent_kernels() -> Any:
     from andoyer.kernels.taylor import tangent  # its machine code loads here, not at import
 
     return tangent
+
+
+def _lane_tangent() -> Any:
+    from andoyer.kernels.taylor import lane_tangent  # its machine code loads here
+
+    return lane_tangent
 
 
 class TaylorEngine(EngineBase):
@@ -202,16 +210,23 @@ class TaylorEngine(EngineBase):
                  t: NDArray[np.float64], par: NDArray[np.float64], tolerance: Tolerance,
                  renormalise: bool, scale: float) -> TangentFlow:
         """Renormalised: :mod:`andoyer.kernels.taylor.tangent` (the quadratures unscaled,
-        each jet block with its own error scale, so ``scale`` is not used); else the
-        linear flow's own vectors (``megno`` None; an overflow fails the orbit)."""
+        each jet block with its own error scale, so ``scale`` is not used), from
+        :data:`LANES_FROM` orbits up on SIMD lanes (:mod:`andoyer.kernels.taylor.lane_tangent`:
+        the same steps, rows equal to round-off); else the linear flow's own vectors
+        (``megno`` None; an overflow fails the orbit)."""
         n, k = w0.shape[:2]
         m = t.size
         if renormalise:
             u0, rho0 = unit_vectors(w0)
             z0 = np.ascontiguousarray(np.concatenate([y0, u0.reshape(n, k * _N)], axis=1))
-            out, info = _tangent_kernels().propagate(
-                z0, rho0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
-                block=self.chunksize, threads=self.n_threads)
+            if n >= LANES_FROM:
+                out, info = _lane_tangent().propagate(
+                    z0, rho0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
+                    threads=self.n_threads)
+            else:
+                out, info = _tangent_kernels().propagate(
+                    z0, rho0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
+                    block=self.chunksize, threads=self.n_threads)
         else:
             z0 = np.ascontiguousarray(np.concatenate([y0, w0.reshape(n, k * _N)], axis=1))
             out, info = self._run(z0, t, par, tolerance)

@@ -11,7 +11,9 @@
   AVX2: :func:`andoyer.kernels.simd.lane_width`; the vector intrinsics of
   :mod:`andoyer.kernels.simd`, which the generated lane recurrences call too), every
   section's crossings on them; :mod:`~andoyer.kernels.taylor.lane_sections` -- a
-  section tape's jet and the section step on the lanes.
+  section tape's jet and the section step on the lanes;
+  :mod:`~andoyer.kernels.taylor.lane_tangent` -- the renormalised tangent flow with
+  MEGNO on the lanes.
 
 Importing the package loads nothing; each module compiles (or loads) its machine code
 when it is imported.
