@@ -101,6 +101,30 @@ def _widgets() -> bool:
     return importlib.util.find_spec("ipywidgets") is not None
 
 
+class _Hidden:
+    """What :class:`Progress` needs of a tqdm bar that is never shown."""
+
+    disable = True
+
+    def __init__(self, tqdm: Any) -> None:
+        self.tqdm = tqdm
+
+    def update(self, k: int) -> None:
+        pass
+
+    def write(self, line: str, file: Any) -> None:
+        self.tqdm.write(line, file=file)
+
+    def set_postfix_str(self, postfix: str, refresh: bool) -> None:
+        pass
+
+    def refresh(self) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
 class Progress:
     """A progress bar of ``total`` units labelled ``label``.
 
@@ -139,11 +163,12 @@ class Progress:
             enabled = False
         self._t0 = self._last = time.perf_counter()
         self._tenth = 10 * self.done // self.total if self.total else 0
-        # tqdm's disable=None hides the bar when the stream is not a terminal.
-        self._bar: Any = tqdm(total=self.total, desc=label, file=sys.stderr, initial=initial,
-                              disable=None if enabled is None else not enabled,
-                              mininterval=0.5, unit="", dynamic_ncols=True,
-                              postfix=postfix)
+        # tqdm's disable=None hides the bar when the stream is not a terminal. A bar
+        # hidden for sure is no tqdm at all (its start costs a short call's time).
+        self._bar: Any = _Hidden(tqdm) if enabled is False else tqdm(
+            total=self.total, desc=label, file=sys.stderr, initial=initial,
+            disable=None if enabled is None else not enabled, mininterval=0.5, unit="",
+            dynamic_ncols=True, postfix=postfix)
         self.enabled = not self._bar.disable or self.plain
 
     def update(self, k: int = 1) -> None:

@@ -89,3 +89,37 @@ def test_writes_into_values_stay(orbit) -> None:
     copy = ds.copy(deep=True)
     copy["J2"].values[...] = 8.0
     assert np.all(ds.J2.values == 7.0)
+
+
+def test_built_directly_as_the_public_constructor_builds(orbit) -> None:
+    # states_dataset skips xarray's merge where nothing is left to merge: the same dataset
+    import xarray as xr
+
+    body, _, y = orbit
+    coords = {"orbit": np.arange(y.shape[0]), "time": np.linspace(0.0, 50.0, y.shape[1])}
+    extra = {"count": (("orbit",), np.ones(y.shape[0], dtype=np.int64))}
+    ds = states_dataset(body, y, ("orbit", "time"), coords, {"a": 1}, extra, drifts=True)
+    ref = xr.Dataset({k: ds.variables[k] for k in ds.data_vars}, coords=coords,
+                     attrs={"a": 1})
+    xr.testing.assert_identical(ds.load(), ref.load())
+    assert list(ds.variables) == list(ref.variables)
+    assert set(ds.xindexes) == {"orbit", "time"} and set(ds.coords) == {"orbit", "time"}
+    assert ds.sel(time=50.0).G_action.shape == (y.shape[0],)
+
+
+@pytest.mark.parametrize("coords, extra", [
+    ({"time": np.arange(3)}, None),  # a coordinate of the wrong size
+    ({}, {"count": (("orbit",), np.ones(5))}),  # a variable of the wrong size
+])
+def test_sizes_that_disagree_are_refused(orbit, coords, extra) -> None:
+    body, _, y = orbit
+    with pytest.raises(ValueError, match="conflicting sizes|length"):
+        states_dataset(body, y, ("orbit", "time"), coords, {}, extra)
+
+
+def test_other_coordinates_as_before(orbit) -> None:
+    # a coordinate of strings, or one that is not a dimension's, takes the public path
+    body, _, y = orbit
+    ds = states_dataset(body, y[0], ("time",), {"time": np.arange(y.shape[1]),
+                                                "component": ["w", "x"]}, {})
+    assert ds.component.values.tolist() == ["w", "x"] and ds.sizes["component"] == 2

@@ -161,6 +161,11 @@ def _quantity(label: str, value: Any, kind: str, body: Any, limit: float = MAX_M
                 and value in (1, -1)):
             raise ValueError(f"{label} must be +1 or -1, got {value!r}")
         return
+    if type(value) is float and kind == "tolerance":  # the common case, without NumPy
+        if not (math.isfinite(value) and value > 0.0):
+            raise ValueError(f"{label} must be {'> 0' if math.isfinite(value) else 'finite'}"
+                             f", got {_shown(value)}")
+        return
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):

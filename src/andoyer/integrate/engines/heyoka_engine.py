@@ -85,7 +85,7 @@ import os
 import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from functools import partial
+from functools import cache, partial
 from typing import NamedTuple, TypeVar
 
 import numpy as np
@@ -127,6 +127,12 @@ __all__ = ["HeyokaEngine", "PLAIN_SIMD_MULTIPLE", "T_START", "tolerance", "warm_
 
 _T = TypeVar("_T")
 _MAX_POLISH = 1e-6  # largest Newton time step of the crossing polish
+
+
+@cache
+def _simd_size() -> int:
+    """:func:`heyoka.recommended_simd_size`, asked once (it is a short call's fixed cost)."""
+    return int(hy.recommended_simd_size())
 
 
 def tolerance(rtol: float, atol: float) -> float:
@@ -474,7 +480,7 @@ class HeyokaEngine(EngineBase):
     def _batch(self, n: int, multiple: int = 1) -> int:
         if self.batch_size is not None:
             return self.batch_size
-        simd = int(hy.recommended_simd_size())
+        simd = _simd_size()
         n = max(n, self._ensemble)
         return multiple * simd if n >= multiple * simd else simd if n >= simd else 1
 
