@@ -35,17 +35,22 @@ on AMD Zen an Intel model's scheduling, 2-4x faster lane jets).
 from __future__ import annotations
 
 import functools
+import math
 import os
 from collections.abc import Mapping
 from typing import Any
 
+import numpy as np
 from llvmlite import ir
 from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
+from andoyer.kernels.common import kernel_jit
+
 __all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "TUNE", "TUNE_ENV", "lane_tuning",
-           "tune", "cauchy", "combine", "advance", "series_product", "series_linear"]
+           "tune", "cauchy", "combine", "advance", "series_product", "series_linear",
+           "ROOT_SHORTFALL", "root", "roots"]
 
 #: Environment variable that sets the lane count (one of :data:`WIDTHS`).
 LANES_ENV = "ANDOYER_LANES"
@@ -739,5 +744,163 @@ def _series_linear_overload(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb:
 
     def impl(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb: Any, k: Any) -> None:
         _series_linear(U, n, S, a, ca, b, cb, k)
+
+    return impl
+
+
+#: Relative shortfall of :func:`root` below the exact power: its approximation error (at
+#: most 1.6e-8 below the power, never above it: ``tests/kernels/test_simd.py`` over 1e-300
+#: .. 1e300 and exponents 1 .. 1/30) plus this margin.
+ROOT_SHORTFALL = 2.0**-26
+_LN2 = math.log(2.0)
+_INV_LN2 = 1.0 / _LN2
+_SQRT2 = math.sqrt(2.0)
+_MANTISSA = (1 << 52) - 1
+_ONE = 1023 << 52  # the bits of 1.0 (exponent 0)
+_TINY = 2.0**-1000  # below: scaled by 2^200 first (a subnormal's bits hold no exponent)
+_LOG_TERMS = (1.0 / 9.0, 1.0 / 7.0, 0.2, 1.0 / 3.0, 1.0)  # 2 artanh(s) / (2 s) in s^2
+_EXP_TERMS = (1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0, 1.0 / 120.0, 1.0 / 24.0,
+              1.0 / 6.0, 0.5, 1.0, 1.0)  # e^t to t^8
+
+
+@kernel_jit
+def root(x, inv_p):
+    r"""``x ** inv_p`` for ``x > 0`` without ``pow``, a little below it: the radii of the
+    Taylor step size (:func:`andoyer.kernels.taylor.jets.radius`), so that a step is
+    never longer than the exact formula's (at most 1.6e-8 + :data:`ROOT_SHORTFALL`,
+    3e-8, shorter).
+
+    ``x = 2^e f`` from the float's bits (``f`` in :math:`[1/\sqrt 2, \sqrt 2)`),
+    :math:`\ln f = 2\,\mathrm{artanh}\,s`, :math:`s = (f - 1)/(f + 1)`, to the
+    :math:`s^9` term (:math:`|s| \le 0.172`); then :math:`z = \ln x / p = k \ln 2 + t`
+    with :math:`|t| \le \ln 2 / 2`, :math:`e^t` to the :math:`t^8` term and :math:`2^k`
+    from its bits. ``x = inf`` gives a finite :math:`2^{1024/p}`; NaN is no input (the
+    step sizes test finiteness first). :func:`roots` is the same on lane vectors.
+    """
+    small = x < _TINY
+    xs = x * 2.0**200 if small else x
+    i = np.float64(xs).view(np.int64)
+    e = (i >> 52) - (1223 if small else 1023)
+    f = np.int64((i & _MANTISSA) | _ONE).view(np.float64)
+    if f > _SQRT2:
+        f *= 0.5
+        e += 1
+    s = (f - 1.0) / (f + 1.0)
+    s2 = s * s
+    p = _LOG_TERMS[0]
+    for c in _LOG_TERMS[1:]:
+        p = p * s2 + c
+    z = (e * _LN2 + (2.0 * s) * p) * inv_p
+    k = math.floor(z * _INV_LN2 + 0.5)
+    t = z - k * _LN2
+    q = _EXP_TERMS[0]
+    for c in _EXP_TERMS[1:]:
+        q = q * t + c
+    two_k = np.int64((np.int64(k) + 1023) << 52).view(np.float64)
+    return q * two_k * (1.0 - ROOT_SHORTFALL)
+
+
+def roots(x: Any, inv_p: float, out: Any) -> None:
+    """``out[lane] = root(x[lane], inv_p)`` (:func:`root`) for every lane, as vector
+    code: one ``<LANES x double>`` of each operation (a scalar loop over the lanes runs
+    one lane at a time, see the module notes).
+
+    Parameters
+    ----------
+    x : ndarray, shape (LANES,)
+        Positive floats (C-contiguous).
+    inv_p : float
+        The exponent.
+    out : ndarray, shape (LANES,)
+        The roots (C-contiguous; may be ``x``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.full(LANES, 2.0**15)
+    >>> roots(x, 1.0 / 15.0, x)
+    >>> bool(abs(x[0] - 2.0) < 1e-7 and x[0] < 2.0)
+    True
+    """
+    scalar = getattr(root, "py_func", root)
+    for lane in range(LANES):
+        out[lane] = scalar(float(x[lane]), inv_p)
+
+
+def _roots_typer(typingctx: Any, x: Any, inv_p: Any, out: Any) -> Any:
+    """The vector code of :func:`roots`: :func:`root`'s operations on lane vectors, its
+    branches as selects."""
+    sig = types.void(x, inv_p, out)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
+        xt, pt, ot = signature.args
+        x_, p_, o_ = args
+        vec, fma = _vector_fma(builder)
+        ivec = ir.VectorType(ir.IntType(64), LANES)
+        floor = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(vec, [vec]), f"llvm.floor.v{LANES}f64")
+
+        def splat(v: float) -> Any:
+            return ir.Constant(vec, [v] * LANES)
+
+        def isplat(v: int) -> Any:
+            return ir.Constant(ivec, [v] * LANES)
+
+        def data(aryty: Any, ary: Any) -> Any:
+            arr = context.make_array(aryty)(context, builder, ary)
+            return builder.bitcast(arr.data, vec.as_pointer())
+
+        inv = context.cast(builder, p_, pt, types.float64)
+        vinv = builder.insert_element(ir.Constant(vec, ir.Undefined), inv,
+                                      ir.Constant(ir.IntType(32), 0))
+        vinv = builder.shuffle_vector(vinv, ir.Constant(vec, ir.Undefined),
+                                      ir.Constant(ir.VectorType(ir.IntType(32), LANES),
+                                                  [0] * LANES))
+        x = builder.load(data(xt, x_), align=8)
+        small = builder.fcmp_ordered("<", x, splat(_TINY))
+        xs = builder.select(small, builder.fmul(x, splat(2.0**200)), x)
+        i = builder.bitcast(xs, ivec)
+        e = builder.sub(builder.ashr(i, isplat(52)),
+                        builder.select(small, isplat(1223), isplat(1023)))
+        f = builder.bitcast(builder.or_(builder.and_(i, isplat(_MANTISSA)), isplat(_ONE)), vec)
+        big = builder.fcmp_ordered(">", f, splat(_SQRT2))
+        f = builder.select(big, builder.fmul(f, splat(0.5)), f)
+        e = builder.add(e, builder.zext(big, ivec))
+        s = builder.fdiv(builder.fsub(f, splat(1.0)), builder.fadd(f, splat(1.0)))
+        s2 = builder.fmul(s, s)
+        p = splat(_LOG_TERMS[0])
+        for c in _LOG_TERMS[1:]:
+            p = builder.call(fma, [p, s2, splat(c)])
+        lnx = builder.call(fma, [builder.sitofp(e, vec), splat(_LN2),
+                                 builder.fmul(builder.fmul(splat(2.0), s), p)])
+        z = builder.fmul(lnx, vinv)
+        k = builder.call(floor, [builder.call(fma, [z, splat(_INV_LN2), splat(0.5)])])
+        t = builder.call(fma, [builder.fneg(k), splat(_LN2), z])
+        q = splat(_EXP_TERMS[0])
+        for c in _EXP_TERMS[1:]:
+            q = builder.call(fma, [q, t, splat(c)])
+        two_k = builder.bitcast(
+            builder.shl(builder.add(builder.fptosi(k, ivec), isplat(1023)), isplat(52)), vec)
+        r = builder.fmul(builder.fmul(q, two_k), splat(1.0 - ROOT_SHORTFALL))
+        builder.store(r, data(ot, o_), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_roots: Any = intrinsic(_roots_typer)
+
+
+@overload(roots, jit_options={"nogil": True})
+def _roots_overload(x: Any, inv_p: Any, out: Any) -> Any:
+    """Compiled :func:`roots`: the intrinsic (C-contiguous float64 arrays)."""
+    for ary in (x, out):
+        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
+                and ary.layout == "C" and ary.ndim == 1):
+            return None
+
+    def impl(x: Any, inv_p: Any, out: Any) -> None:
+        _roots(x, inv_p, out)
 
     return impl

@@ -155,3 +155,35 @@ def test_the_section_shortens_the_steps_of_an_angle_never_of_a_coordinate() -> N
             assert (steps == ref).all(), name
         if name in ("theta2", "g"):  # measured: 5-18 % more steps, 13 % in all
             assert (steps > ref).all() and steps.sum() >= 1.05 * ref.sum(), (name, steps / ref)
+
+
+def test_the_step_sizes_roots_are_a_little_below_the_power() -> None:
+    """:func:`andoyer.kernels.simd.root` (the radii without ``pow``) is below ``x ** (1/p)``
+    by 1.4e-8 .. 3.1e-8 over the floats' range, subnormals included, for every order's
+    exponents; :func:`andoyer.kernels.simd.roots` (lane vectors) gives the same floats."""
+    import numba
+
+    from andoyer.kernels import simd
+
+    @numba.njit
+    def both(x, inv_p, scalar, vector, buf, out):
+        L = simd.LANES
+        for j in range(0, x.shape[0], L):
+            for lane in range(L):
+                buf[lane] = x[j + lane]
+                scalar[j + lane] = simd.root(x[j + lane], inv_p)
+            simd.roots(buf, inv_p, out)
+            for lane in range(L):
+                vector[j + lane] = out[lane]
+
+    rng = np.random.default_rng(3)
+    L = simd.LANES
+    x = np.concatenate([10.0 ** rng.uniform(-308, 308, 40 * L), [5e-324, 1e-310, 1.0, 2.0],
+                        np.exp(rng.uniform(-5, 40, 40 * L)), [1e308, 3.0, 0.5, 7.0]])
+    x = x[: x.size // L * L]
+    for p in (2, 4, 14, 15, 19, 29, 30):
+        scalar, vector = np.empty_like(x), np.empty_like(x)
+        both(x, 1.0 / p, scalar, vector, np.empty(L), np.empty(L))
+        shortfall = 1.0 - scalar / x ** (1.0 / p)
+        assert (shortfall >= 1.4e-8).all() and (shortfall <= 3.1e-8).all(), p
+        np.testing.assert_array_equal(vector, scalar)

@@ -134,21 +134,30 @@ def test_log_norms_are_the_linear_flows_own(general: RigidBody) -> None:
 
 def test_a_long_chaotic_run_stays_finite() -> None:
     """Past ln|w| = 709 (t ~ 13000 here) |w| itself overflows; the renormalised vectors
-    and the quadratures do not (measured ln|w(20000)| = 1.1e3, 0.6 s)."""
+    and the quadratures do not (measured ln|w(20000)| = 0.8e3 .. 1.1e3, 0.6 s an orbit).
+    Three nearby chaotic orbits, the furthest checked past the overflow: one orbit in
+    ten of these sticks near an island for thousands of time units (measured ln|w(20000)|
+    = 180 .. 320), and which one depends on round-off (the steps)."""
     p = params(CHAOTIC_BODY)
-    y0 = from_hess(CHAOTIC_BODY, [CHAOTIC])[0]
+    y0 = from_hess(CHAOTIC_BODY, [[CHAOTIC[0] + d, *CHAOTIC[1:]] for d in (0.0, 0.02, 0.04)])
     t = np.linspace(0.0, 20000.0, 5)
-    z, info = TT.propagate(*_start(y0, W0[:1]), t, p, 1e-12, MAX_STEPS)
-    assert info[0, 0] == common.SUCCESS
-    assert np.all(np.isfinite(z))
     L = common.layout(1)
-    rho = z[0, :, L["rho"]][:, 0]
-    assert rho[-1] > 750.0  # |w| = e^rho > 1e325: beyond the largest double
-    assert np.all(np.diff(rho) > 0.0)
-    np.testing.assert_allclose(np.linalg.norm(z[0, :, L["u"]], axis=-1), 1.0, atol=1e-12)
-    # mean MEGNO <Y> ~ lambda t / 2 on a chaotic orbit: large and finite
-    mean = z[0, -1, L["megno_int"]] / (t[-1] + common.MEGNO_DELTA)
-    assert 100.0 < mean < rho[-1]
+    furthest = None
+    for y in y0:
+        z, info = TT.propagate(*_start(y, W0[:1]), t, p, 1e-12, MAX_STEPS)
+        assert info[0, 0] == common.SUCCESS
+        assert np.all(np.isfinite(z))
+        rho = z[0, :, L["rho"]][:, 0]
+        assert np.all(np.diff(rho) > 0.0)
+        np.testing.assert_allclose(np.linalg.norm(z[0, :, L["u"]], axis=-1), 1.0, atol=1e-12)
+        # mean MEGNO <Y> ~ lambda t / 2 on a chaotic orbit: large and finite
+        mean = z[0, -1, L["megno_int"]] / (t[-1] + common.MEGNO_DELTA)
+        assert 0.0 < mean < rho[-1]
+        if furthest is None or rho[-1] > furthest[0]:
+            furthest = (rho[-1], mean)
+    assert furthest is not None
+    assert furthest[0] > 750.0  # |w| = e^rho > 1e325: beyond the largest double
+    assert furthest[1] > 100.0
 
 
 def test_needs_a_tangent_vector() -> None:

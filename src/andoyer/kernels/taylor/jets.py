@@ -22,9 +22,11 @@ import numpy as np
 
 from andoyer.kernels.common import N_STATE, STEP_TOO_SMALL, SUCCESS, kernel_jit
 from andoyer.kernels.generated import recurrences
+from andoyer.kernels.simd import root
 
 __all__ = ["fill_constants", "state_jets", "tangent_jets", "attitude_jets",
-           "radius", "step_size", "step_to", "section_step_size", "SECTION_STEP_FLOOR", "block_at",
+           "radius", "step_size", "step_to", "section_step_size", "section_scale",
+           "section_norms", "SECTION_STEP_FLOOR", "block_at",
            "horner", "advance", "load"]
 
 #: Least fraction of the state's step that a section function's jet may leave
@@ -96,9 +98,9 @@ def radius(x, order):
     m = max(1.0, m)
     rho = np.inf
     if n1 > 0.0:
-        rho = (m / n1) ** (1.0 / (order - 1))
+        rho = root(m / n1, 1.0 / (order - 1))
     if n2 > 0.0:
-        rho = min(rho, (m / n2) ** (1.0 / order))
+        rho = min(rho, root(m / n2, 1.0 / order))
     return rho
 
 
@@ -144,7 +146,33 @@ def section_step_size(X, order, tape, u):
         return step_size(X, order)  # on an angle section); a non-finite state: NaN
     a = tape[last, 1]
     b = tape[last, 2]
-    scale = abs(u[a, 0]) if b < 0 else math.sqrt(u[a, 0] * u[a, 0] + u[b, 0] * u[b, 0])
+    m, n1, n2 = section_norms(m, n1, n2, a1, a2, section_scale(u[a, 0], u[b, 0], b),
+                              order)
+    rho = np.inf
+    if n1 > 0.0:
+        rho = root(m / n1, 1.0 / (order - 1))
+    if n2 > 0.0:
+        rho = min(rho, root(m / n2, 1.0 / order))
+    for i in range(1, X.shape[0]):
+        rho = min(rho, radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
+        if rho != rho:
+            return rho
+    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+
+
+@kernel_jit
+def section_scale(fa, fb, b):
+    """The scale of a section function's last node, the sum of the terms ``fa`` and
+    ``fb`` (``b < 0``: one term): ``|fa|`` or ``sqrt(fa^2 + fb^2)`` (an angle
+    section's amplitude, see :func:`section_step_size`)."""
+    return abs(fa) if b < 0 else math.sqrt(fa * fa + fb * fb)
+
+
+@kernel_jit
+def section_norms(m, n1, n2, a1, a2, scale, order):
+    """``(m, n1, n2)``: the state's scale and norms of its last two coefficients with a
+    section function's block merged in (its coefficients ``a1, a2`` at the state's scale,
+    capped: :func:`section_step_size`); ``m`` is ``max(1, m)``."""
     m = max(1.0, m)
     # f's block at the state's scale m (its radius unchanged: (M / a)^(1/k) with
     # a -> a m / M), merged into the state's norms, capped so that the radius shrinks
@@ -157,16 +185,7 @@ def section_step_size(X, order, tape, u):
         n1 = min(a1 * c, n1 * cap)
     if a2 * c > n2:
         n2 = min(a2 * c, n2 * cap * _INV_FLOOR)
-    rho = np.inf
-    if n1 > 0.0:
-        rho = (m / n1) ** (1.0 / (order - 1))
-    if n2 > 0.0:
-        rho = min(rho, (m / n2) ** (1.0 / order))
-    for i in range(1, X.shape[0]):
-        rho = min(rho, radius(X[i], order))  # NaN stays NaN: min(NaN, r) = NaN
-        if rho != rho:
-            return rho
-    return rho * math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+    return m, n1, n2
 
 
 @kernel_jit

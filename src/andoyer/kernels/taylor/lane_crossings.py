@@ -17,11 +17,12 @@ Two entry points, chosen by the section:
   ``G``, ``J1``, ``J2``: :func:`tape_crossings_on_lanes`): the section function's jet of
   every lane from one lane-parallel pass of its tape
   (:func:`~andoyer.kernels.taylor.lane_sections.lane_tape_jet`: the tape's products as
-  vector multiply-add chains), each lane's step with that jet in it (the scalar
-  :func:`~andoyer.kernels.taylor.jets.section_step_size`), the end value ``f_b`` the
-  tape at the step's end state (one more lane-parallel pass, at order 0: the scalar
-  kernel's rule, not ``P(h)``), the bound of the step's polynomial by a vector Horner
-  loop (:func:`_bounds`).
+  vector multiply-add chains), every lane's step with that jet in it (the scalar
+  :func:`~andoyer.kernels.taylor.jets.section_step_size`'s arithmetic, one loop over the
+  lanes: :func:`~andoyer.kernels.taylor.lane_sections.lane_section_steps`), the end
+  value ``f_b`` the tape at the step's end state (one more lane-parallel pass, at
+  order 0: the scalar kernel's rule, not ``P(h)``), the bound of the step's polynomial
+  by a vector Horner loop (:func:`_bounds`).
 
 In both, a step whose polynomial may reach zero (a few % of steps) runs the scalar root
 isolation (:func:`~andoyer.kernels.taylor.sections.isolate`, the boundary rules of
@@ -60,11 +61,7 @@ from andoyer.kernels.common import (
 from andoyer.kernels.generated import recurrences
 from andoyer.kernels.taylor import flow, jets, lane_sections, lanes, sections
 from andoyer.kernels.taylor.jets import fill_constants, step_to
-from andoyer.kernels.taylor.lane_sections import (
-    lane_section_step,
-    lane_tape_jet,
-    section_step_space,
-)
+from andoyer.kernels.taylor.lane_sections import lane_section_steps, lane_tape_jet
 from andoyer.kernels.taylor.lanes import (
     LANES,
     aligned,
@@ -307,8 +304,8 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
                             tc, zc, count, info):
     """:func:`crossings_on_lanes` for a section with a tape (not a state component):
     the section jet of every lane from one lane-parallel pass of the tape
-    (:func:`~andoyer.kernels.taylor.lane_sections.lane_tape_jet`), each lane's step with
-    that jet in it (:func:`~andoyer.kernels.taylor.lane_sections.lane_section_step`), the
+    (:func:`~andoyer.kernels.taylor.lane_sections.lane_tape_jet`), every lane's step with
+    that jet in it (:func:`~andoyer.kernels.taylor.lane_sections.lane_section_steps`), the
     end value ``f_b`` the tape at the step's end state (one more lane-parallel pass at
     order 0), and the scalar kernel's root isolation and ``record`` on a lane whose step
     may hold a root -- as :func:`andoyer.kernels.taylor.flow.locate_crossings`."""
@@ -323,13 +320,14 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
     V = aligned(nodes * _L).reshape((1, nodes, _L))
     start = np.empty((_N, _L))
     h = np.empty(_L)
+    r1 = aligned(_L)
+    r2 = aligned(_L)
     hs = aligned(_L)
     t = np.zeros(_L)
     t1 = np.zeros(_L)
     fa = np.zeros(_L)
     bound = np.zeros(_L)
     orbit = np.full(_L, -1, dtype=np.int64)
-    Xo, uo = section_step_space(order, nodes)
     # the scalar section search's work space (one lane at a time)
     Xs = np.empty((1, n, _N))
     a = np.empty(n)
@@ -351,13 +349,13 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
     while busy > 0:
         lane_state_jets(X, order, q, m)
         lane_tape_jet(ftape, fC, X[0], order, U)
+        lane_section_steps(X, U, order, ftape, h, r1, r2)
         for lane in range(_L):  # each lane's step (0 on idle and ended lanes)
             i = orbit[lane]
             hs[lane] = 0.0
             if i < 0:
                 continue
             info[i, 3] += 1
-            h[lane] = lane_section_step(X, U, order, ftape, lane, Xo, uo)
             status, t1[lane], hs[lane] = step_to(t[lane], t_max, h[lane])
             if status != SUCCESS:
                 info[i, 0] = status

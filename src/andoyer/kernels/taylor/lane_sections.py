@@ -21,9 +21,9 @@ does, every node's orders in one vector loop:
 
 Each lane's operations are the scalar interpreter's up to the contraction of sums into
 fused multiply-adds, so a lane's section jet is the scalar one to round-off. The step of
-each lane is :func:`~andoyer.kernels.taylor.jets.section_step_size` itself, on a copy of
-the few coefficients it reads (:func:`lane_section_step`): the scalar kernel's
-arithmetic, so a lane takes the scalar kernel's steps.
+every lane is :func:`~andoyer.kernels.taylor.jets.section_step_size`'s arithmetic in one
+loop over the lanes (:func:`lane_section_steps`), so a lane takes the scalar kernel's
+steps.
 
 Plain Numba functions compiled into the entry point of
 :mod:`andoyer.kernels.taylor.lane_crossings` (whose cache key hashes this file too).
@@ -37,10 +37,10 @@ import numpy as np
 
 from andoyer.kernels import simd
 from andoyer.kernels.common import N_STATE, kernel_jit
-from andoyer.kernels.taylor.jets import section_step_size
+from andoyer.kernels.taylor.jets import section_norms, section_scale
 from andoyer.kernels.taylor.sections import LIN, MUL, VAR
 
-__all__ = ["lane_tape_jet", "lane_section_step", "section_step_space"]
+__all__ = ["lane_tape_jet", "lane_section_steps"]
 
 _L = simd.LANES
 _N = N_STATE
@@ -85,30 +85,48 @@ def lane_tape_jet(tape, C, x, order, U):
 
 
 @kernel_jit
-def section_step_space(order, nodes):
-    """Work space of :func:`lane_section_step`: one block of jets and one tape's jets
-    of one orbit."""
-    simd.tune()
-    return np.zeros((1, order + 1, _N)), np.zeros((nodes, order + 1))
-
-
-@kernel_jit
-def lane_section_step(X, U, order, tape, lane, Xs, us):
-    """The step of ``lane``: :func:`~andoyer.kernels.taylor.jets.section_step_size` of
-    its state's jets ``X[0, :, :, lane]`` and its section jet ``U[:, :, lane]``, on
-    copies (``Xs``, ``us`` from :func:`section_step_space`) of the coefficients that
-    function reads -- the scalar kernel's arithmetic, bit for bit on the same jets."""
+def lane_section_steps(X, U, order, tape, h, r1, r2):
+    """``h[lane]``: :func:`~andoyer.kernels.taylor.jets.section_step_size` of every
+    lane's state jets ``X[0, :, :, lane]`` and section jet ``U[:, :, lane]`` (states
+    alone), in one loop over the lanes reading the lane arrays in place, with the
+    scalar function's arithmetic (its pieces
+    :func:`~andoyer.kernels.taylor.jets.section_norms` and
+    :func:`~andoyer.kernels.taylor.jets.section_scale`; its roots on lane vectors,
+    :func:`andoyer.kernels.simd.roots`, the same floats), so a lane takes the scalar
+    kernel's steps. NaN where a value or coefficient is not finite; an idle lane's value
+    is unused. ``r1, r2`` scratch (LANES,)."""
     simd.tune()
     last = tape.shape[0] - 1
-    for i in range(_N):
-        Xs[0, 0, i] = X[0, 0, i, lane]
-        Xs[0, order - 1, i] = X[0, order - 1, i, lane]
-        Xs[0, order, i] = X[0, order, i, lane]
-    us[last, order - 1] = U[order - 1, last, lane]
-    us[last, order] = U[order, last, lane]
     a = tape[last, 1]
     b = tape[last, 2]
-    us[a, 0] = U[0, a, lane]
-    if b >= 0:
-        us[b, 0] = U[0, b, lane]
-    return section_step_size(Xs, order, tape, us)
+    for lane in range(_L):
+        a1 = abs(U[order - 1, last, lane])
+        a2 = abs(U[order, last, lane])
+        m = 0.0
+        n1 = 0.0
+        n2 = 0.0
+        total = 0.0
+        for i in range(_N):
+            v0 = abs(X[0, 0, i, lane])
+            v1 = abs(X[0, order - 1, i, lane])
+            v2 = abs(X[0, order, i, lane])
+            m = max(m, v0)
+            n1 = max(n1, v1)
+            n2 = max(n2, v2)
+            total += v0 + v1 + v2
+        if a1 > n1 or a2 > n2:
+            m, n1, n2 = section_norms(m, n1, n2, a1, a2,
+                                      section_scale(U[0, a, lane], U[0, b, lane], b), order)
+        else:
+            m = max(1.0, m)
+        r1[lane] = m / n1 if n1 > 0.0 else np.inf
+        r2[lane] = m / n2 if n2 > 0.0 else np.inf
+        # NaN: not finite; inf: no coefficient (any step); else 0
+        h[lane] = (np.nan if not total < np.inf
+                   else np.inf if n1 == 0.0 and n2 == 0.0 else 0.0)
+    simd.roots(r1, 1.0 / (order - 1), r1)
+    simd.roots(r2, 1.0 / order, r2)
+    for lane in range(_L):
+        if h[lane] == 0.0:
+            h[lane] = min(r1[lane], r2[lane]) * math.exp(-0.7 / (order - 1)) / (
+                math.e * math.e)

@@ -147,9 +147,9 @@ def _radius_of(a1, a2, order):
     """The radius of the least ratios (:func:`andoyer.kernels.taylor.jets.radius`)."""
     rho = np.inf
     if a1 < np.inf:
-        rho = a1 ** (1.0 / (order - 1))
+        rho = simd.root(a1, 1.0 / (order - 1))
     if a2 < np.inf:
-        rho = min(rho, a2 ** (1.0 / order))
+        rho = min(rho, simd.root(a2, 1.0 / order))
     return rho
 
 

@@ -42,9 +42,9 @@ Design (measured: benchmarks/NOTES.md#taylor-lanes):
   each block a queue for its own lanes (:func:`block_size`: four blocks per thread).
 
 A lane-step costs about a quarter of the scalar kernel's orbit-step, mostly the jets
-(then the step size: two powers per lane); one specialisation of the entry point serves
-every width ``6 + 6 k`` (per-step costs, FLI maps against heyoka, compile time:
-benchmarks/NOTES.md#taylor-lanes).
+(then the step size, its roots on lane vectors: :func:`andoyer.kernels.simd.roots`); one
+specialisation of the entry point serves every width ``6 + 6 k`` (per-step costs, FLI
+maps against heyoka, compile time: benchmarks/NOTES.md#taylor-lanes).
 
 States of ``6 + 6 k`` floats (the state and ``k`` tangent vectors, not renormalised,
 as :func:`andoyer.kernels.taylor.flow.propagate`).
@@ -139,13 +139,14 @@ def lane_steps(X, order, h, a1, a2, tot):
             if n2 > 0.0:
                 a2[lane] = min(a2[lane], m / n2)
     c = math.exp(-0.7 / (order - 1)) / (math.e * math.e)
+    for lane in range(_L):  # NaN: not finite; inf: no coefficient (any step); else 0
+        h[lane] = (np.nan if not tot[lane] < np.inf
+                   else np.inf if a1[lane] == np.inf and a2[lane] == np.inf else 0.0)
+    simd.roots(a1, 1.0 / (order - 1), a1)  # the radii, every lane in one vector
+    simd.roots(a2, 1.0 / order, a2)
     for lane in range(_L):
-        rho = np.inf
-        if a1[lane] < np.inf:
-            rho = a1[lane] ** (1.0 / (order - 1))
-        if a2[lane] < np.inf:
-            rho = min(rho, a2[lane] ** (1.0 / order))
-        h[lane] = rho * c if tot[lane] < np.inf else np.nan
+        if h[lane] == 0.0:
+            h[lane] = min(a1[lane], a2[lane]) * c
 
 
 @kernel_jit
