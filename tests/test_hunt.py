@@ -180,7 +180,8 @@ OVERRIDES: dict[str, dict[str, Any]] = {
                          "engine": "numba", "mu": [0.01], "epsilon": [0.05]},
     "melnikov_off_hess": {"body": HESS, "epsilon": 0.05},
     "prove_certificate": {"branch": "theta1=4phi0", "digits": 10},
-    "local_unstable_manifold": {"body": NEAR_HESS_SPEC, "radius": 1e-6, "order": 12},
+    "local_unstable_manifold": {"body": NEAR_HESS_SPEC, "radius": 1e-6, "order": 12,
+                                "bits": 64},
     "prove_transversal": {"body": NEAR_HESS_SPEC},
     "prove_transversal_certificate": {"body": NEAR_HESS_SPEC},
     "mu_interval": {"body": {"mu": "0.05", "mu_radius": "0"}},
@@ -462,6 +463,11 @@ def test_public_api_refuses_extreme_values_or_stays_finite(name):
     assert not failures, "\n".join(failures)
 
 
+#: Seconds a call with one bad value may take before it counts as a hang, where the good
+#: arguments alone are a validated computation (a cone proof: 2-4 s on an idle core).
+ALLOWED_SECONDS = {"local_unstable_manifold": 60.0}
+
+
 @pytest.mark.timeout(180)
 @pytest.mark.parametrize("name", sorted(API))
 @settings(max_examples=8, deadline=None, derandomize=True,
@@ -486,7 +492,7 @@ def test_public_entries_reject_bad_values_clearly(name, data):
         _call(func, args)
     except (ValueError, TypeError) as exc:
         assert str(exc), name  # a message, naming something
-    assert time.perf_counter() - t0 < 20.0, name
+    assert time.perf_counter() - t0 < ALLOWED_SECONDS.get(name, 20.0), name
 
 
 #: |G| between what the integrators take (MAX_MOMENTUM) and what a closed form takes
