@@ -50,7 +50,7 @@ from andoyer.kernels.common import kernel_jit
 
 __all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "TUNE", "TUNE_ENV", "lane_tuning",
            "tune", "cauchy", "combine", "advance", "series_product", "series_linear",
-           "ROOT_SHORTFALL", "root", "roots"]
+           "ROOT_SHORTFALL", "root", "roots", "series_dot"]
 
 #: Environment variable that sets the lane count (one of :data:`WIDTHS`).
 LANES_ENV = "ANDOYER_LANES"
@@ -902,5 +902,127 @@ def _roots_overload(x: Any, inv_p: Any, out: Any) -> Any:
 
     def impl(x: Any, inv_p: Any, out: Any) -> None:
         _roots(x, inv_p, out)
+
+    return impl
+
+
+def series_dot(P: Any, row: int, w: Any, order: int) -> None:
+    """``P[k, row, :] = sum_{j <= k} w[j, :, :] . w[k - j, :, :]`` for ``k = 0 .. order``:
+    the Cauchy product of a lane vector's jets with themselves, summed over its six
+    components (the MEGNO jets' ``w . w``, :mod:`andoyer.kernels.taylor.lane_tangent`).
+
+    Parameters
+    ----------
+    P : ndarray, shape (order + 1, rows, LANES)
+        Lane jets (C-contiguous); row ``row`` is written.
+    row : int
+        The row written.
+    w : ndarray, shape (order + 1, 6, LANES)
+        A vector's lane jets (C-contiguous).
+    order : int
+        The highest order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = np.ones((3, 6, LANES))
+    >>> P = np.zeros((3, 1, LANES))
+    >>> series_dot(P, 0, w, 2)
+    >>> P[:, 0, 0].tolist()
+    [6.0, 12.0, 18.0]
+    """
+    for k in range(order + 1):
+        s = w[0, 0] * w[k, 0]
+        for j in range(k + 1):
+            for i in range(6):
+                if j or i:
+                    s = s + w[j, i] * w[k - j, i]
+        P[k, row] = s
+
+
+def _series_dot_typer(typingctx: Any, P: Any, row: Any, w: Any, order: Any) -> Any:
+    """The vector code of :func:`series_dot`: each pair ``(j, k - j)`` once (the sum is
+    symmetric), one accumulator per component (six independent chains of fused
+    multiply-adds), their sum doubled, and the middle term ``w[k/2] . w[k/2]`` of even
+    orders added."""
+    sig = types.void(P, row, w, order)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
+        pt, rt, wt, ot = signature.args
+        p_, r_, w_, o_ = args
+        intp = context.get_value_type(types.intp)
+        vec, fma = _vector_fma(builder)
+        zero = ir.Constant(intp, 0)
+
+        def const(v: int) -> Any:
+            return ir.Constant(intp, v)
+
+        def pointer(aryty: Any, ary: Any, inds: list[Any]) -> Any:
+            arr = context.make_array(aryty)(context, builder, ary)
+            p = cgutils.get_item_pointer2(
+                context, builder, data=arr.data, shape=cgutils.unpack_tuple(builder, arr.shape),
+                strides=cgutils.unpack_tuple(builder, arr.strides), layout=aryty.layout,
+                inds=inds)
+            return builder.bitcast(p, vec.as_pointer())
+
+        def load(k: Any, i: int) -> Any:
+            return builder.load(pointer(wt, w_, [k, const(i), zero]), align=8)
+
+        def splat(x: Any) -> Any:
+            v = ir.Constant(vec, ir.Undefined)
+            for lane in range(LANES):
+                v = builder.insert_element(v, x, ir.Constant(ir.IntType(32), lane))
+            return v
+
+        row_i = context.cast(builder, r_, rt, types.intp)
+        order_i = context.cast(builder, o_, ot, types.intp)
+        zvec = ir.Constant(vec, [0.0] * LANES)
+        two = ir.Constant(vec, [2.0] * LANES)
+        accs = [cgutils.alloca_once(builder, vec) for _ in range(6)]
+        with cgutils.for_range(builder, builder.add(order_i, const(1)), intp=intp) as korder:
+            k = korder.index
+            for acc in accs:
+                builder.store(zvec, acc)
+            half = builder.sdiv(builder.add(k, const(1)), const(2))
+            with cgutils.for_range(builder, half, intp=intp) as loop:
+                j = loop.index
+                kj = builder.sub(k, j)
+                for i in range(6):
+                    builder.store(builder.call(fma, [load(j, i), load(kj, i),
+                                                     builder.load(accs[i])]), accs[i])
+            s = builder.fadd(builder.load(accs[0]), builder.load(accs[1]))
+            s2 = builder.fadd(builder.load(accs[2]), builder.load(accs[3]))
+            s4 = builder.fadd(builder.load(accs[4]), builder.load(accs[5]))
+            s = builder.fmul(two, builder.fadd(builder.fadd(s, s2), s4))
+            mid = builder.sdiv(k, const(2))
+            even = builder.icmp_signed("==", builder.mul(mid, const(2)), k)
+            weight = splat(builder.select(even, ir.Constant(ir.DoubleType(), 1.0),
+                                          ir.Constant(ir.DoubleType(), 0.0)))
+            m0 = load(mid, 0)
+            dot = builder.fmul(m0, m0)
+            for i in range(1, 6):
+                mi = load(mid, i)
+                dot = builder.call(fma, [mi, mi, dot])
+            s = builder.call(fma, [weight, dot, s])
+            builder.store(s, pointer(pt, p_, [k, row_i, zero]), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_series_dot: Any = intrinsic(_series_dot_typer)
+
+
+@overload(series_dot, jit_options={"nogil": True})
+def _series_dot_overload(P: Any, row: Any, w: Any, order: Any) -> Any:
+    """Compiled :func:`series_dot`: the intrinsic (C-contiguous float64 arrays)."""
+    for ary in (P, w):
+        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
+                and ary.layout == "C" and ary.ndim == 3):
+            return None
+
+    def impl(P: Any, row: Any, w: Any, order: Any) -> None:
+        _series_dot(P, row, w, order)
 
     return impl

@@ -1,7 +1,9 @@
 """The renormalised tangent flow on SIMD lanes (:mod:`andoyer.kernels.taylor.lane_tangent`)
 against the scalar kernel (:mod:`andoyer.kernels.taylor.tangent`).
 
-* the lane MEGNO jets equal the scalar ``megno_jets`` lane by lane, to round-off;
+* the lane MEGNO jets equal the scalar ``megno_jets`` lane by lane, to round-off, and
+  the intrinsic of their ``w . w`` (:func:`andoyer.kernels.simd.series_dot`) its plain
+  Python fallback;
 * orbits (k = 1, 2, 3 vectors, states near the chart's singular sets, a chaotic orbit
   whose ``rho`` grows): every orbit takes the scalar kernel's steps (``info`` equal, row
   by row) and its rows (state, unit vectors, ``rho``, ``N``, ``I``) agree to round-off;
@@ -22,7 +24,7 @@ from numpy.typing import NDArray
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, from_hess
 from andoyer.integrate.engines.values import unit_vectors
-from andoyer.kernels import common
+from andoyer.kernels import common, simd
 from andoyer.kernels.taylor import lane_tangent as LT
 from andoyer.kernels.taylor import lanes as TL
 from andoyer.kernels.taylor import tangent as TT
@@ -73,7 +75,7 @@ def _jets(X, p, order, s0):  # noqa: ANN001, ANN202 - a compiled test helper
     for lane in range(L):
         W[0, 1, lane] = 0.3 + lane  # N and I at the step's start
         W[0, 2, lane] = -0.2 * lane
-    LT.lane_megno_jets(X, order, s0, W, np.empty((6, L)))
+    LT.lane_megno_jets(X, order, s0, W, np.empty((6, L)), np.empty((2, L)))
     return W
 
 
@@ -95,6 +97,27 @@ def test_lane_megno_jets_equal_the_scalar_ones(body: RigidBody) -> None:
             ref = Q[row, :, 0]
             got = W[:, row, lane]
             assert np.max(np.abs(got - ref) / (1e-300 + np.max(np.abs(ref)))) < 1e-13, row
+
+
+def test_series_dot_equals_its_fallback() -> None:
+    """The intrinsic (each pair of terms once, doubled; the middle term of even orders)
+    against the plain sum, at every order count 0 .. 9 and 15."""
+    rng = np.random.default_rng(5)
+
+    @numba.njit
+    def compiled(P, w, order):  # noqa: ANN001, ANN202
+        simd.series_dot(P, 2, w, order)
+
+    for order in (*range(10), 15):
+        w = rng.normal(size=(order + 1, 6, L))
+        P = rng.normal(size=(order + 1, 4, L))
+        V = P.copy()
+        compiled(P, w, order)
+        simd.series_dot(V, 2, w, order)
+        np.testing.assert_allclose(P, V, rtol=1e-13, atol=1e-13)
+        k = order
+        assert P[k, 2, 3] == pytest.approx(sum(w[j, :, 3] @ w[k - j, :, 3]
+                                               for j in range(k + 1)))
 
 
 @pytest.mark.parametrize("k", [1, 2, 3])

@@ -8,10 +8,10 @@ instruction, as in :mod:`andoyer.kernels.taylor.lanes` (whose lane jets, lane lo
 Horner and queue this module uses), with what the renormalised flow adds:
 
 * **the MEGNO jets on lanes** (:func:`lane_megno_jets`): the Cauchy product
-  :math:`P_k = \sum_j w^{[j]} \cdot w^{[k-j]}` of the first vector with itself (six
-  component products, :func:`andoyer.kernels.simd.cauchy`) and the logarithm's
+  :math:`P_k = \sum_j w^{[j]} \cdot w^{[k-j]}` of the first vector with itself
+  (:func:`andoyer.kernels.simd.series_dot`, each pair of terms once) and the logarithm's
   recurrence :math:`\ell_k = (P_k - \frac1k \sum_{j=1}^{k-1} j\,\ell_j P_{k-j}) / P_0`
-  (its convolution by the same intrinsic, the weights :math:`j L_j` a row of their
+  (its convolution by :func:`andoyer.kernels.simd.cauchy`, the weights :math:`j L_j` a row of their
   own), then ``N``, ``g`` and ``I`` lane by lane -- the recurrences of the scalar
   kernel's notes, term for term;
 * **the scalar kernel's step, lane by lane** (:func:`lane_tangent_steps`): the least
@@ -74,8 +74,6 @@ _N = N_STATE
 #: j L_j (the logarithm's weights).
 _ROWS = 6
 _LN, _NN, _IN, _PN, _GN, _JL = range(_ROWS)
-#: The six component products of w . w for simd.cauchy: (row of m, component, component).
-_DOT = (0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5, 5, 5)
 #: The logarithm's convolution sum_j (j L_j) P_{k-j}: (row of m, row j L_j, row P).
 _LOG = (0, _JL, _PN)
 
@@ -86,37 +84,36 @@ LANE_TANGENT_STAMP = source_stamp(
 
 
 @kernel_jit
-def lane_megno_jets(X, order, s0, W, m):
+def lane_megno_jets(X, order, s0, W, m, inv):
     """Jets of the MEGNO quadratures of every lane from the first vector's lane jets
     ``X[1]`` (:func:`andoyer.kernels.taylor.tangent.megno_jets` on lanes): ``W[:, 0]`` L,
     ``W[:, 1]`` N, ``W[:, 2]`` I (rows ``W[0, 1], W[0, 2]`` their values at the step's
     start, set by the caller), ``W[:, 3:]`` work rows (P, g, j L_j). ``W`` has shape
-    (order + 1, 6, LANES), ``s0[lane] = t0 + delta``, ``m`` scratch (6, LANES)."""
+    (order + 1, 6, LANES), ``s0[lane] = t0 + delta``, ``m`` (6, LANES) and ``inv`` (2,
+    LANES) scratch (``1 / P_0``, ``1 / s0``). (``g``'s last coefficient, which the scalar
+    kernel skips, is computed and never read.)"""
     simd.tune()
-    w = X[1]
-    for k in range(order + 1):
-        simd.cauchy(m, w, w, k, _DOT)
-        for lane in range(_L):
-            W[k, _PN, lane] = (m[0, lane] + m[1, lane] + m[2, lane] + m[3, lane]
-                               + m[4, lane] + m[5, lane])
+    simd.series_dot(W, _PN, X[1], order)
     for lane in range(_L):
+        inv[0, lane] = 1.0 / W[0, _PN, lane]
+        inv[1, lane] = 1.0 / s0[lane]
         W[0, _LN, lane] = 0.5 * math.log(W[0, _PN, lane])
-        W[0, _GN, lane] = W[0, _NN, lane] / s0[lane]
+        W[0, _GN, lane] = W[0, _NN, lane] * inv[1, lane]
         W[0, _JL, lane] = 0.0
     for k in range(1, order + 1):
         inv_k = 1.0 / k
+        c = (k - 1) * inv_k
         for lane in range(_L):
             W[k, _JL, lane] = 0.0  # j = k: L_k not known yet, its weight is zero here
         simd.cauchy(m, W, W, k, _LOG)
         for lane in range(_L):
-            ell = (W[k, _PN, lane] - 2.0 * m[0, lane] * inv_k) / W[0, _PN, lane]
+            ell = (W[k, _PN, lane] - 2.0 * m[0, lane] * inv_k) * inv[0, lane]
             Lk = 0.5 * ell
             W[k, _LN, lane] = Lk
             W[k, _JL, lane] = k * Lk
-            W[k, _NN, lane] = s0[lane] * Lk + (k - 1) * inv_k * W[k - 1, _LN, lane]
+            W[k, _NN, lane] = s0[lane] * Lk + c * W[k - 1, _LN, lane]
             W[k, _IN, lane] = 2.0 * W[k - 1, _GN, lane] * inv_k
-            if k < order:
-                W[k, _GN, lane] = (W[k, _NN, lane] - W[k - 1, _GN, lane]) / s0[lane]
+            W[k, _GN, lane] = (W[k, _NN, lane] - W[k - 1, _GN, lane]) * inv[1, lane]
 
 
 @kernel_jit
@@ -286,6 +283,7 @@ def renormalised_lanes(z0, rho0, t_out, q, order, max_steps, out, info):
     W = aligned((order + 1) * _ROWS * _L).reshape((order + 1, _ROWS, _L))
     mj = aligned(recurrences.LANE_PRODUCTS * _L).reshape((recurrences.LANE_PRODUCTS, _L))
     mq = aligned(_ROWS * _L).reshape((_ROWS, _L))
+    inv = np.empty((2, _L))
     rho = np.zeros((_L, k))
     h = np.empty(_L)
     hs = aligned(_L)
@@ -310,7 +308,7 @@ def renormalised_lanes(z0, rho0, t_out, q, order, max_steps, out, info):
             s0[lane] = t[lane] + MEGNO_DELTA
             busy_lane[lane] = orbit[lane] >= 0
         lane_jets(X, order, q, mj)
-        lane_megno_jets(X, order, s0, W, mq)
+        lane_megno_jets(X, order, s0, W, mq, inv)
         lane_tangent_steps(X, W, order, s0, busy_lane, h)
         for lane in range(_L):  # the step of each lane, its output times inside it
             i = orbit[lane]
