@@ -114,7 +114,11 @@ def energy(body: RigidBody, y: ArrayLike) -> NDArray[np.float64]:
     >>> float(energy(body, [0, 0, 1.0, 0, 0, 1.0]))
     1.5
     """
-    arr = as_state(y)
+    return _energy(body, as_state(y))
+
+
+def _energy(body: RigidBody, arr: NDArray[np.float64]) -> NDArray[np.float64]:
+    """:func:`energy` of checked states."""
     args = [*np.moveaxis(arr, -1, 0), *body.params]
     return np.asarray(hamiltonian_expr(*args))
 
@@ -149,7 +153,11 @@ def geometric_integral(y: ArrayLike) -> NDArray[np.float64]:
     -------
     ndarray, shape (...)
     """
-    arr = as_state(y)
+    return _geometric(as_state(y))
+
+
+def _geometric(arr: NDArray[np.float64]) -> NDArray[np.float64]:
+    """:func:`geometric_integral` of checked states."""
     return np.einsum("...i,...i->...", arr[..., 3:], arr[..., 3:])
 
 
@@ -185,8 +193,9 @@ def momentum_bound(body: RigidBody, y: ArrayLike, H: ArrayLike | None = None
     arr = as_state(y)
     a, b, c, mu, e1, e2, e3 = body.params
     rnorm = float(np.sqrt(e1 * e1 + e2 * e2 + e3 * e3))
-    gnorm = np.sqrt(geometric_integral(arr))
-    h = energy(body, arr) if H is None else np.asarray(H, dtype=float)
+    # the checked states' own integrals (the public functions would check them again)
+    gnorm = np.sqrt(_geometric(arr))
+    h = _energy(body, arr) if H is None else np.asarray(H, dtype=float)
     room = np.maximum(h + abs(mu) * rnorm * gnorm, 0.0)
     bound = np.sqrt(2.0 * max(body.A, body.B, body.C) * room)
     return np.maximum(bound, np.linalg.norm(arr[..., :3], axis=-1))
