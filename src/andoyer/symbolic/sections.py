@@ -26,7 +26,14 @@ coordinates of :class:`andoyer.integrate.engines.values.Section`.
 The pairs come from the inverse chart maps of :mod:`andoyer.charts.andoyer_deprit`:
 ``(cos l, sin l) ~ (G2, G1)`` and
 ``(cos g, sin g) ~ (G3 (G1 gamma1 + G2 gamma2) - gamma3 (G1^2 + G2^2),
-G (G2 gamma1 - G1 gamma2))``.
+G (G2 gamma1 - G1 gamma2))``, the first written ``G3 M - gamma3 |G|^2`` with the area
+``M = G . gamma`` (:data:`AREA`, the same polynomial): a first integral of (1), so the
+Taylor jets take its value alone (its jet vanishes beyond order 0 on any step, a
+polynomial identity of the truncated series; the tapes' ``DOT`` and ``SCALE`` rows of
+:mod:`andoyer.symbolic.taylor_codegen`) and ``|G|^2`` is shared with ``|G|``.
+``theta2 = g - (l + phi0)`` is crossed as ``g - (l + phi0 + value)``: the value rotates
+the pair of ``l + phi0``, linear in ``(G1, G2)``, so ``f = S_g c - C_g s`` takes two
+products of the state's polynomials where rotating the product pair takes four.
 """
 
 from __future__ import annotations
@@ -38,7 +45,7 @@ import sympy as sp
 from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
 from andoyer.symbolic.hamiltonian import S
 
-__all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "section_function",
+__all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "AREA", "section_function",
            "angle_pair"]
 
 value, cv, sv = sp.symbols("value cv sv", real=True)
@@ -47,6 +54,8 @@ SECTION_ARGS = (*S.y, S.phi0, value, cv, sv)
 
 G1, G2, G3, gamma1, gamma2, gamma3 = S.y
 _G = sp.sqrt(G1**2 + G2**2 + G3**2)
+#: The area ``M = G . gamma``, a first integral of (1) for every body (see the notes).
+AREA = G1 * gamma1 + G2 * gamma2 + G3 * gamma3
 
 #: Smooth (non-angle) section coordinates as functions of y.
 SMOOTH: dict[str, sp.Expr] = {
@@ -63,7 +72,7 @@ EXTRA_ANGLES = tuple(k for k, s in SECTION_COORDINATES.items() if s.chart is Non
 def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
     """``(C, S)``, a positive multiple of ``(cos alpha, sin alpha)`` for an angle of a chart."""
     cl, sl = G2, G1
-    cg = G3 * (G1 * gamma1 + G2 * gamma2) - gamma3 * (G1**2 + G2**2)
+    cg = G3 * AREA - gamma3 * (G1**2 + G2**2 + G3**2)
     sg = _G * (G2 * gamma1 - G1 * gamma2)
     c0, s0 = sp.cos(S.phi0), sp.sin(S.phi0)
     if name == "l":
@@ -91,6 +100,14 @@ def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:
     """
     if coord in SMOOTH:
         return SMOOTH[coord] - value, sp.Integer(1)
+    if coord == "theta2":  # g - (l + phi0 + value): see the module notes
+        cg, sg = angle_pair("g")
+        cl, sl = angle_pair("l")
+        c0, s0 = sp.cos(S.phi0), sp.sin(S.phi0)
+        cp, sp_ = cl * c0 - sl * s0, sl * c0 + cl * s0
+        c = sp.collect(sp.expand(cp * cv - sp_ * sv), (G1, G2))
+        s = sp.collect(sp.expand(sp_ * cv + cp * sv), (G1, G2))
+        return sg * c - cg * s, cg * c + sg * s
     if coord in ANGLES or coord in EXTRA_ANGLES:
         C, Sn = angle_pair(coord)
         return Sn * cv - C * sv, C * cv + Sn * sv

@@ -27,7 +27,11 @@ Jets. A jet is the array of normalised Taylor coefficients
   (the norm ``|G|`` of the ``g`` and ``theta2`` angles); each gets the jet rule of its
   operation (for :math:`s = \sqrt{v}`:
   :math:`s^{[k]} = (v^{[k]} - \sum_{j=1}^{k-1} s^{[j]} s^{[k-j]}) / (2 s^{[0]})`), equal
-  subexpressions share one jet: ``section_jet``.
+  subexpressions share one jet: ``section_jet``. The area ``M = G . gamma``
+  (:data:`andoyer.symbolic.sections.AREA`) is a first integral of (1): along the jet of
+  a step its jet is its value (:math:`M^{[k]} = 0`, ``k >= 1``: the truncated series
+  keep the polynomial identity :math:`\dot M = 0`), so it is one dot product at order 0
+  (``DOT``) and a product with it a scaling (``SCALE``), not a Cauchy product.
 
 The coefficients ``q`` that depend on the body are computed once per call by
 ``ep_taylor_constants`` (constants folded out of the step loop).
@@ -200,8 +204,17 @@ def _unpack(q: _Constants) -> list[str]:
     return [f"    q{i} = q[{i}]" for i in range(len(q.exprs))]
 
 
+def _dot_triples(e: sp.Expr) -> tuple[int, int]:
+    """``(a, b)`` with ``e = sum_i y_{a+i} y_{b+i}`` (``i < 3``), a ``DOT`` row's operands."""
+    for a in range(len(S.y) - 2):
+        for b in range(a + 3, len(S.y) - 2):
+            if sp.expand(e - sum(S.y[a + i] * S.y[b + i] for i in range(3))) == 0:
+                return a, b
+    raise ValueError(f"{e!r} is no dot product of two state triples")
+
+
 #: Operations of a section tape (see :class:`_SectionTape`).
-VAR, LIN, MUL, SQRT = 0, 1, 2, 3
+VAR, LIN, MUL, SQRT, DOT, SCALE = 0, 1, 2, 3, 4, 5
 
 
 class _SectionTape:
@@ -211,7 +224,11 @@ class _SectionTape:
     ``k`` is, by ``op``: ``VAR``: state component ``a``; ``LIN``:
     ``C[ca] u_a + C[cb] u_b`` (``b = -1``: no second term) plus ``C[cc]`` at ``k = 0``
     (``cc = -1``: none); ``MUL``: the Cauchy product of ``u_a`` and ``u_b``; ``SQRT``:
-    the square root of ``u_a``. ``C`` are state-free constants (slot 0 is 1); the last
+    the square root of ``u_a``; ``DOT``: a first integral, the dot product of the state
+    triples from components ``a`` and ``b`` at ``k = 0``, zero above (the area
+    :data:`~andoyer.symbolic.sections.AREA`); ``SCALE``: ``u_a^{[0]} u_b`` (``a`` a
+    ``DOT`` node: the product with a first integral). ``C`` are state-free constants
+    (slot 0 is 1); the last
     node is ``f``. One compiled interpreter runs every tape, so a new section kind costs
     no compilation.
     """
@@ -238,14 +255,20 @@ class _SectionTape:
             return self.memo[e]
         if e in S.y:
             n = self._row(VAR, S.y.index(e))
+        elif e == sec.AREA:
+            n = self._row(DOT, *_dot_triples(e))
         elif isinstance(e, sp.Add) or (isinstance(e, sp.Mul)
                                        and e.as_independent(*S.y, as_Add=False)[0] != 1):
             n = self._lin(e)
         elif isinstance(e, sp.Mul):
-            factors = list(e.as_ordered_factors())
-            n = self.node(factors[0])
-            for f in factors[1:]:
-                n = self._row(MUL, n, self.node(f))
+            nodes = [self.node(f) for f in e.as_ordered_factors()]
+            integrals = [m for m in nodes if self.rows[m][0] == DOT]
+            others = [m for m in nodes if self.rows[m][0] != DOT] or integrals[:1]
+            n = others[0]
+            for m in others[1:]:
+                n = self._row(MUL, n, m)
+            for m in integrals[1:] if others[0] in integrals else integrals:
+                n = self._row(SCALE, m, n)
         elif isinstance(e, sp.Pow) and e.exp == sp.Rational(1, 2):
             n = self._row(SQRT, self.node(e.base))
         elif isinstance(e, sp.Pow) and e.exp.is_Integer and e.exp >= 2:
@@ -292,7 +315,7 @@ def _tapes_source(name: str, doc: str, which: int) -> tuple[str, int, int]:
     printer = NumbaPrinter()
     args = ", ".join(str(a) for a in sec.SECTION_ARGS[len(S.y):])
     tapes = [f"#: {doc}, one tape per section kind: rows (op, a, b, ca, cb, cc), ops",
-             "#: VAR, LIN, MUL, SQRT = 0, 1, 2, 3 (see andoyer.symbolic.taylor_codegen).",
+             "#: VAR, LIN, MUL, SQRT, DOT, SCALE = 0 .. 5 (see andoyer.symbolic.taylor_codegen).",
              f"{name.upper()}_TAPES = ("]
     consts = [f"def {name}_constants(kind, {args}):",
               f'    """The constants ``C`` of the tape of {name.upper()}_TAPES[kind]."""']

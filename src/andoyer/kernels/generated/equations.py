@@ -275,9 +275,9 @@ def section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv):
     elif kind == 10:  # l
         return G1*cv - G2*sv, G1*sv + G2*cv
     elif kind == 11:  # g
-        s0 = G1**2 + G2**2
-        s1 = sqrt(G3**2 + s0)*(-G1*gamma2 + G2*gamma1)
-        s2 = G3*(G1*gamma1 + G2*gamma2) - gamma3*s0
+        s0 = G1**2 + G2**2 + G3**2
+        s1 = sqrt(s0)*(-G1*gamma2 + G2*gamma1)
+        s2 = G3*(G1*gamma1 + G2*gamma2 + G3*gamma3) - gamma3*s0
         return cv*s1 - s2*sv, cv*s2 + s1*sv
     elif kind == 12:  # theta1
         s0 = sin(phi0)
@@ -291,14 +291,14 @@ def section(kind, G1, G2, G3, gamma1, gamma2, gamma3, phi0, value, cv, sv):
     elif kind == 13:  # theta2
         s0 = cos(phi0)
         s1 = sin(phi0)
-        s2 = G1*s0 + G2*s1
-        s3 = G1**2 + G2**2
-        s4 = G3*(G1*gamma1 + G2*gamma2) - gamma3*s3
-        s5 = -G1*s1 + G2*s0
-        s6 = sqrt(G3**2 + s3)*(-G1*gamma2 + G2*gamma1)
-        s7 = -s2*s4 + s5*s6
-        s8 = s2*s6 + s4*s5
-        return cv*s7 - s8*sv, cv*s8 + s7*sv
+        s2 = cv*s0 - s1*sv
+        s3 = cv*s1 + s0*sv
+        s4 = -G1*s3 + G2*s2
+        s5 = G1**2 + G2**2 + G3**2
+        s6 = sqrt(s5)*(-G1*gamma2 + G2*gamma1)
+        s7 = G1*s2 + G2*s3
+        s8 = G3*(G1*gamma1 + G2*gamma2 + G3*gamma3) - gamma3*s5
+        return s4*s6 - s7*s8, s4*s8 + s6*s7
     elif kind == 14:  # psi
         return cv*gamma1 - gamma2*sv, cv*gamma2 + gamma1*sv
     return 0.0, -1.0

@@ -14,6 +14,8 @@ does, every node's orders in one vector loop:
 * a product node is the Cauchy product of two earlier nodes, four orders at a time
   (four independent chains of vector multiply-adds,
   :func:`andoyer.kernels.simd.series_product`), the scalar tape's order of terms;
+* a first integral (``DOT``: the area ``M = G . gamma``) is its value at order 0, a
+  product with it (``SCALE``) one multiplication per order and lane;
 * the square root's recurrence ``r^[k] = (a^[k] - sum_{0<j<k} r^[j] r^[k-j]) / (2 r^[0])``
   takes its sum from the lanes' Cauchy product of order ``k``
   (:func:`andoyer.kernels.simd.cauchy`) with ``r^[k]`` zero while it is summed (the
@@ -38,7 +40,7 @@ import numpy as np
 from andoyer.kernels import simd
 from andoyer.kernels.common import N_STATE, kernel_jit
 from andoyer.kernels.taylor.jets import section_norms, section_scale
-from andoyer.kernels.taylor.sections import LIN, MUL, VAR
+from andoyer.kernels.taylor.sections import DOT, LIN, MUL, SCALE, VAR
 
 __all__ = ["lane_tape_jet", "lane_section_steps"]
 
@@ -71,7 +73,19 @@ def lane_tape_jet(tape, C, x, order, U):
                     U[0, n, lane] += cc
         elif op == MUL:
             simd.series_product(U, n, a, b, order)
-        else:  # _SQRT
+        elif op == DOT:  # a first integral: its jet is its value (state_dot per lane)
+            for lane in range(_L):
+                U[0, n, lane] = (x[0, a, lane] * x[0, b, lane]
+                                 + x[0, a + 1, lane] * x[0, b + 1, lane]
+                                 + x[0, a + 2, lane] * x[0, b + 2, lane])
+            for k in range(1, order + 1):
+                for lane in range(_L):
+                    U[k, n, lane] = 0.0
+        elif op == SCALE:  # the product with a first integral
+            for k in range(order + 1):
+                for lane in range(_L):
+                    U[k, n, lane] = U[0, a, lane] * U[k, b, lane]
+        else:  # SQRT
             for lane in range(_L):
                 U[0, n, lane] = math.sqrt(U[0, a, lane])
             for k in range(1, order + 1):

@@ -45,7 +45,7 @@ import numpy as np
 from andoyer.kernels.common import exact_jit, kernel_jit
 from andoyer.kernels.generated import recurrences
 
-__all__ = ["VAR", "LIN", "MUL",
+__all__ = ["VAR", "LIN", "MUL", "SQRT", "DOT", "SCALE", "state_dot",
            "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
            "bernstein_weights", "step_bernstein",
@@ -53,7 +53,7 @@ __all__ = ["VAR", "LIN", "MUL",
            "tape_value", "bernstein", "sign_changes", "poly", "poly_d", "solve_root",
            "casteljau", "section_jet", "section_tape"]
 
-VAR, LIN, MUL = 0, 1, 2  # ops of a section tape (SQRT = 3), see taylor_codegen
+VAR, LIN, MUL, SQRT, DOT, SCALE = 0, 1, 2, 3, 4, 5  # ops of a section tape, see taylor_codegen
 ROOT_MAXITER = 200
 #: Bracket width (relative) at which :func:`solve_root` stops: 4 eps, a float the
 #: compiled code reads as a constant (``np.finfo`` in the kernel would compile Numba's
@@ -99,13 +99,23 @@ def cauchy(u, n, a, b, order):
 
 
 @kernel_jit
+def state_dot(y, a, b):
+    """``sum_{i < 3} y[a + i] y[b + i]``: a tape's ``DOT`` node (a first integral, the
+    area ``M = G . gamma`` at ``a, b = 0, 3``) at the state ``y``."""
+    return y[a] * y[b] + y[a + 1] * y[b + 1] + y[a + 2] * y[b + 2]
+
+
+@kernel_jit
 def tape_jet(tape, C, x, order, u):
     """Jets ``u[n, 0 .. order]`` of the nodes of a section function's tape along the
     state's jet ``x`` (the last node is the function): the tape interpreter (rows
     ``(op, a, b, ca, cb, cc)`` of :data:`andoyer.kernels.generated.recurrences.SECTION_TAPES`,
     constants ``C``). Products by :func:`cauchy`, four orders at a time (faster; the
     crossings within round-off of a one-order loop's -- measured:
-    benchmarks/NOTES.md#taylor-sections)."""
+    benchmarks/NOTES.md#taylor-sections); a first integral (``DOT``) by its value alone
+    and a product with it (``SCALE``) by one multiplication per order: ``x`` must be
+    the jet of a solution of (1) (the state's jets), along which those jets are the
+    integral's, to round-off."""
     # Node by node (each node reads earlier nodes only, and the state's jet is known to
     # the full order): one dispatch per node, not per node and order.
     for n in range(tape.shape[0]):
@@ -128,7 +138,15 @@ def tape_jet(tape, C, x, order, u):
                 u[n, 0] += C[tape[n, 5]]
         elif op == MUL:
             cauchy(u, n, a, b, order)
-        else:  # _SQRT
+        elif op == DOT:  # a first integral: its jet is its value
+            u[n, 0] = state_dot(x[0], a, b)
+            for k in range(1, order + 1):
+                u[n, k] = 0.0
+        elif op == SCALE:  # the product with a first integral
+            c = u[a, 0]
+            for k in range(order + 1):
+                u[n, k] = c * u[b, k]
+        else:  # SQRT
             r = math.sqrt(u[a, 0])
             u[n, 0] = r
             for k in range(1, order + 1):
@@ -413,7 +431,11 @@ def tape_value(tape, C, Y, u):
             v = 0.0  # as tape_jet's sum (0 + a b, not a b: the same zero's sign)
             v += u[a, 0] * u[b, 0]
             u[n, 0] = v
-        else:  # _SQRT
+        elif op == DOT:
+            u[n, 0] = state_dot(Y[0], a, b)
+        elif op == SCALE:
+            u[n, 0] = u[a, 0] * u[b, 0]
+        else:  # SQRT
             u[n, 0] = math.sqrt(u[a, 0])
     return u[tape.shape[0] - 1, 0]
 
