@@ -231,7 +231,8 @@ DEFAULTS_ON_PURPOSE = {
     ("chaos-map", "n"): "the shell's map is a picture, 128 x 128; the API's 64 suits scripts",
     ("explore", "body"): "the same body: the CLI names the paper's preset",
     ("resonances", "order_mu"): "0: no normal form in mu unless asked (seconds per chain); "
-                                "the API takes its best order, 2",
+                                "the API's default is 2 (3 adds the stencil of (S1'), "
+                                "some 3x the time)",
     ("resonances", "n_orbits"): "0: no section drawn under the chains unless asked (the "
                                 "prediction itself integrates nothing)",
     ("resonances", "degree"): "0: no normal form of the section map unless asked (it "

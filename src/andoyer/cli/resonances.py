@@ -328,8 +328,8 @@ def register(sub: Any) -> None:
     add_term(p, "order", type=count(0, 16), default=0,
              help="degree N of the normal forms near the centres (even, 4 to 16), written "
                   f"beside --out as *{NORMAL_FORM}; default 0: none")
-    add_term(p, "order_mu", type=count(0, 2), default=0,
-             help="order N (1 or 2) in mu of the Lie-Deprit normal form of each chain "
+    add_term(p, "order_mu", type=count(0, 3), default=0,
+             help="order N (1 to 3) in mu of the Lie-Deprit normal form of each chain "
                   "(stable point on a seed line with the size of the next order, "
                   f"half-width, libration frequency), written beside --out as *{ORDER_MU}; "
                   "default 0: none")

@@ -399,4 +399,4 @@ def test_island_prediction_orders_and_p2_chains():
     assert float(b.libration_frequency[1]) == pytest.approx(
         2 * float(a.libration_frequency[1]), rel=0.01)
     with pytest.raises(ValueError, match="order_mu"):
-        island_prediction(WIDE, 1.0, 0.0, "3:1", order_mu=3)
+        island_prediction(WIDE, 1.0, 0.0, "3:1", order_mu=4)

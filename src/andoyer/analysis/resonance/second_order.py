@@ -1,16 +1,20 @@
-r"""The island chain's centre to second order in ``mu``: the Lie-Deprit normal form of (R2).
+r"""The island chain to second and third order in ``mu``: the Lie-Deprit normal form of (R2).
 
-(S1) The reduced Hamiltonian of the section map (R2) to second order: solving
-     ``H0(I1, G) + mu V = h`` for ``G = G0(I1) + mu G1 + mu^2 G2``,
-     ``K = -G = K0(I1) + mu K1 + mu^2 K2``, ``K1 = V / omega_g``,
+(S1) The reduced Hamiltonian of the section map (R2): solving ``H0(I1, G) + mu V = h`` for
+     ``G = G0(I1) + mu G1 + mu^2 G2 + mu^3 G3``,
+     ``K = -G = K0(I1) + mu K1 + mu^2 K2 + mu^3 K3``, ``K1 = V / omega_g``,
      ``K2 = -(V V_G / omega_g^2 - (d omega_g/dG) V^2 / (2 omega_g^3))``, the derivatives in
      ``G`` at fixed ``I1`` (``d/dG|_I = d/dG|_h + omega_g d/dh|_G``, from tori off the level).
+(S1') ``K3 = -G3``, ``G3 = -(H0_GG G1 G2 + H0_GGG G1^3 / 6 + V_G G2 + V_GG G1^2 / 2) /
+     omega_g`` (``d/dG`` at fixed ``I1`` as in (S1), ``H0_G = omega_g``; a second
+     derivative ``f_GG|_I = f_GG + 2 omega_g f_Gh + omega_g^2 f_hh + H0_GG f_h`` from a
+     3 x 3 stencil of tori in ``(h, G)``).
 (S2) The jets of (D1) about the resonant torus ``I1*``: seven tori on the level at
      ``G* + j d`` (``j = -3 .. 3``), their actions ``x_j = I1 - I1* = -int dG / W``
      (Gauss-Legendre on :func:`~andoyer.analysis.resonance.predict.free_top_at_gap`),
-     every Fourier coefficient of ``K1``, ``K2`` and ``G0`` interpolated in ``x``;
+     every Fourier coefficient of ``K1``, ``K2``, ``K3`` and ``G0`` interpolated in ``x``;
      ``omega(x) = W`` likewise, with ``omega_0 = p/q``.
-(S3) The resonant normal form to order 2 by Deprit's triangle
+(S3) The resonant normal form to order ``N`` (1 to 3) by Deprit's triangle
      (:func:`~andoyer.analysis.resonance.deprit.lie_deprit`), resonance
      ``k1 p + k2 q = 0`` (``t = phi2``).
 (S4) The centre of the island on a line of the section: at the new angles of a point,
@@ -19,8 +23,18 @@ r"""The island chain's centre to second order in ``mu``: the Lie-Deprit normal f
      ``G = -K`` and the plane point's free-top label ``G_label = sqrt(G^2 + 2 mu V/s(l))``
      (exact: ``H0(l, L, G_label) = h``, ``s = a sin^2 l + b cos^2 l``), with ``(l, L)``
      and ``V`` on the free-top torus ``(h - mu V, G)`` through the state (fixed point).
+     The half-width: where the separatrix (the slow Hamiltonian's level at the unstable
+     equilibrium) crosses the same line; the libration frequency from the slow
+     Hamiltonian's Hessian at the stable equilibrium (the jets' exact derivatives).
 
-The error is ``O(mu^3)`` in the position; the width at second order is not computed here.
+Errors, for ``p = 1`` (``x ~ mu^(1/2)`` across the island): the position errs by
+``O(mu^(N+1))``. ``V`` holds ``k2 = +-1`` only, so a product of ``n`` of its harmonics
+has ``k2`` of the parity of ``n``: the resonant harmonic ``(q, -1)`` enters the normal
+form at the odd orders only, and order 2 brings the twist's ``O(mu^2)`` part. The
+relative error of the half-width (and of the libration frequency) is ``O(mu)`` for the
+pendulum (R6), ``O(mu^2)`` at orders 1 and 2 (the jets hold the ``O(mu)`` corrections;
+the ``mu^3`` harmonic is missing) and ``O(mu^3)`` at order 3 (the jets' degree
+:data:`DEGREE`). For ``p = 2`` the resonant harmonic enters at order 2.
 """
 
 from __future__ import annotations
@@ -42,8 +56,10 @@ from andoyer.charts.andoyer_deprit import from_andoyer
 
 __all__ = ["SecondOrderChain", "island_prediction"]
 
-#: Degree of the jets in ``x`` (the position needs 2 for K1, 1 for K2, 3 for K0).
-DEGREE = 4
+#: Degree of the jets in ``x``: the half-width to ``O(mu^2)`` needs ``K0`` through ``x^6``
+#: (``omega`` through ``x^5``: ``x^6 ~ mu^3`` against the island's ``mu``); at degree 4 the
+#: second-order half-width of Hess(3, 1, 2)'s 3:1 chain errs 10x more at mu = 2e-4.
+DEGREE = 5
 #: Half the number of tori of the interpolation in ``x`` (S2).
 _HALF = 3
 #: Their spacing, as a fraction of the distance to the nearer end of the regime.
@@ -56,6 +72,40 @@ def _at(body: Any, h: float, G: float, M: float, sign: int, n: int, n2: int
     return t, fourier_coefficients(body, t, n2)
 
 
+#: Steps of the second derivatives of (S1') in ``h`` and ``G`` (relative): truncation and
+#: rounding both ~1e-8 of the largest harmonic.
+_STEP2 = 1e-4
+
+
+def _third(body: Any, h: float, G: float, M: float, sign: int, n1: int, n2: int,
+           v: NDArray[np.float64], v1: NDArray[np.float64], w: float, w1: float
+           ) -> NDArray[np.float64]:
+    """(S1'): ``G3`` on the ``(phi1, phi2)`` grid from ``V``, ``V' = V_G``, ``omega_g``
+    and ``omega_g' = H0_GG`` (derivatives at fixed ``I1``), with the second derivatives
+    ``f'' = f_GG + 2 omega_g f_Gh + omega_g^2 f_hh + omega_g' f_h`` from a 3 x 3 stencil
+    of tori in ``(h, G)``."""
+    dh, dG = _STEP2 * h, _STEP2 * G
+    grid = n1 * n2
+    vals: dict[tuple[int, int], tuple[NDArray[np.float64], float]] = {}
+    for i in (-1, 0, 1):
+        for j in (-1, 0, 1):
+            t, V = _at(body, h + i * dh, G + j * dG, M, sign, n1, n2)
+            vals[(i, j)] = ((np.fft.ifft2(V) * grid).real, t.omega_g)
+
+    def second(k: int) -> Any:
+        f = {key: val[k] for key, val in vals.items()}
+        f_h = (f[(1, 0)] - f[(-1, 0)]) / (2 * dh)
+        f_hh = (f[(1, 0)] - 2 * f[(0, 0)] + f[(-1, 0)]) / dh**2
+        f_GG = (f[(0, 1)] - 2 * f[(0, 0)] + f[(0, -1)]) / dG**2
+        f_Gh = (f[(1, 1)] - f[(1, -1)] - f[(-1, 1)] + f[(-1, -1)]) / (4 * dh * dG)
+        return f_GG + 2 * w * f_Gh + w * w * f_hh + w1 * f_h
+
+    v2, w2 = second(0), float(second(1))
+    g1 = -v / w
+    g2 = -(0.5 * w1 * g1**2 + v1 * g1) / w
+    return np.asarray(-(w1 * g1 * g2 + w2 * g1**3 / 6.0 + v1 * g2 + 0.5 * v2 * g1**2) / w)
+
+
 class SecondOrderChain:
     """(S1)-(S4) for one chain of :class:`~andoyer.analysis.resonance.predict.ResonantChain`.
 
@@ -64,13 +114,48 @@ class SecondOrderChain:
     chain : ResonantChain
         The first-order chain (its torus, ``p``, ``q``, the level).
     order : int
-        Order in ``mu`` of the normal form (1 or 2).
+        Order in ``mu`` of the normal form (1 to 4; ``K4`` is taken as zero, so order 4
+        only estimates the size of the fourth-order terms).
+    like : SecondOrderChain, optional
+        A chain of the same ``ResonantChain`` whose reduced Hamiltonian (S1)-(S2) is
+        reused (it took it to at least ``min(order, 3)``).
     """
 
-    def __init__(self, chain: ResonantChain, order: int = 2) -> None:
+    space: JetSpace
+    built: int
+    x_nodes: NDArray[np.float64]
+    omega: list[float]
+    G_poly: NDArray[np.float64]
+    K1: NDArray[np.complex128]
+    K2: NDArray[np.complex128]
+    K: list[NDArray[np.complex128]]
+
+    def __init__(self, chain: ResonantChain, order: int = 2, *,
+                 like: SecondOrderChain | None = None) -> None:
         self.chain, self.order = chain, int(order)
+        p, q = chain.p, chain.q
+        if like is not None and like.chain is chain and like.built >= min(self.order, 3):
+            self.space, self.x_nodes, self.omega, self.G_poly = (
+                like.space, like.x_nodes, like.omega, like.G_poly)
+            self.built, self.K1, self.K2 = like.built, like.K1, like.K2
+            self.K = (like.K + [self.space.zeros()] * self.order)[: self.order]
+        else:
+            self._reduce(chain, min(self.order, 3))
+            self.K = (self.K + [self.space.zeros()] * self.order)[: self.order]
+        H = [math.factorial(n + 1) * k for n, k in enumerate(self.K)]
+        self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, (p, q))
+        xj = self.space.zeros()
+        xj[1, 0, 0] = 1.0
+        self.dHt = [self.space.d_x(f) for f in self.Ht]
+        self.pHt = [self.space.d_phi(f) for f in self.Ht]
+        self.X = transform(self.space, xj, self.Ws)
+        self.P = transform(self.space, None, self.Ws)
+
+    def _reduce(self, chain: ResonantChain, order: int) -> None:
+        """(S1)-(S2): the jets of ``K_1 .. K_order`` and of ``omega`` about ``I1*``."""
         body, h, M, T = chain.body, chain.h, chain.M, chain.torus
         p, q, G0 = chain.p, chain.q, T.G
+        self.built = max(order, 2)
         n1, n2 = T.phi1.size, 8
         self.space = JetSpace(DEGREE, n1, n2)
         row = chain.row
@@ -90,7 +175,7 @@ class SecondOrderChain:
             xs.append(-half * sum(w / W_of(mid + half * z)
                                   for z, w in zip(nodes, weights, strict=True)))
         self.x_nodes = x = np.array(xs)
-        K1s, K2s, Ws = [], [], []
+        K1s, K2s, K3s, Ws = [], [], [], []
         dh, dG = 1e-5 * h, 1e-5 * G0
         for G in Gs:
             t, V = _at(body, h, G, M, T.sign, n1, n2)
@@ -108,6 +193,9 @@ class SecondOrderChain:
             G2 = (v * vg).real / wg**2 - H0_GG * (v.real ** 2) / (2 * wg**3)
             K1s.append(V / wg)
             K2s.append(np.fft.fft2(-G2) / grid)
+            if order >= 3:
+                K3s.append(np.fft.fft2(-_third(body, h, G, M, T.sign, n1, n2, v.real,
+                                               vg.real, wg, H0_GG)) / grid)
             Ws.append(W_of(G))
         vander = np.vander(x, 2 * _HALF + 1, increasing=True)
         inv = np.linalg.inv(vander)
@@ -117,17 +205,12 @@ class SecondOrderChain:
             return np.asarray(c[: DEGREE + 1])
 
         self.K1, self.K2 = jet(K1s), jet(K2s)
+        #: ``K_1 .. K_built`` (S1), (S1'); beyond, zero (the triangle's own terms of that
+        #: order then estimate the next order's size)
+        self.K = [self.K1, self.K2] + ([jet(K3s)] if K3s else [])
         self.omega = list(np.real(inv @ np.array(Ws))[: DEGREE + 1])
         self.omega[0] = p / q
         self.G_poly = inv @ Gs                    # G0(I1* + x)
-        H = [self.K1, 2.0 * self.K2, self.space.zeros()][: self.order]   # K3: not built
-        self.Ht, self.Ws = lie_deprit(self.space, H, self.omega, (p, q))
-        xj = self.space.zeros()
-        xj[1, 0, 0] = 1.0
-        self.dHt = [self.space.d_x(f) for f in self.Ht]
-        self.pHt = [self.space.d_phi(f) for f in self.Ht]
-        self.X = transform(self.space, xj, self.Ws)
-        self.P = transform(self.space, None, self.Ws)
 
     # ------------------------------------------------------------------ series
     def _series(self, parts: list[Any], x: float, phi: float, t: float) -> float:
@@ -164,9 +247,8 @@ class SecondOrderChain:
         x_old = x_new + self._series(self.X, x_new, phi_new, t)
         mu, sp = c.body.mu, self.space
         G0 = float(sum(g * x_old**j for j, g in enumerate(self.G_poly)))
-        G = G0 - mu * sp.evaluate(self.K1, x_old, phi_old, t).real
-        if self.order >= 2:
-            G -= mu**2 * sp.evaluate(self.K2, x_old, phi_old, t).real
+        G = G0 - sum(mu**n * sp.evaluate(k, x_old, phi_old, t).real
+                     for n, k in enumerate(self.K, 1))
         return x_old, G
 
     def label(self, phi_old: float, g_star: float) -> float:
@@ -199,10 +281,8 @@ class SecondOrderChain:
 
         def G_of(x: float) -> float:
             out = float(sum(g * x**j for j, g in enumerate(self.G_poly)))
-            out -= mu * sp.evaluate(self.K1, x, phi_old, t).real
-            if self.order >= 2:
-                out -= mu**2 * sp.evaluate(self.K2, x, phi_old, t).real
-            return out
+            return out - sum(mu**n * sp.evaluate(k, x, phi_old, t).real
+                             for n, k in enumerate(self.K, 1))
 
         x = 0.0
         for _ in range(40):
@@ -306,6 +386,18 @@ class SecondOrderChain:
                 break
         return x
 
+    def _hessian(self, x: float, phi: float, t: float) -> tuple[float, float, float]:
+        """``(K_xx, K_phiphi, K_xphi)`` of the slow Hamiltonian, from the jets (exact
+        polynomials in ``x``, Fourier series in ``phi``: no finite differences)."""
+        mu, sp = self.chain.body.mu, self.space
+        out = [sum(j * w * x ** (j - 1) for j, w in enumerate(self.omega) if j >= 1), 0.0, 0.0]
+        for n in range(1, self.order + 1):
+            c, f = mu**n / math.factorial(n), self.Ht[n - 1]
+            dx = sp.d_x(f)
+            for k, g in enumerate((sp.d_x(dx), sp.d_phi(sp.d_phi(f)), sp.d_phi(dx))):
+                out[k] += c * sp.evaluate(g, x, phi, t).real
+        return out[0], out[1], out[2]
+
     def equilibria(self) -> dict[str, tuple[float, float, float]]:
         """The stable and unstable equilibria of the slow Hamiltonian: ``kind ->
         (psi, x, libration or growth rate per radian of phi2)`` (``t = 0``,
@@ -331,13 +423,8 @@ class SecondOrderChain:
         for i in np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)[0]:
             psi = brentq(dpsi, float(grid[i]), float(grid[i + 1]), xtol=1e-14)
             x = self._x_at(psi / q, 0.0)
-            e = 1e-5
-            K = self.slow
-            Kxx = (K(x + 1e-6, psi / q, 0) - 2 * K(x, psi / q, 0) + K(x - 1e-6, psi / q, 0)) / 1e-12
-            Kpp = (K(x, (psi + e) / q, 0) - 2 * K(x, psi / q, 0) + K(x, (psi - e) / q, 0)) / e**2
-            Kxp = (K(x + 1e-6, (psi + e) / q, 0) - K(x + 1e-6, (psi - e) / q, 0)
-                   - K(x - 1e-6, (psi + e) / q, 0) + K(x - 1e-6, (psi - e) / q, 0)) / (4e-6 * e)
-            det = q * q * (Kxx * Kpp - Kxp * Kxp)
+            Kxx, Kpp, Kxp = self._hessian(x, psi / q, 0.0)
+            det = Kxx * Kpp - Kxp * Kxp
             kind = "stable" if det > 0 else "unstable"
             if kind not in out:
                 out[kind] = (float(psi), float(x), math.sqrt(abs(det)))
@@ -380,8 +467,9 @@ _META = {
     "stable_s": ("\\delta G", "the stable periodic orbit on the seed line of measure_island "
                  "(G units from the resonant torus)", "1", "(S4)"),
     "stable_s_error": ("", "estimated size of the next order of stable_s (order 1: the "
-                       "mean second-order term (R12); order 2: the third-order terms of "
-                       "the triangle from K1, K2)", "1", "(R12), (S4)"),
+                       "mean second-order term (R12); order 2: the change to order 3; "
+                       "order 3: the fourth-order terms of the triangle from K1-K3)", "1",
+                       "(R12), (S4)"),
     "half_width": ("\\Delta G", "half the distance between the separatrix's crossings of "
                    "the seed line", "1", "(S4)"),
     "libration_frequency": ("\\Omega", "small-oscillation frequency about the stable "
@@ -410,7 +498,7 @@ def island_prediction(body: Any, h: float, M: float, resonance: str, *, order_mu
     resonance : str
         ``"q:p"`` (``W = p/q``); ``p >= 2`` chains have a width from order 2 on.
     order_mu : int
-        Highest order in ``mu`` (1 or 2); every order up to it is returned.
+        Highest order in ``mu`` (1 to 3); every order up to it is returned.
     axis : int, optional
         Body axis (1 or 2) of the regime; default: the first the level lists.
     sign : int
@@ -451,7 +539,7 @@ def island_prediction(body: Any, h: float, M: float, resonance: str, *, order_mu
                          f"{resonance!r}") from None
     if not (1 <= q <= 100 and 1 <= p <= 100 and math.gcd(p, q) == 1):
         raise ValueError(f"resonance {resonance!r}: q and p must be coprime, 1 to 100")
-    order_mu = integer("order_mu", order_mu, 1, 2)
+    order_mu = integer("order_mu", order_mu, 1, 3)
     if axis is not None:
         axis = integer("axis", axis, 1, 2)
     if isinstance(sign, bool) or sign not in (1, -1):
@@ -466,7 +554,9 @@ def island_prediction(body: Any, h: float, M: float, resonance: str, *, order_mu
                          + (f" about axis {axis}" if axis is not None else ""))
     sec = Section("g", g_star, 1)
     chain = ResonantChain(body, h, M, rows[0], sec)
-    chains = {n: SecondOrderChain(chain, n) for n in range(1, order_mu + 2)}
+    top = SecondOrderChain(chain, order_mu + 1)    # the reduced Hamiltonian once
+    chains = {n: SecondOrderChain(chain, n, like=top) for n in range(1, order_mu + 1)}
+    chains[order_mu + 1] = top
     psi_s = chain.psi_s if chain.mu_order == 1 else \
         chains[order_mu].equilibria().get("stable", (math.nan,) * 3)[0]
     phase = chain.points(psi_s) if math.isfinite(psi_s) else np.empty(0)
