@@ -16,10 +16,10 @@ Examples
 from __future__ import annotations
 
 import json
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from andoyer.atomic import atomic_path
 from andoyer.body import RigidBody
@@ -29,7 +29,50 @@ if TYPE_CHECKING:
 
     from andoyer.integrate.engines.base import Capability
 
-__all__ = ["Context", "Result", "Item", "Table"]
+__all__ = ["Context", "Result", "Item", "Table", "concurrently"]
+
+_T = TypeVar("_T")
+
+
+def concurrently(tasks: Sequence[Callable[[], _T]]) -> list[_T]:
+    """Run independent ``tasks`` on threads, one per core at most, and return their
+    results in order (the first error is raised).
+
+    For an item's independent integrations: the engines integrate without the GIL
+    (heyoka, the Numba kernels), so the measurements of one item share the cores
+    instead of running one after another, and each gives what it gives alone. Every
+    task runs in a copy of the caller's context (a :func:`~andoyer.progress.silenced`
+    caller's tasks show no bar either), and the warning filters are the caller's again
+    when all are done (a task's own ``warnings.catch_warnings`` is not thread-safe and
+    could leave them changed).
+
+    Parameters
+    ----------
+    tasks : sequence of callables
+        Each called with no argument.
+
+    Examples
+    --------
+    >>> concurrently([lambda: 1, lambda: 2])
+    [1, 2]
+    """
+    import contextvars
+    import os
+    import warnings
+    from concurrent.futures import ThreadPoolExecutor
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (
+        os.cpu_count() or 1)
+    workers = max(1, min(len(tasks), cores))
+    if workers == 1:
+        return [task() for task in tasks]
+    with warnings.catch_warnings():
+        pool = ThreadPoolExecutor(workers, thread_name_prefix="andoyer-item")
+        try:
+            futures = [pool.submit(contextvars.copy_context().run, task) for task in tasks]
+            return [f.result() for f in futures]
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
 @dataclass

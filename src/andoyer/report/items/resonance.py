@@ -8,8 +8,12 @@ The builder computes with :mod:`andoyer.analysis.resonance`, draws with
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
+from typing import Any
+
 from andoyer.body import RigidBody
-from andoyer.report.base import Context, Result, Table
+from andoyer.report.base import Context, Result, Table, concurrently
 
 __all__ = ["resonances"]
 
@@ -72,10 +76,31 @@ def resonances(ctx: Context) -> Result:
                 G = float(roots[np.argmin(np.abs(roots - float(r.G_action)))])
                 seeds.append(from_andoyer([x, 0.0, y, G, 0.0]))
     y0 = np.concatenate([np.array(seeds).reshape(-1, 6), fill.y0.values])
-    with warnings.catch_warnings():   # orbits of the fill passing L = +-G: not crossings
-        warnings.simplefilter("ignore", SingularPassageWarning)
-        pts = poincare(body, y0, "g=0", 400 if ctx.quick else 1200,
-                       engine=engine, rtol=1e-10, atol=1e-10)
+
+    def section() -> Any:
+        with warnings.catch_warnings():   # orbits of the fill passing L = +-G: no crossings
+            warnings.simplefilter("ignore", SingularPassageWarning)
+            return poincare(body, y0, "g=0", 400 if ctx.quick else 1200,
+                            engine=engine, rtol=1e-10, atol=1e-10)
+
+    # The section and every measurement are independent: they share the cores.
+    chains = [("3:1", 1, 1e-3)] if ctx.quick else [("3:1", 1, 1e-3), ("3:1", 1, 1e-4),
+                                                   ("2:1", 1, 1e-3)]
+    near_mus = (1e-3,) if ctx.quick else (1e-4, 1e-3)
+    tasks: list[Callable[[], Any]] = [section]
+    tasks += [partial(measure_island, body.with_mu(mu), 1.0, 0.0, label, axis=axis,
+                      n_seeds=3, n_rounds=3 if ctx.quick else 4, engine=engine)
+              for label, axis, mu in chains]
+    if not ctx.quick:
+        tasks.append(partial(measure_island, RigidBody.paper(0.01), 0.2466, 0.0, "7:1",
+                             axis=1, n_seeds=2, n_rounds=4, engine=engine))
+    for mu in near_mus:
+        tasks += [partial(resonant_normal_form, TILTED.with_mu(mu), 1.0, 0.0, "2:1", axis=2,
+                          order=8),
+                  partial(measure_island, TILTED.with_mu(mu), 1.0, 0.0, "2:1", axis=2,
+                          n_seeds=3, n_rounds=3 if ctx.quick else 5, engine=engine)]
+    done = iter(concurrently(tasks))
+    pts = next(done)
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(10.0, 4.5), layout="constrained")
@@ -112,11 +137,8 @@ def resonances(ctx: Context) -> Result:
     files.append(ctx.data(pred, "resonances"))
     rows = []
     numbers = {}
-    chains = [("3:1", 1, 1e-3)] if ctx.quick else [("3:1", 1, 1e-3), ("3:1", 1, 1e-4),
-                                                   ("2:1", 1, 1e-3)]
     for label, axis, mu in chains:
-        m = measure_island(body.with_mu(mu), 1.0, 0.0, label, axis=axis, n_seeds=3,
-                           n_rounds=3 if ctx.quick else 4, engine=engine)
+        m = next(done)
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
         rows.append([body.name, f"{label} (axis {axis})", f"{mu:g}", f"{p:.4e}", "-",
                      f"{q:.4e}", f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
@@ -127,9 +149,7 @@ def resonances(ctx: Context) -> Result:
     # (R12): first order misses the island, the Lie-Deprit normal form (S1)-(S4) does not.
     second_order = []
     if not ctx.quick:
-        paper_body = RigidBody.paper(0.01)
-        m = measure_island(paper_body, 0.2466, 0.0, "7:1", axis=1, n_seeds=2, n_rounds=4,
-                           engine=engine)
+        m = next(done)
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
         rows.append(["paper", "7:1 (axis 1)", "0.01", f"{p:.4e}", "-", f"{q:.4e}",
                      f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
@@ -144,11 +164,8 @@ def resonances(ctx: Context) -> Result:
     # Near a centre, at a resonance: the resonant normal form (N1)-(N5) of the tilted
     # body's 2:1 chain about y, against the torus route and the sections.
     near = []
-    for mu in ((1e-3,) if ctx.quick else (1e-4, 1e-3)):
-        tilted = TILTED.with_mu(mu)
-        rnf = resonant_normal_form(tilted, 1.0, 0.0, "2:1", axis=2, order=8)
-        m = measure_island(tilted, 1.0, 0.0, "2:1", axis=2, n_seeds=3,
-                           n_rounds=3 if ctx.quick else 5, engine=engine)
+    for mu in near_mus:
+        rnf, m = next(done), next(done)
         p, n, q = (float(m.predicted_half_width), float(rnf.half_width),
                    float(m.measured_half_width))
         rows.append([TILTED.name, "2:1 (axis 2, near the centre)", f"{mu:g}", f"{p:.4e}",

@@ -8,10 +8,12 @@ The builder computes with :func:`andoyer.analysis.resonance.last_torus`, draws w
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 from andoyer.body import RigidBody
-from andoyer.report.base import Context, Result, Table
+from andoyer.report.base import Context, Result, Table, concurrently
 
 __all__ = ["last_torus"]
 
@@ -41,16 +43,30 @@ def last_torus(ctx: Context) -> Result:
 
     engine = ctx.engine_name(Capability.TANGENT_CROSSINGS)
     n = 2 if ctx.quick else 7
-    t0 = time.perf_counter()
-    crit = greene(BODY, 1.0, head=(2,), axis=1, n_convergents=n, mu_range=(1e-3, 0.1),
-                  engine=engine, progress=False)
-    seconds = time.perf_counter() - t0
+
+    def critical() -> tuple[Any, float]:
+        t0 = time.perf_counter()
+        crit = greene(BODY, 1.0, head=(2,), axis=1, n_convergents=n, mu_range=(1e-3, 0.1),
+                      engine=engine, progress=False)
+        return crit, time.perf_counter() - t0
+
+    # The paper body's tori do not depend on the critical mu: they share the cores with it.
+    body = ctx.body
+    h = default_h(body)
+    tasks: list[Callable[[], Any]] = [critical]
+    if not ctx.quick:
+        tasks += [partial(greene, body, h, head=(7,), axis=1, n_convergents=4, engine=engine,
+                          progress=False),
+                  # near the separatrix the chains crowd: the golden torus between 30:1, 31:1
+                  partial(greene, body, h, head=(30,), axis=1, n_convergents=5,
+                          mu_range=(1e-3, 0.03), engine=engine, progress=False)]
+    (crit, seconds), *paper_tori = concurrently(tasks)
     mu_c = float(crit.mu_critical)
     # the residues' trend in q on both sides of mu_c (Greene: to 0 below, growing above)
-    sides = {}
-    for factor in ((0.5, 2.0) if math.isfinite(mu_c) else ()):
-        sides[factor] = greene(BODY.with_mu(factor * mu_c), 1.0, head=(2,), axis=1,
-                               n_convergents=n, engine=engine, progress=False)
+    factors = (0.5, 2.0) if math.isfinite(mu_c) else ()
+    sides = dict(zip(factors, concurrently([
+        partial(greene, BODY.with_mu(factor * mu_c), 1.0, head=(2,), axis=1, n_convergents=n,
+                engine=engine, progress=False) for factor in factors]), strict=True))
     fig = Figure(figsize=(9.0, 3.8), layout="constrained")
     left, right = fig.subplots(1, 2)
     plot_residues([crit, *sides.values()], ax=left)
@@ -85,16 +101,10 @@ def last_torus(ctx: Context) -> Result:
     trend = {k: [float(x) for x in v.residue_elliptic.values] for k, v in sides.items()}
     paper: dict[str, Any] | None = None
     if not ctx.quick:
-        body = ctx.body
-        h = default_h(body)
-        ds = greene(body, h, head=(7,), axis=1, n_convergents=4, engine=engine,
-                    progress=False)
+        ds, sep = paper_tori
         ds_rows = [(int(p), int(q), float(e), float(res)) for p, q, e, res in zip(
             ds.p.values, ds.q.values, ds.residue_elliptic.values,
             ds.residue_resolution_elliptic.values, strict=True)]
-        # near the separatrix the chains crowd: the golden torus between 30:1 and 31:1
-        sep = greene(body, h, head=(30,), axis=1, n_convergents=5, mu_range=(1e-3, 0.03),
-                     engine=engine, progress=False)
         paper = {"h": h, "mu": body.mu, "rows": ds_rows, "mu_overlap": float(ds.mu_overlap),
                  "sep_mu_c": float(sep.mu_critical), "sep_err": float(sep.mu_critical_error),
                  "sep_overlap": float(sep.mu_overlap), "sep_ratio": float(sep.mu_ratio),
