@@ -100,17 +100,14 @@ def test_fli_only_map_is_the_same_in_chunks_and_on_one_thread() -> None:
 
 
 def test_fli_only_map_on_taylor_in_threads_chunks_and_lanes() -> None:
-    """On taylor, threads change no bit; chunks change the round-off only where a chunk
-    has fewer than LANES_FROM orbits, which run on the scalar kernel instead of the SIMD
-    lanes (the same steps, fused multiply-adds in another order): to 1e-8 on the tori,
-    1e-6 relative in the chaotic layer (where round-off grows as e^(lambda t))."""
+    """On taylor, threads and chunks change no bit: the map's engine is set up for the
+    whole map (``for_ensemble``), so a chunk of fewer than LANES_FROM orbits runs on the
+    SIMD lanes too (on the scalar kernel its FLI would differ in the round-off)."""
     a = _map("fli", engine="taylor")
     one = resolve_engine("taylor", Capability.TANGENT, n_threads=1)
     b = _map("fli", engine=one)
     for v in ("fli", "mle", "H_error"):
         np.testing.assert_array_equal(a[v].values, b[v].values)
     c = _map("fli", chunk=5, engine="taylor")
-    reg = a.accessible.values & (a.fli.values < 12.0)
-    assert reg.sum() >= 10
-    np.testing.assert_allclose(c.fli.values[reg], a.fli.values[reg], rtol=0, atol=1e-8)
-    np.testing.assert_allclose(c.fli.values, a.fli.values, rtol=1e-6)
+    for v in ("fli", "mle", "H_error"):
+        np.testing.assert_array_equal(c[v].values, a[v].values)

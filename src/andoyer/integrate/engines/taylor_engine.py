@@ -148,6 +148,20 @@ class TaylorEngine(EngineBase):
     def __init__(self, *, max_steps: int = 10**9, chunksize: int = 1,
                  n_threads: int | None = None) -> None:
         self._ensemble_options(max_steps, chunksize, n_threads)
+        self._ensemble = 0  # for_ensemble: the kernels are those of this many orbits
+
+    def for_ensemble(self, n: int) -> TaylorEngine:
+        """This engine with the kernels of ``n`` orbits fixed (the SIMD lanes from
+        :data:`LANES_FROM` orbits on), so that chunks of fewer orbits (the last one) run
+        on the same kernel: the same round-off however the orbits are chunked."""
+        engine = TaylorEngine(max_steps=self.max_steps, chunksize=self.chunksize,
+                              n_threads=self.n_threads)
+        engine._ensemble = max(int(n), self._ensemble)
+        return engine
+
+    def _on_lanes(self, n: int) -> bool:
+        """Whether ``n`` orbits (or the ensemble of :meth:`for_ensemble`) run on lanes."""
+        return max(n, self._ensemble) >= LANES_FROM
 
     def versions(self) -> dict[str, str]:
         """Numba's version, and the Taylor kernels' own: the hash of their sources
@@ -161,10 +175,11 @@ class TaylorEngine(EngineBase):
              par: NDArray[np.float64], tolerance: Tolerance
              ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
         """States (with tangent vectors, not renormalised) of ``z0`` at times ``t``: from
-        :data:`LANES_FROM` orbits on, :data:`andoyer.kernels.taylor.lanes.LANES` orbits
+        :data:`LANES_FROM` orbits on (or an ensemble of as many, :meth:`for_ensemble`),
+        :data:`andoyer.kernels.taylor.lanes.LANES` orbits
         per vector step (the same steps as the scalar kernel, results equal to round-off);
         else :func:`andoyer.kernels.taylor.flow.propagate`."""
-        if z0.shape[0] >= LANES_FROM:
+        if self._on_lanes(z0.shape[0]):
             return _lanes().propagate(z0, t, self._kernel_params(par),
                                       flow.order_for(tolerance.tol), self.max_steps,
                                       threads=self.n_threads)
@@ -219,7 +234,7 @@ class TaylorEngine(EngineBase):
         if renormalise:
             u0, rho0 = unit_vectors(w0)
             z0 = np.ascontiguousarray(np.concatenate([y0, u0.reshape(n, k * _N)], axis=1))
-            if n >= LANES_FROM:
+            if self._on_lanes(n):
                 out, info = _lane_tangent().propagate(
                     z0, rho0, t, self._kernel_params(par), tolerance.tol, self.max_steps,
                     threads=self.n_threads)
