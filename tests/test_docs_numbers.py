@@ -23,7 +23,7 @@ START, END = "<!-- benchmarks:start -->", "<!-- benchmarks:end -->"
 KEYS = {"W1": "orbit", "G3": "component_section", "theta2": "angle_section", "W3": "fli_map"}
 #: How the docs name a workload (what a paragraph naming an exception must say).
 WORDS = {"orbit": "orbit", "component_section": "G3", "angle_section": "θ2",
-         "fli_map": "FLI map"}
+         "fli_map": "FLI map", "megno_map": "MEGNO map"}
 #: The pages a reader meets that state defaults or timings.
 PAGES = ["README.md", "ARCHITECTURE.md", "docs/index.md", "docs/guide.md",
          *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "docs").glob("*/*.md"))]

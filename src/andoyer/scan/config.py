@@ -56,8 +56,9 @@ Keys
     * ``splitting``: ``G`` (1.0), ``branch`` (``"theta1=0"``, the Hess separatrix, or
       ``"theta1=4phi0"``), ``n_phase`` (16, even), ``delta`` (1e-5).
 ``[integrator]``
-    ``engine``: ``"heyoka"`` (default where installed; taylor for a chaos_map of the
-    FLI, measured faster: ``andoyer.integrate.engines.MEASURED_DEFAULTS``), ``"taylor"``
+    ``engine``: ``"heyoka"`` (default where installed; taylor for a chaos_map, of the
+    FLI or the MEGNO, measured faster: ``andoyer.integrate.engines.MEASURED_DEFAULTS``),
+    ``"taylor"``
     (the default without heyoka: one engine for every task, tangent flows included), ``"numba"``,
     ``"scipy"``;
     ``rtol``, ``atol`` (1e-12 each; heyoka and the chaos tasks use ``min(rtol, atol)``),
@@ -462,11 +463,14 @@ def parse_config(data: Mapping[str, Any], where: str = "config") -> ScanConfig:
         from andoyer.integrate.engines.base import Capability
 
         # One engine for every task of a scan: the default that also has tangent flows,
-        # for the scan's workload (a map of the FLI alone: MEASURED_DEFAULTS' fli_map), so
-        # that a scanned point is what the public function gives on defaults.
-        fli = task == "chaos_map" and dict(options).get("indicator") == "fli"
+        # for the scan's workload (a map of the FLI alone or with MEGNO: MEASURED_DEFAULTS'
+        # fli_map, megno_map), so that a scanned point is what the public function gives
+        # on defaults.
+        workload = None
+        if task == "chaos_map":
+            workload = "fli_map" if dict(options).get("indicator") == "fli" else "megno_map"
         engine = default_engine_name(Capability.TANGENT, Capability.TANGENT_CROSSINGS,
-                                     workload="fli_map" if fli else None)
+                                     workload=workload)
     if engine not in ENGINES:
         raise ValueError(f"{where}: [integrator] engine must be one of "
                          f"{', '.join(ENGINES)}, got {engine!r}")

@@ -294,7 +294,8 @@ def test_chaos_map_dataset_is_self_describing_and_deterministic() -> None:
     grid, run = MapGrid((5, 9)), IndicatorRun("both", t_end=20.0)
     a = chaos_map(body, h, 0.0, "theta2=0", grid, run)
     b = chaos_map(body, h, 0.0, ("theta2", 0.0), grid, run, chunk=3,
-                  engine=resolve_engine(None, Capability.TANGENT, n_threads=1))
+                  engine=resolve_engine(None, Capability.TANGENT, workload="megno_map",
+                                        n_threads=1))
     assert a.fli.dims == ("J1", "theta1")
     assert (a.sizes["J1"], a.sizes["theta1"]) == (9, 5)
     for v in ("fli", "megno", "mle", "J2", "H_error"):

@@ -417,13 +417,13 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
         times over which the FLI's supremum is taken), ``tangent`` (space of the initial
         tangent vector), ``tol``.
     engine : str or Engine, optional
-        Any engine with the ``tangent`` capability. Default for the FLI alone: taylor
-        (SIMD lanes, measured faster than heyoka on this map:
-        :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`); with MEGNO, heyoka
-        (batch mode and threads) where installed, else taylor (orbits in parallel);
-        scipy is one orbit at a time, for checks. heyoka's SIMD batch size and threads
-        are options of the engine: ``resolve_engine("heyoka", batch_size=4,
-        n_threads=1)``.
+        Any engine with the ``tangent`` capability. Default: taylor, for the FLI alone
+        and with MEGNO (SIMD lanes, the renormalised flow with the MEGNO quadratures
+        too; measured faster than heyoka on these maps:
+        :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`); heyoka (batch mode and
+        threads) on request; scipy is one orbit at a time, for checks. heyoka's SIMD
+        batch size and threads are options of the engine: ``resolve_engine("heyoka",
+        batch_size=4, n_threads=1)``.
     chunk : int, default 1024
         Orbits integrated together: memory is bounded by ``chunk * (n_samples + 1) * 15``
         doubles; the progress line advances per chunk.
@@ -460,7 +460,7 @@ def chaos_map(body: RigidBody, h: float, M: float, section: Any,
     (('J1', 'theta1'), True)
     """
     spec, job = MapGrid.of(grid), IndicatorRun.of(run)
-    eng = _engine(engine, "fli_map" if job.indicator == "fli" else "tangent")
+    eng = _engine(engine, "fli_map" if job.indicator == "fli" else "megno_map")
     h = finite("h", h)
     M = finite("M", M)
     nx, ny = spec.n  # type: ignore[misc]

@@ -104,8 +104,11 @@ FALLBACK_DEFAULTS = ("taylor", "numba")
 #: The workloads a caller may name to :func:`default_engine_name`: an orbit at output
 #: times, sections whose function is a state component (``G3 = c``, ``gamma1 = c``: W2
 #: G3 of the benchmarks) or an angle (``theta2 = c``, ``g = c``: W2 theta2), tangent flows,
-#: and a chaos map of the FLI alone (the state and one tangent vector per start: W3).
-WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map")
+#: a chaos map of the FLI alone (the state and one tangent vector per start: W3), and a
+#: chaos map with the MEGNO (renormalised tangent flows of many starts with the MEGNO
+#: quadratures: ``benchmarks/megno_map.py``).
+WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map",
+             "megno_map")
 
 #: Where heyoka is installed, the workloads that another engine was measured to run
 #: faster (wall time, both cores, tol 1e-12, in ``python -m benchmarks``: the table
@@ -117,6 +120,9 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 MEASURED_DEFAULTS: dict[str, str] = {
     # W3, the FLI map: taylor's SIMD lanes (kernels.taylor.lanes) faster than heyoka.
     "fli_map": "taylor",
+    # The MEGNO map (benchmarks/megno_map.py, W3's map with MEGNO): taylor's renormalised
+    # tangent flows on SIMD lanes (kernels.taylor.lane_tangent) faster than heyoka.
+    "megno_map": "taylor",
 }
 
 
