@@ -54,9 +54,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import numba
 import platformdirs
-from numba.core.caching import FunctionCache
 
 from andoyer.errors import DamagedCacheWarning, NoCacheWarning
 
@@ -119,33 +117,42 @@ def _stamp(folder: Path) -> str:
     return h.hexdigest()[:16]
 
 
-class _RebuildingCache(FunctionCache):
-    """Numba's on-disk cache of one function, taking a damaged entry for a missing one
-    (module notes): its files are removed, the function compiled and cached again."""
+@functools.cache
+def _rebuilding_cache() -> type:
+    """The class of :func:`cached_njit`'s caches, made at first use: Numba is imported by
+    the first kernel, not by this module (heyoka's engine asks :func:`writable` and
+    :func:`warn_no_cache` here, and a first heyoka call would pay Numba's import)."""
+    from numba.core.caching import FunctionCache
 
-    def load_overload(self, sig: Any, target_context: Any) -> Any:
-        try:
-            return super().load_overload(sig, target_context)
-        except Exception as exc:  # noqa: BLE001 -- any damage: unpickling, EOF, LLVM
-            self._discard(exc)
-            return None
+    class _RebuildingCache(FunctionCache):
+        """Numba's on-disk cache of one function, taking a damaged entry for a missing one
+        (module notes): its files are removed, the function compiled and cached again."""
 
-    def save_overload(self, sig: Any, data: Any) -> None:
-        try:
-            super().save_overload(sig, data)
-        except Exception as exc:  # noqa: BLE001 -- a damaged index it cannot remove
-            self._discard(exc)
-
-    def _discard(self, exc: Exception) -> None:
-        files: Any = self._cache_file  # numba's IndexDataCacheFile
-        index = Path(files._index_path)
-        stem = index.name[: -len(".nbi")]
-        for f in [index, *index.parent.glob(glob.escape(stem) + ".*.nbc")]:
+        def load_overload(self, sig: Any, target_context: Any) -> Any:
             try:
-                f.unlink()
-            except OSError:
-                pass
-        warn_damaged_cache(index.parent, f"{stem}: {type(exc).__name__}: {exc}")
+                return super().load_overload(sig, target_context)
+            except Exception as exc:  # noqa: BLE001 -- any damage: unpickling, EOF, LLVM
+                self._discard(exc)
+                return None
+
+        def save_overload(self, sig: Any, data: Any) -> None:
+            try:
+                super().save_overload(sig, data)
+            except Exception as exc:  # noqa: BLE001 -- a damaged index it cannot remove
+                self._discard(exc)
+
+        def _discard(self, exc: Exception) -> None:
+            files: Any = self._cache_file  # numba's IndexDataCacheFile
+            index = Path(files._index_path)
+            stem = index.name[: -len(".nbi")]
+            for f in [index, *index.parent.glob(glob.escape(stem) + ".*.nbc")]:
+                try:
+                    f.unlink()
+                except OSError:
+                    pass
+            warn_damaged_cache(index.parent, f"{stem}: {type(exc).__name__}: {exc}")
+
+    return _RebuildingCache
 
 
 def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
@@ -165,6 +172,8 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
         writable, the function is compiled without a cache, with one
         :class:`~andoyer.errors.NoCacheWarning` per run.
     """
+    import numba
+
     options["cache"] = True
 
     config: Any = numba.config  # untyped module: its settings are set at import
@@ -174,7 +183,7 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
         config.CACHE_DIR = str(cache_folder() / f"kernels-{sources_stamp()}")
         try:
             dispatcher = numba.njit(**options)(function)
-            dispatcher._cache = _RebuildingCache(dispatcher.py_func)  # same locator
+            dispatcher._cache = _rebuilding_cache()(dispatcher.py_func)  # same locator
             return dispatcher
         except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
             if "no locator" not in str(exc):
