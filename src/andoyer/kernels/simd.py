@@ -50,7 +50,7 @@ from andoyer.kernels.common import kernel_jit
 
 __all__ = ["LANES", "LANES_ENV", "WIDTHS", "lane_width", "TUNE", "TUNE_ENV", "lane_tuning",
            "tune", "cauchy", "combine", "advance", "series_product", "series_linear",
-           "ROOT_SHORTFALL", "root", "roots", "series_dot"]
+           "ROOT_SHORTFALL", "root", "roots", "series_dot", "megno_orders"]
 
 #: Environment variable that sets the lane count (one of :data:`WIDTHS`).
 LANES_ENV = "ANDOYER_LANES"
@@ -1024,5 +1024,148 @@ def _series_dot_overload(P: Any, row: Any, w: Any, order: Any) -> Any:
 
     def impl(P: Any, row: Any, w: Any, order: Any) -> None:
         _series_dot(P, row, w, order)
+
+    return impl
+
+
+def megno_orders(W: Any, order: int, s0: Any, inv: Any) -> None:
+    r"""Orders ``1 .. order`` of the MEGNO quadratures' lane jets from ``w . w``: the
+    recurrences of :mod:`andoyer.kernels.taylor.tangent`'s notes on lane vectors
+    (:func:`andoyer.kernels.taylor.lane_tangent.lane_megno_jets`).
+
+    ``W[k, row, lane]``, rows ``0 .. 5``: ``L``, ``N``, ``I``, ``P = w . w`` (every order
+    given), ``g`` and the weights ``j L_j``; row 0 of each given (order 0). For each
+    ``k``: :math:`\ell_k = (P_k - \frac2k \sum_{j=1}^{k-1} j L_j P_{k-j}) / P_0`,
+    :math:`L_k = \ell_k / 2`, :math:`N_k = s_0 L_k + \frac{k-1}{k} L_{k-1}`,
+    :math:`I_k = 2 g_{k-1} / k`, :math:`g_k = (N_k - g_{k-1}) / s_0`.
+
+    Parameters
+    ----------
+    W : ndarray, shape (order + 1, 6, LANES)
+        The quadratures' lane jets (C-contiguous); orders ``1 .. order`` written.
+    order : int
+        The highest order.
+    s0 : ndarray, shape (LANES,)
+        ``t0 + delta`` of each lane.
+    inv : ndarray, shape (2, LANES)
+        ``1 / P_0`` and ``1 / s0`` of each lane (C-contiguous).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> W = np.zeros((3, 6, LANES))
+    >>> W[:, 3] = [[1.0], [2.0], [1.0]]  # P = (1 + tau)^2: L = ln(1 + tau) = tau - tau^2/2
+    >>> megno_orders(W, 2, np.ones(LANES), np.ones((2, LANES)))
+    >>> W[:, 0, 0].tolist()
+    [0.0, 1.0, -0.5]
+    """
+    for k in range(1, order + 1):
+        inv_k = 1.0 / k
+        acc = 0.0 * W[0, 0]
+        for j in range(1, k):
+            acc = acc + W[j, 5] * W[k - j, 3]
+        Lk = 0.5 * ((W[k, 3] - 2.0 * acc * inv_k) * inv[0])
+        W[k, 0] = Lk
+        W[k, 5] = k * Lk
+        W[k, 1] = s0 * Lk + (k - 1) * inv_k * W[k - 1, 0]
+        W[k, 2] = 2.0 * W[k - 1, 4] * inv_k
+        W[k, 4] = (W[k, 1] - W[k - 1, 4]) * inv[1]
+
+
+def _megno_orders_typer(typingctx: Any, W: Any, order: Any, s0: Any, inv: Any) -> Any:
+    """The vector code of :func:`megno_orders`: per order one chain of fused
+    multiply-adds for the logarithm's convolution, then the five rows as lane vectors."""
+    sig = types.void(W, order, s0, inv)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        _tune(builder)
+        wt, ot, st, it = signature.args
+        w_, o_, s_, i_ = args
+        intp = context.get_value_type(types.intp)
+        dbl = ir.DoubleType()
+        vec, fma = _vector_fma(builder)
+        zero = ir.Constant(intp, 0)
+
+        def const(v: int) -> Any:
+            return ir.Constant(intp, v)
+
+        arr = context.make_array(wt)(context, builder, w_)
+        shape = cgutils.unpack_tuple(builder, arr.shape)
+        strides = cgutils.unpack_tuple(builder, arr.strides)
+
+        def pointer(k: Any, row: int) -> Any:
+            p = cgutils.get_item_pointer2(context, builder, data=arr.data, shape=shape,
+                                          strides=strides, layout=wt.layout,
+                                          inds=[k, const(row), zero])
+            return builder.bitcast(p, vec.as_pointer())
+
+        def load(k: Any, row: int) -> Any:
+            return builder.load(pointer(k, row), align=8)
+
+        def store(v: Any, k: Any, row: int) -> None:
+            builder.store(v, pointer(k, row), align=8)
+
+        def splat(x: Any) -> Any:
+            v = ir.Constant(vec, ir.Undefined)
+            for lane in range(LANES):
+                v = builder.insert_element(v, x, ir.Constant(ir.IntType(32), lane))
+            return v
+
+        def vector(aryty: Any, ary: Any, row: int | None) -> Any:
+            a = context.make_array(aryty)(context, builder, ary)
+            inds = [zero] if row is None else [const(row), zero]
+            p = cgutils.get_item_pointer2(
+                context, builder, data=a.data, shape=cgutils.unpack_tuple(builder, a.shape),
+                strides=cgutils.unpack_tuple(builder, a.strides), layout=aryty.layout,
+                inds=inds)
+            return builder.load(builder.bitcast(p, vec.as_pointer()), align=8)
+
+        s0v = vector(st, s_, None)
+        inv_p0 = vector(it, i_, 0)
+        inv_s0 = vector(it, i_, 1)
+        half = ir.Constant(vec, [0.5] * LANES)
+        two = ir.Constant(vec, [2.0] * LANES)
+        zvec = ir.Constant(vec, [0.0] * LANES)
+        order_i = context.cast(builder, o_, ot, types.intp)
+        acc = cgutils.alloca_once(builder, vec)
+        with cgutils.for_range_slice(builder, const(1), builder.add(order_i, const(1)),
+                                     const(1), intp=intp) as (k, _):
+            builder.store(zvec, acc)
+            with cgutils.for_range_slice(builder, const(1), k, const(1), intp=intp) as (j, _):
+                builder.store(builder.call(fma, [load(j, 5), load(builder.sub(k, j), 3),
+                                                 builder.load(acc)]), acc)
+            kf = builder.sitofp(k, dbl)
+            inv_k = builder.fdiv(ir.Constant(dbl, 1.0), kf)
+            c_k = builder.fmul(builder.fsub(kf, ir.Constant(dbl, 1.0)), inv_k)
+            inv_kv = splat(inv_k)
+            k1 = builder.sub(k, const(1))
+            ell = builder.fmul(builder.fsub(load(k, 3), builder.fmul(
+                builder.fmul(two, builder.load(acc)), inv_kv)), inv_p0)
+            Lk = builder.fmul(half, ell)
+            store(Lk, k, 0)
+            store(builder.fmul(splat(kf), Lk), k, 5)
+            Nk = builder.fadd(builder.fmul(s0v, Lk), builder.fmul(splat(c_k), load(k1, 0)))
+            store(Nk, k, 1)
+            g1 = load(k1, 4)
+            store(builder.fmul(builder.fmul(two, g1), inv_kv), k, 2)
+            store(builder.fmul(builder.fsub(Nk, g1), inv_s0), k, 4)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+_megno_orders: Any = intrinsic(_megno_orders_typer)
+
+
+@overload(megno_orders, jit_options={"nogil": True})
+def _megno_orders_overload(W: Any, order: Any, s0: Any, inv: Any) -> Any:
+    """Compiled :func:`megno_orders`: the intrinsic (C-contiguous float64 arrays)."""
+    for ary in (W, s0, inv):
+        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
+                and ary.layout == "C"):
+            return None
+
+    def impl(W: Any, order: Any, s0: Any, inv: Any) -> None:
+        _megno_orders(W, order, s0, inv)
 
     return impl

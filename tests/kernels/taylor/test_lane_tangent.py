@@ -2,8 +2,8 @@
 against the scalar kernel (:mod:`andoyer.kernels.taylor.tangent`).
 
 * the lane MEGNO jets equal the scalar ``megno_jets`` lane by lane, to round-off, and
-  the intrinsic of their ``w . w`` (:func:`andoyer.kernels.simd.series_dot`) its plain
-  Python fallback;
+  the intrinsics of their ``w . w`` and their orders (:func:`andoyer.kernels.simd.series_dot`,
+  :func:`~andoyer.kernels.simd.megno_orders`) their plain Python fallbacks;
 * orbits (k = 1, 2, 3 vectors, states near the chart's singular sets, a chaotic orbit
   whose ``rho`` grows): every orbit takes the scalar kernel's steps (``info`` equal, row
   by row) and its rows (state, unit vectors, ``rho``, ``N``, ``I``) agree to round-off;
@@ -75,7 +75,7 @@ def _jets(X, p, order, s0):  # noqa: ANN001, ANN202 - a compiled test helper
     for lane in range(L):
         W[0, 1, lane] = 0.3 + lane  # N and I at the step's start
         W[0, 2, lane] = -0.2 * lane
-    LT.lane_megno_jets(X, order, s0, W, np.empty((6, L)), np.empty((2, L)))
+    LT.lane_megno_jets(X, order, s0, W, np.empty((2, L)))
     return W
 
 
@@ -118,6 +118,23 @@ def test_series_dot_equals_its_fallback() -> None:
         k = order
         assert P[k, 2, 3] == pytest.approx(sum(w[j, :, 3] @ w[k - j, :, 3]
                                                for j in range(k + 1)))
+
+
+def test_megno_orders_equal_their_fallback() -> None:
+    rng = np.random.default_rng(6)
+
+    @numba.njit
+    def compiled(W, order, s0, inv):  # noqa: ANN001, ANN202
+        simd.megno_orders(W, order, s0, inv)
+
+    for order in (1, 2, 5, 15):
+        W = rng.normal(size=(order + 1, 6, L))
+        s0 = rng.uniform(1e-6, 30.0, L)
+        inv = np.stack([1.0 / rng.uniform(0.5, 2.0, L), 1.0 / s0])
+        V = W.copy()
+        compiled(W, order, s0, inv)
+        simd.megno_orders(V, order, s0, inv)
+        np.testing.assert_allclose(W, V, rtol=1e-12, atol=1e-12 * np.max(np.abs(V)))
 
 
 @pytest.mark.parametrize("k", [1, 2, 3])

@@ -9,11 +9,11 @@ Horner and queue this module uses), with what the renormalised flow adds:
 
 * **the MEGNO jets on lanes** (:func:`lane_megno_jets`): the Cauchy product
   :math:`P_k = \sum_j w^{[j]} \cdot w^{[k-j]}` of the first vector with itself
-  (:func:`andoyer.kernels.simd.series_dot`, each pair of terms once) and the logarithm's
-  recurrence :math:`\ell_k = (P_k - \frac1k \sum_{j=1}^{k-1} j\,\ell_j P_{k-j}) / P_0`
-  (its convolution by :func:`andoyer.kernels.simd.cauchy`, the weights :math:`j L_j` a row of their
-  own), then ``N``, ``g`` and ``I`` lane by lane -- the recurrences of the scalar
-  kernel's notes, term for term;
+  (:func:`andoyer.kernels.simd.series_dot`, each pair of terms once), then the
+  logarithm's recurrence
+  :math:`\ell_k = (P_k - \frac1k \sum_{j=1}^{k-1} j\,\ell_j P_{k-j}) / P_0` and ``N``,
+  ``g``, ``I`` on lane vectors (:func:`andoyer.kernels.simd.megno_orders`) -- the
+  recurrences of the scalar kernel's notes, term for term;
 * **the scalar kernel's step, lane by lane** (:func:`lane_tangent_steps`): the least
   radius over the state, each vector, ``L`` and (while the pole of ``I`` at distance
   :math:`s_0 = t_0 + \delta` is nearer than that radius) ``I``; as in
@@ -71,11 +71,10 @@ __all__ = ["LANE_TANGENT_STAMP", "lane_megno_jets", "lane_tangent_steps", "propa
 _L = lanes.LANES
 _N = N_STATE
 #: Rows of the quadrature jets ``W[k, row, lane]``: L, N, I, and the work rows P, g,
-#: j L_j (the logarithm's weights).
+#: j L_j (the logarithm's weights), as :func:`andoyer.kernels.simd.megno_orders` reads
+#: them.
 _ROWS = 6
 _LN, _NN, _IN, _PN, _GN, _JL = range(_ROWS)
-#: The logarithm's convolution sum_j (j L_j) P_{k-j}: (row of m, row j L_j, row P).
-_LOG = (0, _JL, _PN)
 
 #: Hash of every source the compiled entry point depends on, the lane count and tuning.
 LANE_TANGENT_STAMP = source_stamp(
@@ -84,14 +83,15 @@ LANE_TANGENT_STAMP = source_stamp(
 
 
 @kernel_jit
-def lane_megno_jets(X, order, s0, W, m, inv):
+def lane_megno_jets(X, order, s0, W, inv):
     """Jets of the MEGNO quadratures of every lane from the first vector's lane jets
     ``X[1]`` (:func:`andoyer.kernels.taylor.tangent.megno_jets` on lanes): ``W[:, 0]`` L,
     ``W[:, 1]`` N, ``W[:, 2]`` I (rows ``W[0, 1], W[0, 2]`` their values at the step's
     start, set by the caller), ``W[:, 3:]`` work rows (P, g, j L_j). ``W`` has shape
-    (order + 1, 6, LANES), ``s0[lane] = t0 + delta``, ``m`` (6, LANES) and ``inv`` (2,
-    LANES) scratch (``1 / P_0``, ``1 / s0``). (``g``'s last coefficient, which the scalar
-    kernel skips, is computed and never read.)"""
+    (order + 1, 6, LANES) (the rows of :func:`andoyer.kernels.simd.megno_orders`),
+    ``s0[lane] = t0 + delta``, ``inv`` (2, LANES) scratch (``1 / P_0``, ``1 / s0``).
+    (``g``'s last coefficient, which the scalar kernel skips, is computed and never
+    read.)"""
     simd.tune()
     simd.series_dot(W, _PN, X[1], order)
     for lane in range(_L):
@@ -100,20 +100,7 @@ def lane_megno_jets(X, order, s0, W, m, inv):
         W[0, _LN, lane] = 0.5 * math.log(W[0, _PN, lane])
         W[0, _GN, lane] = W[0, _NN, lane] * inv[1, lane]
         W[0, _JL, lane] = 0.0
-    for k in range(1, order + 1):
-        inv_k = 1.0 / k
-        c = (k - 1) * inv_k
-        for lane in range(_L):
-            W[k, _JL, lane] = 0.0  # j = k: L_k not known yet, its weight is zero here
-        simd.cauchy(m, W, W, k, _LOG)
-        for lane in range(_L):
-            ell = (W[k, _PN, lane] - 2.0 * m[0, lane] * inv_k) * inv[0, lane]
-            Lk = 0.5 * ell
-            W[k, _LN, lane] = Lk
-            W[k, _JL, lane] = k * Lk
-            W[k, _NN, lane] = s0[lane] * Lk + c * W[k - 1, _LN, lane]
-            W[k, _IN, lane] = 2.0 * W[k - 1, _GN, lane] * inv_k
-            W[k, _GN, lane] = (W[k, _NN, lane] - W[k - 1, _GN, lane]) * inv[1, lane]
+    simd.megno_orders(W, order, s0, inv)
 
 
 @kernel_jit
@@ -282,7 +269,6 @@ def renormalised_lanes(z0, rho0, t_out, q, order, max_steps, out, info):
     X = aligned(nb * (order + 1) * _N * _L).reshape((nb, order + 1, _N, _L))
     W = aligned((order + 1) * _ROWS * _L).reshape((order + 1, _ROWS, _L))
     mj = aligned(recurrences.LANE_PRODUCTS * _L).reshape((recurrences.LANE_PRODUCTS, _L))
-    mq = aligned(_ROWS * _L).reshape((_ROWS, _L))
     inv = np.empty((2, _L))
     rho = np.zeros((_L, k))
     h = np.empty(_L)
@@ -308,7 +294,7 @@ def renormalised_lanes(z0, rho0, t_out, q, order, max_steps, out, info):
             s0[lane] = t[lane] + MEGNO_DELTA
             busy_lane[lane] = orbit[lane] >= 0
         lane_jets(X, order, q, mj)
-        lane_megno_jets(X, order, s0, W, mq, inv)
+        lane_megno_jets(X, order, s0, W, inv)
         lane_tangent_steps(X, W, order, s0, busy_lane, h)
         for lane in range(_L):  # the step of each lane, its output times inside it
             i = orbit[lane]
