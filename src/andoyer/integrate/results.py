@@ -244,6 +244,7 @@ def _dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
     ...                         attrs={"a": 1}))
     True
     """
+    import pandas as pd
     from xarray.core.indexes import Index, PandasIndex
 
     variables: dict[Hashable, xr.Variable] = {}
@@ -271,7 +272,7 @@ def _dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
                              and sizes.setdefault(name, value.size) == value.size)
         if not direct:
             break
-        index = PandasIndex.from_variables({name: xr.Variable((name,), value)}, options={})
+        index = PandasIndex(pd.Index(value), name, coord_dtype=value.dtype)
         indexes[name] = index
         variables.update(index.create_variables())
     if not direct:
