@@ -13,8 +13,9 @@ The W2 orbits (``workloads.initial_states``), in one process, on the taylor kern
 
 Runs are interleaved (one of each, ``--repeat`` rounds); the table gives each run's
 median CPU time (``time.process_time``: one thread, so the other users of a shared
-machine count less than in wall time), the step counts and the ratio section / bare
-flow, with the load average before and after. No timing is asserted anywhere.
+machine count less than in wall time; heyoka's own threads count too), the step counts,
+the ratio section / bare flow and, for ``poincare`` on taylor, the ratio to heyoka's,
+with the load average before and after. No timing is asserted anywhere.
 """
 
 from __future__ import annotations
@@ -101,12 +102,15 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{n} orbits, {N} crossings of theta2 = 0 asked, T = {T:.1f}, tol {tol:g}, "
           f"one thread, {lanes.LANES} lanes, {args.repeat} rounds; "
           f"load {load0[0]:.2f} -> {load1[0]:.2f}")
-    print(f"{'run':34s} {'CPU ms':>9s} {'steps':>9s} {'ns/step':>8s} {'/ bare':>7s}")
-    for label, values in cpu.items():
-        med = statistics.median(values)
+    print(f"{'run':34s} {'CPU ms':>9s} {'steps':>9s} {'ns/step':>8s} {'/ bare':>7s} "
+          f"{'/ heyoka':>8s}")
+    med = {label: statistics.median(values) for label, values in cpu.items()}
+    for label, m in med.items():
         s = steps.get(label)
-        per = f"{med / s * 1e9:8.0f}" if s else f"{'':8s}"
-        print(f"{label:34s} {med * 1e3:9.1f} {s if s else '':>9} {per} {med / bare:7.2f}")
+        per = f"{m / s * 1e9:8.0f}" if s else f"{'':8s}"
+        hey = med.get(label.replace("poincare taylor", "poincare heyoka"))
+        vs = f"{m / hey:8.2f}" if hey and "poincare taylor" in label else ""
+        print(f"{label:34s} {m * 1e3:9.1f} {s if s else '':>9} {per} {m / bare:7.2f} {vs}")
     return 0
 
 

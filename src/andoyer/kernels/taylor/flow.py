@@ -119,6 +119,7 @@ from andoyer.kernels.taylor.sections import (
     isolation_space,
     jet_polynomial,
     linear_component,
+    may_cross,
     poly_d,
     section_tape,
     tape_jet,
@@ -348,7 +349,7 @@ def make_orbits(jets: Any) -> Orbits:
             if status != SUCCESS:
                 info[0] = status
                 return count
-            if component >= 0:  # fb: f at the end (the next fa); bound: of |P - P(0)|
+            if component >= 0:  # fb: f at the end (the next fa); bound: of P's terms k >= 2
                 fb, bound = column_polynomial(X[0], component, ca, cc, order, h, a)
             else:  # the tape's jet (in u); fb = f at the step's end state, not P(h)
                 fb, bound = jet_polynomial(u[ftape.shape[0] - 1], order, h, a)
@@ -356,9 +357,7 @@ def make_orbits(jets: Any) -> Orbits:
                 for i in range(_N):
                     Y[0, i] = y_end[i]
                 fb = tape_value(ftape, fC, Y, u)
-            maybe = not ((fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0)) or not (
-                abs(fa) > 1.000001 * (bound + abs(fa - a[0])))
-            if maybe:
+            if may_cross(fa, fb, a[0], a[1] * h, bound):
                 found = isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left,
                                 roots)
                 for r in range(found):

@@ -75,6 +75,7 @@ from andoyer.kernels.taylor.sections import (
     isolate,
     isolation_space,
     linear_component,
+    may_cross,
     section_tape,
     tape_value,
 )
@@ -162,7 +163,7 @@ def _after_step(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, z0, X,
 def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
     """:func:`~andoyer.kernels.taylor.sections.end_and_bound` of the section ``ca y_comp +
     cc`` on every lane at once (lane ``i``'s step ``hs[i]``): ``fb`` the end values,
-    ``bound`` the bounds. Each lane's operations are the scalar ones, in the same order;
+    ``bound`` the bounds ``B_2``. Each lane's operations are the scalar ones, in the same order;
     the lanes run side by side (vector code: one Horner chain for all lanes, not one
     after the other)."""
     simd.tune()
@@ -170,14 +171,15 @@ def _end_and_bound(X, order, comp, ca, cc, hs, fb, bound):
         c = ca * X[0, order, comp, lane]
         fb[lane] = c
         bound[lane] = abs(c)
-    for k in range(order - 1, 0, -1):
+    for k in range(order - 1, 1, -1):
         for lane in range(_L):
             c = ca * X[0, k, comp, lane]
             fb[lane] = fb[lane] * hs[lane] + c
             bound[lane] = bound[lane] * hs[lane] + abs(c)
     for lane in range(_L):
+        fb[lane] = fb[lane] * hs[lane] + ca * X[0, 1, comp, lane]
         fb[lane] = fb[lane] * hs[lane] + (ca * X[0, 0, comp, lane] + cc)
-        bound[lane] = bound[lane] * hs[lane]
+        bound[lane] = bound[lane] * hs[lane] * hs[lane]
 
 
 @kernel_jit
@@ -243,8 +245,8 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
             f0 = fa[lane]
             fa[lane] = fb[lane]
             a0 = ca * X[0, 0, comp, lane] + cc
-            if ((f0 > 0.0 and fb[lane] > 0.0) or (f0 < 0.0 and fb[lane] < 0.0)) and (
-                    abs(f0) > 1.000001 * (bound[lane] + abs(f0 - a0))):
+            if not may_cross(f0, fb[lane], a0, ca * X[0, 1, comp, lane] * hs[lane],
+                             bound[lane]):
                 continue
             for k in range(n):  # the section's jet: the lane's column (column_polynomial)
                 a[k] = ca * X[0, k, comp, lane]
@@ -275,18 +277,18 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
 
 @kernel_jit
 def _bounds(U, node, order, hs, bound):
-    r"""``bound[lane]``: :math:`B = \sum_{k \ge 1} |f^{[k]}| h^k` of the section jet
+    r"""``bound[lane]``: :math:`B_2 = \sum_{k \ge 2} |f^{[k]}| h^k` of the section jet
     ``U[:, node, lane]`` on every lane's step ``hs[lane]``, the bound of
     :func:`~andoyer.kernels.taylor.sections.end_and_bound` (each lane's operations the
     scalar ones, the lanes side by side)."""
     simd.tune()
     for lane in range(_L):
         bound[lane] = abs(U[order, node, lane])
-    for k in range(order - 1, 0, -1):
+    for k in range(order - 1, 1, -1):
         for lane in range(_L):
             bound[lane] = bound[lane] * hs[lane] + abs(U[k, node, lane])
     for lane in range(_L):
-        bound[lane] = bound[lane] * hs[lane]
+        bound[lane] = bound[lane] * hs[lane] * hs[lane]
 
 
 @kernel_jit
@@ -375,8 +377,7 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
             fb = V[0, last, lane]
             fa[lane] = fb
             a0 = U[0, last, lane]
-            if ((f0 > 0.0 and fb > 0.0) or (f0 < 0.0 and fb < 0.0)) and (
-                    abs(f0) > 1.000001 * (bound[lane] + abs(f0 - a0))):
+            if not may_cross(f0, fb, a0, U[1, last, lane] * hs[lane], bound[lane]):
                 continue
             for k in range(n):
                 a[k] = U[k, last, lane]

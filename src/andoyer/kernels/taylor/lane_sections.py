@@ -19,7 +19,8 @@ does, every node's orders in one vector loop:
 * the square root's recurrence ``r^[k] = (a^[k] - sum_{0<j<k} r^[j] r^[k-j]) / (2 r^[0])``
   takes its sum from the lanes' Cauchy product of order ``k``
   (:func:`andoyer.kernels.simd.cauchy`) with ``r^[k]`` zero while it is summed (the
-  terms ``j = 0, k`` vanish), then one division per lane.
+  terms ``j = 0, k`` vanish), then one multiplication per lane by ``1 / (2 r^[0])``
+  (computed once, as the scalar interpreter does).
 
 Each lane's operations are the scalar interpreter's up to the contraction of sums into
 fused multiply-adds, so a lane's section jet is the scalar one to round-off. The step of
@@ -85,17 +86,21 @@ def lane_tape_jet(tape, C, x, order, U):
             for k in range(order + 1):
                 for lane in range(_L):
                     U[k, n, lane] = U[0, a, lane] * U[k, b, lane]
-        else:  # SQRT
-            for lane in range(_L):
-                U[0, n, lane] = math.sqrt(U[0, a, lane])
+        elif order > 0:  # SQRT
+            inv = np.empty(_L)
+            for lane in range(_L):  # an idle lane's zero state: NaN, unused
+                r = math.sqrt(U[0, a, lane])
+                U[0, n, lane] = r
+                inv[lane] = 1.0 / (2.0 * r) if r != 0.0 else np.nan
             for k in range(1, order + 1):
                 for lane in range(_L):
                     U[k, n, lane] = 0.0  # so that the terms j = 0, k of the sum vanish
                 simd.cauchy(U, U, U, k, (n, n, n))
-                for lane in range(_L):  # an idle lane's zero state: NaN, unused
-                    d = 2.0 * U[0, n, lane]
-                    v = U[k, a, lane] - U[k, n, lane]
-                    U[k, n, lane] = v / d if d != 0.0 else np.nan
+                for lane in range(_L):
+                    U[k, n, lane] = (U[k, a, lane] - U[k, n, lane]) * inv[lane]
+        else:
+            for lane in range(_L):
+                U[0, n, lane] = math.sqrt(U[0, a, lane])
 
 
 @kernel_jit

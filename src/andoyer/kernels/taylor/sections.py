@@ -28,9 +28,10 @@ counted once: at a step's start it belongs to the previous step, at its end to t
   the angles and ``|G|``) need not converge on a step sized by the state's jets (carried
   over, such a ``P(h)`` added a theta2 crossing; measured:
   benchmarks/NOTES.md#taylor-sections).
-* :func:`end_and_bound` gives ``P(h)`` and the bound :math:`B = \sum_{k \ge 1}
+* :func:`end_and_bound` gives ``P(h)`` and the bound :math:`B_2 = \sum_{k \ge 2}
   |f^{[k]}| h^k` in one loop (two independent Horner chains); a step with ``f_a`` and
-  ``f_b`` of one sign and :math:`|f_a| > B` cannot hold a root and skips the isolation.
+  ``f_b`` of one sign whose line :math:`f^{[0]} + f^{[1]} \tau` stays farther from zero
+  than :math:`B_2` cannot hold a root and skips the isolation (:func:`may_cross`).
 
 Two helpers chosen by the caller, not one with both paths behind a runtime branch: a
 helper's call costs (measured: benchmarks/NOTES.md#taylor-sections).
@@ -46,9 +47,9 @@ from andoyer.kernels.common import exact_jit, kernel_jit
 from andoyer.kernels.generated import recurrences
 
 __all__ = ["VAR", "LIN", "MUL", "SQRT", "DOT", "SCALE", "state_dot",
-           "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound",
+           "ROOT_MAXITER", "tape_jet", "linear_component", "end_and_bound", "may_cross",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
-           "bernstein_weights", "step_bernstein",
+           "bernstein_weights", "step_bernstein", "scaled_bernstein", "monotonic",
            "MAX_DEPTH", "MIN_WIDTH", "isolation_space", "isolate",
            "tape_value", "bernstein", "sign_changes", "poly", "poly_d", "solve_root",
            "casteljau", "section_jet", "section_tape"]
@@ -149,11 +150,12 @@ def tape_jet(tape, C, x, order, u):
         else:  # SQRT
             r = math.sqrt(u[a, 0])
             u[n, 0] = r
+            inv = 1.0 / (2.0 * r) if r != 0.0 else np.nan
             for k in range(1, order + 1):
                 v = 0.0
                 for j in range(1, k):
                     v += u[n, j] * u[n, k - j]
-                u[n, k] = (u[a, k] - v) / (2.0 * r)
+                u[n, k] = (u[a, k] - v) * inv
 
 
 @kernel_jit
@@ -172,17 +174,40 @@ def linear_component(tape, C):
 
 @kernel_jit
 def end_and_bound(a, order, h):
-    r"""``(P(h), B)`` for the jet ``a[k] = f^{[k]}`` of a section function on a step of
+    r"""``(P(h), B_2)`` for the jet ``a[k] = f^{[k]}`` of a section function on a step of
     size ``h``: the polynomial :math:`P(\tau) = \sum_k a_k \tau^k` at the step's end and
-    :math:`B = \sum_{k \ge 1} |a_k| h^k`, which bounds :math:`|P(\tau) - P(0)|` on the
-    step. Two independent Horner sums in one loop (two chains of dependent multiply-adds
-    side by side)."""
+    :math:`B_2 = \sum_{k \ge 2} |a_k| h^k`, which bounds :math:`|P(\tau) - a_0 - a_1
+    \tau|` on the step (:func:`may_cross`). Two independent Horner sums in one loop (two
+    chains of dependent multiply-adds side by side)."""
     v = a[order]
     w = abs(a[order])
-    for k in range(order - 1, 0, -1):
+    for k in range(order - 1, 1, -1):
         v = v * h + a[k]
         w = w * h + abs(a[k])
-    return v * h + a[0], w * h
+    v = v * h + a[1]
+    return v * h + a[0], w * h * h
+
+
+@kernel_jit
+def may_cross(fa, fb, a0, a1h, bound2):
+    r"""False where a step's polynomial cannot reach zero, so the root isolation is
+    skipped: ``fa``, ``fb`` (the carried end values) of one sign ``s`` and
+
+    .. math:: s a_0 + \min(0, s a_1 h) > 1.000001\,(B_2 + |f_a - a_0|)
+              + 10^{-15} (|a_0| + |a_1 h|)
+
+    (the line :math:`a_0 + a_1 \tau` stays on the side of ``s`` over the step, by more
+    than the rest of the polynomial, :math:`B_2` of :func:`end_and_bound`, the blend of
+    the start to ``fa`` and round-off). It keeps off every step that the bound
+    :math:`|f_a| > B = |a_1| h + B_2` did, and the steps before a crossing whose line
+    ends short of zero (about one a crossing; measured: benchmarks/NOTES.md#taylor-sections).
+    """
+    if (fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0):
+        s = 1.0 if fa > 0.0 else -1.0
+        low = s * a0 + min(0.0, s * a1h)
+        if low > 1.000001 * (bound2 + abs(fa - a0)) + 1e-15 * (abs(a0) + abs(a1h)):
+            return False
+    return True
 
 
 @kernel_jit
@@ -250,6 +275,13 @@ def step_bernstein(a, order, h, W, fa, fb, B):
     belongs to the previous step, one at the end (``fb == 0``) to this one (the zero
     end takes the sign that puts the root inside this step, or outside it)."""
     scale_polynomial(a, order, h, fa)
+    scaled_bernstein(a, order, W, fa, fb, B)
+
+
+@kernel_jit
+def scaled_bernstein(a, order, W, fa, fb, B):
+    """:func:`step_bernstein` of a polynomial ``a`` already scaled to the step
+    (:func:`scale_polynomial`)."""
     bernstein(a, order, W, B)
     B[0] = fa
     B[order] = fb
@@ -288,9 +320,41 @@ def isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left, roots):
     returns ``found``. An interval whose Bernstein coefficients change sign more than
     once is halved (right half pushed first, so the left one comes out first), down to
     :data:`MIN_WIDTH` of the step; one change is one root, solved by :func:`solve_root`.
-    Work space from :func:`isolation_space`."""
+    Work space from :func:`isolation_space`.
+
+    A step whose polynomial is monotonic (:func:`monotonic`: most steps that reach this
+    function hold one crossing) has one root where ``fa`` and ``fb`` have opposite signs
+    and none elsewhere: it is solved (or, crossed in the other direction, skipped)
+    without Bernstein coefficients, by the call the isolation makes when they change
+    sign once."""
+    scale_polynomial(a, order, h, fa)
+    if fa != 0.0 and fb != 0.0 and monotonic(a, order):
+        if (fa > 0.0) == (fb > 0.0) or (fb > fa) != (a[1] > 0.0):
+            return 0 if (fa > 0.0) == (fb > 0.0) else _isolate(
+                a, order, W, fa, fb, direction, stack, lo_s, hi_s, left, roots)
+        up = fa < 0.0
+        if (up and direction < 0) or (not up and direction > 0):
+            return 0
+        roots[0] = solve_root(a, order, 0.0, 1.0, fa)
+        return 1
+    return _isolate(a, order, W, fa, fb, direction, stack, lo_s, hi_s, left, roots)
+
+
+@kernel_jit
+def monotonic(a, order):
+    r"""Whether :math:`P(s) = \sum_k a_k s^k` is monotonic on ``[0, 1]``:
+    :math:`|a_1| > 1.000001 \sum_{k \ge 2} k |a_k|` (a bound of :math:`|P' - a_1|`)."""
+    d = 0.0
+    for k in range(2, order + 1):
+        d += k * abs(a[k])
+    return abs(a[1]) > 1.000001 * d
+
+
+@kernel_jit
+def _isolate(a, order, W, fa, fb, direction, stack, lo_s, hi_s, left, roots):
+    """:func:`isolate` by Bernstein coefficients, ``a`` scaled to the step."""
     n = order + 1
-    step_bernstein(a, order, h, W, fa, fb, stack[0])
+    scaled_bernstein(a, order, W, fa, fb, stack[0])
     lo_s[0] = 0.0
     hi_s[0] = 1.0
     top = 1
