@@ -40,6 +40,7 @@ def resonances(ctx: Context) -> Result:
 
     from andoyer.analysis.resonance import (
         birkhoff_normal_form,
+        island_prediction,
         normal_form_frequency,
         resonance_widths,
         resonant_normal_form,
@@ -156,11 +157,18 @@ def resonances(ctx: Context) -> Result:
                      f"{float(m.stable_s):+.4e}", f"{float(m.predicted_stable_s):+.4e}",
                      f"{float(m.predicted_stable_s_2):+.4e}"])
         hw = float(m.measured_half_width)
-        second_order.append({
-            "first": (float(m.stable_s) - float(m.predicted_stable_s)) / hw,
-            "second": (float(m.stable_s) - float(m.predicted_stable_s_2)) / hw})
-        numbers["paper_7:1_stable_miss_first_half_widths"] = second_order[-1]["first"]
-        numbers["paper_7:1_stable_miss_second_half_widths"] = second_order[-1]["second"]
+        # the half-width to orders 1-3 (S1)-(S4): for p = 1 the resonant harmonic enters at
+        # the odd orders only, so order 2 gains nothing on it and order 3 does
+        orders = island_prediction(paper_body, 0.2466, 0.0, "7:1", axis=1, order_mu=3)
+        widths = [float(w) / hw - 1.0 for w in orders.half_width.values]
+        miss1 = (float(m.stable_s) - float(m.predicted_stable_s)) / hw
+        miss2 = (float(m.stable_s) - float(m.predicted_stable_s_2)) / hw
+        second_order.append({"first": miss1, "second": miss2, "width_r6": p / hw - 1.0,
+                             "widths": widths})
+        numbers["paper_7:1_stable_miss_first_half_widths"] = miss1
+        numbers["paper_7:1_stable_miss_second_half_widths"] = miss2
+        for order, w in enumerate(widths, 1):
+            numbers[f"paper_7:1_half_width_error_order_{order}"] = w
     # Near a centre, at a resonance: the resonant normal form (N1)-(N5) of the tilted
     # body's 2:1 chain about y, against the torus route and the sections.
     near = []
