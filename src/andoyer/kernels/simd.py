@@ -749,8 +749,8 @@ def _series_linear_overload(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb:
 
 
 #: Relative shortfall of :func:`root` below the exact power: its approximation error (at
-#: most 1.6e-8 below the power, never above it: ``tests/kernels/test_simd.py`` over 1e-300
-#: .. 1e300 and exponents 1 .. 1/30) plus this margin.
+#: most 1.6e-8 below the power, never above it: ``tests/kernels/taylor/test_jets.py``
+#: over 5e-324 .. 1e308 and exponents 1/2 .. 1/30) plus this margin.
 ROOT_SHORTFALL = 2.0**-26
 _LN2 = math.log(2.0)
 _INV_LN2 = 1.0 / _LN2
@@ -774,8 +774,9 @@ def root(x, inv_p):
     :math:`\ln f = 2\,\mathrm{artanh}\,s`, :math:`s = (f - 1)/(f + 1)`, to the
     :math:`s^9` term (:math:`|s| \le 0.172`); then :math:`z = \ln x / p = k \ln 2 + t`
     with :math:`|t| \le \ln 2 / 2`, :math:`e^t` to the :math:`t^8` term and :math:`2^k`
-    from its bits. ``x = inf`` gives a finite :math:`2^{1024/p}`; NaN is no input (the
-    step sizes test finiteness first). :func:`roots` is the same on lane vectors.
+    from its bits. For exponents ``inv_p <= 1/2`` (the step sizes' ``1/(p-1)``, ``1/p``);
+    ``x = inf`` gives a finite :math:`2^{1024/p}`; NaN is no input (the step sizes test
+    finiteness first). :func:`roots` is the same on lane vectors.
     """
     small = x < _TINY
     xs = x * 2.0**200 if small else x

@@ -200,7 +200,7 @@ def may_cross(fa, fb, a0, a1h, bound2):
     than the rest of the polynomial, :math:`B_2` of :func:`end_and_bound`, the blend of
     the start to ``fa`` and round-off). It keeps off every step that the bound
     :math:`|f_a| > B = |a_1| h + B_2` did, and the steps before a crossing whose line
-    ends short of zero (about one a crossing; measured: benchmarks/NOTES.md#taylor-sections).
+    ends short of zero (about one a crossing; measured: benchmarks/NOTES.md#section-cost).
     """
     if (fa > 0.0 and fb > 0.0) or (fa < 0.0 and fb < 0.0):
         s = 1.0 if fa > 0.0 else -1.0
