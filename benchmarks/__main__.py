@@ -23,9 +23,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--quick", action="store_true",
                     help="small sizes (8 orbits x 50 crossings, 8 x 8 map, warm caches "
                          "only): under a minute, a smoke run")
-    ap.add_argument("--workloads", default="W1,W2,W3,W4,W5,S",
-                    help="comma-separated subset of W1,W2,W3,W4,W5,S (default: all; W5 is "
-                         "`andoyer paper`, S the scaling table and plot)")
+    ap.add_argument("--workloads", default="W1,W2,W3,W4,W5,W6,W7,S",
+                    help="comma-separated subset of W1,W2,W3,W4,W5,W6,W7,S (default: all; "
+                         "W5 is `andoyer paper`, W6 sections against the bare lane flow, W7 "
+                         "the lane kernels at 4 and 8 lanes, S the scaling table and plot)")
     ap.add_argument("--runners", default=None,
                     help=f"comma-separated subset of: {', '.join(RUNNERS)}")
     ap.add_argument("--full-scipy", action="store_true",
@@ -45,7 +46,7 @@ def main(argv: list[str] | None = None) -> int:
         regenerate(args.out)
         return 0
     workloads = tuple(w.strip().upper() for w in args.workloads.split(",") if w.strip())
-    bad = [w for w in workloads if w not in ("W1", "W2", "W3", "W4", "W5", "S")]
+    bad = [w for w in workloads if w not in ("W1", "W2", "W3", "W4", "W5", "W6", "W7", "S")]
     runners = None
     if args.runners:
         runners = {r.strip() for r in args.runners.split(",") if r.strip()}

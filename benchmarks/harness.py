@@ -323,6 +323,76 @@ def w3_big(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     return rows
 
 
+def w2_small(sizes: W.Sizes, runners: set[str]) -> list[Row]:
+    """W2's G3 = 0 section at a smaller size (``sizes.w2_small``), taylor beside heyoka
+    (issue 36: the lanes' advantage measured at 20 x 400 as at 50 x 1000). No reference
+    at this size: taylor's row gives its difference from heyoka's crossings."""
+    from andoyer.integrate import Section, poincare
+
+    if not {"andoyer taylor", DEFAULT} <= runners:
+        return []
+    b = W.body()
+    (n, N), tol = sizes.w2_small, sizes.tol
+    y0 = W.initial_states(n)
+    case = f"{n} orbits x {N} crossings of G3 = 0 (upward)"
+
+    def run(engine: str) -> Callable[[], tuple[np.ndarray, np.ndarray]]:
+        def go() -> tuple[np.ndarray, np.ndarray]:
+            ds = poincare(b, y0, Section("G3", 0.0, 1), N, engine=engine, rtol=tol, atol=tol,
+                          progress=False)
+            return ds.t.values, np.stack([ds[v].values for v in STATE], axis=-1)
+        return go
+
+    rows, out = [], {}
+    for runner, engine in ((DEFAULT, "heyoka"), ("andoyer taylor", "taylor")):
+        _say(f"W2 {case} {runner} ...")
+        wall, cpu, walls, out[engine] = timed(run(engine), sizes.repeat)
+        rows.append(Row("W2", case, runner, wall, cpu, walls))
+    Yh, Yt = out["heyoka"][1], out["taylor"][1]
+    d = np.max(np.abs(Yt[:, -1] - Yh[:, -1]), axis=-1)
+    rows[-1].error_median, rows[-1].error_max = float(np.nanmedian(d)), float(np.nanmax(d))
+    rows[-1].error_what = f"max-norm difference from heyoka's state at crossing {N}"
+    rows[-1].note = "error: difference from heyoka (no reference at this size)"
+    return rows
+
+
+def w3_megno(sizes: W.Sizes, runners: set[str]) -> list[Row]:
+    """The MEGNO map of W3's plane (``chaos_map(..., "megno")``, W3's grid and ``t_end``)
+    on taylor (its default, :data:`andoyer.integrate.engines.MEASURED_DEFAULTS`
+    ``megno_map``: renormalised tangent flows on SIMD lanes) and on heyoka, as
+    ``benchmarks/megno_map.py`` measures it; taylor's row gives its difference from
+    heyoka's MEGNO values (no reference)."""
+    from andoyer.analysis.chaos.lyapunov import IndicatorRun, chaos_map
+
+    b = W.body()
+    h = W.energy_level(b)
+    g = sizes.w3_grid
+    case = f"MEGNO map {g} x {g}, t = {sizes.w3_t_end:g}"
+    job = IndicatorRun("megno", t_end=sizes.w3_t_end, tol=sizes.tol)
+    def megno_map(engine: str) -> Callable[[], Any]:
+        return lambda: chaos_map(b, h, 0.0, ("theta2", 0.0), (g, g), job, engine=engine,
+                                 progress=False)
+
+    rows, maps = [], {}
+    for runner in (DEFAULT, "andoyer taylor"):
+        if runner not in runners:
+            continue
+        engine = runner.split()[-1]
+        _say(f"W3 {case} {runner} ...")
+        wall, cpu, walls, maps[engine] = timed(megno_map(engine),
+                                               max(1, sizes.repeat // 2 + 1))
+        rows.append(Row("W3", case, runner, wall, cpu, walls,
+                        extra={"failed": int(maps[engine].attrs["n_failed"])}))
+    if len(maps) == 2:
+        d = np.abs(np.asarray(maps["taylor"].megno.values)
+                   - np.asarray(maps["heyoka"].megno.values))
+        d = d[np.isfinite(d)]
+        rows[-1].error_median, rows[-1].error_max = float(np.median(d)), float(np.max(d))
+        rows[-1].error_what = "|MEGNO_taylor - MEGNO_heyoka| over the accessible points"
+        rows[-1].note = "error: difference from heyoka (no reference)"
+    return rows
+
+
 # ----------------------------------------------------------------------------- W4
 
 
@@ -374,6 +444,71 @@ def w5(repeat: int) -> list[Row]:
                 statistics.median(walls), math.nan, walls, note=f"{repeat} run(s)")]
 
 
+# ----------------------------------------------------------------------------- W6
+
+
+def w6(sizes: W.Sizes) -> list[Row]:
+    """What a section costs over the bare flow (``benchmarks/section_cost.py``): the lane
+    kernels on one thread, CPU time, the bare flow of W2's orbits over the span of the
+    section runs and the G3 = 0, theta2 = 0 and g = 0 sections (upward) over it."""
+    from benchmarks import section_cost
+
+    n, N = sizes.cost
+    _say(f"W6 section / bare flow ({n} orbits, {N} theta2 crossings' span) ...")
+    r = section_cost.measure(n, N, sizes.repeat, scalar=False)
+    case = (f"{n} orbits over the span of {N} theta2 = 0 crossings (T = {r['T']:.0f}), "
+            f"lane kernels ({r['lanes']} lanes), one thread, CPU time")
+    bare_label = "bare flow (lanes)"
+    bare, bare_steps = r["cpu"][bare_label], r["steps"][bare_label]
+    rows = []
+    for label, cpu in r["cpu"].items():
+        steps = r["steps"][label]
+        per = cpu / steps
+        rows.append(Row("W6", case, label, cpu, cpu, [cpu], note="wall = CPU, one thread",
+                        extra={"steps": steps, "ns_per_step": per * 1e9,
+                               "over_bare": cpu / bare,
+                               # the machine limit: the section's steps at the bare step cost
+                               "over_limit": cpu / (steps * bare / bare_steps),
+                               "load": r["load"]}))
+    return rows
+
+
+# ----------------------------------------------------------------------------- W7
+
+#: The lane counts W7 compares (each in a fresh process, ``ANDOYER_LANES``).
+WIDTHS = (4, 8)
+
+
+def w7(sizes: W.Sizes) -> list[Row]:
+    """The lane kernels at 4 and at 8 lanes (``benchmarks/lane_width.py``, a fresh process
+    each with ``ANDOYER_LANES`` set, one thread): ns per orbit-step of the bare lane flow
+    and of a G3 = 0 section, and the largest difference of their results from 8 lanes'
+    (end states of the flow, crossing times; relative to 1 + |x|)."""
+    from benchmarks import lane_width
+
+    n, N, t_end = sizes.lanes
+    res = {}
+    for width in WIDTHS:
+        _say(f"W7 {width} lanes (fresh process) ...")
+        res[width] = lane_width.run(width, n, N, t_end, sizes.repeat)
+    case = (f"lane kernels, {n} orbits to t = {t_end:g} (flow; G3 = 0 up to {N} crossings), "
+            "one thread, CPU time")
+    ref = res[WIDTHS[-1]]
+    rows = []
+    for width, r in res.items():
+        diff = {}
+        for key in ("flow_end", "crossing_t"):
+            a, b = np.asarray(r[key]), np.asarray(ref[key])
+            diff[key] = float(np.max(np.abs(a - b) / (1.0 + np.abs(b))))
+        cpu = r["cpu_s"]["flow"] + r["cpu_s"]["G3"]
+        rows.append(Row("W7", case, f"{width} lanes", cpu, cpu, [cpu],
+                        note=f"tuning {r['tuning']}",
+                        extra={"lanes": r["lanes"], "ns_per_orbit_step": r["ns_per_orbit_step"],
+                               "steps": r["steps"], "steps_equal": r["steps"] == ref["steps"],
+                               "diff_from_8": diff, "load": r["load"]}))
+    return rows
+
+
 # ----------------------------------------------------------------------------- output
 
 
@@ -400,6 +535,11 @@ def meta(mode: str, args: dict[str, Any]) -> dict[str, Any]:
 #: W2 theta2 = 0 on the default engine (heyoka) when issue 26 was filed (full run of
 #: 2026-11-25, commit 0791664): its target is half of it.
 THETA2_BEFORE_S = 0.4324
+
+#: W2 theta2 = 0 on the fastest engine before issue 36: andoyer numba, 481.5 ms, in the
+#: full run of 2026-11-27 (commit 41dea64; benchmarks/RESULTS.md of commit 69a1e7c): its
+#: target is a third of it.
+THETA2_BEFORE_36_S = 0.4815
 
 
 def targets(rows: list[Row]) -> list[dict[str, Any]]:
@@ -506,6 +646,80 @@ def targets(rows: list[Row]) -> list[dict[str, Any]]:
             out.append({"target": f"W4: {r.runner}, second process pays <= 0.5 s of "
                                   "compilation", "value": paid, "limit": 0.5,
                         "met": bool(paid <= 0.5)})
+    out += targets_36(rows)
+    return out
+
+
+def targets_36(rows: list[Row]) -> list[dict[str, Any]]:
+    """Issue 36's targets that the rows above do not already check (W1 <= 1.2 x plain
+    heyoka and every W2 section within 2x its machine limit are in :func:`targets`)."""
+    out: list[dict[str, Any]] = []
+
+    def add(what: str, value: float, limit: float, met: bool) -> None:
+        out.append({"target": what, "value": value, "limit": limit, "met": bool(met)})
+
+    def by(wl: str, case: str, runner: str) -> Row | None:
+        return next((r for r in rows if (r.workload, r.case, r.runner) == (wl, case, runner)
+                     and r.wall_s > 0), None)
+
+    # section / bare flow <= 1.5 (W6), the g = 0 section within 2x its machine limit
+    for r in rows:
+        if r.workload == "W6" and r.runner.endswith(" lanes"):
+            sec = r.runner.removesuffix(" lanes")
+            add(f"W6 {sec}: section on lanes / bare lane flow <= 1.5", r.extra["over_bare"],
+                1.5, r.extra["over_bare"] <= 1.5)
+            if sec.startswith("g "):
+                add(f"W6 {sec}: section on lanes within 2x its machine limit",
+                    r.extra["over_limit"], 2.0, r.extra["over_limit"] <= 2.0)
+    # theta2 at least 3x faster than the fastest engine before issue 36
+    theta2 = [r for r in rows if r.workload == "W2" and "of theta2 " in r.case
+              and r.runner.startswith("andoyer") and r.wall_s > 0]
+    if theta2:
+        fastest = min(theta2, key=lambda r: r.wall_s)
+        add(f"W2 theta2: fastest andoyer engine ({fastest.runner}) <= 1/3 x the "
+            f"{THETA2_BEFORE_36_S * 1e3:.1f} ms of numba before issue 36",
+            fastest.wall_s / THETA2_BEFORE_36_S, round(1 / 3, 3),
+            3 * fastest.wall_s <= THETA2_BEFORE_36_S)
+    # W2 G3 on taylor <= 1.0 x heyoka, at every size measured
+    for case in dict.fromkeys(r.case for r in rows if r.workload == "W2" and "of G3 " in r.case):
+        t, h = by("W2", case, "andoyer taylor"), by("W2", case, DEFAULT)
+        if t is not None and h is not None:
+            x = t.wall_s / h.wall_s
+            add(f"W2 G3 {case.split(' crossings')[0]}: andoyer taylor / andoyer heyoka "
+                "<= 1.0", x, 1.0, x <= 1.0)
+    # the MEGNO map and the 256^2 FLI map on their default engines
+    for case in dict.fromkeys(r.case for r in rows if r.workload == "W3"):
+        key = workload_key("W3", case)
+        engine = default_engines(key)[0] if key is not None else "heyoka"
+        d = by("W3", case, f"andoyer {engine}")
+        if case.startswith("MEGNO map"):
+            h = by("W3", case, DEFAULT)
+            if d is not None and h is not None:
+                x = d.wall_s / h.wall_s
+                add(f"W3 {case}: default (andoyer {engine}) / andoyer heyoka <= 1.0", x, 1.0,
+                    x <= 1.0)
+        elif d is not None and d.note == "timed once":
+            h = by("W3", case, "heyoka hand-tuned")
+            if h is not None:
+                x = d.wall_s / h.wall_s
+                add(f"W3 {case}: default (andoyer {engine}) / hand-written heyoka ensemble "
+                    "<= 0.7", x, 0.7, x <= 0.7)
+    # lane widths: per-lane cost within 10 %, results equal to round-off
+    w7 = {r.extra["lanes"]: r for r in rows if r.workload == "W7"}
+    if len(w7) == 2:
+        a, b = (w7[k].extra for k in sorted(w7))
+        for kernel in ("flow", "G3"):
+            x = a["ns_per_orbit_step"][kernel] / b["ns_per_orbit_step"][kernel]
+            add(f"W7 {kernel}: ns per orbit-step, {min(w7)} lanes / {max(w7)} lanes within "
+                "10 % (max(x, 1/x))", max(x, 1 / x), 1.1, max(x, 1 / x) <= 1.1)
+        diff = [max(r.extra["diff_from_8"].values()) for r in w7.values()]
+        add(f"W7: results at {min(w7)} and {max(w7)} lanes equal to round-off (steps equal, "
+            "largest relative difference of end states and crossing times)", max(diff),
+            1e-11, all(r.extra["steps_equal"] for r in w7.values()) and max(diff) < 1e-11)
+    paper = next((r for r in rows if r.workload == "W5" and r.runner == DEFAULT), None)
+    if paper is not None:
+        add("W5: andoyer paper, warm caches, <= 15 s (issue 36)", paper.wall_s, 15.0,
+            paper.wall_s <= 15.0)
     return out
 
 
@@ -562,6 +776,7 @@ def markdown(result: dict[str, Any]) -> str:
                              f"{_fmt(r.error_median)} | {_fmt(r.error_max)} | {r.note} |")
             what = next((r.error_what for r in cs if r.error_what), "")
             lines += ["", f"Error: {what}." if what else "", ""]
+    lines += cost_tables(rows)
     lim = [r for r in rows if "limit" in r.extra]
     if lim:
         lines += ["## Machine limits", "",
@@ -594,6 +809,45 @@ def markdown(result: dict[str, Any]) -> str:
     lines += ["", "Reproduce: `python -m benchmarks` (full, about 35 minutes on 2 cores) or "
               "`python -m benchmarks --quick` (about 3 minutes); see `benchmarks/README.md`.", ""]
     return "\n".join(lines)
+
+
+def cost_tables(rows: list[Row]) -> list[str]:
+    """The tables of W6 (section / bare flow) and W7 (lane widths)."""
+    lines: list[str] = []
+    w6 = [r for r in rows if r.workload == "W6"]
+    if w6:
+        lines += [f"## W6: section / bare flow: {w6[0].case}", "",
+                  "The section kernels on SIMD lanes against the bare lane flow of the same "
+                  "orbits over the same span (`benchmarks/section_cost.py`), runs "
+                  "interleaved, median CPU time; **x limit** = the section's time / its "
+                  "steps at the bare flow's cost per step. Load "
+                  f"{w6[0].extra['load'][0][0]:.2f} -> {w6[0].extra['load'][1][0]:.2f}.", "",
+                  "| run | CPU | steps | ns per orbit-step | / bare flow | x limit |",
+                  "|---|---|---|---|---|---|"]
+        for r in w6:
+            e = r.extra
+            lines.append(f"| {r.runner} | {_fmt(r.cpu_s, 's')} | {e['steps']:,} | "
+                         f"{e['ns_per_step']:.0f} | {e['over_bare']:.2f} | "
+                         f"{e['over_limit']:.2f} |")
+        lines.append("")
+    w7 = [r for r in rows if r.workload == "W7"]
+    if w7:
+        lines += [f"## W7: lane widths: {w7[0].case}", "",
+                  "Each lane count in a fresh process (`ANDOYER_LANES`, "
+                  "`benchmarks/lane_width.py`), median CPU time; differences relative to "
+                  "1 + |x|, from 8 lanes' results.", "",
+                  "| lanes | flow ns per orbit-step | G3 section ns per orbit-step | "
+                  "steps equal | flow end states differ by | crossing times differ by | "
+                  "load | note |", "|---|---|---|---|---|---|---|---|"]
+        for r in w7:
+            e = r.extra
+            lines.append(f"| {e['lanes']} | {e['ns_per_orbit_step']['flow']:.0f} | "
+                         f"{e['ns_per_orbit_step']['G3']:.0f} | {e['steps_equal']} | "
+                         f"{_fmt(e['diff_from_8']['flow_end'])} | "
+                         f"{_fmt(e['diff_from_8']['crossing_t'])} | "
+                         f"{e['load'][0]:.2f} -> {e['load'][1]:.2f} | {r.note} |")
+        lines.append("")
+    return lines
 
 
 def targets_table(rows: list[dict[str, Any]]) -> list[str]:
@@ -652,13 +906,14 @@ def summary(result: dict[str, Any]) -> str:
 #: The benchmark workloads as :data:`andoyer.integrate.engines.WORKLOADS` names them.
 def workload_key(workload: str, case: str) -> str | None:
     """The :data:`~andoyer.integrate.engines.WORKLOADS` name of a benchmark row (W1 the
-    orbit, W2 a section of a state component or of an angle, W3 the FLI map)."""
+    orbit, W2 a section of a state component or of an angle, W3 the FLI or the MEGNO
+    map)."""
     if workload == "W1":
         return "orbit"
     if workload == "W2":
         return "angle_section" if "theta" in case or " g = " in case else "component_section"
     if workload == "W3":
-        return "fli_map"
+        return "megno_map" if case.startswith("MEGNO map") else "fli_map"
     return None
 
 
@@ -674,8 +929,8 @@ def default_engines(key: str) -> tuple[str, str]:
         engine_class,
     )
 
-    need = {"orbit": Capability.PROPAGATE, "fli_map": Capability.TANGENT}.get(
-        key, Capability.CROSSINGS)
+    need = {"orbit": Capability.PROPAGATE, "fli_map": Capability.TANGENT,
+            "megno_map": Capability.TANGENT}.get(key, Capability.CROSSINGS)
     without = next((n for n in FALLBACK_DEFAULTS if need in engine_class(n).capabilities),
                    FALLBACK_DEFAULTS[-1])
     return MEASURED_DEFAULTS.get(key, "heyoka"), without
@@ -762,7 +1017,7 @@ def write_tables(result: dict[str, Any], out_dir: Path) -> None:
 
 
 def run(quick: bool = False,
-        workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5", "S"),
+        workloads: tuple[str, ...] = ("W1", "W2", "W3", "W4", "W5", "W6", "W7", "S"),
         runners: set[str] | None = None, full_scipy: bool = False, cold: bool | None = None,
         out_dir: Path | None = None, sizes: W.Sizes | None = None,
         sections: tuple[tuple[str, float], ...] = W.SECTIONS) -> dict[str, Any]:
@@ -784,12 +1039,18 @@ def run(quick: bool = False,
         rows += w1(sizes, runners)
     if "W2" in workloads:
         rows += w2(sizes, runners, full_scipy, sections, quick)
+        rows += w2_small(sizes, runners)
     if "W3" in workloads:
         rows += w3(sizes, runners)
+        rows += w3_megno(sizes, runners)
     if "W4" in workloads:
         rows += w4(cold, {r.replace("-", " ") for r in runners})
     if "W5" in workloads and DEFAULT in runners:
         rows += w5(1 if quick else 3)
+    if "W6" in workloads:
+        rows += w6(sizes)
+    if "W7" in workloads:
+        rows += w7(sizes)
     scaling = S.run(quick, say=_say) if "S" in workloads else []
     result = {"meta": meta("quick" if quick else "full",
                            {"workloads": list(workloads), "full_scipy": full_scipy,

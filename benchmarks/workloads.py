@@ -1,4 +1,4 @@
-"""The benchmark problems: the paper's body, initial states, sizes of W1-W4.
+"""The benchmark problems: the paper's body, initial states, sizes of W1-W7.
 
 The body is the paper's Hess gyroscope, A = 2.5, B = 2.0, C = 2.2, mu = 0.01. The
 initial states lie on the energy level of the Andoyer-Deprit state
@@ -36,13 +36,17 @@ class Sizes:
     w3_grid: int = 64
     w3_t_end: float = 1000.0
     w3_big: int = 256  # the large map (timed once against the hand-written ensemble; 0: none)
+    w2_small: tuple[int, int] = (20, 400)  # W2 G3, taylor against heyoka, beside 50 x 1000
+    cost: tuple[int, int] = (16, 300)  # W6: orbits, theta2 crossings fixing the span
+    lanes: tuple[int, int, float] = (64, 200, 300.0)  # W7: orbits, G3 crossings, t_end
     repeat: int = 5
     tol: float = 1e-12
 
 
 FULL = Sizes()
 QUICK = Sizes(w1_t_end=1e3, w1_points=101, w2_orbits=8, w2_crossings=50, scipy_orbits=1,
-              w3_grid=8, w3_t_end=100.0, w3_big=0, repeat=3)
+              w3_grid=8, w3_t_end=100.0, w3_big=0, w2_small=(4, 20), cost=(8, 20),
+              lanes=(16, 20, 50.0), repeat=3)
 
 
 def body() -> RigidBody:

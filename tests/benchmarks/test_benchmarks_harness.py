@@ -233,3 +233,65 @@ def test_summary_table_goes_between_the_readme_markers(tmp_path) -> None:
     assert "old" not in new and text in new and new.endswith(f"{harness.README_END}\nend\n")
     (tmp_path / "plain.md").write_text("no markers")
     assert not harness.update_readme(text, tmp_path / "plain.md")
+
+
+def test_issue_36_targets_tables_and_the_megno_advice_from_rows() -> None:
+    """Issue 36's targets from rows (nothing timed): section / bare flow, theta2 against
+    the fastest engine before the issue, G3 at two sizes, the MEGNO map and the 256^2 FLI
+    map on their defaults, the lane widths, the main job; W6's and W7's tables; the MEGNO
+    map's row of "which engine for what" is the ``megno_map`` workload's."""
+    def row(wl: str, case: str, runner: str, wall: float, note: str = "",
+            **extra: object) -> harness.Row:
+        return harness.Row(wl, case, runner, wall, wall, [wall], note=note, extra=extra)
+
+    load = [[1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]
+    cost = "16 orbits over the span of 300 theta2 = 0 crossings"
+    w6 = [row("W6", cost, label, cpu, steps=1000, ns_per_step=cpu, over_bare=cpu / 0.1,
+              over_limit=cpu / 0.1, load=load)
+          for label, cpu in (("bare flow (lanes)", 0.1), ("G3 = 0 lanes", 0.12),
+                             ("theta2 = 0 lanes", 0.3), ("g = 0 lanes", 0.14))]
+
+    def lanes(k: int, flow: float, diff: float) -> harness.Row:
+        return row("W7", "lane kernels", f"{k} lanes", 1.0, lanes=k,
+                   ns_per_orbit_step={"flow": flow, "G3": 300.0}, steps={"flow": 5, "G3": 5},
+                   steps_equal=True, diff_from_8={"flow_end": diff, "crossing_t": 0.0},
+                   load=[1.0, 1.0])
+
+    g3, g3s = ("50 orbits x 1000 crossings of G3 = 0 (upward)",
+               "20 orbits x 400 crossings of G3 = 0 (upward)")
+    th = "50 orbits x 1000 crossings of theta2 = 0 (upward)"
+    megno, big = "MEGNO map 64 x 64, t = 1000", "FLI map 256 x 256, t = 1000"
+    rows = [*w6, lanes(4, 250.0, 3e-15), lanes(8, 200.0, 0.0),
+            row("W2", g3, "andoyer heyoka", 1.0), row("W2", g3, "andoyer taylor", 0.9),
+            row("W2", g3s, "andoyer heyoka", 1.0), row("W2", g3s, "andoyer taylor", 1.4),
+            row("W2", th, "andoyer heyoka", 0.4), row("W2", th, "andoyer taylor", 0.15),
+            row("W3", megno, "andoyer heyoka", 5.0), row("W3", megno, "andoyer taylor", 3.0),
+            row("W3", big, "andoyer taylor", 30.0, note="timed once"),
+            row("W3", big, "heyoka hand-tuned", 50.0, note="timed once"),
+            row("W5", "andoyer paper", "andoyer heyoka", 17.0)]
+    t = {x["target"]: x for x in harness.targets(rows)}
+    assert t["W6 G3 = 0: section on lanes / bare lane flow <= 1.5"]["met"]
+    assert not t["W6 theta2 = 0: section on lanes / bare lane flow <= 1.5"]["met"]
+    assert t["W6 g = 0: section on lanes within 2x its machine limit"]["met"]
+    third = next(x for x in t.values() if x["target"].startswith("W2 theta2: fastest andoyer "
+                                                                  "engine (andoyer taylor)"))
+    assert "481.5 ms" in third["target"] and third["met"]  # 150 ms <= 481.5 / 3
+    assert t["W2 G3 50 orbits x 1000: andoyer taylor / andoyer heyoka <= 1.0"]["met"]
+    assert not t["W2 G3 20 orbits x 400: andoyer taylor / andoyer heyoka <= 1.0"]["met"]
+    assert t[f"W3 {megno}: default (andoyer taylor) / andoyer heyoka <= 1.0"]["met"]
+    assert math.isclose(t[f"W3 {big}: default (andoyer taylor) / hand-written heyoka "
+                          "ensemble <= 0.7"]["value"], 0.6)
+    flow = t["W7 flow: ns per orbit-step, 4 lanes / 8 lanes within 10 % (max(x, 1/x))"]
+    assert math.isclose(flow["value"], 1.25) and not flow["met"]
+    assert t["W7 G3: ns per orbit-step, 4 lanes / 8 lanes within 10 % (max(x, 1/x))"]["met"]
+    same = next(x for x in t.values() if x["target"].startswith("W7: results"))
+    assert same["met"] and same["value"] == 3e-15
+    assert not t["W5: andoyer paper, warm caches, <= 15 s (issue 36)"]["met"]
+    text = harness.markdown({"meta": harness.meta("test", {}), "load_before": [0, 0, 0],
+                             "load_after": [0, 0, 0], "targets": harness.targets(rows),
+                             "rows": [harness.asdict(r) for r in rows]})
+    assert "## W6: section / bare flow" in text and "| theta2 = 0 lanes | 300.0 ms |" in text
+    assert "## W7: lane widths" in text and "| 4 | 250 | 300 | True |" in text
+    advice = "\n".join(harness.engine_advice(rows))
+    assert (f"| W3: {megno} | taylor | taylor (heyoka takes 1.67x) | taylor | "
+            "taylor (only one measured) |") in advice
