@@ -139,11 +139,12 @@ def _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info, nothing):
 
 
 @kernel_jit
-def _after_step(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, z0, X, nxt, info,
-                nothing):
-    """The lane's orbit after its step: ``(True, nxt)`` when it goes on (the step counted,
-    its time ``t1``); else the lane takes the next orbit of the queue (:func:`_take_orbit`,
-    ``orbit[lane]`` -1 when none is left, time 0): ``(False, next)``."""
+def _goes_on(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, info):
+    """The lane's orbit after its step (the step counted, its time ``t1``): True when it
+    goes on; else (its status set where ``max_steps`` ended it) the caller hands the lane
+    to the next orbit of the queue (:func:`_take_orbit`). Small, so that it is inlined:
+    with the refill inside, one call per lane and step cost as much as the bare flow's
+    whole step (measured: benchmarks/NOTES.md#section-cost)."""
     simd.tune()
     i = orbit[lane]
     if i >= 0:
@@ -151,12 +152,9 @@ def _after_step(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, z0, X,
         t[lane] = t1[lane]
         if count[i] < n_crossings and t[lane] < t_max:
             if info[i, 1] < max_steps:
-                return True, nxt
+                return True
             info[i, 0] = MAX_STEPS
-    orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt, info,
-                                   nothing)
-    t[lane] = 0.0
-    return False, nxt
+    return False
 
 
 @kernel_jit
@@ -266,10 +264,11 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
             i = orbit[lane]
             if i == -1:
                 continue
-            goes_on, nxt = _after_step(lane, orbit, t, t1, count, n_crossings, t_max,
-                                       max_steps, z0, X, nxt, info, nothing)
-            if goes_on:
+            if _goes_on(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, info):
                 continue
+            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                           info, nothing)
+            t[lane] = 0.0
             fa[lane] = ca * X[0, 0, comp, lane] + cc
             if orbit[lane] < 0:
                 busy -= 1
@@ -395,10 +394,11 @@ def tape_crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max
             i = orbit[lane]
             if i == -1:
                 continue
-            goes_on, nxt = _after_step(lane, orbit, t, t1, count, n_crossings, t_max,
-                                       max_steps, z0, X, nxt, info, nothing)
-            if goes_on:
+            if _goes_on(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, info):
                 continue
+            orbit[lane], nxt = _take_orbit(z0, n_crossings, t_max, max_steps, X, lane, nxt,
+                                           info, nothing)
+            t[lane] = 0.0
             if orbit[lane] < 0:
                 busy -= 1
             else:
