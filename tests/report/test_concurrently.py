@@ -37,3 +37,23 @@ def test_warning_filters_restored_and_the_first_error_raised(monkeypatch) -> Non
     with pytest.raises(ValueError, match="no island"):
         concurrently([quiet, fails])
     assert warnings.filters == before
+
+
+def test_an_error_does_not_wait_for_the_running_tasks(monkeypatch) -> None:
+    # (an interrupt of the caller alike: the tasks still queued never start)
+    import time
+
+    monkeypatch.setattr("os.sched_getaffinity", lambda _pid: {0, 1}, raising=False)
+    started = []
+
+    def slow() -> None:
+        started.append(1)
+        time.sleep(3.0)
+
+    def fails() -> None:
+        raise RuntimeError("interrupted")
+
+    t0 = time.perf_counter()
+    with pytest.raises(RuntimeError, match="interrupted"):
+        concurrently([slow, fails, slow, slow])
+    assert time.perf_counter() - t0 < 2.0 and len(started) == 1

@@ -36,7 +36,9 @@ _T = TypeVar("_T")
 
 def concurrently(tasks: Sequence[Callable[[], _T]]) -> list[_T]:
     """Run independent ``tasks`` on threads, one per core at most, and return their
-    results in order (the first error is raised).
+    results in order. The first error is raised at once, as is an interrupt of the
+    caller (Ctrl-C, SIGTERM): the tasks not started are dropped, those running are not
+    waited for (daemon threads, ended with the process).
 
     For an item's independent integrations: the engines integrate without the GIL
     (heyoka, the Numba kernels), so the measurements of one item share the cores
@@ -58,21 +60,52 @@ def concurrently(tasks: Sequence[Callable[[], _T]]) -> list[_T]:
     """
     import contextvars
     import os
+    import threading
     import warnings
-    from concurrent.futures import ThreadPoolExecutor
 
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (
         os.cpu_count() or 1)
     workers = max(1, min(len(tasks), cores))
     if workers == 1:
         return [task() for task in tasks]
+    results: list[Any] = [None] * len(tasks)
+    errors: list[BaseException] = []
+    queue = list(enumerate(tasks))
+    lock, done = threading.Lock(), threading.Event()
+    left = [len(tasks)]
+
+    def work(context: contextvars.Context) -> None:
+        while True:
+            with lock:
+                if not queue or errors:
+                    return
+                i, task = queue.pop(0)
+            try:
+                results[i] = context.run(task)
+            except BaseException as exc:  # noqa: BLE001 -- handed to the caller
+                with lock:
+                    errors.append(exc)
+                done.set()
+                return
+            with lock:
+                left[0] -= 1
+                if left[0] == 0:
+                    done.set()
+
     with warnings.catch_warnings():
-        pool = ThreadPoolExecutor(workers, thread_name_prefix="andoyer-item")
+        # Daemon threads: on an error or an interrupt of the caller (Ctrl-C, SIGTERM) the
+        # tasks still queued never start and the process does not wait for those running.
+        for _ in range(workers):
+            threading.Thread(target=work, args=(contextvars.copy_context(),),
+                             name="andoyer-item", daemon=True).start()
         try:
-            futures = [pool.submit(contextvars.copy_context().run, task) for task in tasks]
-            return [f.result() for f in futures]
+            done.wait()
         finally:
-            pool.shutdown(wait=True, cancel_futures=True)
+            with lock:
+                queue.clear()
+    if errors:
+        raise errors[0]
+    return results
 
 
 @dataclass
