@@ -92,8 +92,9 @@ def resonances(ctx: Context) -> Result:
     tasks += [partial(measure_island, body.with_mu(mu), 1.0, 0.0, label, axis=axis,
                       n_seeds=3, n_rounds=3 if ctx.quick else 4, engine=engine)
               for label, axis, mu in chains]
+    paper_body = RigidBody.paper(0.01)
     if not ctx.quick:
-        tasks.append(partial(measure_island, RigidBody.paper(0.01), 0.2466, 0.0, "7:1",
+        tasks.append(partial(measure_island, paper_body, 0.2466, 0.0, "7:1",
                              axis=1, n_seeds=2, n_rounds=4, engine=engine))
     for mu in near_mus:
         tasks += [partial(resonant_normal_form, TILTED.with_mu(mu), 1.0, 0.0, "2:1", axis=2,
