@@ -96,21 +96,34 @@ def test_resonances_command_refuses_a_bad_order(tmp_path, capsys, order, message
     assert not list(tmp_path.iterdir())
 
 
-def test_resonances_order_mu_writes_the_chains_to_second_order(tmp_path, capsys):
-    """--order-mu 2: each chain of sign +1 to orders 1 and 2 in mu (island_prediction), the
-    table printed and *-order-mu.nc written; the 3:1 chain about axis 1 of Hess(3, 1, 2)
-    at mu = 1e-3 has its stable point at -1.1707e-4 (measured -1.1712e-4, first order
-    -1.1567e-4)."""
+def test_resonances_order_mu_writes_the_chains_to_third_order(tmp_path, capsys):
+    """--order-mu 3: each chain of sign +1 to orders 1, 2 and 3 in mu (island_prediction),
+    the table printed and *-order-mu.nc written; the 3:1 chain about axis 1 of
+    Hess(3, 1, 2) at mu = 1e-3 has its stable point at -1.1707e-4 (measured -1.1712e-4,
+    first order -1.1567e-4) and its half-width at order 3 within 1e-4 of the measured
+    2.560541e-3 (benchmarks/RESONANCE_ORDERS.md: +5.9e-5; order 1 +4.2e-4); --order-mu 4
+    is refused by name."""
     out = tmp_path / "res.nc"
     assert main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
-                 "--mu", "0.001", "--energy", "1", "--max-order", "4", "--order-mu", "2",
+                 "--mu", "0.001", "--energy", "1", "--max-order", "4", "--order-mu", "3",
                  "--out", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "chains to order 2 in mu" in text and "res-order-mu.nc" in text
+    assert "chains to order 3 in mu" in text and "res-order-mu.nc" in text
     ds = xr.open_dataset(tmp_path / "res-order-mu.nc")
     row = ds.where((ds.label == "3:1") & (ds.axis == 1), drop=True).isel(chain=0)
     assert float(row.stable_s.sel(order_mu=2)) == pytest.approx(-1.1712e-4, rel=2e-3)
     assert float(row.stable_s_error.sel(order_mu=2)) < float(row.stable_s_error.sel(order_mu=1))
+    assert list(ds.order_mu.values) == [1, 2, 3]
+    measured = 2.560541e-3
+    error = {k: abs(float(row.half_width.sel(order_mu=k)) / measured - 1) for k in (1, 3)}
+    assert error[3] < 1e-4 < error[1]
+    with pytest.raises(SystemExit) as exc:
+        main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
+              "--mu", "0.001", "--energy", "1", "--order-mu", "4",
+              "--out", str(tmp_path / "four.nc")])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "--order-mu" in err and "[0, 3]" in err and "Traceback" not in err
     with pytest.raises(SystemExit) as exc:
         main(["resonances", "--body", "hess", "--A", "3", "--B", "1", "--C", "2",
               "--mu", "0", "--energy", "1", "--order-mu", "1", "--out", str(tmp_path / "z.nc")])
