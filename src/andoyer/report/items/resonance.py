@@ -94,8 +94,11 @@ def resonances(ctx: Context) -> Result:
               for label, axis, mu in chains]
     paper_body = RigidBody.paper(0.01)
     if not ctx.quick:
-        tasks.append(partial(measure_island, paper_body, 0.2466, 0.0, "7:1",
-                             axis=1, n_seeds=2, n_rounds=4, engine=engine))
+        tasks += [partial(measure_island, paper_body, 0.2466, 0.0, "7:1", axis=1, n_seeds=2,
+                          n_rounds=4, engine=engine),
+                  # the half-width to orders 1-3 (S1)-(S4) beside it
+                  partial(island_prediction, paper_body, 0.2466, 0.0, "7:1", axis=1,
+                          order_mu=3)]
     for mu in near_mus:
         tasks += [partial(resonant_normal_form, TILTED.with_mu(mu), 1.0, 0.0, "2:1", axis=2,
                           order=8),
@@ -151,7 +154,7 @@ def resonances(ctx: Context) -> Result:
     # (R12): first order misses the island, the Lie-Deprit normal form (S1)-(S4) does not.
     second_order = []
     if not ctx.quick:
-        m = next(done)
+        m, orders = next(done), next(done)
         p, q = float(m.predicted_half_width), float(m.measured_half_width)
         rows.append(["paper", "7:1 (axis 1)", "0.01", f"{p:.4e}", "-", f"{q:.4e}",
                      f"{(q - p) / p:+.2%}", f"{float(m.edge_uncertainty):.1e}",
@@ -160,7 +163,6 @@ def resonances(ctx: Context) -> Result:
         hw = float(m.measured_half_width)
         # the half-width to orders 1-3 (S1)-(S4): for p = 1 the resonant harmonic enters at
         # the odd orders only, so order 2 gains nothing on it and order 3 does
-        orders = island_prediction(paper_body, 0.2466, 0.0, "7:1", axis=1, order_mu=3)
         widths = [float(w) / hw - 1.0 for w in orders.half_width.values]
         miss1 = (float(m.stable_s) - float(m.predicted_stable_s)) / hw
         miss2 = (float(m.stable_s) - float(m.predicted_stable_s_2)) / hw
