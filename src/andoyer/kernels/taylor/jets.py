@@ -125,9 +125,11 @@ def section_step_size(X, order, tape, u):
     ``u`` of its tape ``tape``, :func:`~andoyer.kernels.taylor.sections.tape_jet`) as one
     more block, where its last two coefficients exceed the state's (elsewhere, and for
     every section of a state component, the step is :func:`step_size`'s). Its scale
-    ``m`` is the larger of the state's and the size of the two terms that ``f``'s last
-    node sums (an angle section's pair ``(k sin, k cos)`` rotated by the value: its
-    amplitude ``k = sqrt(f^2 + w^2)``, ``w`` the margin). The step is never longer than
+    ``m`` is the larger of the state's and the root-sum-square of the two terms that
+    ``f``'s last node sums (:func:`section_scale`; for theta2, crossed as
+    ``g - (l + phi0 + value)``, the terms ``S_g c`` and ``C_g s``, at most the amplitude
+    ``k = sqrt(f^2 + w^2)`` of the angle's pair, ``w`` the margin, so the scale can
+    under-read ``k``: shorter steps, never longer). The step is never longer than
     :func:`step_size`'s, nor shorter than :data:`SECTION_STEP_FLOOR` of the state's (see
     :mod:`andoyer.kernels.taylor.flow`'s notes)."""
     last = tape.shape[0] - 1
@@ -164,7 +166,7 @@ def section_step_size(X, order, tape, u):
 def section_scale(fa, fb, b):
     """The scale of a section function's last node, the sum of the terms ``fa`` and
     ``fb`` (``b < 0``: one term): ``|fa|`` or ``sqrt(fa^2 + fb^2)`` (an angle
-    section's amplitude, see :func:`section_step_size`)."""
+    section's pair, at most its amplitude: see :func:`section_step_size`)."""
     return abs(fa) if b < 0 else math.sqrt(fa * fa + fb * fb)
 
 
