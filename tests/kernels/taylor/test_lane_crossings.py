@@ -19,6 +19,9 @@ the scalar Taylor kernel and the DOP853 kernel.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from types import ModuleType
+
 import numpy as np
 import pytest
 from numpy.typing import NDArray
@@ -120,7 +123,8 @@ def test_theta2_on_lanes_on_the_paper_body() -> None:
 
 
 def test_singular_passages_on_lanes_are_the_scalar_kernels(
-        monkeypatch: pytest.MonkeyPatch) -> None:
+        monkeypatch: pytest.MonkeyPatch,
+        orbits_per_call: Callable[[ModuleType, str], list[int]]) -> None:
     """A Hess libration at M = 0 passes G = 0, where theta2 is undefined: on the lanes,
     as on the scalar kernel, those passages are reported apart, never as crossings."""
     import warnings
@@ -133,14 +137,7 @@ def test_singular_passages_on_lanes_are_the_scalar_kernels(
     y0 = np.vstack([np.repeat(np.atleast_2d(libration), 3, axis=0),
                     from_andoyer([[0.3, 0.2 * i, 0.3, 1.0 + 0.01 * i, 0.0]
                                   for i in range(LANES)])])
-    calls: list[int] = []
-    original = LC.locate_crossings
-
-    def spy(z0: NDArray[np.float64], *args: object, **kwargs: object) -> object:
-        calls.append(z0.shape[0])
-        return original(z0, *args, **kwargs)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(LC, "locate_crossings", spy)
+    calls = orbits_per_call(LC, "locate_crossings")
     runs, spied = [], []
     for start in (1, 10**9):  # the lanes, then the scalar kernel
         monkeypatch.setattr(taylor_engine, "LANE_CROSSINGS_FROM", start)
@@ -211,15 +208,9 @@ def test_failures_end_their_orbit_only() -> None:
 
 
 def test_the_engine_runs_many_orbits_on_lanes(
-        monkeypatch: pytest.MonkeyPatch) -> None:
-    calls: list[int] = []
-    original = LC.locate_crossings
-
-    def spy(z0: NDArray[np.float64], *args: object, **kwargs: object) -> object:
-        calls.append(z0.shape[0])
-        return original(z0, *args, **kwargs)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(LC, "locate_crossings", spy)
+        monkeypatch: pytest.MonkeyPatch,
+        orbits_per_call: Callable[[ModuleType, str], list[int]]) -> None:
+    calls = orbits_per_call(LC, "locate_crossings")
     p = tuple(RigidBody.paper().engine_params)
     tol = Tolerance(1e-12, 1e-12)
     y0 = random_states(LANES + 1, np.random.default_rng(5))

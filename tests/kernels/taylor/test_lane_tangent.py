@@ -16,11 +16,15 @@ against the scalar kernel (:mod:`andoyer.kernels.taylor.tangent`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from types import ModuleType
+
 import numba
 import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from _chart_points import andoyer_points
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer, from_hess
 from andoyer.integrate.engines.values import unit_vectors
@@ -46,12 +50,7 @@ def starts(n: int, k: int, seed: int) -> tuple[NDArray[np.float64], NDArray[np.f
     """``(z0, rho0)``: random states (a third near the chart's singular sets) with ``k``
     random unit vectors, and their log lengths."""
     rng = np.random.default_rng(seed)
-    G = rng.uniform(0.5, 2.0, n)
-    P = np.stack([rng.uniform(-3, 3, n), rng.uniform(-3, 3, n), G * rng.uniform(-0.9, 0.9, n),
-                  G, G * rng.uniform(-0.9, 0.9, n)], axis=-1)
-    near = rng.choice([1 - 1e-12, -(1 - 1e-12), 1 - 1e-7], size=n)
-    P[: n // 6, 2] = G[: n // 6] * near[: n // 6]
-    P[n // 6: n // 3, 4] = G[n // 6: n // 3] * near[n // 6: n // 3]
+    P = andoyer_points(n, rng)
     u, rho = unit_vectors(rng.normal(size=(n, k, 6)) * rng.uniform(0.1, 10.0, (n, k, 1)))
     z = np.concatenate([from_andoyer(P), u.reshape(n, 6 * k)], axis=1)
     return np.ascontiguousarray(z), rho
@@ -219,20 +218,14 @@ def test_queue_edges(body: RigidBody, n: int) -> None:
 
 
 def test_the_taylor_engine_runs_renormalised_flows_on_lanes(
-        body: RigidBody, monkeypatch: pytest.MonkeyPatch) -> None:
+        body: RigidBody, monkeypatch: pytest.MonkeyPatch,
+        orbits_per_call: Callable[[ModuleType, str], list[int]]) -> None:
     """``tangent`` (renormalised: MEGNO maps, SALI/GALI) from LANES_FROM orbits on runs on
     the lanes, with the scalar route's flow to round-off; fewer orbits stay scalar."""
     from andoyer.integrate.engines import taylor_engine as TE
     from andoyer.integrate.engines.base import Tolerance
 
-    calls: list[int] = []
-    real = LT.propagate
-
-    def spy(z0: NDArray[np.float64], *args: object, **kw: object) -> object:
-        calls.append(z0.shape[0])
-        return real(z0, *args, **kw)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(LT, "propagate", spy)
+    calls = orbits_per_call(LT, "propagate")
     p = body.engine_params
     tol = Tolerance(1e-12, 1e-12)
     n = TE.LANES_FROM + 3

@@ -15,11 +15,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from types import ModuleType
+
 import numba
 import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from _chart_points import andoyer_points
 from _numba_cache import fresh_process_cache_stats
 from andoyer import RigidBody, from_andoyer
 from andoyer.kernels import common, simd
@@ -40,12 +44,7 @@ def body() -> RigidBody:
 def states(n: int, seed: int) -> NDArray[np.float64]:
     """Random states, a third of them near the chart's singular sets (|L| = G, |H| = G)."""
     rng = np.random.default_rng(seed)
-    G = rng.uniform(0.5, 2.0, n)
-    P = np.stack([rng.uniform(-3, 3, n), rng.uniform(-3, 3, n), G * rng.uniform(-0.9, 0.9, n),
-                  G, G * rng.uniform(-0.9, 0.9, n)], axis=-1)
-    near = rng.choice([1 - 1e-12, -(1 - 1e-12), 1 - 1e-7], size=n)
-    P[: n // 6, 2] = G[: n // 6] * near[: n // 6]
-    P[n // 6: n // 3, 4] = G[n // 6: n // 3] * near[n // 6: n // 3]
+    P = andoyer_points(n, rng)
     return np.ascontiguousarray(from_andoyer(P))
 
 
@@ -217,8 +216,9 @@ def test_queue_edges(body: RigidBody, n: int) -> None:
         np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12)
 
 
-def test_the_taylor_engine_runs_many_orbits_on_lanes(body: RigidBody,
-                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_taylor_engine_runs_many_orbits_on_lanes(
+        body: RigidBody, monkeypatch: pytest.MonkeyPatch,
+        orbits_per_call: Callable[[ModuleType, str], list[int]]) -> None:
     """The engine's routes (``propagate``; ``tangent`` without renormalisation, the FLI
     map's) on lanes agree per orbit with the same engine on the scalar kernel and with
     the numba engine; a failed orbit is flagged alone."""
@@ -226,14 +226,8 @@ def test_the_taylor_engine_runs_many_orbits_on_lanes(body: RigidBody,
     from andoyer.integrate.engines.base import Tolerance
     from andoyer.integrate.engines.numba_engine import NumbaEngine
 
-    calls: list[int] = []
     real = TL.propagate
-
-    def spy(z0: NDArray[np.float64], *args: object, **kw: object) -> object:
-        calls.append(z0.shape[0])
-        return real(z0, *args, **kw)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(TL, "propagate", spy)
+    calls = orbits_per_call(TL, "propagate")
     p = body.engine_params
     tol = Tolerance(1e-12, 1e-12)
     n = L + 5

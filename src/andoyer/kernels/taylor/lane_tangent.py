@@ -59,6 +59,7 @@ from andoyer.kernels.taylor.jets import fill_constants, step_to
 from andoyer.kernels.taylor.lanes import (
     aligned,
     block_size,
+    goes_on,
     lane_advance,
     lane_horner,
     lane_jets,
@@ -183,17 +184,7 @@ def _write_row(X, W, order, lane, tau, rho, tmp, row):
     """The output row of ``lane`` at ``t0 + tau`` (``_write_row`` of the scalar kernel)."""
     k = X.shape[0] - 1
     lane_horner(X, order, lane, tau, tmp)
-    for i in range(_N):
-        row[i] = tmp[i]
-    for b in range(k):
-        o = _N + _N * b
-        s = 0.0
-        for i in range(_N):
-            s += tmp[o + i] * tmp[o + i]
-        nrm = math.sqrt(s)
-        for i in range(_N):
-            row[o + i] = tmp[o + i] / nrm
-        row[_N + _N * k + b] = rho[lane, b] + math.log(nrm)
+    tangent.write_vectors(tmp, rho[lane], row)
     row[_N + 7 * k] = _value(W, _NN, order, lane, tau)
     row[_N + 7 * k + 1] = _value(W, _IN, order, lane, tau)
 
@@ -325,12 +316,9 @@ def renormalised_lanes(z0, rho0, t_out, q, order, max_steps, out, info):
                 W[0, _NN, lane] = _value(W, _NN, order, lane, hs[lane])
                 W[0, _IN, lane] = _value(W, _IN, order, lane, hs[lane])
                 _renormalise(X, lane, rho)
-                info[i, 1] += 1
                 t[lane] = t1[lane]
-                if j[lane] < m_out:
-                    if info[i, 1] < max_steps:
-                        continue
-                    info[i, 0] = MAX_STEPS
+                if goes_on(info, i, j[lane] < m_out, max_steps):
+                    continue
             orbit[lane], j[lane], nxt = _take_orbit(z0, rho0, t_out, max_steps, X, W, rho,
                                                     lane, nxt, out, info, nothing)
             t[lane] = t_out[0]

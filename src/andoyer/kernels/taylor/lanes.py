@@ -181,6 +181,19 @@ def lane_load(X, lane, z):
 
 
 @kernel_jit
+def goes_on(info, i, more, max_steps):
+    """Orbit ``i`` after an accepted step on its lane: the step counted (``info[i, 1]``);
+    True when it goes on (``more`` work left and steps allowed), else False (the lane takes
+    the next orbit), with ``MAX_STEPS`` where work was left but no step is."""
+    info[i, 1] += 1
+    if more:
+        if info[i, 1] < max_steps:
+            return True
+        info[i, 0] = MAX_STEPS
+    return False
+
+
+@kernel_jit
 def take_orbit(z0, t_out, max_steps, X, lane, nxt, out, info, nothing):
     """Load the next orbit of the queue (from ``nxt``) that needs a step into ``lane``;
     orbits that need none (one output time, repeated initial times, ``max_steps`` 0)
@@ -280,12 +293,9 @@ def lanes_orbits(z0, t_out, q, order, max_steps, out, info):
             if i == -1:
                 continue
             if i >= 0:
-                info[i, 1] += 1
                 t[lane] = t1[lane]
-                if j[lane] < k:
-                    if info[i, 1] < max_steps:
-                        continue
-                    info[i, 0] = MAX_STEPS
+                if goes_on(info, i, j[lane] < k, max_steps):
+                    continue
             orbit[lane], j[lane], nxt = take_orbit(z0, t_out, max_steps, X, lane, nxt,
                                                    out, info, nothing)
             t[lane] = t_out[0]

@@ -192,10 +192,11 @@ def _value(c, order, tau):
 
 
 @kernel_jit
-def _write_row(X, Q, order, tau, rho, tmp, row):
-    """An output row (layout of the module notes) at ``t0 + tau``."""
-    k = X.shape[0] - 1
-    horner(X, order, tau, tmp)
+def write_vectors(tmp, rho, row):
+    """The state, unit vectors and logarithms of an output row (layout of the module
+    notes) from ``tmp``, the state and the ``k`` vectors ``w_b`` at the row's time, and
+    ``rho`` (shape (k,)): ``u_b = w_b / |w_b|``, ``rho_b + ln|w_b|``."""
+    k = rho.shape[0]
     for i in range(_N):
         row[i] = tmp[i]
     for b in range(k):
@@ -207,6 +208,14 @@ def _write_row(X, Q, order, tau, rho, tmp, row):
         for i in range(_N):
             row[o + i] = tmp[o + i] / nrm
         row[_N + _N * k + b] = rho[b] + math.log(nrm)
+
+
+@kernel_jit
+def _write_row(X, Q, order, tau, rho, tmp, row):
+    """An output row (layout of the module notes) at ``t0 + tau``."""
+    k = X.shape[0] - 1
+    horner(X, order, tau, tmp)
+    write_vectors(tmp, rho, row)
     row[_N + 7 * k] = _value(Q[1], order, tau)
     row[_N + 7 * k + 1] = _value(Q[2], order, tau)
 
