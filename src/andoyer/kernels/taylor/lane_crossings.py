@@ -147,14 +147,10 @@ def _goes_on(lane, orbit, t, t1, count, n_crossings, t_max, max_steps, info):
     whole step (measured: benchmarks/NOTES.md#section-cost)."""
     simd.tune()
     i = orbit[lane]
-    if i >= 0:
-        info[i, 1] += 1
-        t[lane] = t1[lane]
-        if count[i] < n_crossings and t[lane] < t_max:
-            if info[i, 1] < max_steps:
-                return True
-            info[i, 0] = MAX_STEPS
-    return False
+    if i < 0:
+        return False
+    t[lane] = t1[lane]
+    return lanes.goes_on(info, i, count[i] < n_crossings and t[lane] < t_max, max_steps)
 
 
 @kernel_jit

@@ -185,6 +185,7 @@ def goes_on(info, i, more, max_steps):
     """Orbit ``i`` after an accepted step on its lane: the step counted (``info[i, 1]``);
     True when it goes on (``more`` work left and steps allowed), else False (the lane takes
     the next orbit), with ``MAX_STEPS`` where work was left but no step is."""
+    simd.tune()
     info[i, 1] += 1
     if more:
         if info[i, 1] < max_steps:
