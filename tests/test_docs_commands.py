@@ -160,6 +160,12 @@ HOW: dict[str, Way] = {
         "cli", ("last-torus", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
                 "0.001", "--energy", "1", "--n-convergents", "1"),
         "one convergent, no search in mu", expect=("last-torus.nc",)),
+    "andoyer last-torus --body hess --A 3 --B 1 --C 2 --mu 0.002 --axis 2 --h-values 1,2,3 "
+    "--mu-range 0.01 1 --out mu-c.nc": Way(
+        "cli", ("last-torus", "--body", "hess", "--A", "3", "--B", "1", "--C", "2", "--mu",
+                "0.002", "--axis", "2", "--h-values", "1,2,3", "--mu-range", "0.01", "1",
+                "--n-convergents", "2", "--out", "mu-c.nc"),
+        "two convergents", expect=("mu-c.nc",)),
     "andoyer resonances --max-order 10": Way(
         "cli", ("resonances", "--max-order", "10"), "as written",
         expect=("resonances.nc", "resonances.png")),

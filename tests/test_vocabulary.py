@@ -32,6 +32,7 @@ CLI_ONLY = {
     "--no-limits": "cost guards", "--frames": "animation frames (API t)",
     "--fps": "animation frame rate", "--size": "animation frame side (px)",
     "--debug": "traceback", "--help": "",
+    "--last-torus": "a mu_c(h) curve file (API critical_mu of plot_border)",
 }
 
 #: The API functions each command calls: its flags must be their parameters.
@@ -50,7 +51,8 @@ COMMAND_API = {
                    "andoyer.analysis.resonance.near_centre:resonant_normal_form",
                    "andoyer.analysis.resonance.second_order:island_prediction",
                    "andoyer.analysis.resonance.normal_form:periodic_orbit_normal_form"),
-    "last-torus": ("andoyer.analysis.resonance.residues:last_torus",),
+    "last-torus": ("andoyer.analysis.resonance.residues:last_torus",
+                   "andoyer.analysis.resonance.residues:critical_mu_curve"),
 }
 BODY = {"A", "B", "C", "mu", "epsilon", "r"}
 #: Flags of a command that the command turns into an API argument of another name.

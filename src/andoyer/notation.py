@@ -427,6 +427,7 @@ TERMS: tuple[Term, ...] = (
     Term("axis", "body axis (1 or 2) of the regime of tori"),
     Term("n_convergents", "continued-fraction convergents p/q followed"),
     Term("mu_range", "interval of mu where a critical mu is sought"),
+    Term("h_values", "energy levels h of a curve over the levels (the critical mu's)"),
 )
 
 #: API name -> its term.

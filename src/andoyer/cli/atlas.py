@@ -11,6 +11,30 @@ NAME = "atlas"
 ORDER = 65
 
 
+def _read_curve(path: Any) -> Any:
+    """The mu_c(h) file of ``andoyer last-torus --h-values``, checked (one line naming the
+    file where it is missing, damaged or another file)."""
+    import xarray as xr
+
+    from andoyer.plot.atlas import check_critical_mu
+
+    what = f"--last-torus {str(path)!r}"
+    if not path.is_file():
+        raise ValueError(f"{what}: no such file")
+    try:
+        curve = xr.load_dataset(path)
+    except Exception as exc:   # netCDF4/h5netcdf/scipy each raise their own on damage
+        raise ValueError(f"{what}: not a readable NetCDF file ({type(exc).__name__}); give "
+                         "the file written by andoyer last-torus --h-values") from None
+    if curve.attrs.get("kind") != "critical_mu_curve":
+        raise ValueError(f"{what}: not a mu_c(h) curve (no kind = critical_mu_curve); give "
+                         "the file written by andoyer last-torus --h-values")
+    try:
+        return check_critical_mu(curve)
+    except ValueError as exc:
+        raise ValueError(f"{what}: {exc}") from None
+
+
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -24,7 +48,9 @@ def run(args: argparse.Namespace) -> int:
 
     png = output_file(args.out, ".png", beside=(".pdf",) if args.pdf else ())
     store = Path(args.store)
-    distinct_outputs([png, png.with_suffix(".pdf")], [store])
+    curve_file = Path(args.last_torus) if args.last_torus is not None else None
+    distinct_outputs([png, png.with_suffix(".pdf")],
+                     [store] + ([curve_file] if curve_file is not None else []))
     if not (store / "zarr.json").is_file() and not (store / ".zgroup").is_file():
         raise ValueError(f"{store} is not a Zarr store; give the store written by "
                          "andoyer scan")
@@ -35,8 +61,16 @@ def run(args: argparse.Namespace) -> int:
         if not sep:
             raise ValueError(f"--select {item!r}: write NAME=VALUE, e.g. M_level=0")
         select[name.strip()] = floats(value, 1, f"--select {name}")[0]
-    if ds.attrs.get("scan_task") == "chaos_border" and not args.maps:
-        fig = plot_border(ds, x=args.cols, y=args.rows, select=select, width=args.width)
+    border = ds.attrs.get("scan_task") == "chaos_border" and not args.maps
+    curve = None
+    if curve_file is not None:
+        if not border:
+            raise ValueError("--last-torus draws mu_c(h) on the border of chaos: give a "
+                             "chaos_border store, without --maps")
+        curve = _read_curve(curve_file)
+    if border:
+        fig = plot_border(ds, x=args.cols, y=args.rows, select=select, width=args.width,
+                          critical_mu=curve)
     else:
         fig = plot_atlas(ds, rows=args.rows, cols=args.cols, select=select, width=args.width)
     out = save_figure(fig, png, pdf=args.pdf)
@@ -63,4 +97,8 @@ def register(sub: Any) -> None:
                         "border of chaos (chaotic fraction and layer width)")
     p.add_argument("--width", type=real(positive=True), default=7.0,
                    help="figure width, inches")
+    p.add_argument("--last-torus", default=None, metavar="FILE.nc",
+                   help="draw the critical mu of the last torus, mu_c(h), on the border of "
+                        "chaos (the file of andoyer last-torus --h-values; the panels must "
+                        "be over h_level and mu)")
     p.set_defaults(func=run)

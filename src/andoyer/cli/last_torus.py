@@ -31,12 +31,57 @@ def _head(text: str) -> tuple[int, ...]:
     return out
 
 
+def _levels(text: str) -> tuple[float, ...]:
+    try:
+        out = tuple(float(x) for x in text.replace(" ", ",").split(",") if x)
+    except ValueError:
+        out = ()
+    if not out:
+        raise argparse.ArgumentTypeError(
+            f"--h-values must be energy levels separated by commas (e.g. 0.5,1,2), got "
+            f"{text!r}")
+    return out
+
+
+def _curve(args: argparse.Namespace) -> int:
+    """``--h-values``: the critical mu over the levels (critical_mu_curve), NetCDF + table."""
+    import math
+
+    from andoyer.analysis.resonance.residues import critical_mu_curve
+    from andoyer.io import write_netcdf
+
+    if args.h is not None:
+        raise ValueError("--h-values and --energy: give one (--h-values writes the curve "
+                         "mu_c(h) over its levels)")
+    if args.mu_range is None:
+        raise ValueError("--h-values needs --mu-range MU_LOW MU_HIGH (where mu_c is sought "
+                         "on the first level; scaled by h/h0 on the others)")
+    inputs = inputs_from_args(args, level=False, beside=())
+    out, body = inputs.out, inputs.body
+    ds = critical_mu_curve(body, args.h_values, args.M, mu_range=tuple(args.mu_range),
+                           head=args.head, axis=args.axis, n_convergents=args.n_convergents,
+                           tol=args.tol, engine=args.engine, progress=True)
+    write_netcdf(ds, out)
+    print(f"mu_c(h) of the noble torus W = [0; {ds.attrs['head']}, 1, 1, ...] between the "
+          f"chains {ds.attrs['main_chains']} about axis {ds.attrs['axis']}, M = {args.M:g} "
+          f"({ds.attrs['method']}):")
+    print(f"  {'h':>10} {'mu_c':>12} {'error':>10}")
+    for h, m, e in zip(ds.h_level.values, ds.mu_critical.values, ds.mu_critical_error.values,
+                       strict=True):
+        mc = f"{m:12.6g}" if math.isfinite(m) else f"{chr(45):>12}"
+        print(f"  {h:10.6g} {mc} {e:10.2g}")
+    print(f"wrote {out}")
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
     import math
 
     from andoyer.analysis.resonance.residues import last_torus
     from andoyer.io import write_netcdf
 
+    if args.h_values is not None:
+        return _curve(args)
     inputs = inputs_from_args(args, level=True, beside=())
     out, body, h = inputs.out, inputs.body, inputs.h
     assert h is not None
@@ -94,6 +139,10 @@ def register(sub: Any) -> None:
                   "residues at --mu only)")
     add_term(p, "tol", type=real(), default=1e-13, help="integration tolerance (default "
                                                         "1e-13)")
+    add_term(p, "h_values", type=_levels, default=None, metavar="H1,H2,...",
+             help="instead of --energy: the curve mu_c(h) over these levels (needs "
+                  "--mu-range, for the first level; one computation scaled by h at --M 0, "
+                  "one per level otherwise), for andoyer atlas --last-torus")
     add_engine_args(p, tolerances=False)
     p.add_argument("--out", default="last-torus.nc", help="output NetCDF")
     p.set_defaults(func=run, section="g=0")

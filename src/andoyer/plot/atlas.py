@@ -21,7 +21,7 @@ from andoyer.notation import ANGLES, section_symbol
 from andoyer.plot.section import LABELS, PLANES
 from andoyer.plot.style import angle_ticks, colour_bar, colour_scale, new_figure, paper_style
 
-__all__ = ["plot_atlas", "plot_border", "border_panel", "SYMBOLS"]
+__all__ = ["plot_atlas", "plot_border", "border_panel", "check_critical_mu", "SYMBOLS"]
 
 #: Storage name of a swept parameter -> its symbol (mathtext).
 SYMBOLS = {"mu": r"\mu", "epsilon": r"\epsilon", "h_level": "h", "M_level": "M", "A": "A",
@@ -262,8 +262,97 @@ def _tick_step(cell: float, labels: list[str], vertical: bool) -> int:
     return max(1, int(np.ceil(need / max(cell, 1e-9))))
 
 
+def check_critical_mu(curve: xr.Dataset) -> xr.Dataset:
+    """Check that ``curve`` is a ``mu_c(h)`` curve of
+    :func:`andoyer.analysis.resonance.residues.critical_mu_curve`: ``mu_critical`` (and
+    ``mu_critical_error``) over a strictly increasing ``h_level``. Returns it.
+
+    Parameters
+    ----------
+    curve : xarray.Dataset
+        The curve (or a file's dataset read back).
+
+    Raises
+    ------
+    ValueError
+        Naming what is missing or wrong.
+    """
+    if not isinstance(curve, xr.Dataset):
+        raise ValueError(f"critical_mu must be the dataset of critical_mu_curve, got "
+                         f"{type(curve).__name__}")
+    for name in ("mu_critical", "mu_critical_error"):
+        if name not in curve.data_vars or curve[name].dims != ("h_level",):
+            raise ValueError(f"critical_mu: no {name} over h_level: not a mu_c(h) curve of "
+                             "critical_mu_curve (andoyer last-torus --h-values)")
+    h = np.asarray(curve["h_level"].values, dtype=float)
+    if h.size == 0 or not np.all(np.isfinite(h)) or np.any(np.diff(h) <= 0):
+        raise ValueError("critical_mu: h_level must be finite and strictly increasing")
+    mu = np.asarray(curve["mu_critical"].values, dtype=float)
+    if not np.any(np.isfinite(mu)):
+        raise ValueError("critical_mu: mu_critical is NaN on every level (mu_c not found "
+                         "in its mu_range): nothing to draw")
+    if np.any(mu[np.isfinite(mu)] <= 0):
+        raise ValueError("critical_mu: mu_critical must be > 0")
+    return curve
+
+
+def _cell_coordinate(values: np.ndarray, grid: np.ndarray) -> np.ndarray:
+    """Where ``values`` fall on a heat map whose cell ``i`` is centred on ``grid[i]``:
+    linear between neighbouring grid values (in the logarithm where the grid and the
+    values are > 0, as the swept grids of ``mu`` often are), extended linearly beyond the
+    ends (the axes clip the line there)."""
+    g = np.asarray(grid, dtype=float)
+    v = np.asarray(values, dtype=float)
+    idx = np.arange(g.size, dtype=float)
+    if g.size == 1:
+        return np.where(v == g[0], 0.0, np.nan)
+    order = np.argsort(g)
+    g, idx = g[order], idx[order]
+    if np.all(g > 0) and np.all(v[np.isfinite(v)] > 0):
+        g, v = np.log(g), np.log(np.where(v > 0, v, np.nan))
+    out = np.interp(v, g, idx)
+    lo, hi = v < g[0], v > g[-1]
+    out[lo] = idx[0] + (v[lo] - g[0]) * (idx[1] - idx[0]) / (g[1] - g[0])
+    out[hi] = idx[-1] + (v[hi] - g[-1]) * (idx[-1] - idx[-2]) / (g[-1] - g[-2])
+    return out
+
+
+def _draw_critical_mu(ax: Any, ds: xr.Dataset, curve: xr.Dataset, x: str,
+                      y: str | None) -> Any:
+    """The line ``mu_c(h)`` and its error band on a border panel over ``(h_level, mu)``."""
+    if {x, y} != {"h_level", "mu"}:
+        raise ValueError(f"critical_mu: the mu_c(h) overlay needs a panel over h_level and "
+                         f"mu (either way round), this one is x = {x!r}, y = {y!r}; sweep "
+                         "h and mu in the chaos_border scan, or choose them with --rows "
+                         "and --cols")
+    h = np.asarray(curve["h_level"].values, dtype=float)
+    mu = np.asarray(curve["mu_critical"].values, dtype=float)
+    err = np.asarray(curve["mu_critical_error"].values, dtype=float)
+    hc = _cell_coordinate(h, np.asarray(ds["h_level"].values, dtype=float))
+    mc = _cell_coordinate(mu, np.asarray(ds["mu"].values, dtype=float))
+    label = r"$\mu_c(h)$ (last torus)"
+    limits = ax.get_xlim(), ax.get_ylim()
+    if x == "h_level":
+        (line,) = ax.plot(hc, mc, color="k", lw=1.2, marker="o", ms=2.5, label=label)
+    else:
+        (line,) = ax.plot(mc, hc, color="k", lw=1.2, marker="o", ms=2.5, label=label)
+    ok = np.isfinite(err) & np.isfinite(mu) & (mu - err > 0)
+    if ok.sum() >= 2:
+        grid_mu = np.asarray(ds["mu"].values, dtype=float)
+        lo = _cell_coordinate(mu[ok] - err[ok], grid_mu)
+        hi = _cell_coordinate(mu[ok] + err[ok], grid_mu)
+        if x == "h_level":
+            ax.fill_between(hc[ok], lo, hi, color="k", alpha=0.2, lw=0)
+        else:
+            ax.fill_betweenx(hc[ok], lo, hi, color="k", alpha=0.2, lw=0)
+    ax.set_xlim(*limits[0])
+    ax.set_ylim(*limits[1])
+    return line
+
+
 def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: str,
-                 y: str | None, label: str | None = None, annotate: bool = True) -> Any:
+                 y: str | None, label: str | None = None, annotate: bool = True,
+                 critical_mu: xr.Dataset | None = None) -> Any:
     """One heat map of ``name`` over the swept ``(x, y)`` of a border-of-chaos dataset
     (other dims already selected); the chaotic fraction is annotated with its range under
     ``threshold -+ margin/2`` where the cells leave room for it (the font follows the
@@ -286,6 +375,13 @@ def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: 
         The colour-bar label (default: that of :data:`andoyer.plot.style.SCALES`).
     annotate : bool, default True
         Write the chaotic fraction's range in the cells where it fits.
+    critical_mu : xarray.Dataset, optional
+        A ``mu_c(h)`` curve (:func:`andoyer.analysis.resonance.residues.critical_mu_curve`,
+        checked by :func:`check_critical_mu`), drawn as a black line with its error band
+        ``mu_c -+ mu_critical_error`` where the panel is over ``h_level`` and ``mu``
+        (either way round; a ``ValueError`` on other axes). The line's points lie at the
+        cells' coordinates of ``(h, mu_c)``: linear between neighbouring grid values, in
+        their logarithm.
     """
     dims = (y, x) if y is not None else (x,)
     ok = np.ones(ds["chaotic_fraction"].shape, dtype=bool)
@@ -334,14 +430,35 @@ def border_panel(ax: Any, ds: xr.Dataset, name: str = "chaotic_fraction", *, x: 
                 r, g, b, _ = cmap(norm(v[i, j]))
                 ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize=fontsize,
                         color="k" if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else "w")
+    if critical_mu is not None:
+        _draw_critical_mu(ax, ds, check_critical_mu(critical_mu), x, y)
     if label:
         ax.set_title(label)
     ax.tick_params(labelsize=_TICK_FONT)
     return mesh
 
 
+def _same_problem(curve: xr.Dataset, sub: xr.Dataset) -> None:
+    """The curve's body moments and area constant are those of the atlas (where both
+    say)."""
+    for key in ("body_A", "body_B", "body_C"):
+        a, b = curve.attrs.get(key), sub.attrs.get(key)
+        if isinstance(a, int | float) and isinstance(b, int | float) and not np.isclose(
+                float(a), float(b), rtol=1e-12, atol=0.0):
+            raise ValueError(f"critical_mu: the curve's body has {key[5:]} = {a!r}, the "
+                             f"atlas's {b!r}: not the same body")
+    M_atlas = (float(sub["M_level"].values) if "M_level" in sub.coords and sub["M_level"].ndim == 0
+               else sub.attrs.get("M_level"))
+    M_curve = curve.attrs.get("M")
+    if M_atlas is not None and M_curve is not None and not np.isclose(
+            float(M_atlas), float(M_curve), rtol=0.0, atol=1e-12):
+        raise ValueError(f"critical_mu: the curve is on M = {float(M_curve):g}, the atlas "
+                         f"on M = {float(M_atlas):g}")
+
+
 def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
-                select: Mapping[str, float] | None = None, width: float = 7.0) -> Figure:
+                select: Mapping[str, float] | None = None, width: float = 7.0,
+                critical_mu: xr.Dataset | None = None) -> Figure:
     """The border of chaos: the chaotic fraction and the width of the chaotic layer
     around the former Hess separatrix over two swept parameters (by default
     ``epsilon`` across and ``mu`` up).
@@ -361,6 +478,11 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
         Values of the other swept dims (nearest); default their first value.
     width : float
         Figure width in inches.
+    critical_mu : xarray.Dataset, optional
+        A ``mu_c(h)`` curve of the last torus
+        (:func:`andoyer.analysis.resonance.residues.critical_mu_curve`) drawn on both
+        panels, which must then be over ``h_level`` and ``mu`` (:func:`border_panel`); its
+        body's moments and its ``M`` must be the atlas's.
     """
     swept = _border_dims(ds)
     if x is None:
@@ -375,11 +497,15 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
     sel = dict(select or {})
     fixed = {d: sel.get(d, float(ds[d].values[0])) for d in swept if d not in (x, y)}
     sub = ds.sel(fixed, method="nearest") if fixed else ds
+    if critical_mu is not None:
+        _same_problem(check_critical_mu(critical_mu), sub)
     with paper_style():
         fig = new_figure(1, 2, width=width, aspect=0.8)
         for ax, name in zip(fig.axes[:2], ("chaotic_fraction", "layer_width"), strict=True):
-            mesh = border_panel(ax, sub, name, x=x, y=y)
+            mesh = border_panel(ax, sub, name, x=x, y=y, critical_mu=critical_mu)
             colour_bar(mesh, ax, name, shrink=0.85)
+        if critical_mu is not None:
+            fig.axes[0].legend(loc="best", fontsize=6.5, framealpha=0.8)
         a = ds.attrs
         head = [f"body {a.get('body_name', '?')}: border of chaos (MEGNO > reference + "
                 f"{float(a.get('margin', 1.0)):g})"]

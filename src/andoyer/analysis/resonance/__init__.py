@@ -9,7 +9,8 @@
   (Deprit's triangle) on jets in the action with Fourier coefficients in the angles;
 - :mod:`~andoyer.analysis.resonance.second_order` (``island_prediction``): the chain's
   stable point, width and libration frequency to second order in ``mu`` from it;
-- :mod:`~andoyer.analysis.resonance.residues` (``last_torus``): Greene's residues of the
+- :mod:`~andoyer.analysis.resonance.residues` (``last_torus``, ``critical_mu_curve``):
+  Greene's residues of the
   periodic orbits of a noble torus's convergents and the critical ``mu`` at which it
   breaks, beside the chains' overlap estimate;
 - :mod:`~andoyer.analysis.resonance.measure`: the same half-widths measured on
@@ -56,6 +57,7 @@ if TYPE_CHECKING:
         section_rotation_number as section_rotation_number,
     )
     from andoyer.analysis.resonance.residues import convergents as convergents
+    from andoyer.analysis.resonance.residues import critical_mu_curve as critical_mu_curve
     from andoyer.analysis.resonance.residues import last_torus as last_torus
     from andoyer.analysis.resonance.residues import noble_number as noble_number
     from andoyer.analysis.resonance.second_order import SecondOrderChain as SecondOrderChain
@@ -73,6 +75,7 @@ EXPORTS = {"birkhoff_normal_form": "birkhoff", "normal_form_frequency": "birkhof
            "deprit", "lie_deprit": "deprit", "transform": "deprit", "SecondOrderChain":
            "second_order", "periodic_orbit_normal_form": "normal_form",
            "orbit_rotation_numbers": "normal_form", "last_torus": "residues",
+           "critical_mu_curve": "residues",
            "convergents": "residues", "noble_number": "residues",
            "island_rotation_numbers": "measure"}
 

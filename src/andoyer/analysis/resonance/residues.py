@@ -76,7 +76,10 @@ the chains touch (``s = 1``) at ``mu_overlap = mu / s^2``, an estimate known to 
 
 (G7) Scaling. On ``M = 0`` the level ``h`` and ``mu`` enter only through ``mu / h``
 (``G -> lambda G``, ``t -> t / lambda`` maps ``(h, mu)`` to ``(lambda^2 h, lambda^2 mu)``):
-``mu_c(h) = h mu_c(1)``, a check of the computation (tests), not used by it.
+``mu_c(h) = h mu_c(1)``: :func:`last_torus` does not use it (the tests check it), and
+:func:`critical_mu_curve` computes one level and scales the others by it. On ``M != 0``
+the area scales too, ``(h, M, mu) -> (lambda^2 h, lambda M, lambda^2 mu)``: at a fixed
+``M`` every level is its own problem.
 
 References
 ----------
@@ -92,7 +95,7 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -115,8 +118,8 @@ from andoyer.integrate.results import describe_variables, provenance
 from andoyer.progress import Progress
 from andoyer.validation import integer, positive
 
-__all__ = ["last_torus", "convergents", "noble_number", "THRESHOLD",
-           "MAX_PERIOD", "MAX_CONVERGENTS"]
+__all__ = ["last_torus", "critical_mu_curve", "convergents", "noble_number", "THRESHOLD",
+           "MAX_PERIOD", "MAX_CONVERGENTS", "MAX_LEVELS"]
 
 #: Greene's threshold: the residue of the critical torus's convergents tends to ~1/4 (G5).
 THRESHOLD = 0.25
@@ -497,6 +500,89 @@ _META = {
 }
 
 
+class _Plan(NamedTuple):
+    """The checked inputs of one level of :func:`last_torus`, its main chains and its
+    estimated cost (integration steps)."""
+
+    h: float
+    M: float
+    quotients: tuple[int, ...]
+    axis: int
+    n_convergents: int
+    tolerance: Tolerance
+    mus: tuple[float, float] | None
+    conv: list[tuple[int, int]]
+    eng: EngineBase
+    chains: list[ResonantChain]
+    s: float
+    mu_overlap: float
+    band: tuple[float, float]
+    evaluations: int
+    period: float
+    steps: float
+
+
+def _plan(body: RigidBody, h: float, M: float, head: Any, axis: Any, n_convergents: Any,
+          mu_range: Any, tol: float, engine: EngineLike) -> _Plan:
+    """Check the inputs of :func:`last_torus` on one level (errors naming the argument),
+    find the two main chains (G6) and estimate the cost, before any orbit is integrated."""
+    h, M, _ = check_level_args(body, h, M, 2)
+    quotients = _head(head)
+    axis = integer("axis", axis, 1, 2)
+    n_convergents = integer("n_convergents", n_convergents, 1, MAX_CONVERGENTS)
+    tolerance = Tolerance.single(tol)
+    if not body.mu > 0.0:
+        raise ValueError("last_torus needs mu > 0: at mu = 0 every torus exists (every "
+                         "residue is 0)")
+    if body.e3 != 0.0:
+        raise ValueError(f"last_torus needs the centre of mass in the body plane Oxy "
+                         f"(e3 = 0, the symmetry of its search), got e3 = {body.e3!r}")
+    mus = None
+    if mu_range is not None:
+        if (not isinstance(mu_range, Sequence) or isinstance(mu_range, str)
+                or len(mu_range) != 2):
+            raise ValueError(f"mu_range must be (mu_low, mu_high), got {mu_range!r}")
+        lo, hi = (positive("mu_range", v) for v in mu_range)
+        if not lo < hi:
+            raise ValueError(f"mu_range must have mu_low < mu_high, got {mu_range!r}")
+        if hi > 1e3 * max(h, 1e-12):
+            raise ValueError(f"mu_range: mu_high = {hi!r} is over 1000 h (the level is "
+                             f"then the bottom of the potential well)")
+        mus = (lo, hi)
+    n = quotients[0]
+    conv = [(p, q) for p, q in convergents(quotients, n_convergents + 8)
+            if q > n + 1][:n_convergents]
+    if conv[-1][1] > MAX_PERIOD:
+        raise ValueError(f"n_convergents = {n_convergents}: the last convergent has period "
+                         f"q = {conv[-1][1]} > MAX_PERIOD = {MAX_PERIOD}; ask for fewer")
+    eng = resolve_engine(engine, Capability.TANGENT_CROSSINGS)
+    tolerance = eng.attainable(tolerance)
+    # the two main chains and their first-order widths (G6)
+    where = (f"head = {quotients!r}: the main chains {n}:1 and {n + 1}:1 on h = {h!r}, "
+             f"M = {M!r} about axis {axis}")
+    try:
+        rows = [r for r in resonant_rows(body, h, M, n + 2) if r["p"] == 1
+                and r["q"] in (n, n + 1) and r["axis"] == axis and r["sign"] == 1]
+        if len(rows) != 2:
+            raise ValueError("they are not both on the level")
+        sec = Section("g", 0.0, 1)
+        chains = [ResonantChain(body, h, M, r, sec) for r in rows]
+    except ValueError as exc:           # absent, or too near the separatrix to sample
+        raise ValueError(f"{where}: {exc}") from None
+    s = (chains[0].dG + chains[1].dG) / abs(chains[0].torus.G - chains[1].torus.G)
+    mu_overlap = body.mu / s**2
+    band = (1.0 / (n + 1), 1.0 / n)
+    # cost: every half orbit of every evaluation, and the tangent flows (7x a state)
+    returns = sum(q * (2 * _EVALUATIONS / 2 + 2 * 7) for _, q in conv)
+    evaluations = 1 + (_MU_EVALUATIONS if mus is not None else 0)
+    period = 2 * math.pi / chains[0].torus.omega_g
+    y_probe = chains[0].states(np.array([0.0]))
+    y_probe = np.concatenate([y_probe[0], [0.0, 0.0, 1.0]])[None]
+    steps = budget.estimate_steps(body, y_probe, returns * evaluations * period, tolerance.tol)
+    return _Plan(h, M, quotients, axis, n_convergents, tolerance, mus, conv, eng, chains, s,
+                 mu_overlap, band, evaluations, period, steps)
+
+
 @checks_body(ranges={"h": "energy", "M": "action", "tol": "tolerance"})
 def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int] = (2,),
                axis: int = 1, n_convergents: int = 6,
@@ -571,61 +657,13 @@ def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int]
     >>> bool(ds.residue_elliptic[1] < ds.residue_elliptic[0])   # the torus exists
     True
     """
-    h, M, _ = check_level_args(body, h, M, 2)
-    quotients = _head(head)
-    axis = integer("axis", axis, 1, 2)
-    n_convergents = integer("n_convergents", n_convergents, 1, MAX_CONVERGENTS)
-    tolerance = Tolerance.single(tol)
-    if not body.mu > 0.0:
-        raise ValueError("last_torus needs mu > 0: at mu = 0 every torus exists (every "
-                         "residue is 0)")
-    if body.e3 != 0.0:
-        raise ValueError(f"last_torus needs the centre of mass in the body plane Oxy "
-                         f"(e3 = 0, the symmetry of its search), got e3 = {body.e3!r}")
-    mus = None
-    if mu_range is not None:
-        if (not isinstance(mu_range, Sequence) or isinstance(mu_range, str)
-                or len(mu_range) != 2):
-            raise ValueError(f"mu_range must be (mu_low, mu_high), got {mu_range!r}")
-        lo, hi = (positive("mu_range", v) for v in mu_range)
-        if not lo < hi:
-            raise ValueError(f"mu_range must have mu_low < mu_high, got {mu_range!r}")
-        if hi > 1e3 * max(h, 1e-12):
-            raise ValueError(f"mu_range: mu_high = {hi!r} is over 1000 h (the level is "
-                             f"then the bottom of the potential well)")
-        mus = (lo, hi)
-    n = quotients[0]
-    conv = [(p, q) for p, q in convergents(quotients, n_convergents + 8)
-            if q > n + 1][:n_convergents]
-    if conv[-1][1] > MAX_PERIOD:
-        raise ValueError(f"n_convergents = {n_convergents}: the last convergent has period "
-                         f"q = {conv[-1][1]} > MAX_PERIOD = {MAX_PERIOD}; ask for fewer")
-    eng = resolve_engine(engine, Capability.TANGENT_CROSSINGS)
-    tolerance = eng.attainable(tolerance)
-    # the two main chains and their first-order widths (G6)
-    where = (f"head = {quotients!r}: the main chains {n}:1 and {n + 1}:1 on h = {h!r}, "
-             f"M = {M!r} about axis {axis}")
-    try:
-        rows = [r for r in resonant_rows(body, h, M, n + 2) if r["p"] == 1
-                and r["q"] in (n, n + 1) and r["axis"] == axis and r["sign"] == 1]
-        if len(rows) != 2:
-            raise ValueError("they are not both on the level")
-        sec = Section("g", 0.0, 1)
-        chains = [ResonantChain(body, h, M, r, sec) for r in rows]
-    except ValueError as exc:           # absent, or too near the separatrix to sample
-        raise ValueError(f"{where}: {exc}") from None
-    s = (chains[0].dG + chains[1].dG) / abs(chains[0].torus.G - chains[1].torus.G)
-    mu_overlap = body.mu / s**2
-    band = (1.0 / (n + 1), 1.0 / n)
-    # cost: every half orbit of every evaluation, and the tangent flows (7x a state)
-    returns = sum(q * (2 * _EVALUATIONS / 2 + 2 * 7) for _, q in conv)
-    evaluations = 1 + (_MU_EVALUATIONS if mus is not None else 0)
-    period = 2 * math.pi / chains[0].torus.omega_g
-    y_probe = chains[0].states(np.array([0.0]))
-    y_probe = np.concatenate([y_probe[0], [0.0, 0.0, 1.0]])[None]
+    plan = _plan(body, h, M, head, axis, n_convergents, mu_range, tol, engine)
     budget.check(f"last_torus (n_convergents = {n_convergents}, mu_range = {mu_range!r})",
-                 steps=budget.estimate_steps(body, y_probe, returns * evaluations * period,
-                                             tolerance.tol))
+                 steps=plan.steps)
+    h, M, quotients, axis, tolerance, mus = (plan.h, plan.M, plan.quotients, plan.axis,
+                                             plan.tolerance, plan.mus)
+    conv, eng, s, mu_overlap, band = plan.conv, plan.eng, plan.s, plan.mu_overlap, plan.band
+    evaluations, period, n = plan.evaluations, plan.period, plan.quotients[0]
     bar = Progress(len(conv) * evaluations, f"last torus W = [0; {', '.join(map(str, quotients))}"
                    ", 1, ...]", progress)
     cols: dict[str, list[float]] = {k: [] for k in (
@@ -696,6 +734,172 @@ def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int]
                                                "(G3)"),
                             "found_hyperbolic": ("", "the hyperbolic orbit was found", "1",
                                                  "(G3)")})
+    return ds
+
+
+#: Most energy levels :func:`critical_mu_curve` computes one by one (``M != 0``).
+MAX_LEVELS = 24
+
+_CURVE_META = {
+    "mu_critical": ("\\mu_c", "critical mu of the noble torus on the level h: the last "
+                    "torus of its rotation number breaks", "1", "(G5), (G7)"),
+    "mu_critical_error": ("", "|mu_c(q_j) - mu_c(q_{j-1})| of the last two convergents "
+                          "found on the level", "1", "(G5), (G7)"),
+    "h_level": ("h", "energy level H = h", "1", "(1)"),
+}
+
+
+def _levels(h_values: Any) -> NDArray[np.float64]:
+    try:
+        hs = np.atleast_1d(np.asarray(h_values, dtype=float))
+    except (TypeError, ValueError):
+        raise ValueError(f"h_values must be energy levels h > 0, got {h_values!r}") from None
+    if hs.ndim != 1 or hs.size == 0:
+        raise ValueError(f"h_values must be a sequence of energy levels h > 0, got "
+                         f"{h_values!r}")
+    if not np.all(np.isfinite(hs)) or not np.all(hs > 0.0):
+        raise ValueError(f"h_values must be finite levels h > 0, got {h_values!r}")
+    if np.any(np.diff(hs) <= 0.0):
+        raise ValueError(f"h_values must increase strictly (one value per level), got "
+                         f"{h_values!r}")
+    return hs
+
+
+@checks_body(ranges={"M": "action"})
+def critical_mu_curve(body: RigidBody, h_values: Sequence[float], M: float = 0.0, *,
+                      mu_range: tuple[float, float], progress: bool | None = None,
+                      **last_torus_kwargs: Any) -> xr.Dataset:
+    r"""The critical ``mu`` of a noble torus as a function of the energy level,
+    ``mu_c(h)`` (G5), (G7): the atlas's overlay of the last torus.
+
+    On ``M = 0`` the scaling ``G -> lambda G``, ``t -> t / lambda`` maps the level
+    ``(h, mu)`` onto ``(lambda^2 h, lambda^2 mu)`` (G7), so
+
+    .. math::
+
+        \mu_c(h) = \mu_c(h_0) \, h / h_0
+
+    exactly: :func:`last_torus` runs once, on ``h_0 = h_values[0]``, and the others are
+    scaled (``method = "scaled"``). On ``M != 0`` the area scales too,
+    ``(h, M, mu) -> (lambda^2 h, lambda M, lambda^2 mu)``, so a fixed ``M`` is another
+    problem on every level: :func:`last_torus` runs on each (``method = "per_level"``),
+    at most :data:`MAX_LEVELS` of them, after the cost of all of them has been checked
+    (:mod:`andoyer.integrate.budget`).
+
+    Parameters
+    ----------
+    body : RigidBody
+        As for :func:`last_torus`; its ``mu`` (> 0) is the one of ``h_values[0]``, scaled
+        by ``h / h_0`` on the other levels (where the residues at the body's ``mu`` and
+        the overlap estimate are taken).
+    h_values : sequence of float
+        The energy levels (> 0, strictly increasing).
+    M : float
+        The area constant, the same on every level.
+    mu_range : (float, float)
+        ``(mu_low, mu_high)`` where ``mu_c`` is sought on ``h_values[0]``; on the other
+        levels scaled by ``h / h_0`` (exact on ``M = 0``, a guess elsewhere).
+    progress : bool, optional
+        A progress bar over the levels (default: on a terminal).
+    **last_torus_kwargs
+        ``head``, ``axis``, ``n_convergents``, ``tol``, ``engine`` of :func:`last_torus`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``h_level``: ``mu_critical`` and ``mu_critical_error`` (NaN where ``mu_c`` was
+        not found in the level's ``mu_range``). Attrs: ``method`` (``scaled`` or
+        ``per_level``), ``reference_level`` (``h_0``), ``rotation_number``, ``head``,
+        ``main_chains``, ``axis``, ``mu_range``, ``M``, ``threshold``, the provenance.
+
+    Examples
+    --------
+    On ``M = 0`` nothing is integrated beyond the first level (here replaced by a known
+    result, so that the example runs in no time):
+
+    >>> from unittest import mock
+    >>> import xarray as xr
+    >>> from andoyer import RigidBody
+    >>> from andoyer.analysis.resonance import residues
+    >>> one = xr.Dataset({"mu_critical": 0.0551, "mu_critical_error": 0.006},
+    ...                  attrs={"rotation_number": 0.382, "head": "2",
+    ...                         "main_chains": "2:1, 3:1", "tolerance": 1e-13,
+    ...                         "engine": "heyoka"})
+    >>> body = RigidBody.hess(3.0, 1.0, 2.0, mu=2e-3)
+    >>> with mock.patch.object(residues, "last_torus", return_value=one):
+    ...     curve = residues.critical_mu_curve(body, [1.0, 2.0], mu_range=(0.01, 1.0),
+    ...                                        axis=2, progress=False)
+    >>> curve.mu_critical.values.round(4).tolist(), curve.attrs["method"]
+    ([0.0551, 0.1102], 'scaled')
+    """
+    hs = _levels(h_values)
+    if not isinstance(M, int | float | np.floating | np.integer) or not math.isfinite(M):
+        raise ValueError(f"M must be a finite number, got {M!r}")
+    unknown = sorted(set(last_torus_kwargs) - {"head", "axis", "n_convergents", "tol",
+                                                "engine"})
+    if unknown:
+        raise TypeError(f"critical_mu_curve: unexpected keyword argument {unknown[0]!r} "
+                        "(last_torus's head, axis, n_convergents, tol, engine are passed on)")
+    h0 = float(hs[0])
+    scaled = float(M) == 0.0
+    runs = [h0] if scaled else [float(h) for h in hs]
+    if len(runs) > MAX_LEVELS:
+        raise ValueError(f"h_values: {len(runs)} levels at M = {M!r} (each its own "
+                         f"last_torus, tens of seconds or more) > MAX_LEVELS = {MAX_LEVELS}; "
+                         "ask for fewer")
+    opts = {"head": (2,), "axis": 1, "n_convergents": 6, "tol": 1e-13, "engine": None,
+            **last_torus_kwargs}
+    if (not isinstance(mu_range, Sequence) or isinstance(mu_range, str)
+            or len(mu_range) != 2):
+        raise ValueError(f"mu_range must be (mu_low, mu_high), got {mu_range!r}")
+
+    def at(h: float) -> tuple[RigidBody, tuple[float, float]]:
+        k = h / h0
+        return body.with_mu(body.mu * k), (mu_range[0] * k, mu_range[1] * k)
+
+    # every level checked and costed before any orbit is integrated
+    steps = 0.0
+    for h in runs:
+        b, mr = at(h)
+        steps += _plan(b, h, M, opts["head"], opts["axis"], opts["n_convergents"], mr,
+                       opts["tol"], opts["engine"]).steps
+    budget.check(f"critical_mu_curve ({len(runs)} level(s) of last_torus, n_convergents = "
+                 f"{opts['n_convergents']}, mu_range = {mu_range!r})", steps=steps)
+    bar = Progress(len(runs), "mu_c(h)", progress)
+    results = []
+    try:
+        for h in runs:
+            b, mr = at(h)
+            results.append(last_torus(b, h, M, mu_range=mr, progress=False, **opts))
+            bar.update(1)
+    finally:
+        bar.close()
+    if scaled:
+        ref = results[0]
+        k = hs / h0
+        mu_c = float(ref.mu_critical) * k
+        err = float(ref.mu_critical_error) * k
+        method = ("scaled: last_torus on the reference level h_0 = h_values[0], "
+                  "mu_c(h) = mu_c(h_0) h / h_0 on M = 0 (G7)")
+    else:
+        ref = results[0]
+        mu_c = np.array([float(r.mu_critical) for r in results])
+        err = np.array([float(r.mu_critical_error) for r in results])
+        method = "per_level: one last_torus on each level (M != 0: no scaling at fixed M)"
+    a = ref.attrs
+    ds = xr.Dataset(
+        {"mu_critical": ("h_level", np.asarray(mu_c, dtype=float)),
+         "mu_critical_error": ("h_level", np.asarray(err, dtype=float))},
+        coords={"h_level": hs},
+        attrs=provenance(
+            body, M=float(M), reference_level=h0, rotation_number=a.get("rotation_number"),
+            head=a.get("head"), main_chains=a.get("main_chains"),
+            axis=int(opts["axis"]), threshold=THRESHOLD, tolerance=a.get("tolerance"),
+            engine=a.get("engine"), mu_range=f"{mu_range[0]!r}, {mu_range[1]!r}",
+            method=method.split(":")[0], method_description=method,
+            kind="critical_mu_curve",
+            derivation="andoyer.analysis.resonance.residues (G5), (G7)"))
+    describe_variables(ds, _CURVE_META)
     return ds
 
 
