@@ -475,34 +475,39 @@ def w6(sizes: W.Sizes) -> list[Row]:
 
 # ----------------------------------------------------------------------------- W7
 
-#: The lane counts W7 compares (each in a fresh process, ``ANDOYER_LANES``).
-WIDTHS = (4, 8)
+#: The lane kernels W7 compares, each in a fresh process: (runner, lane count, more
+#: environment). ``NUMBA_CPU_NAME=haswell`` compiles for an AVX2 CPU (no AVX-512) on this
+#: machine; the last is the reference of the differences.
+WIDTHS: tuple[tuple[str, int, dict[str, str]], ...] = (
+    ("4 lanes", 4, {}), ("4 lanes, AVX2 target (haswell)", 4, {"NUMBA_CPU_NAME": "haswell"}),
+    ("8 lanes", 8, {}))
 
 
 def w7(sizes: W.Sizes) -> list[Row]:
-    """The lane kernels at 4 and at 8 lanes (``benchmarks/lane_width.py``, a fresh process
-    each with ``ANDOYER_LANES`` set, one thread): ns per orbit-step of the bare lane flow
-    and of a G3 = 0 section, and the largest difference of their results from 8 lanes'
-    (end states of the flow, crossing times; relative to 1 + |x|)."""
+    """The lane kernels at 4 and at 8 lanes, and at 4 compiled for an AVX2 CPU
+    (:data:`WIDTHS`; ``benchmarks/lane_width.py``, a fresh process each with
+    ``ANDOYER_LANES`` set, one thread): ns per orbit-step of the bare lane flow and of a
+    G3 = 0 section, and the largest difference of their results from 8 lanes' (end states
+    of the flow, crossing times; relative to 1 + |x|)."""
     from benchmarks import lane_width
 
     n, N, t_end = sizes.lanes
     res = {}
-    for width in WIDTHS:
-        _say(f"W7 {width} lanes (fresh process) ...")
-        res[width] = lane_width.run(width, n, N, t_end, sizes.repeat)
+    for runner, width, env in WIDTHS:
+        _say(f"W7 {runner} (fresh process) ...")
+        res[runner] = lane_width.run(width, n, N, t_end, sizes.repeat, env=env)
     case = (f"lane kernels, {n} orbits to t = {t_end:g} (flow; G3 = 0 up to {N} crossings), "
             "one thread, CPU time")
-    ref = res[WIDTHS[-1]]
+    ref = res[WIDTHS[-1][0]]
     rows = []
-    for width, r in res.items():
+    for runner, r in res.items():
         diff = {}
         for key in ("flow_end", "crossing_t"):
             a, b = np.asarray(r[key]), np.asarray(ref[key])
             diff[key] = float(np.max(np.abs(a - b) / (1.0 + np.abs(b))))
         cpu = r["cpu_s"]["flow"] + r["cpu_s"]["G3"]
-        rows.append(Row("W7", case, f"{width} lanes", cpu, cpu, [cpu],
-                        note=f"tuning {r['tuning']}",
+        rows.append(Row("W7", case, runner, cpu, cpu, [cpu],
+                        note=f"tuning: {r['tuning'] or 'the target CPU'}",
                         extra={"lanes": r["lanes"], "ns_per_orbit_step": r["ns_per_orbit_step"],
                                "steps": r["steps"], "steps_equal": r["steps"] == ref["steps"],
                                "diff_from_8": diff, "load": r["load"]}))
@@ -705,17 +710,21 @@ def targets_36(rows: list[Row]) -> list[dict[str, Any]]:
                 add(f"W3 {case}: default (andoyer {engine}) / hand-written heyoka ensemble "
                     "<= 0.7", x, 0.7, x <= 0.7)
     # lane widths: per-lane cost within 10 %, results equal to round-off
-    w7 = {r.extra["lanes"]: r for r in rows if r.workload == "W7"}
-    if len(w7) == 2:
-        a, b = (w7[k].extra for k in sorted(w7))
-        for kernel in ("flow", "G3"):
-            x = a["ns_per_orbit_step"][kernel] / b["ns_per_orbit_step"][kernel]
-            add(f"W7 {kernel}: ns per orbit-step, {min(w7)} lanes / {max(w7)} lanes within "
-                "10 % (max(x, 1/x))", max(x, 1 / x), 1.1, max(x, 1 / x) <= 1.1)
-        diff = [max(r.extra["diff_from_8"].values()) for r in w7.values()]
-        add(f"W7: results at {min(w7)} and {max(w7)} lanes equal to round-off (steps equal, "
-            "largest relative difference of end states and crossing times)", max(diff),
-            1e-11, all(r.extra["steps_equal"] for r in w7.values()) and max(diff) < 1e-11)
+    w7 = [r for r in rows if r.workload == "W7"]
+    eight = next((r for r in w7 if r.extra["lanes"] == 8), None)
+    if eight is not None and len(w7) > 1:
+        for r in w7:
+            if r is eight:
+                continue
+            for kernel in ("flow", "G3"):
+                x = (r.extra["ns_per_orbit_step"][kernel]
+                     / eight.extra["ns_per_orbit_step"][kernel])
+                add(f"W7 {kernel}: ns per orbit-step, {r.runner} / {eight.runner} within 10 % "
+                    "(max(x, 1/x))", max(x, 1 / x), 1.1, max(x, 1 / x) <= 1.1)
+        diff = [max(r.extra["diff_from_8"].values()) for r in w7]
+        add("W7: results equal to round-off across the lane kernels (steps equal, largest "
+            "relative difference of end states and crossing times from 8 lanes')", max(diff),
+            1e-11, all(r.extra["steps_equal"] for r in w7) and max(diff) < 1e-11)
     paper = next((r for r in rows if r.workload == "W5" and r.runner == DEFAULT), None)
     if paper is not None:
         add("W5: andoyer paper, warm caches, <= 15 s (issue 36)", paper.wall_s, 15.0,
@@ -834,14 +843,15 @@ def cost_tables(rows: list[Row]) -> list[str]:
     if w7:
         lines += [f"## W7: lane widths: {w7[0].case}", "",
                   "Each lane count in a fresh process (`ANDOYER_LANES`, "
-                  "`benchmarks/lane_width.py`), median CPU time; differences relative to "
+                  "`benchmarks/lane_width.py`; the AVX2 row compiled for a Haswell CPU, "
+                  "`NUMBA_CPU_NAME=haswell`), median CPU time; differences relative to "
                   "1 + |x|, from 8 lanes' results.", "",
-                  "| lanes | flow ns per orbit-step | G3 section ns per orbit-step | "
+                  "| lane kernels | flow ns per orbit-step | G3 section ns per orbit-step | "
                   "steps equal | flow end states differ by | crossing times differ by | "
                   "load | note |", "|---|---|---|---|---|---|---|---|"]
         for r in w7:
             e = r.extra
-            lines.append(f"| {e['lanes']} | {e['ns_per_orbit_step']['flow']:.0f} | "
+            lines.append(f"| {r.runner} | {e['ns_per_orbit_step']['flow']:.0f} | "
                          f"{e['ns_per_orbit_step']['G3']:.0f} | {e['steps_equal']} | "
                          f"{_fmt(e['diff_from_8']['flow_end'])} | "
                          f"{_fmt(e['diff_from_8']['crossing_t'])} | "

@@ -4,7 +4,8 @@ count, measured in a process of its own.
 The lane count is fixed when the lane kernels are compiled
 (:func:`andoyer.kernels.simd.lane_width`: ``ANDOYER_LANES``, else the CPU's vector
 width), so each width runs in a fresh process with the variable set (:func:`run`, which
-the harness calls for 4 and 8 lanes). In that process, on one thread, after one untimed
+the harness calls for 4 and 8 lanes, and for 4 compiled for an AVX2 CPU with
+``NUMBA_CPU_NAME=haswell``). In that process, on one thread, after one untimed
 warm-up run each, interleaved for ``--repeat`` rounds (median CPU time,
 ``time.process_time``):
 
@@ -81,14 +82,12 @@ def measure(n: int, N: int, t_end: float, repeat: int) -> dict[str, Any]:
 
 
 def run(width: int, n: int, N: int, t_end: float, repeat: int,
-        tune: str | None = None) -> dict[str, Any]:
-    """:func:`measure` in a fresh process with ``ANDOYER_LANES=width`` (and
-    ``ANDOYER_LANE_TUNE=tune`` if given)."""
+        env: dict[str, str] | None = None) -> dict[str, Any]:
+    """:func:`measure` in a fresh process with ``ANDOYER_LANES=width`` and the variables
+    ``env`` (``ANDOYER_LANE_TUNE``, ``NUMBA_CPU_NAME`` ...) set."""
     from andoyer.kernels import simd
 
-    env = {**os.environ, simd.LANES_ENV: str(width)}
-    if tune is not None:
-        env[simd.TUNE_ENV] = tune
+    env = {**os.environ, **(env or {}), simd.LANES_ENV: str(width)}
     out = subprocess.run([sys.executable, "-m", "benchmarks.lane_width", "--orbits", str(n),
                           "--crossings", str(N), "--t-end", str(t_end), "--repeat",
                           str(repeat)], env=env, capture_output=True, text=True, check=True,

@@ -38,7 +38,7 @@ class Sizes:
     w3_big: int = 256  # the large map (timed once against the hand-written ensemble; 0: none)
     w2_small: tuple[int, int] = (20, 400)  # W2 G3, taylor against heyoka, beside 50 x 1000
     cost: tuple[int, int] = (16, 300)  # W6: orbits, theta2 crossings fixing the span
-    lanes: tuple[int, int, float] = (64, 200, 300.0)  # W7: orbits, G3 crossings, t_end
+    lanes: tuple[int, int, float] = (256, 1000, 1000.0)  # W7: orbits, G3 crossings, t_end
     repeat: int = 5
     tol: float = 1e-12
 
