@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from _figures import overlapping_texts
 from andoyer.plot.atlas import _cell_coordinate, border_panel, check_critical_mu, plot_border
 
 
@@ -61,6 +62,7 @@ def test_the_line_is_the_curve_either_way_round(dims):
         assert len(ax.collections) == 2          # the mesh and the error band
     assert panels[0].get_legend() is not None
     assert "mu_c(h)" in panels[0].get_legend().get_texts()[0].get_text()
+    assert overlapping_texts(fig) == []      # the legend sits above the cells' numbers
 
 
 def test_nan_levels_break_the_line():

@@ -14,6 +14,7 @@ from typing import Any
 import matplotlib as mpl
 import numpy as np
 import xarray as xr
+from matplotlib import patheffects
 from matplotlib.figure import Figure
 
 from andoyer.analysis.chaos.registry import MAP_INDICATORS
@@ -332,10 +333,13 @@ def _draw_critical_mu(ax: Any, ds: xr.Dataset, curve: xr.Dataset, x: str,
     mc = _cell_coordinate(mu, np.asarray(ds["mu"].values, dtype=float))
     label = r"$\mu_c(h)$ (last torus)"
     limits = ax.get_xlim(), ax.get_ylim()
+    # black with a white edge: visible on the pale and the dark cells alike
+    style = {"color": "k", "lw": 1.2, "marker": "o", "ms": 2.5, "label": label,
+             "path_effects": [patheffects.withStroke(linewidth=2.6, foreground="w")]}
     if x == "h_level":
-        (line,) = ax.plot(hc, mc, color="k", lw=1.2, marker="o", ms=2.5, label=label)
+        (line,) = ax.plot(hc, mc, **style)
     else:
-        (line,) = ax.plot(mc, hc, color="k", lw=1.2, marker="o", ms=2.5, label=label)
+        (line,) = ax.plot(mc, hc, **style)
     ok = np.isfinite(err) & np.isfinite(mu) & (mu - err > 0)
     if ok.sum() >= 2:
         grid_mu = np.asarray(ds["mu"].values, dtype=float)
@@ -505,7 +509,9 @@ def plot_border(ds: xr.Dataset, *, x: str | None = None, y: str | None = None,
             mesh = border_panel(ax, sub, name, x=x, y=y, critical_mu=critical_mu)
             colour_bar(mesh, ax, name, shrink=0.85)
         if critical_mu is not None:
-            fig.axes[0].legend(loc="best", fontsize=6.5, framealpha=0.8)
+            # above the cells, not over their annotations
+            fig.axes[0].legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=6.5,
+                               frameon=False, borderaxespad=0.2)
         a = ds.attrs
         head = [f"body {a.get('body_name', '?')}: border of chaos (MEGNO > reference + "
                 f"{float(a.get('margin', 1.0)):g})"]
