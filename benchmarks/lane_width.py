@@ -4,8 +4,8 @@ count, measured in a process of its own.
 The lane count is fixed when the lane kernels are compiled
 (:func:`andoyer.kernels.simd.lane_width`: ``ANDOYER_LANES``, else the CPU's vector
 width), so each width runs in a fresh process with the variable set (:func:`run`, which
-the harness calls for 4 and 8 lanes, and for 4 compiled for an AVX2 CPU with
-``NUMBA_CPU_NAME=haswell``). In that process, on one thread, after one untimed
+the harness calls for 4 and 8 lanes, and for 4 compiled for an AVX2 CPU,
+:func:`avx2_environment`). In that process, on one thread, after one untimed
 warm-up run each, interleaved for ``--repeat`` rounds (median CPU time,
 ``time.process_time``):
 
@@ -79,6 +79,22 @@ def measure(n: int, N: int, t_end: float, repeat: int) -> dict[str, Any]:
                                   for k, v in cpu.items()},
             "flow_end": out["flow"][0][:, -1, :6].tolist(),
             "crossing_t": np.where(np.isfinite(out["G3"][0]), out["G3"][0], -1.0).tolist()}
+
+
+#: CPU features an AVX2 machine lacks (AVX-512 and its successors).
+WIDER = ("avx512", "avx10", "evex512", "amx")
+
+
+def avx2_environment() -> dict[str, str]:
+    """The variables that make Numba compile for an AVX2 CPU on this machine: a Haswell
+    (``NUMBA_CPU_NAME``) with the host's features but AVX-512's (:data:`WIDER`) turned off
+    (``NUMBA_CPU_FEATURES``; the name alone keeps the host's features)."""
+    import llvmlite.binding as ll
+
+    features = ll.get_host_cpu_features()
+    flags = ",".join(("+" if on and not name.startswith(WIDER) else "-") + name
+                     for name, on in sorted(features.items()))
+    return {"NUMBA_CPU_NAME": "haswell", "NUMBA_CPU_FEATURES": flags}
 
 
 def run(width: int, n: int, N: int, t_end: float, repeat: int,
