@@ -76,6 +76,10 @@ def test_bad_options_are_refused_by_name():
         critical_mu_curve(HESS, [1.0], mu_range=(0.01,), progress=False)
     with pytest.raises(ValueError, match="mu_range"):
         critical_mu_curve(HESS, [1.0], mu_range=(1.0, 0.01), progress=False)
+    with pytest.raises(ValueError, match="mu_range"):
+        critical_mu_curve(HESS, [1.0], mu_range=("a", "b"), progress=False)
+    with pytest.raises(ValueError, match="h_values.*energy level"):
+        critical_mu_curve(HESS, [1.0, 1e300], mu_range=(0.01, 1.0), progress=False)
     with pytest.raises(TypeError, match="mu_range"):
         critical_mu_curve(HESS, [1.0], progress=False)          # required
     with pytest.raises(TypeError, match="'h'"):

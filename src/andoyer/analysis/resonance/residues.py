@@ -750,6 +750,9 @@ _CURVE_META = {
 
 
 def _levels(h_values: Any) -> NDArray[np.float64]:
+    if isinstance(h_values, bool | str | bytes) or h_values is None:
+        raise ValueError(f"h_values must be a sequence of energy levels h > 0, got "
+                         f"{h_values!r}")
     try:
         hs = np.atleast_1d(np.asarray(h_values, dtype=float))
     except (TypeError, ValueError):
@@ -833,6 +836,8 @@ def critical_mu_curve(body: RigidBody, h_values: Sequence[float], M: float = 0.0
     ([0.0551, 0.1102], 'scaled')
     """
     hs = _levels(h_values)
+    for h in hs:                  # every level, the scaled ones too, within the integrators'
+        budget.check_level(body, float(h), "h_values")
     if not isinstance(M, int | float | np.floating | np.integer) or not math.isfinite(M):
         raise ValueError(f"M must be a finite number, got {M!r}")
     unknown = sorted(set(last_torus_kwargs) - {"head", "axis", "n_convergents", "tol",
@@ -852,6 +857,10 @@ def critical_mu_curve(body: RigidBody, h_values: Sequence[float], M: float = 0.0
     if (not isinstance(mu_range, Sequence) or isinstance(mu_range, str)
             or len(mu_range) != 2):
         raise ValueError(f"mu_range must be (mu_low, mu_high), got {mu_range!r}")
+    if any(isinstance(v, bool) or not isinstance(v, int | float | np.integer | np.floating)
+           for v in mu_range):
+        raise ValueError(f"mu_range must be two numbers (mu_low, mu_high), got {mu_range!r}")
+    mu_range = (float(mu_range[0]), float(mu_range[1]))
 
     def at(h: float) -> tuple[RigidBody, tuple[float, float]]:
         k = h / h0
@@ -861,8 +870,11 @@ def critical_mu_curve(body: RigidBody, h_values: Sequence[float], M: float = 0.0
     steps = 0.0
     for h in runs:
         b, mr = at(h)
-        steps += _plan(b, h, M, opts["head"], opts["axis"], opts["n_convergents"], mr,
-                       opts["tol"], opts["engine"]).steps
+        try:
+            steps += _plan(b, h, M, opts["head"], opts["axis"], opts["n_convergents"], mr,
+                           opts["tol"], opts["engine"]).steps
+        except ValueError as exc:
+            raise ValueError(f"on the level h = {h!r} of h_values: {exc}") from None
     budget.check(f"critical_mu_curve ({len(runs)} level(s) of last_torus, n_convergents = "
                  f"{opts['n_convergents']}, mu_range = {mu_range!r})", steps=steps)
     bar = Progress(len(runs), "mu_c(h)", progress)
