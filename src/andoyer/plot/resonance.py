@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from andoyer.plot.section import LABELS
 from andoyer.plot.style import colour_scale
 
-__all__ = ["plot_resonances", "plot_residues"]
+__all__ = ["plot_resonances", "plot_residues", "convergent_ticks"]
 
 
 def _broken(x: NDArray[np.float64], y: NDArray[np.float64], period: float
@@ -122,15 +122,34 @@ def plot_residues(datasets: list[xr.Dataset], *, ax: Axes | None = None) -> Axes
         floor = ds.residue_resolution_elliptic.values
         keep = np.isfinite(R) & (R > floor)          # above the integration's error only
         ax.plot(ds.q.values[keep], R[keep], "o-", color=f"C{i}", ms=3.5,
-                label=f"$\\mu$ = {float(ds.attrs['body_mu']):.4g}")
-    ax.axhline(0.25, color="0.3", ls="--", lw=0.8, label="1/4 (Greene)")
-    ax.set_xscale("log")
+                label=f"$\\mu = {float(ds.attrs['body_mu']):.4g}$")
+    ax.axhline(0.25, color="0.3", ls="--", lw=0.8, label="$R = 1/4$ (Greene)")
     ax.set_yscale("log")
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
-
-    ax.xaxis.set_major_formatter(ScalarFormatter())
-    ax.xaxis.set_minor_formatter(NullFormatter())
-    ax.set_xlabel("q (period of the convergent p/q)")
-    ax.set_ylabel("elliptic residue R")
-    ax.legend(fontsize=7)
+    convergent_ticks(ax, np.concatenate([ds.q.values for ds in datasets]))
+    ax.set_xlabel("period $q$ of the convergent $p/q$")
+    ax.set_ylabel("elliptic residue $R$")
+    # beside the axes: the residues fill any corner (falling below mu_c, growing above)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return ax
+
+
+def convergent_ticks(ax: Axes, q: NDArray[np.integer]) -> None:
+    """A log axis of periods ``q`` ticked at the convergents' periods themselves (a few
+    consecutive Fibonacci-like periods span less than a decade: no decade tick in view).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        The axes whose x axis shows ``q``.
+    q : array of int
+        The convergents' periods.
+    """
+    from matplotlib.ticker import FixedLocator, NullLocator, StrMethodFormatter
+
+    ticks = np.unique(np.asarray(q, dtype=int))
+    ax.set_xscale("log")
+    ax.xaxis.set_major_locator(FixedLocator([float(x) for x in ticks]))
+    ax.xaxis.set_major_formatter(StrMethodFormatter("{x:.0f}"))
+    ax.xaxis.set_minor_locator(NullLocator())
+    if len(ticks):
+        ax.set_xlim(ticks[0] / 1.15, ticks[-1] * 1.15)

@@ -34,12 +34,11 @@ def last_torus(ctx: Context) -> Result:
     import math
     import time
 
-    from matplotlib.figure import Figure
-
     from andoyer.analysis.resonance import last_torus as greene
     from andoyer.integrate.engines.base import Capability
     from andoyer.integrate.fill import default_h
-    from andoyer.plot.resonance import plot_residues
+    from andoyer.plot.resonance import convergent_ticks, plot_residues
+    from andoyer.plot.style import new_figure, paper_style
 
     engine = ctx.engine_name(Capability.TANGENT_CROSSINGS)
     n = 2 if ctx.quick else 7
@@ -67,25 +66,33 @@ def last_torus(ctx: Context) -> Result:
     sides = dict(zip(factors, concurrently([
         partial(greene, BODY.with_mu(factor * mu_c), 1.0, head=(2,), axis=1, n_convergents=n,
                 engine=engine, progress=False) for factor in factors]), strict=True))
-    fig = Figure(figsize=(9.0, 3.8), layout="constrained")
-    left, right = fig.subplots(1, 2)
-    plot_residues([crit, *sides.values()], ax=left)
-    left.set_title("elliptic residues of the convergents p/q", fontsize=8)
-    good = crit.where(crit.mu_critical_convergent.notnull(), drop=True)
-    right.plot(good.q.values, good.mu_critical_convergent.values, "o-", color="C3")
-    right.axhline(float(crit.mu_overlap), color="0.4", ls="--",
-                  label=f"overlap estimate {float(crit.mu_overlap):.4f}")
-    from matplotlib.ticker import NullFormatter, ScalarFormatter
-
-    right.set_xscale("log")
-    right.xaxis.set_major_formatter(ScalarFormatter())
-    right.xaxis.set_minor_formatter(NullFormatter())
-    right.set_xlabel("q")
-    right.set_ylabel(r"$\mu_c(q)$: elliptic residue $= 1/4$")
-    right.legend(fontsize=7)
-    right.set_title("the critical mu of each convergent", fontsize=8)
-    fig.suptitle(f"{BODY.name}: the golden torus W = [0; 2, 1, 1, ...] between the 2:1 and "
-                 "3:1 chains about axis 1, H = 1, M = 0", fontsize=9)
+    with paper_style():
+        fig = new_figure(1, 2, width=9.0, aspect=0.85)
+        left, right = fig.axes
+        plot_residues([crit, *sides.values()], ax=left)
+        left.set_title("elliptic residues of the convergents $p/q$", fontsize=8)
+        good = crit.where(crit.mu_critical_convergent.notnull(), drop=True)
+        right.plot(good.q.values, good.mu_critical_convergent.values, "o-", color="C3",
+                   ms=3.5)
+        right.axhline(float(crit.mu_overlap), color="0.4", ls="--",
+                      label=f"overlap estimate $\\mu = {float(crit.mu_overlap):.4f}$")
+        convergent_ticks(right, crit.q.values)
+        right.set_xlabel("period $q$ of the convergent $p/q$")
+        right.set_ylabel(r"$\mu_c(q)$: elliptic residue $R = 1/4$")
+        # one legend under both panels: beside each it would narrow them
+        legend = left.get_legend()
+        if legend is not None:
+            legend.remove()
+        handles, names = zip(*(pair for ax in (left, right)
+                               for pair in zip(*ax.get_legend_handles_labels(),
+                                               strict=True)), strict=True)
+        fig.legend(handles, names, loc="outside lower center", ncols=len(names),
+                   fontsize=7.5, frameon=False)
+        right.set_title(r"the critical $\mu$ of each convergent", fontsize=8)
+        # the body's own mu is none of the figure's: its moments only
+        fig.suptitle(f"Hess body $(A, B, C) = ({BODY.A:g}, {BODY.B:g}, {BODY.C:g})$"
+                     r": the golden torus $W = [0; 2, 1, 1, \dots]$ between the 2:1 and "
+                     "3:1 chains about axis 1, $H = 1$, $M = 0$", fontsize=9)
     files = ctx.figure(fig, "last-torus")
     files.append(ctx.data(crit, "last-torus"))
     rows = []
