@@ -39,6 +39,7 @@ def proof(ctx: Context) -> Result:
     from andoyer.analysis.splitting.measure import separatrix_splitting
     from andoyer.body import RigidBody
     from andoyer.integrate.validated.arithmetic import BodySpec
+    from andoyer.plot.words import branch_words
 
     spec = BodySpec(*THEOREM_BODY)
 
@@ -65,6 +66,8 @@ def proof(ctx: Context) -> Result:
     measured_all = inter.angle.values[0]
     measured = float(measured_all[np.nanargmin(np.abs(measured_all - float(angle.mid())))])
     lm = theorem["local_manifold"]
+    # the prose writes the certificates' theorems in TeX (their statements are plain text)
+    unstable, stable = ("P_-", "P_+") if lm["rotation"] == -1 else ("P_+", "P_-")
     rows = [["period multiplier lambda of P+ (return to gamma2 = 0)", boxes["multiplier"]],
             ["cone slope kappa on N = [-r, r]^2", f"{lm['kappa']:.3e} (r = {lm['radius']:g})"],
             ["gamma3 at the two ends of the piece on L = 0", " / ".join(boxes["ends_gamma3"])],
@@ -77,7 +80,12 @@ def proof(ctx: Context) -> Result:
         {"angle_proved": float(angle.mid()), "angle_radius": float(angle.rad()),
          "angle_measured": measured, "theorem_seconds": float(theorem["run_seconds"]),
          "melnikov_digits": float(checked["digits"])},
-        {"statement": theorem["statement"], "first": first["statement"],
+        {"first": {"body": first["body"], "J2": first["level"]["J2"],
+                   "branch": branch_words(first["branch"]).strip("$"),
+                   "sheet": first["sheet"], "zeros": checked["zeros"]},
+         "theorem": {"body": theorem["body"], "G": theorem["level"]["G"],
+                     "mu": (theorem["mu_interval"]["lower"], theorem["mu_interval"]["upper"]),
+                     "unstable": unstable, "stable": stable, "angle": boxes["angle"]},
          "seconds": theorem["run_seconds"], "inside": bool(
              abs(measured - float(angle.mid())) <= float(angle.rad())),
          "mu": spec.mu, "epsilon": spec.epsilon},
