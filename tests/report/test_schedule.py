@@ -17,14 +17,24 @@ from andoyer.report.paper import ITEMS, build_paper
 ONLY = ["fig2", "heteroclinic", "paper-check"]
 
 
-def test_items_announced_as_they_finish(tmp_path, capsys):
+def test_items_announced_as_they_finish(tmp_path, capsys, monkeypatch):
     """With two processes the worker's item (fig2, the longest, started first) finishes
     after the two short ones built here: each line comes as its item ends, counting the
-    items done, with its time; the report keeps its own order."""
+    items done, with its time; the report keeps its own order. The plain lines naming the
+    items still running (every 50 ms here, as on a machine where an item takes over
+    :data:`~andoyer.report.schedule.HEARTBEAT_S`) are told from the items' lines by their
+    own words and do not count as items."""
+    from andoyer.report import schedule
+
+    monkeypatch.setattr(schedule, "HEARTBEAT_S", 0.0)
+    monkeypatch.setattr(schedule, "_TICK_S", 0.05)
     build_paper(tmp_path / "p", quick=True, only=ONLY, jobs=2, progress=True)
     err = capsys.readouterr().err
     lines = err.splitlines()
-    items = [line for line in lines if re.match(r"\[\d/3\] ", line)]
+    running = [line for line in lines if re.match(r"\[\d/3\] andoyer paper: running ", line)]
+    assert running, lines  # the heartbeat ran while fig2 was built
+    assert all(re.search(r"; \d+ s in all$", line) for line in running), running
+    items = [line for line in lines if re.match(r"\[\d/3\] ", line) and line not in running]
     titles = {i.key: i.title for i in ITEMS if i.key in ONLY}
     assert [line[:6] for line in items] == ["[1/3] ", "[2/3] ", "[3/3] "]
     assert all(re.search(r" \.\.\. \d+\.\d s$", line) for line in items), items
