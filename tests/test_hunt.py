@@ -466,8 +466,9 @@ def test_public_api_refuses_extreme_values_or_stays_finite(name):
 
 
 #: Seconds a call with one bad value may take before it counts as a hang, where the good
-#: arguments alone are a validated computation (a cone proof: 2-4 s on an idle core).
-ALLOWED_SECONDS = {"local_unstable_manifold": 60.0}
+#: arguments alone are a validated computation (a cone proof: 2-4 s on an idle core; the
+#: theorem, where a bad value leaves the search to run: 20-60 s).
+ALLOWED_SECONDS = {"local_unstable_manifold": 60.0, "prove_transversal": 120.0}
 
 
 @pytest.mark.timeout(180)
@@ -488,6 +489,8 @@ def test_public_entries_reject_bad_values_clearly(name, data):
         return
     param = data.draw(st.sampled_from(params))
     value = data.draw(BAD)
+    if value is None and inspect.signature(func).parameters[param].default is None:
+        return  # the argument's default, not a bad value: the whole computation
     args = {**_good_args(name, func), param: value}
     t0 = time.perf_counter()
     try:

@@ -107,6 +107,10 @@ def test_arguments_are_refused_by_name():
         tr.prove_transversal(SPEC, side=2)
     with pytest.raises(ValueError, match="half_width"):
         tr.prove_transversal(SPEC, half_width=0.1)
+    for piece in ({}, {0: 1e-6, 1: 2e-6}, (1e-6, 2e-6, 3e-6), (1e-6,), "ab", (1e-6, "x"),
+                  (1e-6, float("nan")), [[1e-6, 2e-6]]):
+        with pytest.raises(ValueError, match="piece must be two finite numbers"):
+            tr.prove_transversal(SPEC, piece=piece)
 
 
 def _fake(**changes):

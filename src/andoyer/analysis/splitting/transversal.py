@@ -690,13 +690,15 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
         raise ArgumentTypeError(f"manifold must be a LocalManifold, got {manifold!r:.60}")
     if piece is not None:
         try:
-            if isinstance(piece, str | bool):
+            if isinstance(piece, str | bytes | bool | dict):
                 raise TypeError
-            piece = (float(piece[0]), float(piece[1]))
-            if len(piece) != 2 or not all(math.isfinite(x) for x in piece):
-                raise ValueError
-        except (TypeError, ValueError, IndexError):
-            raise ValueError(f"piece must be two numbers (u_a, u_b), got {piece!r:.60}") from None
+            ends = np.asarray(piece, dtype=float)
+        except (TypeError, ValueError):
+            ends = np.empty(0)
+        if ends.shape != (2,) or not np.isfinite(ends).all():
+            raise ValueError(f"piece must be two finite numbers (u_a, u_b), "
+                             f"got {piece!r:.60}")
+        piece = (float(ends[0]), float(ends[1]))
     if not reversor_holds():
         raise ArithmeticError("the field (1) is not reversible under R: the proof's "
                               "premise fails")
