@@ -54,7 +54,7 @@ SECTION_ARGS = (*S.y, S.phi0, value, cv, sv)
 
 G1, G2, G3, gamma1, gamma2, gamma3 = S.y
 _G = sp.sqrt(G1**2 + G2**2 + G3**2)
-#: The area ``M = G . gamma``, a first integral of (1) for every body (see the notes).
+#: The area ``M = (G, gamma)``, a first integral of (1) for every body (see the notes).
 AREA = G1 * gamma1 + G2 * gamma2 + G3 * gamma3
 
 #: Smooth (non-angle) section coordinates as functions of y.

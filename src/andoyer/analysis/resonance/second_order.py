@@ -5,8 +5,9 @@ r"""The island chain to second and third order in ``mu``: the Lie-Deprit normal 
      ``K = -G = K0(I1) + mu K1 + mu^2 K2 + mu^3 K3``, ``K1 = V / omega_g``,
      ``K2 = -(V V_G / omega_g^2 - (d omega_g/dG) V^2 / (2 omega_g^3))``, the derivatives in
      ``G`` at fixed ``I1`` (``d/dG|_I = d/dG|_h + omega_g d/dh|_G``, from tori off the level).
-(S1') ``K3 = -G3``, ``G3 = -(H0_GG G1 G2 + H0_GGG G1^3 / 6 + V_G G2 + V_GG G1^2 / 2) /
-     omega_g`` (``d/dG`` at fixed ``I1`` as in (S1), ``H0_G = omega_g``; a second
+(S1') ``K3 = -G3``,
+     ``G3 = -(H0_GG G1 G2 + H0_GGG G1^3 / 6 + V_G G2 + V_GG G1^2 / 2) / omega_g``
+     (``d/dG`` at fixed ``I1`` as in (S1), ``H0_G = omega_g``; a second
      derivative ``f_GG|_I = f_GG + 2 omega_g f_Gh + omega_g^2 f_hh + H0_GG f_h`` from a
      3 x 3 stencil of tori in ``(h, G)``).
 (S2) The jets of (D1) about the resonant torus ``I1*``: seven tori on the level at
