@@ -692,13 +692,13 @@ def prove_transversal(body: Any, *, G: str = "1", rotation: int = 1, radius: flo
         try:
             if isinstance(piece, str | bytes | bool | dict):
                 raise TypeError
-            ends = np.asarray(piece, dtype=float)
+            u_ab = np.asarray(piece, dtype=float)
         except (TypeError, ValueError):
-            ends = np.empty(0)
-        if ends.shape != (2,) or not np.isfinite(ends).all():
+            u_ab = np.empty(0)
+        if u_ab.shape != (2,) or not np.isfinite(u_ab).all():
             raise ValueError(f"piece must be two finite numbers (u_a, u_b), "
                              f"got {piece!r:.60}")
-        piece = (float(ends[0]), float(ends[1]))
+        piece = (float(u_ab[0]), float(u_ab[1]))
     if not reversor_holds():
         raise ArithmeticError("the field (1) is not reversible under R: the proof's "
                               "premise fails")
