@@ -166,6 +166,13 @@ if any(c in TUNE for c in '"\\ '):
     raise ValueError(f"{TUNE_ENV}={TUNE!r} is not a CPU name")
 
 
+def _c_float64(*arrays: Any, ndim: int | None = None) -> bool:
+    """Whether every Numba type of ``arrays`` is a C-contiguous float64 array (of ``ndim``
+    dimensions where given): what an intrinsic's overload takes, else it declines."""
+    return all(isinstance(a, types.Array) and a.dtype == types.float64 and a.layout == "C"
+               and (ndim is None or a.ndim == ndim) for a in arrays)
+
+
 def _vector_fma(builder: Any) -> tuple[Any, Any]:
     """The lane vector type and LLVM's fused multiply-add on it, declared in the module of
     ``builder``."""
@@ -407,10 +414,8 @@ def _literal_ints(ty: Any) -> list[int]:
 @overload(combine, jit_options={"nogil": True}, prefer_literal=True)
 def _combine_overload(y: Any, m: Any, k: Any, c: Any, terms: Any) -> Any:
     """Compiled :func:`combine`: the intrinsic."""
-    for ary in (y, m):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C"):
-            return None
+    if not _c_float64(y, m):
+        return None
 
     code = _combine(tuple(_literal_ints(terms)))
 
@@ -423,10 +428,8 @@ def _combine_overload(y: Any, m: Any, k: Any, c: Any, terms: Any) -> Any:
 @overload(cauchy, jit_options={"nogil": True})
 def _cauchy_overload(m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
     """Compiled :func:`cauchy`: the intrinsic (C-contiguous float64 arrays only)."""
-    for ary in (m, u, v):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C"):
-            return None
+    if not _c_float64(m, u, v):
+        return None
 
     def impl(m: Any, u: Any, v: Any, k: Any, products: Any) -> None:
         _cauchy(m, u, v, k, products)
@@ -510,10 +513,8 @@ _advance: Any = intrinsic(_advance_typer)
 @overload(advance, jit_options={"nogil": True})
 def _advance_overload(X: Any, order: Any, h: Any) -> Any:
     """Compiled :func:`advance`: the intrinsic (C-contiguous float64 arrays only)."""
-    for ary in (X, h):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C"):
-            return None
+    if not _c_float64(X, h):
+        return None
 
     def impl(X: Any, order: Any, h: Any) -> None:
         _advance(X, order, h)
@@ -737,10 +738,8 @@ _series_linear: Any = intrinsic(_series_linear_typer)
 def _series_linear_overload(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb: Any,
                             k: Any) -> Any:
     """Compiled :func:`series_linear`: the intrinsic (C-contiguous float64 arrays)."""
-    for ary in (U, S):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C" and ary.ndim == 3):
-            return None
+    if not _c_float64(U, S, ndim=3):
+        return None
 
     def impl(U: Any, n: Any, S: Any, a: Any, ca: Any, b: Any, cb: Any, k: Any) -> None:
         _series_linear(U, n, S, a, ca, b, cb, k)
@@ -896,10 +895,8 @@ _roots: Any = intrinsic(_roots_typer)
 @overload(roots, jit_options={"nogil": True})
 def _roots_overload(x: Any, inv_p: Any, out: Any) -> Any:
     """Compiled :func:`roots`: the intrinsic (C-contiguous float64 arrays)."""
-    for ary in (x, out):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C" and ary.ndim == 1):
-            return None
+    if not _c_float64(x, out, ndim=1):
+        return None
 
     def impl(x: Any, inv_p: Any, out: Any) -> None:
         _roots(x, inv_p, out)
@@ -1018,10 +1015,8 @@ _series_dot: Any = intrinsic(_series_dot_typer)
 @overload(series_dot, jit_options={"nogil": True})
 def _series_dot_overload(P: Any, row: Any, w: Any, order: Any) -> Any:
     """Compiled :func:`series_dot`: the intrinsic (C-contiguous float64 arrays)."""
-    for ary in (P, w):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C" and ary.ndim == 3):
-            return None
+    if not _c_float64(P, w, ndim=3):
+        return None
 
     def impl(P: Any, row: Any, w: Any, order: Any) -> None:
         _series_dot(P, row, w, order)
@@ -1161,10 +1156,8 @@ _megno_orders: Any = intrinsic(_megno_orders_typer)
 @overload(megno_orders, jit_options={"nogil": True})
 def _megno_orders_overload(W: Any, order: Any, s0: Any, inv: Any) -> Any:
     """Compiled :func:`megno_orders`: the intrinsic (C-contiguous float64 arrays)."""
-    for ary in (W, s0, inv):
-        if not (isinstance(ary, types.Array) and ary.dtype == types.float64
-                and ary.layout == "C"):
-            return None
+    if not _c_float64(W, s0, inv):
+        return None
 
     def impl(W: Any, order: Any, s0: Any, inv: Any) -> None:
         _megno_orders(W, order, s0, inv)
