@@ -67,6 +67,15 @@ def test_tape_value_is_tape_jet_at_order_0_for_every_kind(margin: bool) -> None:
 
 
 
+def _sqrt_series(u: np.ndarray, n: int, a: int, order: int) -> None:
+    """Row ``n`` of ``u`` as the square root of row ``a`` (the tape's sqrt node), order
+    by order from ``(u_n)^2 = u_a``, term by term."""
+    u[n, 0] = np.sqrt(u[a, 0])
+    for k in range(1, order + 1):
+        s = sum(u[n, j] * u[n, k - j] for j in range(1, k))
+        u[n, k] = (u[a, k] - s) / (2 * u[n, 0])
+
+
 def _reference_jet(tape: np.ndarray, C: np.ndarray, x: np.ndarray, order: int
                    ) -> np.ndarray:
     """The tape's jet in extended precision (np.longdouble), each Cauchy sum term by term
@@ -87,10 +96,7 @@ def _reference_jet(tape: np.ndarray, C: np.ndarray, x: np.ndarray, order: int
         elif op == 5:  # the product with a first integral (SCALE)
             u[n] = u[a, 0] * u[b]
         else:
-            u[n, 0] = np.sqrt(u[a, 0])
-            for k in range(1, order + 1):
-                s = sum(u[n, j] * u[n, k - j] for j in range(1, k))
-                u[n, k] = (u[a, k] - s) / (2 * u[n, 0])
+            _sqrt_series(u, n, a, order)
     return u[-1]
 
 
@@ -144,10 +150,7 @@ def _full_products_jet(tape: np.ndarray, C: np.ndarray, x: np.ndarray, order: in
             u[n] = [sum(prod[6 * (a + i) + b + i][k] for i in range(3))
                     for k in range(order + 1)]
         else:
-            u[n, 0] = np.sqrt(u[a, 0])
-            for k in range(1, order + 1):
-                s = sum(u[n, j] * u[n, k - j] for j in range(1, k))
-                u[n, k] = (u[a, k] - s) / (2 * u[n, 0])
+            _sqrt_series(u, n, a, order)
     return u[-1]
 
 
