@@ -245,12 +245,13 @@ def _dataset(data: Mapping[str, Any], coords: Mapping[str, Any],
     True
     """
     import pandas as pd
-    from xarray.core.indexes import Index, PandasIndex
+    from xarray.indexes import Index, PandasIndex
 
     variables: dict[Hashable, xr.Variable] = {}
     sizes: dict[Hashable, int] = {}
-    direct = True
-    for name, value in data.items():
+    # xarray's own direct constructor (private: where a release drops it, the public one)
+    direct = hasattr(xr.Dataset, "_construct_direct")
+    for name, value in data.items() if direct else ():
         if isinstance(value, xr.Variable):
             var = value
         elif (isinstance(value, tuple) and len(value) == 2
