@@ -38,6 +38,9 @@ from andoyer.kernels.taylor import lane_crossings as LC
 from andoyer.kernels.taylor.lanes import LANES
 
 MAX_STEPS = 10**7
+#: The widest lane count (AVX-512): orbit counts from it fill, refill and part-fill the
+#: vectors at every width, and keep the tests' states the same on every CPU.
+WIDEST = 8
 KIND = {name: i for i, name in enumerate(equations.SECTION_KINDS + equations.EXTRA_SECTION_KINDS)}
 GENERAL = RigidBody(1.3, 1.7, 2.1, mu=0.5, r=(0.3, -0.5, 0.8))
 #: A planar body (the Hess-chart angles are defined) whose random orbits cross every
@@ -61,7 +64,7 @@ def test_lanes_give_the_scalar_kernels_crossings(body: RigidBody, t_max: float) 
     """(The general body's orbits are chaotic: over a short time only, where round-off
     differences of the steps have not grown.)"""
     p = params(body)
-    y0 = random_states(2 * LANES + 3, np.random.default_rng(7))
+    y0 = random_states(2 * WIDEST + 3, np.random.default_rng(7))
     for name, value in (("G3", 0.0), ("gamma3", -0.2), ("gamma1", 0.1), ("L", 0.3)):
         for direction in (1, -1, 0):
             what = f"{name} = {value}, direction {direction}"
@@ -88,7 +91,7 @@ def test_tape_sections_on_lanes_give_the_scalar_kernels_crossings(name: str,
                                                                   value: float) -> None:
     """Half the orbits time-reversed (G -> -G), so that the angles run both ways."""
     p = params(PLANAR)
-    y0 = random_states(2 * LANES + 3, np.random.default_rng(7))
+    y0 = random_states(2 * WIDEST + 3, np.random.default_rng(7))
     y0[::2, :3] *= -1.0
     for direction in (1, -1, 0):
         what = f"{name} = {value}, direction {direction}"
@@ -108,7 +111,7 @@ def test_theta2_on_lanes_on_the_paper_body() -> None:
     """The paper's section on many orbits of the paper's body (several blocks and
     threads), against the scalar kernel and DOP853."""
     p = params(RigidBody.paper())
-    y0 = random_states(3 * LANES + 5, np.random.default_rng(2))
+    y0 = random_states(3 * WIDEST + 5, np.random.default_rng(2))
     a = LC.locate_crossings(y0, p, KIND["theta2"], 0.0, 1, 20, 500.0, 1e-12, MAX_STEPS,
                             block=LANES + 3, threads=2)
     b = T.locate_crossings(y0, p, KIND["theta2"], 0.0, 1, 20, 500.0, 1e-12, MAX_STEPS)
@@ -136,7 +139,7 @@ def test_singular_passages_on_lanes_are_the_scalar_kernels(
     libration = from_hess(body, [0.0, 4.0, 0.03, 0.1, 0.0])
     y0 = np.vstack([np.repeat(np.atleast_2d(libration), 3, axis=0),
                     from_andoyer([[0.3, 0.2 * i, 0.3, 1.0 + 0.01 * i, 0.0]
-                                  for i in range(LANES)])])
+                                  for i in range(WIDEST)])])
     calls = orbits_per_call(LC, "locate_crossings")
     runs, spied = [], []
     for start in (1, 10**9):  # the lanes, then the scalar kernel
@@ -172,7 +175,7 @@ def test_the_queue_refills_lanes_with_orbits_of_any_length() -> None:
     threads: each orbit's crossings are the scalar kernel's."""
     p = params(RigidBody.paper())
     base = random_states(4, np.random.default_rng(11))
-    y0 = np.ascontiguousarray(np.repeat(base, 7, axis=0)[:3 * LANES + 5])
+    y0 = np.ascontiguousarray(np.repeat(base, 7, axis=0)[:3 * WIDEST + 5])
     y0[::3, 2] *= 0.01  # some orbits hug the section
     for n_crossings, t_max in ((40, 300.0), (1, 300.0), (40, 7.5), (0, 10.0), (5, -1.0)):
         a = LC.locate_crossings(y0, p, KIND["G3"], 0.0, 0, n_crossings, t_max, 1e-12,
@@ -187,18 +190,18 @@ def test_the_queue_refills_lanes_with_orbits_of_any_length() -> None:
 
 def test_failures_end_their_orbit_only() -> None:
     p = params(RigidBody.paper())
-    y0 = random_states(LANES + 2, np.random.default_rng(3))
+    y0 = random_states(WIDEST + 2, np.random.default_rng(3))
     y0[2, 4] = np.nan
-    y0[LANES + 1, 0] = np.inf
+    y0[WIDEST + 1, 0] = np.inf
     for max_steps in (300, MAX_STEPS):
         a = LC.locate_crossings(y0, p, KIND["gamma2"], 0.0, 0, 50, 1e3, 1e-12, max_steps)
         b = T.locate_crossings(y0, p, KIND["gamma2"], 0.0, 0, 50, 1e3, 1e-12, max_steps)
         np.testing.assert_array_equal(a[3], b[3])
         np.testing.assert_array_equal(a[2], b[2])
         assert np.nanmax(np.abs(a[0] - b[0])) < 1e-11
-        assert a[3][2, 0] == a[3][LANES + 1, 0] == common.STEP_TOO_SMALL
-        ok = np.ones(LANES + 2, dtype=bool)
-        ok[[2, LANES + 1]] = False
+        assert a[3][2, 0] == a[3][WIDEST + 1, 0] == common.STEP_TOO_SMALL
+        ok = np.ones(WIDEST + 2, dtype=bool)
+        ok[[2, WIDEST + 1]] = False
         short = a[2][ok] < 50
         if max_steps == 300:  # orbits short of 50 crossings stop at 300 steps
             assert short.any() and (a[3][ok, 0] == np.where(short, common.MAX_STEPS, 0)).all()
@@ -213,19 +216,19 @@ def test_the_engine_runs_many_orbits_on_lanes(
     calls = orbits_per_call(LC, "locate_crossings")
     p = tuple(RigidBody.paper().engine_params)
     tol = Tolerance(1e-12, 1e-12)
-    y0 = random_states(LANES + 1, np.random.default_rng(5))
+    y0 = random_states(WIDEST + 1, np.random.default_rng(5))
     engine = TaylorEngine()
     engine.crossings(y0, p, Section("G3", 0.0, 1), 5, 100.0, tol)
     assert calls == []  # 45 crossings asked: the scalar kernel (no lane kernel to compile)
-    monkeypatch.setattr(taylor_engine, "LANE_CROSSINGS_FROM", 5 * (LANES + 1))
+    monkeypatch.setattr(taylor_engine, "LANE_CROSSINGS_FROM", 5 * (WIDEST + 1))
     c = engine.crossings(y0, p, Section("G3", 0.0, 1), 5, 100.0, tol)
-    assert calls == [LANES + 1]
+    assert calls == [WIDEST + 1]
     one = engine.crossings(y0[:1], p, Section("G3", 0.0, 1), 5, 100.0, tol)
-    assert calls == [LANES + 1]  # one orbit: the scalar kernel
+    assert calls == [WIDEST + 1]  # one orbit: the scalar kernel
     assert c.count[0] == one.count[0] >= 1
     assert np.nanmax(np.abs(c.t[0] - one.t[0])) < 1e-11
     a = engine.crossings(y0, p, Section("theta2", 0.0, 1), 5, 100.0, tol)
-    assert calls == [LANES + 1] * 2  # an angle section: on the lanes too
+    assert calls == [WIDEST + 1] * 2  # an angle section: on the lanes too
     b = engine.crossings(y0[:1], p, Section("theta2", 0.0, 1), 5, 100.0, tol)
     assert a.count[0] == b.count[0] >= 1
     assert np.nanmax(np.abs(a.t[0] - b.t[0])) < 1e-11
