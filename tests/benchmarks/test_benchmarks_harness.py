@@ -163,11 +163,11 @@ def test_issue_26_targets_and_the_engine_advice_from_rows() -> None:
             row("W4", "fresh process, cold on-disk caches", "andoyer taylor", 6.0,
                 first_s=6.0, second_s=0.5, caches="cold")]
     t = {x["target"]: x for x in harness.targets(rows)}
-    assert not t["W2 G3: andoyer taylor / andoyer default <= 1.2"]["met"]
-    assert t["W3 FLI map: andoyer taylor / andoyer default <= 1.2"]["met"]
+    assert not t["W2 G3: andoyer taylor / andoyer heyoka <= 1.2"]["met"]
+    assert t["W3 FLI map: andoyer taylor / andoyer heyoka <= 1.2"]["met"]
     assert math.isclose(t["W2 G3: andoyer heyoka within 2x its machine limit"]["value"], 2.5)
-    assert not t[f"W2 {g3}: taylor's error within 1.5x of the default's (median, max)"]["met"]
-    assert t[f"W2 {th}: taylor's error within 1.5x of the default's (median, max)"]["met"]
+    assert not t[f"W2 {g3}: taylor's error within 1.5x of heyoka's (median, max)"]["met"]
+    assert t[f"W2 {th}: taylor's error within 1.5x of heyoka's (median, max)"]["met"]
     half = next(x for x in t.values() if x["target"].startswith("W2 theta2: fastest"))
     assert "andoyer taylor" in half["target"] and half["met"]  # 0.2 s <= 0.5 x 0.432 s
     assert not t["W4: andoyer taylor, cold first call <= 5 s"]["met"]
@@ -175,7 +175,7 @@ def test_issue_26_targets_and_the_engine_advice_from_rows() -> None:
     # the defaults come from MEASURED_DEFAULTS (fli_map: taylor), not from these rows
     assert (f"| W2: {g3} | heyoka | heyoka (taylor takes 1.50x) | taylor | "
             "taylor (numba takes 2.67x) |") in advice
-    assert (f"| W2: {th} | heyoka | taylor (heyoka takes 2.00x) | taylor | "
+    assert (f"| W2: {th} | taylor | taylor (heyoka takes 2.00x) | taylor | "
             "taylor (only one measured) |") in advice
     assert (f"| W3: {fli} | taylor | heyoka (taylor takes 1.10x) | taylor | "
             "taylor (only one measured) |") in advice
@@ -282,7 +282,7 @@ def test_issue_36_targets_tables_and_the_megno_advice_from_rows() -> None:
     # the issue-26 targets of W2 G3 read the 50 x 1000 case alone
     assert math.isclose(t["W2 G3: andoyer default / fastest andoyer engine <= 1.1"]["value"],
                         1.0 / 0.9)
-    assert math.isclose(t["W2 G3: andoyer taylor / andoyer default <= 1.2"]["value"], 0.9)
+    assert math.isclose(t["W2 G3: andoyer taylor / andoyer heyoka <= 1.2"]["value"], 0.9)
     assert t[f"W3 {megno}: default (andoyer taylor) / andoyer heyoka <= 1.0"]["met"]
     assert math.isclose(t[f"W3 {big}: default (andoyer taylor) / hand-written heyoka "
                           "ensemble <= 0.7"]["value"], 0.6)
@@ -302,3 +302,26 @@ def test_issue_36_targets_tables_and_the_megno_advice_from_rows() -> None:
     advice = "\n".join(harness.engine_advice(rows))
     assert (f"| W3: {megno} | taylor | taylor (heyoka takes 1.67x) | taylor | "
             "taylor (only one measured) |") in advice
+
+
+@pytest.mark.parametrize("moved", [{}, {"angle_section": "taylor"}])
+def test_the_default_of_a_target_is_the_workloads_default(
+        monkeypatch: pytest.MonkeyPatch, moved: dict[str, str]) -> None:
+    """"andoyer default" in a target is the engine ``engine=None`` runs for that workload
+    (MEASURED_DEFAULTS), not heyoka's row: a moved default moves the ratios, and
+    ``--tables`` recomputes them from the rows."""
+    from andoyer.integrate import engines
+
+    monkeypatch.setattr(engines, "MEASURED_DEFAULTS", moved)
+    th = "50 orbits x 1000 crossings of theta2 = 0 (upward)"
+    rows = [harness.Row("W2", th, runner, wall, wall, [wall], 1e-11, 1e-11)
+            for runner, wall in (("andoyer heyoka", 0.4), ("andoyer taylor", 0.2),
+                                 ("heyoka plain", 1.0))]
+    t = {x["target"]: x["value"] for x in harness.targets(rows)}
+    taylor = moved.get("angle_section") == "taylor"
+    assert t["W2 theta2: andoyer default / fastest andoyer engine <= 1.1"] == \
+        (1.0 if taylor else 2.0)
+    assert math.isclose(t["W2 theta2: plain heyoka loop / andoyer default >= 3"],
+                        5.0 if taylor else 2.5)
+    assert harness.default_runner("W2", th) == ("andoyer taylor" if taylor else
+                                                "andoyer heyoka")

@@ -118,6 +118,9 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 #: scatter of one run's medians on a 2-core machine is about 5 %; heyoka's cold start is
 #: also far cheaper). Measured: benchmarks/NOTES.md#engine-defaults.
 MEASURED_DEFAULTS: dict[str, str] = {
+    # W2 theta2, angle sections: taylor's section jets on SIMD lanes
+    # (kernels.taylor.lane_sections) faster than heyoka's events and their callbacks.
+    "angle_section": "taylor",
     # W3, the FLI map: taylor's SIMD lanes (kernels.taylor.lanes) faster than heyoka.
     "fli_map": "taylor",
     # The MEGNO map (benchmarks/megno_map.py, W3's map with MEGNO): taylor's renormalised
