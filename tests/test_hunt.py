@@ -225,7 +225,8 @@ OVERRIDES: dict[str, dict[str, Any]] = {
     "last_torus": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=2e-3), "h": 1.0, "head": (2,),
                    "axis": 2, "n_convergents": 1, "progress": False},
     "critical_mu_curve": {"body": RigidBody.hess(3.0, 1.0, 2.0, mu=2e-3), "h_values": [1.0],
-                          "mu_range": (0.05, 0.0501), "progress": False},
+                          "mu_range": (0.05, 0.0501), "progress": False, "head": (2,),
+                          "axis": 2, "n_convergents": 1},
     "convergents": {"head": (2,), "n": 3}, "noble_number": {"head": (2,)},
     # the attitude API: quaternions (scalar first), rotation matrices, Euler angles
     **{f: {"q": [0.9, 0.1, -0.3, 0.2]} for f in ("quaternion_conjugate", "rotation_matrix",
