@@ -59,7 +59,7 @@ def block_starts(n: int, threads: int, block: int = 1) -> list[int]:
 
 def over_orbits(kernel: Callable[..., None], n: int, inputs: Sequence[np.ndarray],
                 outputs: Sequence[np.ndarray], args: Sequence[Any], *, block: int = 1,
-                threads: int | None = None) -> None:
+                threads: int | None = None, starts: Sequence[int] | None = None) -> None:
     """Run ``kernel(*inputs[rows], *args, *outputs[rows])`` over blocks of rows.
 
     Parameters
@@ -77,9 +77,12 @@ def over_orbits(kernel: Callable[..., None], n: int, inputs: Sequence[np.ndarray
         Orbits per block (``0``: one block per thread).
     threads : int, optional
         Default :func:`numba.get_num_threads`.
+    starts : sequence of int, optional
+        First row of each block, increasing from 0 (blocks of any sizes; instead of
+        ``block``).
     """
     m = numba.get_num_threads() if threads is None else int(threads)
-    starts = block_starts(n, max(1, m), block)
+    starts = block_starts(n, max(1, m), block) if starts is None else list(starts)
     if m <= 1 or len(starts) <= 1:
         kernel(*inputs, *args, *outputs)
         return

@@ -11,6 +11,8 @@ the scalar Taylor kernel and the DOP853 kernel.
   lanes: the same crossings and singular passages as on the scalar kernel;
 * the queue: orbit counts that are not a multiple of the lanes, orbits of very
   different lengths, no crossing asked, ``t_max`` reached;
+* the pilot's schedule (one block per thread, longest orbit first) and the scalar tail
+  of a block: the scalar kernel's results, for orbits that end in the pilot or after it;
 * statuses per orbit: ``max_steps`` and a non-finite state end that orbit only, with
   the scalar kernel's ``info``;
 * the engine runs many crossings of many orbits on the lanes (spied), and only those;
@@ -186,6 +188,43 @@ def test_the_queue_refills_lanes_with_orbits_of_any_length() -> None:
         np.testing.assert_array_equal(a[3], b[3])
         assert np.nanmax(np.abs(a[0] - b[0]), initial=0.0) < 1e-11
     assert len(set(b[2].tolist())) >= 1
+
+
+@pytest.mark.parametrize("n", [3, 2 * LANES + 1])
+@pytest.mark.parametrize("n_crossings,t_max,max_steps,pilot_from,ends_in_pilot",
+                         [(12, 400.0, MAX_STEPS, 4, True), (12, 400.0, 300, 4, True),
+                          (100, 4000.0, MAX_STEPS, LC.PILOT_FROM, False)],
+                         ids=["t_max", "max_steps", "default"])
+def test_the_pilots_schedule_changes_no_crossing(
+        n: int, n_crossings: int, t_max: float, max_steps: int, pilot_from: int,
+        ends_in_pilot: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The default blocks (a pilot, then one block per thread, longest orbit first, the
+    last busy lanes' orbits finished on the scalar kernel) give every orbit the scalar
+    kernel's crossings, counts, statuses and steps (orbit counts below the lanes and not
+    a multiple of them); orbits ended in the pilot (``t_max``, ``max_steps``) keep its
+    results."""
+    p = params(RigidBody.paper())
+    y0 = np.ascontiguousarray(random_states(2 * WIDEST + 1, np.random.default_rng(3))[:n])
+    blocks: list[list[int]] = []
+    real = LC._schedule
+
+    def spy(*args: object) -> list[NDArray[np.int64]]:
+        parts = real(*args)  # type: ignore[arg-type]
+        blocks.extend(b.tolist() for b in parts)
+        return parts
+
+    monkeypatch.setattr(LC, "_schedule", spy)
+    monkeypatch.setattr(LC, "PILOT_FROM", pilot_from)
+    a = LC.locate_crossings(y0, p, KIND["G3"], 0.0, 1, n_crossings, t_max, 1e-12, max_steps,
+                            threads=2)
+    b = T.locate_crossings(y0, p, KIND["G3"], 0.0, 1, n_crossings, t_max, 1e-12, max_steps)
+    np.testing.assert_array_equal(a[2], b[2])
+    np.testing.assert_array_equal(a[3], b[3])  # statuses and steps
+    np.testing.assert_allclose(a[0], b[0], rtol=1e-14, atol=1e-11)  # round-off, to t = 4000
+    np.testing.assert_allclose(a[1], b[1], rtol=0.0, atol=1e-10)
+    ended = b[2] < LC.PILOT_CROSSINGS
+    assert len(blocks) == 2 and sorted(sum(blocks, [])) == np.flatnonzero(~ended).tolist()
+    assert ended.any() == ends_in_pilot, b[2]
 
 
 def test_failures_end_their_orbit_only() -> None:

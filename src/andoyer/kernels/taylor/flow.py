@@ -213,12 +213,15 @@ class Orbits(NamedTuple):
         Stores a state at an output time.
     crossings_orbit : numba function
         One orbit's section crossings (roots on each step's polynomial).
+    crossings_from : numba function
+        :attr:`crossings_orbit` on from a state at a time, its crossings so far given.
     """
 
     take_step: Any
     propagate_orbit: Any
     record: Any
     crossings_orbit: Any
+    crossings_from: Any
 
 
 def make_orbits(jets: Any) -> Orbits:
@@ -314,30 +317,21 @@ def make_orbits(jets: Any) -> Orbits:
 
 
     @kernel_jit
-    def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
-                        zc, info):
-        """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
-        of tapes ``ftape, fC`` (function) and ``wtape, wC`` (margin); returns their number
-        (see the module notes)."""
+    def crossings_from(X, t, fa, count, q, order, ftape, fC, wtape, wC, direction, t_max,
+                       max_steps, tc, zc, info):
+        """:func:`crossings_orbit` on from the state in ``X`` (order 0) at time ``t``, where
+        the section function is ``fa`` and ``count`` crossings are in ``tc, zc``; returns
+        the count."""
         n_crossings = tc.shape[0]
-        if n_crossings == 0 or t_max <= 0.0:
-            return 0
-        width = z0.shape[0]
         n = order + 1
         a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
         u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
-        ytmp = np.empty(width)
+        ytmp = np.empty(X.shape[0] * _N)
         P = np.empty((X.shape[0], 2, _N))
         Y = np.empty((1, _N))
         stack, lo_s, hi_s, left, roots = isolation_space(order)
         W = bernstein_weights(order)
-        load(X, z0)
-        for i in range(_N):
-            Y[0, i] = z0[i]
-        fa = tape_value(ftape, fC, Y, u)
         component, ca, cc = linear_component(ftape, fC)
-        t = 0.0
-        count = _ZERO
         while count < n_crossings and t < t_max:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
@@ -370,7 +364,23 @@ def make_orbits(jets: Any) -> Orbits:
             t = t1
         return count
 
-    return Orbits(take_step, propagate_orbit, record, crossings_orbit)
+    @kernel_jit
+    def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
+                        zc, info):
+        """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
+        of tapes ``ftape, fC`` (function) and ``wtape, wC`` (margin); returns their number
+        (see the module notes)."""
+        if tc.shape[0] == 0 or t_max <= 0.0:
+            return 0
+        u = np.empty((max(ftape.shape[0], wtape.shape[0]), order + 1))
+        Y = np.empty((1, _N))
+        load(X, z0)
+        for i in range(_N):
+            Y[0, i] = z0[i]
+        return crossings_from(X, 0.0, tape_value(ftape, fC, Y, u), _ZERO, q, order, ftape, fC,
+                              wtape, wC, direction, t_max, max_steps, tc, zc, info)
+
+    return Orbits(take_step, propagate_orbit, record, crossings_orbit, crossings_from)
 
 
 #: Orbits of the state alone, and of the state with tangent vectors.

@@ -40,6 +40,15 @@ On many crossings these lanes take less than half the scalar kernel's time (abou
 of it on a component section, 0.45 on an angle section, whose tape's jet is most of
 the rest), the same steps as the scalar kernel (measured:
 benchmarks/NOTES.md#taylor-lane-crossings).
+
+The blocks: orbits may differ 4x in steps, and a block's lanes idle while its last
+orbits finish; from :data:`PILOT_FROM` crossings asked a pilot of every orbit's first
+:data:`PILOT_CROSSINGS` crossings predicts its steps, then the orbits run again from
+the start in one block per thread, balanced, longest first (:func:`locate_crossings`).
+On a component section, once a block's queue is empty and at most :data:`TAIL_LANES`
+lanes are busy, the scalar kernel finishes their orbits from their lanes' states
+(``crossings_from`` of :data:`andoyer.kernels.taylor.flow.STATE`: the same steps, the
+crossings found so far kept); a tape section's lanes run to the block's end.
 """
 
 from __future__ import annotations
@@ -87,6 +96,18 @@ __all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossi
 _L = LANES
 _N = N_STATE
 _record = flow.STATE.record
+_crossings_from = flow.STATE.crossings_from
+#: Busy lanes at most, once the queue is empty, whose orbits the scalar kernel finishes
+#: (an orbit's scalar step costs about half a vector step of 4 lanes, a third of 8:
+#: benchmarks/NOTES.md#taylor-lane-schedule).
+TAIL_LANES = max(1, 3 * _L // 8)
+
+#: Crossings of every orbit in the pilot run that orders the orbits (:func:`_schedule`):
+#: from three, an orbit's steps to its last crossing are predicted to 1 % (to 3 % from two).
+PILOT_CROSSINGS = 3
+#: Crossings asked from which the pilot runs (it costs about ``PILOT_CROSSINGS /
+#: n_crossings`` of the run: 3 % at most).
+PILOT_FROM = 100
 
 #: Hash of every source the compiled entry points depend on, the lane count and tuning (their
 #: cache key).
@@ -218,6 +239,16 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
         if orbit[lane] >= 0:
             busy += 1
     while busy > 0:
+        if nxt >= z0.shape[0] and busy <= TAIL_LANES:  # cheaper on the scalar kernel
+            for lane in range(_L):
+                i = orbit[lane]
+                if i >= 0:
+                    for c in range(_N):
+                        Xs[0, 0, c] = X[0, 0, c, lane]
+                    count[i] = _crossings_from(Xs, t[lane], fa[lane], count[i], q, order,
+                                               ftape, fC, wtape, wC, direction, t_max,
+                                               max_steps, tc[i], zc[i], info[i])
+            return
         lane_state_jets(X, order, q, m)
         lane_steps(X, order, h, a1, a2, tot)
         for lane in range(_L):  # each lane's step (0 on idle and ended lanes)
@@ -442,7 +473,14 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     lanes, for any section: a state component's (:func:`component` not -1) by its
     column of the state's jet, any other by its tape's jet on the lanes.
 
-    Costs: the module notes.
+    Costs: the module notes. Orbits take very different numbers of steps (4x on W2's
+    orbits), and a block's lanes idle once its queue is empty while its longest orbits
+    finish: so from :data:`PILOT_FROM` crossings asked the orbits run twice, a pilot of
+    their first :data:`PILOT_CROSSINGS` crossings (the blocks of
+    :func:`~andoyer.kernels.taylor.lanes.block_size`), then from the start in one block
+    per thread, longest first (:func:`_schedule`), as the heyoka engine orders its queue
+    (measured: benchmarks/NOTES.md#taylor-lane-schedule). An orbit takes the same steps
+    in any lane and block, and its crossings agree to round-off.
 
     Parameters
     ----------
@@ -465,7 +503,10 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     max_steps : int
         Maximum steps per orbit.
     block : int, optional
-        Orbits per block (default :func:`andoyer.kernels.taylor.lanes.block_size`).
+        Orbits per block, in their order. Default: from :data:`PILOT_FROM` crossings
+        asked, the pilot's schedule (the first :data:`PILOT_CROSSINGS` crossings of
+        every orbit, then one block per thread, longest orbit first: :func:`_schedule`);
+        else :func:`andoyer.kernels.taylor.lanes.block_size`.
     threads : int, optional
         Threads (:func:`andoyer.kernels.threads.over_orbits`).
 
@@ -492,18 +533,90 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     if z0.ndim != 2 or z0.shape[1] != _N:
         raise ValueError(f"z0 must have shape (n, {_N}) (states alone), got {z0.shape}")
     n = z0.shape[0]
-    tc = np.full((n, int(n_crossings)), np.nan)
-    zc = np.full((n, int(n_crossings), _N), np.nan)
-    count = np.zeros(n, dtype=np.int64)
-    info = np.zeros((n, len(INFO)), dtype=np.int64)
     ftape, fC = section_tape(int(kind), float(p[7]), float(value))
     wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
     m = numba.get_num_threads() if threads is None else int(threads)
-    size = lanes.block_size(n, m) if block is None else int(block)
-    order = flow.order_for(tol)
     kernel = (lane_crossings_block if component(int(kind), float(p[7]), float(value)) >= 0
               else lane_tape_crossings_block)
-    over_orbits(kernel, n, (z0,), (tc, zc, count, info),
-                (p, order, ftape, fC, wtape, wC, int(direction), float(t_max),
-                 int(max_steps)), block=size, threads=m)
+    args = (p, flow.order_for(tol), ftape, fC, wtape, wC, int(direction), float(t_max),
+            int(max_steps))
+
+    def run(z: np.ndarray, k: int, **blocks: Any) -> tuple[np.ndarray, ...]:
+        # The first k crossings of the orbits z, in the blocks given.
+        out = _outputs(z.shape[0], k)
+        over_orbits(kernel, z.shape[0], (z,), out, args, threads=m, **blocks)
+        return out
+
+    if block is not None or int(n_crossings) < PILOT_FROM or n < 2:
+        size = lanes.block_size(n, m) if block is None else int(block)
+        tc, zc, count, info = run(z0, int(n_crossings), block=size)
+        return tc, zc, count, info
+    tc, zc, count, info = _outputs(n, int(n_crossings))
+    pilot = run(z0, PILOT_CROSSINGS, block=lanes.block_size(n, m))
+    parts = _schedule(pilot[0], pilot[2], pilot[3], int(n_crossings), float(t_max), m)
+    done = pilot[2] < PILOT_CROSSINGS  # ended in the pilot: its results are the run's
+    tc[done, :PILOT_CROSSINGS], zc[done, :PILOT_CROSSINGS] = pilot[0][done], pilot[1][done]
+    count[done], info[done] = pilot[2][done], pilot[3][done]
+    if parts:
+        rows = np.concatenate(parts)
+        starts = np.cumsum([0] + [len(r) for r in parts[:-1]]).tolist()
+        tc[rows], zc[rows], count[rows], info[rows] = run(
+            np.ascontiguousarray(z0[rows]), int(n_crossings), starts=starts)
     return tc, zc, count, info
+
+
+def _outputs(n: int, n_crossings: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The outputs ``tc, zc, count, info`` of ``n`` orbits' first ``n_crossings``
+    crossings, before the run (NaN, zero)."""
+    return (np.full((n, n_crossings), np.nan), np.full((n, n_crossings, _N), np.nan),
+            np.zeros(n, dtype=np.int64), np.zeros((n, len(INFO)), dtype=np.int64))
+
+
+def _schedule(tc: np.ndarray, count: np.ndarray, info: np.ndarray, n_crossings: int,
+              t_max: float, threads: int) -> list[np.ndarray]:
+    """The orbits the pilot left to run, one block per thread, each block longest first,
+    the blocks balanced by the orbits' predicted steps (longest first to the block with
+    the fewest so far).
+
+    An orbit's steps are predicted from its pilot: its steps per unit time times the
+    time of its ``n_crossings``-th crossing (the first crossing plus the mean return
+    time after it; at most ``t_max``). An orbit that found fewer than
+    :data:`PILOT_CROSSINGS` crossings ended in the pilot and is left out.
+
+    Parameters
+    ----------
+    tc : ndarray, shape (n, PILOT_CROSSINGS)
+        The pilot's crossing times.
+    count, info : ndarray
+        The pilot's crossing counts and ``info``.
+    n_crossings : int
+        Crossings asked.
+    t_max : float
+        The time limit.
+    threads : int
+        Threads (blocks).
+
+    Returns
+    -------
+    list of ndarray
+        The orbits of each block (none empty).
+
+    Examples
+    --------
+    >>> tc = np.array([[1.0, 2.0, 3.0], [1.0, 3.0, 5.0], [0.5, 1.0, 1.5], [2.0, np.nan, np.nan]])
+    >>> info = np.array([[0, 0, 0, 30], [0, 0, 0, 50], [0, 0, 0, 12], [0, 0, 0, 90]])
+    >>> [b.tolist() for b in _schedule(tc, np.array([3, 3, 3, 1]), info, 100, np.inf, 2)]
+    [[1], [0, 2]]
+    """
+    left = np.flatnonzero(count >= PILOT_CROSSINGS)
+    k = PILOT_CROSSINGS
+    t_first, t_last = tc[left, 0], tc[left, k - 1]
+    t_end = np.minimum(t_first + (n_crossings - 1) * (t_last - t_first) / (k - 1), t_max)
+    steps = info[left, 3] / t_last * t_end
+    blocks: list[list[int]] = [[] for _ in range(max(1, threads))]
+    load = np.zeros(len(blocks))
+    for i in np.argsort(-steps, kind="stable"):  # longest first
+        b = int(np.argmin(load))
+        blocks[b].append(int(left[i]))
+        load[b] += steps[i]
+    return [np.array(b, dtype=np.int64) for b in blocks if b]
