@@ -230,14 +230,24 @@ class _Orbit:
 
 
 class _Level:
-    """One body, level, regime and engine: the symmetry lines and the orbits on them."""
+    """One body, level, regime and engine: the symmetry lines and the orbits on them.
+
+    ``lines`` holds the free-top ``l`` of each ``(W, side)`` (:meth:`l_of_W`), which does
+    not depend on ``mu``: the levels of one body, ``h`` and axis share it."""
 
     def __init__(self, body: RigidBody, h: float, M: float, axis: int, band: tuple[float, float],
-                 engine: EngineBase, tol: Tolerance, return_time: float) -> None:
+                 engine: EngineBase, tol: Tolerance, return_time: float,
+                 lines: dict[tuple[float, int], float | None] | None = None) -> None:
         self.body, self.h, self.M, self.axis = body, h, M, axis
         self.engine, self.tol, self.return_time = engine, tol, return_time
         self.band = band            # free-top W of the two main chains
-        self.evaluations = 0
+        self.evaluations = 0        # half orbits integrated
+        # Each a function of its arguments on this level, computed once: Brent's method
+        # asks again for its bracket's ends, the check of its root and the whole orbit's
+        # seed for its last point, and every line and level for the same grid of W.
+        self._lines = {} if lines is None else lines
+        self._seeds: dict[tuple[float, float], NDArray[np.float64] | None] = {}
+        self._halves: dict[tuple[float, float, int, int], float] = {}
 
     # ---------------------------------------------------------------- the lines (G2)
     def l_of_W(self, W: float, side: int) -> float:
@@ -261,12 +271,24 @@ class _Level:
         return base if side < 0 else -base      # G2 > 0: l in (-pi/2, pi/2)
 
     def _l_or_none(self, W: float, side: int) -> float | None:
-        try:
-            return self.l_of_W(W, side)
-        except ValueError:
-            return None
+        key = (W, side)
+        if key not in self._lines:
+            try:
+                self._lines[key] = self.l_of_W(W, side)
+            except ValueError:
+                self._lines[key] = None
+        return self._lines[key]
 
     def seed(self, l0: float, g0: float) -> NDArray[np.float64] | None:
+        """The state on the line ``(g0, L = 0)`` at ``l0`` on the level (a copy: the
+        caller may keep or change it), None where the level does not reach it."""
+        key = (l0, g0)
+        if key not in self._seeds:
+            self._seeds[key] = self._seed(l0, g0)
+        y = self._seeds[key]
+        return None if y is None else y.copy()
+
+    def _seed(self, l0: float, g0: float) -> NDArray[np.float64] | None:
         b = self.body
         x = b.a * math.sin(l0) ** 2 + b.b * math.cos(l0) ** 2
         G_free = math.sqrt(2.0 * self.h / x)
@@ -291,7 +313,14 @@ class _Level:
         return float(np.sum(np.mod(np.diff(theta) + math.pi, 2.0 * math.pi) - math.pi))
 
     def half(self, l0: float, g0: float, p: int, q: int) -> float:
-        """``F(l0) = Phi - pi p`` over the half orbit (NaN where it cannot be followed)."""
+        """``F(l0) = Phi - pi p`` over the half orbit (NaN where it cannot be followed),
+        integrated once per start (G3)."""
+        key = (l0, g0, p, q)
+        if key not in self._halves:
+            self._halves[key] = self._half(l0, g0, p, q)
+        return self._halves[key]
+
+    def _half(self, l0: float, g0: float, p: int, q: int) -> float:
         y = self.seed(l0, g0)
         if y is None:
             return math.nan
@@ -673,10 +702,11 @@ def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int]
         "residue_resolution_hyperbolic", "mu_critical_convergent",
         "residue_hyperbolic_critical", "seconds")}
     found_e, found_h = [], []
+    lines: dict[tuple[float, int], float | None] = {}
     try:
         for p, q in conv:
             t0 = time.perf_counter()
-            level = _Level(body, h, M, axis, band, eng, tolerance, period)
+            level = _Level(body, h, M, axis, band, eng, tolerance, period, lines)
             ell, hyp = level.pair(p, q)
             bar.update(1)
             for name, o in (("elliptic", ell), ("hyperbolic", hyp)):
@@ -693,7 +723,7 @@ def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int]
                 prior = [m for m in cols["mu_critical_convergent"] if math.isfinite(m)]
                 guess = prior[-1] if prior else math.sqrt(mus[0] * mus[1])
                 mc, rh = _critical(body, h, M, axis, band, eng, tolerance, period, p, q, mus,
-                                   guess, bar)
+                                   guess, bar, lines)
             cols["mu_critical_convergent"].append(mc)
             cols["residue_hyperbolic_critical"].append(rh)
             cols["seconds"].append(time.perf_counter() - t0)
@@ -917,10 +947,11 @@ def critical_mu_curve(body: RigidBody, h_values: Sequence[float], M: float = 0.0
 
 def _critical(body: RigidBody, h: float, M: float, axis: int, band: tuple[float, float],
               eng: EngineBase, tol: Tolerance, period: float, p: int, q: int,
-              mus: tuple[float, float], guess: float, bar: Progress
-              ) -> tuple[float, float]:
+              mus: tuple[float, float], guess: float, bar: Progress,
+              lines: dict[tuple[float, int], float | None]) -> tuple[float, float]:
     """``mu`` in ``mus`` where the elliptic residue of ``p/q`` is :data:`THRESHOLD` (G5),
-    and the hyperbolic residue there; NaN where it is not found.
+    and the hyperbolic residue there; NaN where it is not found (``lines``: the level's
+    free-top lines, :class:`_Level`).
 
     From ``guess`` (the previous convergent's ``mu_c``: they converge) ``mu`` steps by
     :data:`_MU_STEP` up or down, each orbit continued from the last, until the residue
@@ -929,7 +960,7 @@ def _critical(body: RigidBody, h: float, M: float, axis: int, band: tuple[float,
     calls = [0]
 
     def residues(mu: float) -> tuple[_Orbit | None, _Orbit | None]:
-        level = _Level(body.with_mu(mu), h, M, axis, band, eng, tol, period)
+        level = _Level(body.with_mu(mu), h, M, axis, band, eng, tol, period, lines)
         pair = level.pair(p, q, last[-1]) if last[-1][0] is not None else (None, None)
         if pair[0] is None:                      # the continuation lost it: search afresh
             pair = level.pair(p, q)
