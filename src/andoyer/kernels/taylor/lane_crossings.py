@@ -552,11 +552,11 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
         tc, zc, count, info = run(z0, int(n_crossings), block=size)
         return tc, zc, count, info
     tc, zc, count, info = _outputs(n, int(n_crossings))
-    pilot = run(z0, PILOT_CROSSINGS, block=lanes.block_size(n, m))
-    parts = _schedule(pilot[0], pilot[2], pilot[3], int(n_crossings), float(t_max), m)
-    done = pilot[2] < PILOT_CROSSINGS  # ended in the pilot: its results are the run's
-    tc[done, :PILOT_CROSSINGS], zc[done, :PILOT_CROSSINGS] = pilot[0][done], pilot[1][done]
-    count[done], info[done] = pilot[2][done], pilot[3][done]
+    p_tc, p_zc, p_count, p_info = run(z0, PILOT_CROSSINGS, block=lanes.block_size(n, m))
+    parts = _schedule(p_tc, p_count, p_info, int(n_crossings), float(t_max), m)
+    done = p_count < PILOT_CROSSINGS  # ended in the pilot: its results are the run's
+    tc[done, :PILOT_CROSSINGS], zc[done, :PILOT_CROSSINGS] = p_tc[done], p_zc[done]
+    count[done], info[done] = p_count[done], p_info[done]
     if parts:
         rows = np.concatenate(parts)
         starts = np.cumsum([0] + [len(r) for r in parts[:-1]]).tolist()
@@ -612,7 +612,7 @@ def _schedule(tc: np.ndarray, count: np.ndarray, info: np.ndarray, n_crossings: 
     k = PILOT_CROSSINGS
     t_first, t_last = tc[left, 0], tc[left, k - 1]
     t_end = np.minimum(t_first + (n_crossings - 1) * (t_last - t_first) / (k - 1), t_max)
-    steps = info[left, 3] / t_last * t_end
+    steps = info[left, INFO.index("nfev")] / t_last * t_end  # taylor counts steps there
     blocks: list[list[int]] = [[] for _ in range(max(1, threads))]
     load = np.zeros(len(blocks))
     for i in np.argsort(-steps, kind="stable"):  # longest first
