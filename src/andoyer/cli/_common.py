@@ -316,8 +316,8 @@ def inputs_from_args(args: argparse.Namespace, suffix: str = ".nc", *,
 
 
 #: The help of ``--engine``: the default is :func:`andoyer.integrate.engines.default_engine_name`'s.
-ENGINE_HELP = ("integration engine (default: heyoka where installed, except where another "
-               "engine was measured faster: taylor for FLI maps; "
+ENGINE_HELP = ("integration engine (default: taylor for orbits, sections and chaos maps, "
+               "where it was measured faster; heyoka where installed for the rest; "
                f"else the first of {', '.join(FALLBACK_DEFAULTS)} that can do what the "
                "command asks)")
 

@@ -91,8 +91,9 @@ class Settings:
     n_crossings : int, default 500
         Section points per orbit.
     engine : {"heyoka", "taylor", "numba", "scipy"}, optional
-        Integration engine of the orbits and the chaos indicators (default: heyoka where
-        installed, else taylor).
+        Integration engine of the orbits and the chaos indicators (default: each
+        workload's, :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`: taylor for the
+        sections and the underlay, heyoka where installed for one orbit's indicators).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` for the missing action a click seeds (one orbit
         each with ``"all"``).
@@ -180,8 +181,8 @@ def make_settings(body: RigidBody | None = None, *, h: float | None = None, M: f
     n_crossings : int, default 500
         Crossings per orbit.
     engine : str, optional
-        Integration engine of the orbits and the chaos indicators (default heyoka where
-        installed, else taylor).
+        Integration engine of the orbits and the chaos indicators (default: each
+        workload's, as :class:`Settings`).
     root : {"smallest", "largest", "all"}, default "smallest"
         Which solutions of ``H = h`` above a click seed orbits.
     rtol, atol : float, default 1e-12

@@ -309,8 +309,9 @@ def propagate(body: RigidBody, y0: ArrayLike, t: ArrayLike, *, engine: EngineLik
     {t}
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
-        heyoka where installed, else taylor
-        (:func:`~andoyer.integrate.engines.default_engine_name`).
+        taylor, measured faster on orbits
+        (:func:`~andoyer.integrate.engines.default_engine_name`, per workload:
+        :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`).
     {tolerances}
     {chart}
     {progress}
@@ -363,7 +364,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
         Crossings wanted per orbit.
     engine : str or Engine, optional
         An engine name (:data:`andoyer.integrate.engines.ENGINES`) or instance; default
-        heyoka where installed, else taylor
+        taylor, measured faster on component and angle sections
         (:func:`~andoyer.integrate.engines.default_engine_name`, per workload:
         :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`).
     {tolerances}

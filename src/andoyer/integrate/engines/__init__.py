@@ -118,6 +118,12 @@ WORKLOADS = ("orbit", "component_section", "angle_section", "tangent", "fli_map"
 #: scatter of one run's medians on a 2-core machine is about 5 %; heyoka's cold start is
 #: also far cheaper). Measured: benchmarks/NOTES.md#engine-defaults.
 MEASURED_DEFAULTS: dict[str, str] = {
+    # W1, one orbit at output times: taylor's compiled loop (kernels.taylor.flow) has no
+    # per-step call back into Python; many orbits run on its SIMD lanes.
+    "orbit": "taylor",
+    # W2 G3, component sections: taylor's lanes balanced by a pilot of each orbit's first
+    # crossings (kernels.taylor.lane_crossings) faster than heyoka's batch events.
+    "component_section": "taylor",
     # W2 theta2, angle sections: taylor's section jets on SIMD lanes
     # (kernels.taylor.lane_sections) faster than heyoka's events and their callbacks.
     "angle_section": "taylor",
