@@ -786,9 +786,9 @@ def markdown(result: dict[str, Any]) -> str:
         "everywhere (rtol = atol). Wall time: median of the timed runs after one warm-up "
         "run; CPU: all threads. Errors against an extended-precision heyoka reference "
         "(long double, tol 1e-19). **x heyoka** = this runner's time / andoyer on the "
-        "heyoka engine (the default where heyoka is installed for every workload but those "
-        "of `andoyer.integrate.engines.MEASURED_DEFAULTS`, the FLI map on taylor: the "
-        "default of each workload is the table \"Which engine for what\" in `SUMMARY.md`).",
+        "heyoka engine (the default of each workload, heyoka where installed but for those "
+        "of `andoyer.integrate.engines.MEASURED_DEFAULTS`, is the table \"Which engine for "
+        "what\" in `SUMMARY.md`).",
         ""]
     for wl in ("W1", "W2", "W3", "W4", "W5"):
         sub = [r for r in rows if r.workload == wl]

@@ -169,20 +169,21 @@ def test_summaries_are_not_cut_at_abbreviations(monkeypatch: pytest.MonkeyPatch)
 
 
 #: Functions whose ``engine`` parameter states its default, and the capability with which
-#: the function resolves ``engine=None`` (the default is the registry's for it).
+#: the function resolves ``engine=None`` (the default is the registry's for it), with the
+#: workloads it names to the registry (:data:`~andoyer.integrate.engines.WORKLOADS`).
 ENGINE_DEFAULTS = {
-    "andoyer.integrate.api.propagate": "propagate",
-    "andoyer.integrate.api.poincare": "crossings",
-    "andoyer.integrate.orientation.attitude": "attitude",
-    "andoyer.integrate.variational.propagate_variational": "tangent",
-    "andoyer.analysis.splitting.section_map.flow_engine": "tangent_crossings",
-    "andoyer.analysis.splitting.section_map.flow_to_section": "tangent_crossings",
-    "andoyer.analysis.splitting.periodic.rotation_orbit": "tangent_crossings",
-    "andoyer.analysis.splitting.manifolds.manifold_branch": "tangent_crossings",
-    "andoyer.analysis.paper.trajectories.fig3_section": "crossings",
-    "andoyer.analysis.chaos.alignment.alignment_indices": "tangent",
-    "andoyer.analysis.chaos.lyapunov.indicators": "tangent",
-    "andoyer.analysis.hess.floquet.monodromy": "tangent",
+    "andoyer.integrate.api.propagate": ("propagate", "orbit"),
+    "andoyer.integrate.api.poincare": ("crossings", "component_section", "angle_section"),
+    "andoyer.integrate.orientation.attitude": ("attitude",),
+    "andoyer.integrate.variational.propagate_variational": ("tangent",),
+    "andoyer.analysis.splitting.section_map.flow_engine": ("tangent_crossings",),
+    "andoyer.analysis.splitting.section_map.flow_to_section": ("tangent_crossings",),
+    "andoyer.analysis.splitting.periodic.rotation_orbit": ("tangent_crossings",),
+    "andoyer.analysis.splitting.manifolds.manifold_branch": ("tangent_crossings",),
+    "andoyer.analysis.paper.trajectories.fig3_section": ("crossings", "angle_section"),
+    "andoyer.analysis.chaos.alignment.alignment_indices": ("tangent",),
+    "andoyer.analysis.chaos.lyapunov.indicators": ("tangent",),
+    "andoyer.analysis.hess.floquet.monodromy": ("tangent",),
 }
 
 
@@ -194,16 +195,24 @@ def test_a_stated_default_engine_is_the_registrys(name: str) -> None:
     after taylor became the default of orbits and sections)."""
     import re
 
-    from andoyer.integrate.engines import FALLBACK_DEFAULTS, engine_class
+    from andoyer.integrate.engines import FALLBACK_DEFAULTS, MEASURED_DEFAULTS, engine_class
     from andoyer.integrate.engines.base import Capability
 
     module, _, function = name.rpartition(".")
     doc = NumpyDocString(inspect.getdoc(getattr(_import(module), function)) or "")
     text = " ".join(" ".join(p.desc) for p in doc["Parameters"] if p.name == "engine")
+    need, *workloads = ENGINE_DEFAULTS[name]
+    measured = {MEASURED_DEFAULTS[w] for w in workloads if w in MEASURED_DEFAULTS}
+    if measured:
+        # a workload measured off heyoka: the text names the engine and the registry
+        assert "MEASURED_DEFAULTS" in text and all(e in text for e in measured), \
+            f"{name}: the default of its workloads ({', '.join(sorted(measured))}, " \
+            f"MEASURED_DEFAULTS) is not stated: {text!r}"
+        return
     stated = re.search(r"heyoka\s+where\s+installed,\s+else\s+(?:the\s+first\s+of\s+)?(\w+)",
                        text)
     assert stated, f"{name}: the engine parameter does not state its default: {text!r}"
-    capability = Capability(ENGINE_DEFAULTS[name])
+    capability = Capability(need)
     fallback = next(n for n in FALLBACK_DEFAULTS if capability in engine_class(n).capabilities)
     assert stated.group(1) == fallback, f"{name}: says {stated.group(1)}, is {fallback}"
 

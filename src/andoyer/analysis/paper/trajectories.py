@@ -155,8 +155,8 @@ def fig3_section(body: RigidBody, *, J2: float = 1.0, h: float | None = None,
         more in the enlarged box :func:`zoom_box` near the saddle (4 phi0, 0), where the
         chaotic layer of the separatrix lies; each followed for ``n_crossings`` crossings.
     engine : str, optional
-        Integration engine (:func:`andoyer.integrate.poincare`; default heyoka where
-        installed, else taylor).
+        Integration engine (:func:`andoyer.integrate.poincare`; default taylor, measured
+        faster on angle sections: :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`).
     rtol, atol : float, default 1e-12
         Relative and absolute tolerances.
     progress : bool, optional, default False
