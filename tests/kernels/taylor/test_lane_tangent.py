@@ -151,6 +151,9 @@ def test_orbits_take_the_scalar_steps(body: RigidBody, k: int) -> None:
     again, info2 = LT.propagate(z, rho, t, p, 1e-12, 10**6, block=L + 3, threads=2)
     np.testing.assert_array_equal(again, got)
     np.testing.assert_array_equal(info2, info)
+    guided, info3 = LT.propagate(z, rho, t, p, 1e-12, 10**6, threads=2)  # guided blocks
+    np.testing.assert_array_equal(guided, got)
+    np.testing.assert_array_equal(info3, info)
 
 
 def test_a_chaotic_orbit_and_its_megno(body: RigidBody) -> None:

@@ -149,6 +149,20 @@ def test_orbits_take_the_scalar_steps(body: RigidBody, k: int) -> None:
     again, info2 = TL.propagate(z, t, p, ORDER, 10**6, block=L + 3, threads=2)
     np.testing.assert_array_equal(again, got)
     np.testing.assert_array_equal(info2, info)
+    assert len(TL.block_starts(n, 2)) > 1
+    guided, info3 = TL.propagate(z, t, p, ORDER, 10**6, threads=2)  # the guided blocks
+    np.testing.assert_array_equal(guided, got)
+    np.testing.assert_array_equal(info3, info)
+
+
+def test_guided_blocks_cover_the_orbits_and_shrink() -> None:
+    for n, m in [(1, 2), (2 * L, 2), (1000, 2), (4099, 3), (50, 1)]:
+        starts = TL.block_starts(n, m)
+        sizes = np.diff([*starts, n])
+        assert starts[0] == 0 and np.all(sizes > 0) and sizes.sum() == n
+        assert np.all(sizes[:-1] >= 2 * L)  # at least two orbits per lane
+        assert np.all(np.diff(sizes[:-1]) <= 0)  # shorter as the orbits run out
+    assert TL.block_starts(1024, 2)[1] == 256  # a thread's share of half the orbits
 
 
 def test_orbits_agree_with_dop853(body: RigidBody) -> None:

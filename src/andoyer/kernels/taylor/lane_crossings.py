@@ -477,7 +477,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     orbits), and a block's lanes idle once its queue is empty while its longest orbits
     finish: so from :data:`PILOT_FROM` crossings asked the orbits run twice, a pilot of
     their first :data:`PILOT_CROSSINGS` crossings (the blocks of
-    :func:`~andoyer.kernels.taylor.lanes.block_size`), then from the start in one block
+    :func:`~andoyer.kernels.taylor.lanes.block_starts`), then from the start in one block
     per thread, longest first (:func:`_schedule`), as the heyoka engine orders its queue
     (measured: benchmarks/NOTES.md#taylor-lane-schedule). An orbit takes the same steps
     in any lane and block, and its crossings agree to round-off.
@@ -506,7 +506,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
         Orbits per block, in their order. Default: from :data:`PILOT_FROM` crossings
         asked, the pilot's schedule (the first :data:`PILOT_CROSSINGS` crossings of
         every orbit, then one block per thread, longest orbit first: :func:`_schedule`);
-        else :func:`andoyer.kernels.taylor.lanes.block_size`.
+        else the guided blocks of :func:`andoyer.kernels.taylor.lanes.block_starts`.
     threads : int, optional
         Threads (:func:`andoyer.kernels.threads.over_orbits`).
 
@@ -548,11 +548,11 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
         return out
 
     if block is not None or int(n_crossings) < PILOT_FROM or n < 2:
-        size = lanes.block_size(n, m) if block is None else int(block)
-        tc, zc, count, info = run(z0, int(n_crossings), block=size)
+        blocks = {"starts": lanes.block_starts(n, m)} if block is None else {"block": int(block)}
+        tc, zc, count, info = run(z0, int(n_crossings), **blocks)
         return tc, zc, count, info
     tc, zc, count, info = _outputs(n, int(n_crossings))
-    p_tc, p_zc, p_count, p_info = run(z0, PILOT_CROSSINGS, block=lanes.block_size(n, m))
+    p_tc, p_zc, p_count, p_info = run(z0, PILOT_CROSSINGS, starts=lanes.block_starts(n, m))
     parts = _schedule(p_tc, p_count, p_info, int(n_crossings), float(t_max), m)
     done = p_count < PILOT_CROSSINGS  # ended in the pilot: its results are the run's
     tc[done, :PILOT_CROSSINGS], zc[done, :PILOT_CROSSINGS] = p_tc[done], p_zc[done]

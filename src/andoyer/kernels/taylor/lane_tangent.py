@@ -28,7 +28,7 @@ Horner and queue this module uses), with what the renormalised flow adds:
 So each lane takes the scalar kernel's steps (``info`` equal orbit by orbit, tested)
 and its rows agree with the scalar kernel's to round-off. Failures are per orbit with
 the scalar kernel's statuses; ended orbits hand their lane to the next of the block's
-queue; threads run blocks (:func:`andoyer.kernels.taylor.lanes.block_size`).
+queue; threads run blocks (guided: :func:`andoyer.kernels.taylor.lanes.block_starts`).
 
 Entry point: :func:`propagate` (cached machine code, keyed by :data:`LANE_TANGENT_STAMP`);
 rows in the layout of :func:`andoyer.kernels.common.layout`.
@@ -58,7 +58,7 @@ from andoyer.kernels.taylor import jets, lanes, sections, tangent
 from andoyer.kernels.taylor.jets import fill_constants, step_to
 from andoyer.kernels.taylor.lanes import (
     aligned,
-    block_size,
+    block_starts,
     goes_on,
     lane_advance,
     lane_horner,
@@ -366,7 +366,8 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     max_steps : int
         Maximum steps per orbit.
     block : int, optional
-        Orbits per block (default :func:`andoyer.kernels.taylor.lanes.block_size`).
+        Orbits per block (default: the guided blocks of
+        :func:`andoyer.kernels.taylor.lanes.block_starts`).
     threads : int, optional
         Threads (:func:`andoyer.kernels.threads.over_orbits`).
 
@@ -404,8 +405,8 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     rho = np.ascontiguousarray(np.broadcast_to(rho0, (n, k)), dtype=np.float64)
     m = numba.get_num_threads() if threads is None else int(threads)
-    size = block_size(n, m) if block is None else int(block)
+    blocks = {"starts": block_starts(n, m)} if block is None else {"block": int(block)}
     over_orbits(lane_tangent_block, n, (np.ascontiguousarray(z0, dtype=np.float64), rho),
                 (out, info), (np.ascontiguousarray(t, dtype=np.float64), p, order_for(float(tol)),
-                              int(max_steps)), block=size, threads=m)
+                              int(max_steps)), threads=m, **blocks)
     return out, info

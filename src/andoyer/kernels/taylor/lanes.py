@@ -39,7 +39,8 @@ Design (measured: benchmarks/NOTES.md#taylor-lanes):
   units in the last place of ``t`` gives ``STEP_TOO_SMALL``, ``max_steps`` steps
   ``MAX_STEPS``; rows of ``out`` not reached are left as they were.
 * **Threads over blocks of orbits** (:func:`andoyer.kernels.threads.over_orbits`),
-  each block a queue for its own lanes (:func:`block_size`: four blocks per thread).
+  each block a queue for its own lanes (:func:`block_starts`: guided, shorter as the
+  orbits run out).
 
 A lane-step costs about a quarter of the scalar kernel's orbit-step, mostly the jets
 (then the step size, its roots on lane vectors: :func:`andoyer.kernels.simd.roots`); one
@@ -74,7 +75,7 @@ from andoyer.kernels.taylor import jets, sections
 from andoyer.kernels.taylor.jets import fill_constants, step_to
 from andoyer.kernels.threads import over_orbits
 
-__all__ = ["LANES", "LANES_STAMP", "propagate", "lanes_block", "block_size"]
+__all__ = ["LANES", "LANES_STAMP", "propagate", "lanes_block", "block_starts"]
 
 #: Orbits advanced together (the vector width of the generated lane jets).
 LANES = simd.LANES
@@ -323,9 +324,11 @@ def _build(stamp: str) -> Any:
 lanes_block = _build(LANES_STAMP)
 
 
-def block_size(n: int, threads: int) -> int:
-    """Orbits per block handed to a thread: four blocks per thread, at least two
-    orbits per lane (a block's last orbits run with idle lanes beside them).
+def block_starts(n: int, threads: int) -> list[int]:
+    """First orbit of each block handed to a thread: guided, each block the share of one
+    thread of half the orbits left, at least two orbits per lane (a block's last orbits
+    run with idle lanes beside them), so that the last blocks are short and no thread
+    waits long on another at the end of a call.
 
     Parameters
     ----------
@@ -336,12 +339,17 @@ def block_size(n: int, threads: int) -> int:
 
     Examples
     --------
-    >>> block_size(984, 2)
-    123
-    >>> block_size(10, 2) == 2 * LANES
+    >>> starts = block_starts(1024, 2)
+    >>> starts[:4], 1024 - starts[-1] <= 2 * LANES
+    ([0, 256, 448, 592], True)
+    >>> block_starts(10, 2) == [0, 2 * LANES]
     True
     """
-    return max(2 * _L, -(-n // (4 * max(1, threads))))
+    m, starts, i = max(1, int(threads)), [], 0
+    while i < n:
+        starts.append(i)
+        i += max(2 * _L, -(-(n - i) // (2 * m)))
+    return starts
 
 
 def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_steps: int, *,
@@ -362,7 +370,7 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_step
     max_steps : int
         Maximum steps per orbit.
     block : int, optional
-        Orbits per block (default :func:`block_size`).
+        Orbits per block (default: the guided blocks of :func:`block_starts`).
     threads : int, optional
         Threads (:func:`andoyer.kernels.threads.over_orbits`).
 
@@ -389,7 +397,7 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_step
     out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     m = numba.get_num_threads() if threads is None else int(threads)
-    size = block_size(n, m) if block is None else int(block)
+    blocks = {"starts": block_starts(n, m)} if block is None else {"block": int(block)}
     over_orbits(lanes_block, n, (z0,), (out, info), (t, p, int(order), int(max_steps)),
-                block=size, threads=m)
+                threads=m, **blocks)
     return out, info
