@@ -211,8 +211,13 @@ def run_items(items: list[Item], ctx: Context, jobs: int, progress: bool
                     out[running.pop(f).key] = f.result()
             pool.shutdown(wait=True)
         finally:
-            pool.shutdown(wait=False, cancel_futures=True)
+            for f in running:
+                f.cancel()
             _end_workers(set(multiprocessing.active_children()) - before)
+            # Joins the pool's manager thread, its workers ended: one still tearing down
+            # at exit races CPython 3.11's exit hook, which writes to the wake-up pipe
+            # the thread closes ("OSError: Bad file descriptor" after a SIGTERM).
+            pool.shutdown(wait=True, cancel_futures=True)
         return out
     finally:
         announcer.close()
