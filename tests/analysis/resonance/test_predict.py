@@ -400,3 +400,24 @@ def test_island_prediction_orders_and_p2_chains():
         2 * float(a.libration_frequency[1]), rel=0.01)
     with pytest.raises(ValueError, match="order_mu"):
         island_prediction(WIDE, 1.0, 0.0, "3:1", order_mu=4)
+
+
+@pytest.mark.parametrize("n", [1, 7, 8, 256])
+def test_trig_interpolate_reproduces_samples_and_band_limited_functions(n: int) -> None:
+    """The interpolant of ``n`` samples on the uniform phase grid passes through them and
+    is exact for a trigonometric polynomial below the Nyquist order (at any phase)."""
+    from types import SimpleNamespace
+
+    from andoyer.analysis.resonance.predict import trig_interpolate
+
+    grid = 2 * np.pi * np.arange(n) / n
+    torus = SimpleNamespace(phi1=grid)
+    rng = np.random.default_rng(n)
+    values = rng.normal(size=n)
+    np.testing.assert_allclose(trig_interpolate(torus, values, grid), values, atol=1e-12)
+    top = (n - 1) // 2
+    f = lambda x: 0.3 + 0 * x + sum(np.cos(k * x + k) / (1 + k) for k in range(1, top + 1))  # noqa: E731
+    phi = rng.uniform(-20.0, 20.0, size=(5, 7))
+    got = trig_interpolate(torus, f(grid), phi)
+    assert got.shape == (35,)
+    np.testing.assert_allclose(got, f(phi).ravel(), atol=1e-12)
