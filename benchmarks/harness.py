@@ -75,6 +75,19 @@ def _say(msg: str) -> None:
 # ----------------------------------------------------------------------------- W1
 
 
+def _method_limit(runner: str, limits: dict[str, dict[str, Any]], label: str,
+                  *args: Any, **kwargs: Any) -> dict[str, Any]:
+    """The machine limit of an andoyer runner's method, measured once per method into
+    ``limits``: taylor's is heyoka's (the same Taylor method and steps, and the machine's
+    cheapest bare lane-step of it: benchmarks/limits.py), numba's its DOP853's."""
+    kind = "numba" if runner.endswith("numba") else "heyoka"
+    if kind not in limits:
+        _say(f"{label} {runner}: machine limit ...")
+        limits[kind] = asdict((L.heyoka_limit if kind == "heyoka" else L.numba_limit)(
+            *args, **kwargs))
+    return limits[kind]
+
+
 def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
     from andoyer.integrate import propagate
     from benchmarks.peers import heyoka_scripts as hs
@@ -114,13 +127,8 @@ def w1(sizes: W.Sizes, runners: set[str]) -> list[Row]:
                         walls, err, err, "max |y(t_end) - y_ref|",
                         note="" if not slow else f"{repeat} run(s), no warm-up"))
         if name in ("andoyer heyoka", "andoyer numba", "andoyer taylor"):
-            # taylor's limit is heyoka's, as on W2: the same Taylor method and steps
-            kind = "numba" if name.endswith("numba") else "heyoka"
-            if kind not in limits:
-                limits[kind] = asdict((L.heyoka_limit if kind == "heyoka" else
-                                       L.numba_limit)(b, y0[None], np.array([t[-1]]), tol,
-                                                      single_orbit=True))
-            rows[-1].extra["limit"] = limits[kind]
+            rows[-1].extra["limit"] = _method_limit(name, limits, "W1", b, y0[None],
+                                                    np.array([t[-1]]), tol, single_orbit=True)
             if name == "andoyer heyoka":  # the dataset's cost, measured apart
                 ds = propagate(b, y0, t, engine="heyoka", rtol=tol, atol=tol, progress=False)
                 rows[-1].extra["dataset_load_s"] = timed(lambda ds=ds: ds.copy(deep=True)
@@ -187,15 +195,8 @@ def w2(sizes: W.Sizes, runners: set[str], full_scipy: bool,
             wall, cpu, walls, (T, Y) = timed(fn, sizes.repeat)
             em, ex, extra = _errors(T, Y, t_ref, y_ref)
             if runner in ("andoyer heyoka", "andoyer numba", "andoyer taylor"):
-                # taylor's limit is heyoka's: the same Taylor method and steps, and the
-                # machine's cheapest bare lane-step of it (benchmarks/limits.py)
-                kind = "numba" if runner.endswith("numba") else "heyoka"
-                if kind not in limits:
-                    _say(f"W2 {name} {runner}: machine limit ...")
-                    limits[kind] = asdict((L.heyoka_limit if kind == "heyoka" else
-                                           L.numba_limit)(b, y0, np.asarray(t_ref, dtype=float),
-                                                          tol))
-                extra["limit"] = limits[kind]
+                extra["limit"] = _method_limit(runner, limits, f"W2 {name}", b, y0,
+                                               np.asarray(t_ref, dtype=float), tol)
             rows.append(Row("W2", case, runner, wall, cpu, walls, em, ex,
                             f"max-norm error of the state at crossing {N}", extra=extra))
         # scipy: a subset of the orbits, extrapolated by integrated time
