@@ -1,7 +1,6 @@
 """``python -m benchmarks.lane_blocks``: the blocks the lane kernels hand to threads,
-fixed (four per thread, as before) against guided (:func:`andoyer.kernels.threads.
-guided_starts`, through :func:`andoyer.kernels.taylor.lanes.block_starts`), side by side
-in one process.
+fixed (four per thread, as before) against guided (:func:`andoyer.kernels.taylor.lanes.
+block_starts`), side by side in one process.
 
 * the **FLI map** of W3 (``chaos_map(..., indicator="fli")`` on taylor, ``--grid``
   squared starts, W3's ``t_end``): the map runs 1024 orbits per kernel call, and each
@@ -28,21 +27,22 @@ import numpy as np
 from benchmarks import workloads as W
 
 
-def fixed_starts(n: int, threads: int, minimum: int) -> list[int]:
-    """The former blocks: four per thread, at least ``minimum`` orbits."""
-    from andoyer.kernels.threads import block_starts
+def fixed_starts(n: int, threads: int) -> list[int]:
+    """The former blocks: four per thread, at least two orbits per lane."""
+    from andoyer.kernels.taylor.lanes import LANES
 
-    return block_starts(n, threads, max(minimum, -(-n // (4 * max(1, threads)))))
+    size = max(2 * LANES, -(-n // (4 * max(1, threads))))
+    return list(range(0, n, size))
 
 
 def main(argv: list[str] | None = None) -> None:
     from andoyer.analysis.chaos.lyapunov import chaos_map
     from andoyer.analysis.chaos.specs import IndicatorRun
     from andoyer.integrate import propagate
-    from andoyer.kernels.taylor import lanes
+    from andoyer.kernels.taylor import lane_tangent, lanes
 
-    def use(starts: Callable[[int, int, int], list[int]]) -> None:
-        lanes.guided_starts = starts  # type: ignore[assignment]  # what lanes.block_starts calls
+    def use(starts: Callable[[int, int], list[int]]) -> None:
+        lanes.block_starts = lane_tangent.block_starts = starts  # type: ignore[assignment]
 
     ap = argparse.ArgumentParser(prog="python -m benchmarks.lane_blocks")
     ap.add_argument("--grid", type=int, default=128)
@@ -54,7 +54,7 @@ def main(argv: list[str] | None = None) -> None:
     tol = W.FULL.tol
     t_end = W.FULL.w3_t_end
     y0 = W.initial_states(a.orbits)
-    guided = lanes.guided_starts
+    guided = lanes.block_starts
     work: dict[str, Callable[[], Any]] = {
         f"FLI map {a.grid}^2": lambda: chaos_map(
             b, h, 0.0, ("theta2", 0.0), grid=a.grid,

@@ -30,7 +30,7 @@ from typing import Any
 import numba
 import numpy as np
 
-__all__ = ["over_orbits", "block_starts", "guided_starts"]
+__all__ = ["over_orbits", "block_starts"]
 
 
 def block_starts(n: int, threads: int, block: int = 1) -> list[int]:
@@ -55,34 +55,6 @@ def block_starts(n: int, threads: int, block: int = 1) -> list[int]:
     """
     size = max(1, -(-n // threads)) if block == 0 else int(block)
     return list(range(0, n, size))
-
-
-def guided_starts(n: int, threads: int, minimum: int = 1) -> list[int]:
-    """First orbit of each block, guided: each block a thread's share of half the orbits
-    left, at least ``minimum`` orbits, so that the last blocks are short and no thread
-    waits long on another at the end of a call.
-
-    Parameters
-    ----------
-    n : int
-        Orbits.
-    threads : int
-        Threads.
-    minimum : int, default 1
-        Fewest orbits per block (the last may have fewer).
-
-    Examples
-    --------
-    >>> guided_starts(1024, 2, 8)[:4]
-    [0, 256, 448, 592]
-    >>> guided_starts(10, 2, 8)
-    [0, 8]
-    """
-    m, starts, i = max(1, int(threads)), [], 0
-    while i < n:
-        starts.append(i)
-        i += max(int(minimum), -(-(n - i) // (2 * m)))
-    return starts
 
 
 def over_orbits(kernel: Callable[..., None], n: int, inputs: Sequence[np.ndarray],

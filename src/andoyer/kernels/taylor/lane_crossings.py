@@ -548,7 +548,8 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
         return out
 
     if block is not None or int(n_crossings) < PILOT_FROM or n < 2:
-        tc, zc, count, info = run(z0, int(n_crossings), starts=lanes.block_starts(n, m, block))
+        blocks = {"starts": lanes.block_starts(n, m)} if block is None else {"block": int(block)}
+        tc, zc, count, info = run(z0, int(n_crossings), **blocks)
         return tc, zc, count, info
     tc, zc, count, info = _outputs(n, int(n_crossings))
     p_tc, p_zc, p_count, p_info = run(z0, PILOT_CROSSINGS, starts=lanes.block_starts(n, m))

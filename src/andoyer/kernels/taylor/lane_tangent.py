@@ -405,7 +405,8 @@ def propagate(z0: np.ndarray, rho0: np.ndarray, t: np.ndarray, p: np.ndarray, to
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     rho = np.ascontiguousarray(np.broadcast_to(rho0, (n, k)), dtype=np.float64)
     m = numba.get_num_threads() if threads is None else int(threads)
+    blocks = {"starts": block_starts(n, m)} if block is None else {"block": int(block)}
     over_orbits(lane_tangent_block, n, (np.ascontiguousarray(z0, dtype=np.float64), rho),
                 (out, info), (np.ascontiguousarray(t, dtype=np.float64), p, order_for(float(tol)),
-                              int(max_steps)), threads=m, starts=block_starts(n, m, block))
+                              int(max_steps)), threads=m, **blocks)
     return out, info

@@ -73,8 +73,7 @@ from andoyer.kernels.common import (
 from andoyer.kernels.generated import recurrences
 from andoyer.kernels.taylor import jets, sections
 from andoyer.kernels.taylor.jets import fill_constants, step_to
-from andoyer.kernels.threads import block_starts as threads_block_starts
-from andoyer.kernels.threads import guided_starts, over_orbits
+from andoyer.kernels.threads import over_orbits
 
 __all__ = ["LANES", "LANES_STAMP", "propagate", "lanes_block", "block_starts"]
 
@@ -325,10 +324,11 @@ def _build(stamp: str) -> Any:
 lanes_block = _build(LANES_STAMP)
 
 
-def block_starts(n: int, threads: int, block: int | None = None) -> list[int]:
-    """First orbit of each block handed to a thread: ``block`` orbits each, or (None) the
-    guided blocks of :func:`andoyer.kernels.threads.guided_starts` of at least two orbits
-    per lane (a block's last orbits run with idle lanes beside them).
+def block_starts(n: int, threads: int) -> list[int]:
+    """First orbit of each block handed to a thread: guided, each block the share of one
+    thread of half the orbits left, at least two orbits per lane (a block's last orbits
+    run with idle lanes beside them), so that the last blocks are short and no thread
+    waits long on another at the end of a call.
 
     Parameters
     ----------
@@ -336,20 +336,20 @@ def block_starts(n: int, threads: int, block: int | None = None) -> list[int]:
         Orbits.
     threads : int
         Threads.
-    block : int, optional
-        Orbits per block (default: guided).
 
     Examples
     --------
     >>> starts = block_starts(1024, 2)
     >>> starts[:4], 1024 - starts[-1] <= 2 * LANES
     ([0, 256, 448, 592], True)
-    >>> block_starts(10, 2) == [0, 2 * LANES], block_starts(10, 2, 4)
-    (True, [0, 4, 8])
+    >>> block_starts(10, 2) == [0, 2 * LANES]
+    True
     """
-    if block is not None:
-        return threads_block_starts(n, threads, int(block))
-    return guided_starts(n, threads, 2 * _L)
+    m, starts, i = max(1, int(threads)), [], 0
+    while i < n:
+        starts.append(i)
+        i += max(2 * _L, -(-(n - i) // (2 * m)))
+    return starts
 
 
 def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_steps: int, *,
@@ -397,6 +397,7 @@ def propagate(z0: np.ndarray, t: np.ndarray, p: np.ndarray, order: int, max_step
     out = np.full((n, t.shape[0], z0.shape[1]), np.nan)
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     m = numba.get_num_threads() if threads is None else int(threads)
+    blocks = {"starts": block_starts(n, m)} if block is None else {"block": int(block)}
     over_orbits(lanes_block, n, (z0,), (out, info), (t, p, int(order), int(max_steps)),
-                threads=m, starts=block_starts(n, m, block))
+                threads=m, **blocks)
     return out, info
