@@ -190,3 +190,64 @@ def test_a_command_with_a_damaged_cache_warns_once_and_succeeds(tmp_path: Path) 
     assert len(warned) == 1 and "damaged entry of the compiled-kernel cache in " + str(
         tmp_path / "cache") in warned[0], second.stderr
     assert "internal error" not in second.stderr and "Traceback" not in second.stderr
+
+
+_RACE = textwrap.dedent("""
+    import json, sys, time
+    from pathlib import Path
+    from numba.core import caching
+    sys.path.insert(0, sys.argv[1])
+    go, arg = Path(sys.argv[2]), sys.argv[3]
+    write_index = caching.IndexDataCacheFile._save_index
+
+    def slow(self, overloads):  # a slow disk: the index is read, its write comes late
+        time.sleep(1.5)
+        write_index(self, overloads)
+
+    caching.IndexDataCacheFile._save_index = slow
+    import tiny
+    while not go.exists():  # both processes compile and save together
+        time.sleep(0.005)
+    print(json.dumps(tiny.thrice(int(arg) if arg.isdigit() else float(arg))))
+""")
+
+
+def test_two_processes_adding_signatures_at_once_both_land(tmp_path: Path) -> None:
+    """Numba's save reads the index, picks the first unused data name and writes, with no
+    lock: two processes adding signatures of one function at once picked the same name,
+    one index entry was lost and the other could name the other signature's code (make
+    test under two workers: a kernel stepping from a non-finite state). With the writers'
+    lock both entries land, and a third process loads each signature's own code."""
+    (tmp_path / "src").mkdir()
+    (tmp_path / "src" / "tiny.py").write_text(_TINY)
+    env = dict(os.environ, ANDOYER_CACHE_DIR=str(tmp_path / "cache"))
+    env.pop("NUMBA_CACHE_DIR", None)
+    go = tmp_path / "go"
+    runs = [subprocess.Popen([sys.executable, "-c", _RACE, str(tmp_path / "src"), str(go), arg],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+            for arg in ("2", "0.5")]
+    try:
+        import time
+
+        time.sleep(3.0)  # both imported and waiting (their compile follows the go)
+        go.touch()
+        outs = [r.communicate(timeout=300) for r in runs]
+    finally:
+        for r in runs:
+            r.kill()
+    assert [r.returncode for r in runs] == [0, 0], [o[1] for o in outs]
+    assert [json.loads(o[0]) for o in outs] == [6.0, 1.5]
+    check = textwrap.dedent("""
+        import json, sys
+        sys.path.insert(0, sys.argv[1])
+        import tiny
+        values = [tiny.thrice(2), tiny.thrice(0.5)]
+        print(json.dumps({"values": values, "hits": len(tiny.thrice.stats.cache_hits),
+                          "misses": len(tiny.thrice.stats.cache_misses)}))
+    """)
+    run = subprocess.run([sys.executable, "-c", check, str(tmp_path / "src")],
+                         capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout.strip().splitlines()[-1]) == {
+        "values": [6.0, 1.5], "hits": 2, "misses": 0}
+    assert len(list((tmp_path / "cache").rglob("tiny.thrice-*.nbc"))) == 2

@@ -27,6 +27,17 @@ entry (the per-module keys of :mod:`andoyer.kernels.dop853.flow` stay, as a seco
 Folders of former sources are left in place (another install may still use them);
 deleting ``cache_folder()`` is always safe.
 
+Processes that compile the same function at once (the report's workers, a Dask scan, a
+test suite under several workers, on a fresh install) take turns to write its entry:
+Numba reads the function's index, picks the first data-file name the index does not
+use, and writes index and data, with no lock between, so two processes adding
+signatures at once pick the same name, and one index can name the other signature's
+machine code (seen here: a DOP853 kernel stepping from a non-finite state, its arguments
+read as another signature's). :func:`cached_njit`'s caches hold an exclusive lock
+(``filelock``, an OS lock: released when a process dies) on the index while they write,
+so each writer reads the index the one before it wrote. Readers take no lock: Numba
+replaces each file whole (a temporary file, then a rename).
+
 A damaged entry (an index or data file truncated by a full disk or a killed process,
 or overwritten) is taken for a missing one: its files are removed, the kernel compiled
 again and cached, and the run says so once, naming the folder
@@ -54,6 +65,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import filelock
 import platformdirs
 
 from andoyer.errors import DamagedCacheWarning, NoCacheWarning
@@ -67,6 +79,10 @@ CACHE_ENV = "ANDOYER_CACHE_DIR"
 #: Set in the environment once the missing cache was reported, so that the worker
 #: processes of the same run (report jobs, Dask workers) do not report it again.
 _WARNED_ENV = "ANDOYER_NO_CACHE_WARNED"
+
+#: Longest wait (s) for another process's write of the same entry (a few ms each); past
+#: it the kernel runs compiled but not cached in this process.
+_WRITE_WAIT = 60.0
 
 
 def cache_folder() -> Path:
@@ -137,19 +153,36 @@ def _rebuilding_cache() -> type:
 
         def save_overload(self, sig: Any, data: Any) -> None:
             try:
-                super().save_overload(sig, data)
+                self._impl.locator.ensure_cache_path()
+                with self._writer():
+                    super().save_overload(sig, data)
+            except filelock.Timeout:
+                pass  # another process holds the entry: this one's code stays uncached
             except Exception as exc:  # noqa: BLE001 -- a damaged index it cannot remove
                 self._discard(exc)
 
-        def _discard(self, exc: Exception) -> None:
+        def _index(self) -> Path:
             files: Any = self._cache_file  # numba's IndexDataCacheFile
-            index = Path(files._index_path)
+            return Path(files._index_path)
+
+        def _writer(self) -> filelock.BaseFileLock:
+            """The one-writer lock of this function's entry (module notes)."""
+            index = self._index()
+            return filelock.FileLock(index.with_name(index.name + ".lock"),
+                                     timeout=_WRITE_WAIT)
+
+        def _discard(self, exc: Exception) -> None:
+            index = self._index()
             stem = index.name[: -len(".nbi")]
-            for f in [index, *index.parent.glob(glob.escape(stem) + ".*.nbc")]:
-                try:
-                    f.unlink()
-                except OSError:
-                    pass
+            try:
+                with self._writer():
+                    for f in [index, *index.parent.glob(glob.escape(stem) + ".*.nbc")]:
+                        try:
+                            f.unlink()
+                        except OSError:
+                            pass
+            except (OSError, filelock.Timeout):
+                pass  # nothing removable, or another process is rewriting it
             warn_damaged_cache(index.parent, f"{stem}: {type(exc).__name__}: {exc}")
 
     return _RebuildingCache
