@@ -1,6 +1,7 @@
 # Two commands do all the set-up on a fresh machine (Python >= 3.11, pip, make):
 #   make run    install into .venv and run the main job on defaults (andoyer paper)
-#   make test   install into .venv (with test tools) and run lint, types and tests
+#   make test   install into .venv (with test tools) and run lint, types and tests (the
+#               tests on every core: pytest-xdist, one worker per core, a file per worker)
 #   make docs   build the documentation site into docs/_build/html
 PYTHON ?= python3
 VENV ?= .venv
@@ -30,7 +31,7 @@ test: $(VENV)/.test
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
 	$(BIN)/lint-imports
-	$(BIN)/python -m pytest -m "not slow" --doctest-modules src tests
+	$(BIN)/python -m pytest -n auto --dist loadfile -m "not slow" --doctest-modules src tests
 
 # The documentation site (notebooks executed; any warning or failed cell fails it).
 $(VENV)/.docs: pyproject.toml | $(VENV)/.installed
