@@ -56,3 +56,21 @@ def test_every_section_table_is_derived_from_the_one_table():
         == {k for k, s in table.items() if s.needs}
     assert set(sections.EXTRA_ANGLES) == {k for k, s in table.items() if s.chart is None}
     assert set(table) == set(SECTION_KINDS) | set(EXTRA_SECTION_KINDS)
+
+
+def test_the_g_section_at_zero_is_f_over_its_factor_G() -> None:
+    from andoyer.symbolic.sections import _G, cv, section_function_at_zero
+
+    q = section_function_at_zero("g")
+    assert q is not None and q.is_polynomial(*S.y) and not q.has(sp.sqrt)
+    f = section_function("g")[0].subs({value: 0, cv: 1, sv: 0})
+    assert sp.simplify(f - _G * q) == 0
+
+
+@pytest.mark.parametrize("coord", sorted(SECTION_COORDINATES))
+def test_only_angles_with_the_factor_G_have_a_function_at_zero(coord: str) -> None:
+    from andoyer.symbolic.sections import section_function_at_zero
+
+    # theta2's f at 0 mixes g's pair with the rotation by phi0: no factor |G| to take out;
+    # l, theta1, psi have no square root to save; the smooth coordinates are not angles.
+    assert (section_function_at_zero(coord) is not None) == (coord == "g")

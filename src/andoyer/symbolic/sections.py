@@ -34,6 +34,13 @@ polynomial identity of the truncated series; the tapes' ``DOT`` and ``SCALE`` ro
 ``theta2 = g - (l + phi0)`` is crossed as ``g - (l + phi0 + value)``: the value rotates
 the pair of ``l + phi0``, linear in ``(G1, G2)``, so ``f = S_g c - C_g s`` takes two
 products of the state's polynomials where rotating the product pair takes four.
+
+At ``value = 0`` an angle's ``f`` is its ``S``; where ``S`` is ``|G|`` times a
+polynomial (``g``: ``S_g = |G| (G2 gamma1 - G1 gamma2)``), that polynomial has the same
+zeros and signs on the regular states (``|G| > 0``) and no square root
+(:func:`section_function_at_zero`): the Taylor kernels' section of ``g = 0`` takes its
+jet from two products instead of seven and a square root (measured:
+benchmarks/NOTES.md#scalar-angle-section).
 """
 
 from __future__ import annotations
@@ -46,7 +53,7 @@ from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
 from andoyer.symbolic.hamiltonian import S
 
 __all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "AREA", "section_function",
-           "angle_pair"]
+           "angle_pair", "section_function_at_zero"]
 
 value, cv, sv = sp.symbols("value cv sv", real=True)
 #: Arguments of every generated section function: state, phi0, value, cos/sin(value).
@@ -88,6 +95,34 @@ def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
     if name == "theta2":  # g - (l + phi0)
         return cg * cp + sg * sp_, sg * cp - cg * sp_
     raise ValueError(f"{name!r} is not a section angle; angles: {ANGLES + EXTRA_ANGLES}")
+
+
+@cache
+def section_function_at_zero(coord: str) -> sp.Expr | None:
+    """``f`` of the angle section ``coord = 0`` divided by its factor ``|G| > 0``, a
+    polynomial in the state with the same zeros and signs on the regular states; ``None``
+    where ``f`` at ``value = 0`` has no such factor (or no square root to save) and for
+    the smooth coordinates.
+
+    Parameters
+    ----------
+    coord : str
+        The section coordinate (a section kind's name).
+
+    Examples
+    --------
+    >>> section_function_at_zero("g")
+    -G1*gamma2 + G2*gamma1
+    >>> section_function_at_zero("theta2") is None
+    True
+    """
+    if coord not in ANGLES and coord not in EXTRA_ANGLES:
+        return None
+    f = section_function(coord)[0].subs({value: 0, cv: 1, sv: 0})
+    if not f.has(sp.sqrt(G1**2 + G2**2 + G3**2)):
+        return None
+    q = sp.expand(sp.cancel(f / _G))
+    return q if q.is_polynomial(*S.y) and q.free_symbols & set(S.y) else None
 
 
 def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:

@@ -236,3 +236,32 @@ def test_max_steps_and_non_finite_states_end_the_section_search() -> None:
     _, _, count, info = T.locate_crossings(z0, p, KIND["theta2"], 0.0, 0, 5, 100.0, 1e-12,
                                            MAX_STEPS)
     assert info[1, 0] == common.STEP_TOO_SMALL and count[1] == 0 and info[0, 0] == common.SUCCESS
+
+
+def test_the_g_section_at_zero_crosses_as_its_full_section_function() -> None:
+    """The tape f / |G| of g = 0 (what the engine runs) against the full tape of f on the
+    same orbits: the same crossings, within the integrations' difference at the tolerance
+    (different steps: the section's jet enters the step size)."""
+    from andoyer.kernels.generated import recurrences
+    from andoyer.kernels.generated.equations import SECTION_KINDS
+    from andoyer.kernels.taylor import flow
+    from andoyer.kernels.taylor.sections import section_tape
+
+    body = RigidBody.paper(0.01)
+    p = np.asarray(body.engine_params, dtype=float)
+    z0 = np.array([[0.3, 0.2, 0.25, 0.6, 0.0, 0.8], [-0.1, 0.45, 0.3, 0.0, 0.6, 0.8]])
+    kind, n, tol = SECTION_KINDS.index("g"), 40, 1e-12
+    tc, zc, count, info = flow.locate_crossings(z0, p, kind, 0.0, 1, n, 1e4, tol, 10**7)
+    full = np.array(recurrences.SECTION_TAPES[kind], dtype=np.int64)
+    fC = np.array(recurrences.section_constants(kind, p[7], 0.0, 1.0, 0.0))
+    wt, wC = section_tape(kind, p[7], 0.0, margin=True)
+    tf = np.full_like(tc, np.nan)
+    zf = np.full_like(zc, np.nan)
+    cf = np.zeros_like(count)
+    inf = np.zeros_like(info)
+    flow.locate_crossings_block(z0, p, flow.order_for(tol), full, fC, wt, wC, 1, 1e4, 10**7,
+                                tf, zf, cf, inf)
+    assert np.array_equal(count, cf) and np.all(count == n)
+    assert np.all(info[:, 0] == 0) and np.all(inf[:, 0] == 0)
+    assert np.max(np.abs(tc - tf)) < 1e-9 and np.max(np.abs(zc - zf)) < 1e-9
+    assert info[:, 3].sum() < inf[:, 3].sum()  # fewer jets: fewer shortened steps

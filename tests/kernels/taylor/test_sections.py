@@ -184,3 +184,25 @@ def test_the_area_integral_leaves_the_jets_of_a_solution_unchanged(name: str) ->
                 err = np.abs(got - ref.astype(float)) * w
                 assert err.max() <= 1e-13 * scale, (name, trial, value, margin, err.max(),
                                                     scale)
+
+
+def test_the_g_section_at_zero_takes_the_tape_without_the_square_root() -> None:
+    """At g = 0 the tape is f / |G| (two products): the same signs as f, and the full
+    tape's value equals |G| times it on random states; at any other value the full tape."""
+    from andoyer.kernels.generated.equations import SECTION_KINDS
+    from andoyer.kernels.taylor.sections import SQRT
+
+    kind = SECTION_KINDS.index("g")
+    zero, Cz = section_tape(kind, 0.3, 0.0)
+    full = np.array(recurrences.SECTION_TAPES[kind], dtype=np.int64)
+    Cf = np.array(recurrences.section_constants(kind, 0.3, 0.0, 1.0, 0.0))
+    assert zero.shape[0] < full.shape[0] and SQRT not in zero[:, 0] and SQRT in full[:, 0]
+    other, _ = section_tape(kind, 0.3, 1e-300)
+    assert np.array_equal(other, full)
+    states = _states(np.random.default_rng(3), 300)[3:]
+    u = np.empty((recurrences.TAPE_NODES, 1))
+    fz = _values(zero, Cz, states, u)[:, 0]
+    ff = _values(full, Cf, states, u)[:, 0]
+    G = np.linalg.norm(states[:, :3], axis=1)
+    assert np.allclose(ff, G * fz, rtol=1e-13, atol=1e-15)
+    assert np.array_equal(np.sign(ff), np.sign(fz))

@@ -40,6 +40,7 @@ helper's call costs (measured: benchmarks/NOTES.md#taylor-sections).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -518,7 +519,11 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
     (its margin ``w`` if ``margin``): the generated
     :data:`~andoyer.kernels.generated.recurrences.SECTION_TAPES` and ``section_constants``
-    (``MARGIN_TAPES``, ``margin_constants``).
+    (``MARGIN_TAPES``, ``margin_constants``); at ``value = 0``, where the kind has one,
+    ``f`` over its factor ``|G|`` (``AT_ZERO_TAPES``,
+    :func:`andoyer.symbolic.sections.section_function_at_zero`: the same crossings, no
+    square root; ``g = 0`` about 1.8x faster, measured:
+    benchmarks/NOTES.md#scalar-angle-section).
 
     Parameters
     ----------
@@ -532,8 +537,12 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
         The tape of the margin ``w`` instead of ``f``.
     """
     g = recurrences
+    tapes: Any
+    constants: Any
     tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
                         else (g.SECTION_TAPES, g.section_constants))
+    if not margin and value == 0.0 and g.AT_ZERO_TAPES[kind]:
+        tapes, constants = g.AT_ZERO_TAPES, g.at_zero_constants
     tape = np.array(tapes[kind], dtype=np.int64)
     C = np.array(constants(kind, phi0, value, math.cos(value), math.sin(value)),
                  dtype=np.float64)
