@@ -129,10 +129,12 @@ class Context:
     engine: str | None = None
     quick: bool = False
 
-    def engine_name(self, *capabilities: Capability) -> str:
-        """The engine that actually runs: :attr:`engine`, or the default (heyoka where
-        installed, else the first fallback with the capabilities); for an analysis that
-        needs ``capabilities`` the engine lacks, the default.
+    def engine_name(self, *capabilities: Capability, workload: str | None = None) -> str:
+        """The engine that actually runs: :attr:`engine`, or the default
+        (:func:`~andoyer.integrate.engines.default_engine_name` of the ``capabilities`` and
+        the ``workload``: the measured default where there is one, heyoka where installed,
+        else the first fallback with the capabilities); for an analysis that needs
+        ``capabilities`` the engine lacks, the default.
 
         >>> from andoyer.integrate.engines.base import Capability
         >>> ctx = Context(Path("."), RigidBody.paper(), "taylor")
@@ -143,7 +145,7 @@ class Context:
 
         if self.engine is not None and set(capabilities) <= engine_class(self.engine).capabilities:
             return self.engine
-        return default_engine_name(*capabilities)
+        return default_engine_name(*capabilities, workload=workload)
 
     def figure(self, fig: Any, name: str) -> list[Path]:
         """Write a figure as ``name.png`` and ``name.pdf``."""

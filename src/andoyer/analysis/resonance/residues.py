@@ -584,7 +584,8 @@ def _plan(body: RigidBody, h: float, M: float, head: Any, axis: Any, n_convergen
     if conv[-1][1] > MAX_PERIOD:
         raise ValueError(f"n_convergents = {n_convergents}: the last convergent has period "
                          f"q = {conv[-1][1]} > MAX_PERIOD = {MAX_PERIOD}; ask for fewer")
-    eng = resolve_engine(engine, Capability.TANGENT_CROSSINGS)
+    # its cost is one orbit's g sections at a time: the default of angle sections
+    eng = resolve_engine(engine, Capability.TANGENT_CROSSINGS, workload="angle_section")
     tolerance = eng.attainable(tolerance)
     # the two main chains and their first-order widths (G6)
     where = (f"head = {quotients!r}: the main chains {n}:1 and {n + 1}:1 on h = {h!r}, "
@@ -655,8 +656,9 @@ def last_torus(body: RigidBody, h: float, M: float = 0.0, *, head: Sequence[int]
     tol : float
         Integration tolerance (the engine's; in ``[1e-16, 1e-3]``).
     engine : str or Engine, optional
-        An engine with the ``tangent_crossings`` capability (default heyoka where
-        installed, else taylor).
+        An engine with the ``tangent_crossings`` capability (default: that of angle
+        sections, :data:`~andoyer.integrate.engines.MEASURED_DEFAULTS`: taylor; the
+        searches integrate one orbit's ``g`` sections at a time).
     progress : bool, optional
         A progress bar over the orbits (default: on a terminal).
 

@@ -56,7 +56,8 @@ def resonances(ctx: Context) -> Result:
     from andoyer.plot.section import plot_section
     from andoyer.plot.words import body_words
 
-    engine = ctx.engine_name(Capability.CROSSINGS)
+    # every section here is g = 0: an angle section (MEASURED_DEFAULTS)
+    engine = ctx.engine_name(Capability.CROSSINGS, workload="angle_section")
     body = BODY
     pred = resonance_widths(body, 1.0, 0.0, "g=0", max_order=5)
     fill = fill_section(body, 1.0, 0.0, ("g", 0.0), n_orbits=4, root="smallest")

@@ -40,7 +40,8 @@ def last_torus(ctx: Context) -> Result:
     from andoyer.plot.resonance import convergent_ticks, plot_residues
     from andoyer.plot.style import new_figure, paper_style
 
-    engine = ctx.engine_name(Capability.TANGENT_CROSSINGS)
+    # the residues' searches are one orbit's g sections at a time: angle sections
+    engine = ctx.engine_name(Capability.TANGENT_CROSSINGS, workload="angle_section")
     n = 2 if ctx.quick else 7
 
     def critical() -> tuple[Any, float]:
