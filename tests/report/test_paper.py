@@ -226,3 +226,27 @@ def test_resonances_item(tmp_path, monkeypatch):
     assert abs(measured - nf) < unc + 1e-3 * nf
     assert "near the centre" in html
 
+
+
+def test_the_sections_items_take_the_angle_sections_measured_engine():
+    """The resonances and last-torus items integrate single orbits' g sections: without
+    --engine they run on the angle sections' default (MEASURED_DEFAULTS where heyoka is
+    installed), which --engine overrides; a workload's engine lacking the capability is
+    not taken."""
+    from pathlib import Path
+
+    from andoyer.integrate.engines import default_engine_name
+    from andoyer.integrate.engines.base import Capability
+    from andoyer.report.base import Context
+
+    ctx = Context(Path("."), RigidBody.paper())
+    for cap in (Capability.CROSSINGS, Capability.TANGENT_CROSSINGS):
+        assert ctx.engine_name(cap, workload="angle_section") == \
+            default_engine_name(cap, workload="angle_section")
+    assert Context(Path("."), RigidBody.paper(), "numba").engine_name(
+        Capability.CROSSINGS, workload="angle_section") == "numba"
+    import inspect
+
+    from andoyer.report.items import resonance, torus
+    for module in (resonance, torus):
+        assert 'workload="angle_section"' in inspect.getsource(module)
