@@ -245,6 +245,8 @@ def test_the_sections_items_take_the_angle_sections_measured_engine():
             default_engine_name(cap, workload="angle_section")
     assert Context(Path("."), RigidBody.paper(), "numba").engine_name(
         Capability.CROSSINGS, workload="angle_section") == "numba"
+    # taylor has no extended precision: the workload's engine is not taken for it
+    assert ctx.engine_name(Capability.EXTENDED_PRECISION, workload="angle_section") != "taylor"
     import inspect
 
     from andoyer.report.items import resonance, torus

@@ -119,7 +119,7 @@ def section_function_at_zero(coord: str) -> sp.Expr | None:
     if coord not in ANGLES and coord not in EXTRA_ANGLES:
         return None
     f = section_function(coord)[0].subs({value: 0, cv: 1, sv: 0})
-    if not f.has(sp.sqrt(G1**2 + G2**2 + G3**2)):
+    if not f.has(_G):
         return None
     q = sp.expand(sp.cancel(f / _G))
     return q if q.is_polynomial(*S.y) and q.free_symbols & set(S.y) else None

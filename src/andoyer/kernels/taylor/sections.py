@@ -539,10 +539,12 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     g = recurrences
     tapes: Any
     constants: Any
-    tapes, constants = ((g.MARGIN_TAPES, g.margin_constants) if margin
-                        else (g.SECTION_TAPES, g.section_constants))
-    if not margin and value == 0.0 and g.AT_ZERO_TAPES[kind]:
+    if margin:
+        tapes, constants = g.MARGIN_TAPES, g.margin_constants
+    elif value == 0.0 and g.AT_ZERO_TAPES[kind]:
         tapes, constants = g.AT_ZERO_TAPES, g.at_zero_constants
+    else:
+        tapes, constants = g.SECTION_TAPES, g.section_constants
     tape = np.array(tapes[kind], dtype=np.int64)
     C = np.array(constants(kind, phi0, value, math.cos(value), math.sin(value)),
                  dtype=np.float64)
