@@ -310,6 +310,29 @@ def test_roots_in_chunks_equal_roots_at_once() -> None:
     assert all(np.array_equal(a, b) for a, b in zip(whole, parts, strict=True))
 
 
+def test_few_brackets_close_one_by_one_as_many_close_at_once(monkeypatch) -> None:
+    """Fewer than ``_VECTOR_BRACKETS`` brackets are closed by Brent's method one by one,
+    more by one vectorised call: the two routes give the same roots to their tolerance
+    (1e-14 of the largest action), point by point, on random points and on a point with
+    two roots."""
+    import andoyer.integrate.fill as fill
+
+    rng = np.random.default_rng(3)
+    cases = [(RigidBody.paper(), 0.2466, 0.1, rng.uniform(0, 2 * np.pi, 40),
+              rng.uniform(-0.6, 0.6, 40)),
+             (BODY, H_TWO, 0.0, np.array([l_TWO]), np.array([L_TWO]))]
+    for body, h, M, p, q in cases:
+        monkeypatch.setattr(fill, "_VECTOR_BRACKETS", 10**9)
+        one_by_one = section_roots(body, h, M, ("g", 0.0), p, q)
+        monkeypatch.setattr(fill, "_VECTOR_BRACKETS", 0)
+        at_once = section_roots(body, h, M, ("g", 0.0), p, q)
+        assert sum(r.size for r in at_once) >= p.size
+        for a, b in zip(one_by_one, at_once, strict=True):
+            assert a.size == b.size
+            np.testing.assert_allclose(a, b, rtol=0, atol=4e-14 * fill._action_bound(body, h))
+    assert at_once[0].size == 2
+
+
 def _scalar_roots(body: RigidBody, h: float, M: float, coord: str, value: float,
                   p: float, q: float) -> np.ndarray:
     """The roots of H = h above one plane point by a scalar route independent of the

@@ -74,6 +74,10 @@ _SCAN_SLAB = 256
 #: at G = 0 (where the chart and the kernels are undefined).
 _ACTION_FLOOR = 1e-9
 _GOLDEN_ITERATIONS = 64
+#: Brackets from which one vectorised call closes them all; fewer are closed one by one by
+#: Brent's method in C, whose scalar kernel calls cost less than the vectorised call's
+#: per-iteration overhead (benchmarks/NOTES.md, "fill_section's roots").
+_VECTOR_BRACKETS = 16
 #: Most plane points the sampling tries, per orbit asked for (at least
 #: :data:`_MIN_SAMPLE_POINTS`): near a degenerate minimum of H on the section the
 #: accessible points may have no admissible root (the minimum on the chart's singular
@@ -222,7 +226,14 @@ class _Equation:
                               + [np.empty(0, np.intp)])
         zA = np.concatenate([b[4] for b in parts] + [np.empty(0)])
         found = np.empty(0)
-        if pts.size:
+        if 0 < pts.size < _VECTOR_BRACKETS:
+            from scipy.optimize import brentq
+
+            found = np.array([brentq(lambda A, pi=p[i], qi=q[i]: float(self.f(pi, qi, A)),
+                                     a, b, xtol=1e-14 * self.act_max,
+                                     rtol=4 * np.finfo(float).eps, maxiter=200)
+                              for i, a, b in zip(pts, lo, hi, strict=True)])
+        elif pts.size:
             # Imported here, as qmc below: scipy.stats costs 0.4 s of import time, and
             # importing andoyer.integrate should not pay it.
             from scipy.optimize.elementwise import find_root

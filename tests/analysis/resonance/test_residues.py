@@ -90,6 +90,31 @@ def test_residues_of_a_main_chain_are_its_pendulum():
     assert abs(ell.residue / float(row.residue_stable[0]) - 1) > 1e-6   # not the same route
 
 
+def test_half_orbits_in_one_batch_equal_them_one_by_one():
+    """(G3) ``F(l0)`` of a grid of starts from one engine batch (seeds and half orbits),
+    against a fresh level's one start at a time: equal to the integration's tolerance,
+    NaN at the same starts, and cached, so the single start asks the batch's value."""
+    body = HESS.with_mu(1e-3)
+    engine = resolve_engine("taylor", Capability.TANGENT_CROSSINGS)
+
+    def level() -> _Level:
+        return _Level(body, 1.0, 0.0, 1, (1 / 3, 1 / 2), engine, Tolerance.single(1e-13),
+                      10.0)
+
+    batch = level()
+    ls = np.array([batch.l_of_W(W, -1) for W in np.linspace(0.34, 0.48, 12)])
+    many = batch.halves(ls, math.pi / 2, 2, 5)
+    single = level()
+    one = np.array([single.half(float(x), math.pi / 2, 2, 5) for x in ls])
+    assert np.isfinite(many).sum() >= 8
+    np.testing.assert_array_equal(np.isnan(many), np.isnan(one))
+    np.testing.assert_allclose(many, one, rtol=0, atol=1e-9, equal_nan=True)
+    assert np.any(np.sign(many[np.isfinite(many)]) > 0) and np.any(many < 0)
+    evaluations = batch.evaluations
+    assert batch.half(float(ls[3]), math.pi / 2, 2, 5) == many[3]
+    assert batch.evaluations == evaluations
+
+
 def test_residues_fall_with_the_period_below_the_critical_mu():
     """(G5), measured on a cheap torus: the golden one between the 2:1 and 3:1 chains of
     Hess(3, 1, 2) about axis 2 at mu = 2e-3 (mu_overlap = 0.19). Each convergent's

@@ -282,21 +282,24 @@ class _Level:
     def seed(self, l0: float, g0: float) -> NDArray[np.float64] | None:
         """The state on the line ``(g0, L = 0)`` at ``l0`` on the level (a copy: the
         caller may keep or change it), None where the level does not reach it."""
-        key = (l0, g0)
-        if key not in self._seeds:
-            self._seeds[key] = self._seed(l0, g0)
-        y = self._seeds[key]
+        y = self.seeds(np.array([l0]), g0)[0]
         return None if y is None else y.copy()
 
-    def _seed(self, l0: float, g0: float) -> NDArray[np.float64] | None:
-        b = self.body
-        x = b.a * math.sin(l0) ** 2 + b.b * math.cos(l0) ** 2
-        G_free = math.sqrt(2.0 * self.h / x)
-        roots = section_roots(b, self.h, self.M, ("g", g0), [l0], [0.0])[0]
-        if roots.size == 0:
-            return None
-        G = float(roots[np.argmin(np.abs(roots - G_free))])
-        return np.asarray(from_andoyer([l0, g0, 0.0, G, self.M]), dtype=float)
+    def seeds(self, ls: NDArray[np.float64], g0: float
+              ) -> list[NDArray[np.float64] | None]:
+        """The states on the line ``(g0, L = 0)`` at every ``ls`` (not copies), the root
+        ``G`` of the level nearest the free top's; those not computed yet in one call."""
+        todo = np.array([x for x in ls.tolist() if (x, g0) not in self._seeds])
+        if todo.size:
+            b = self.body
+            G_free = np.sqrt(2.0 * self.h / (b.a * np.sin(todo) ** 2
+                                             + b.b * np.cos(todo) ** 2))
+            roots = section_roots(b, self.h, self.M, ("g", g0), todo, np.zeros_like(todo))
+            for l0, r, G in zip(todo.tolist(), roots, G_free, strict=True):
+                self._seeds[(l0, g0)] = None if r.size == 0 else np.asarray(
+                    from_andoyer([l0, g0, 0.0, float(r[np.argmin(np.abs(r - G))]), self.M]),
+                    dtype=float)
+        return [self._seeds[(x, g0)] for x in ls.tolist()]
 
     def t_max(self, returns: int) -> float:
         """A flight long enough for ``returns`` returns (four times their free-top time)."""
@@ -315,30 +318,50 @@ class _Level:
     def half(self, l0: float, g0: float, p: int, q: int) -> float:
         """``F(l0) = Phi - pi p`` over the half orbit (NaN where it cannot be followed),
         integrated once per start (G3)."""
-        key = (l0, g0, p, q)
-        if key not in self._halves:
-            self._halves[key] = self._half(l0, g0, p, q)
-        return self._halves[key]
+        return float(self.halves(np.array([l0]), g0, p, q)[0])
 
-    def _half(self, l0: float, g0: float, p: int, q: int) -> float:
-        y = self.seed(l0, g0)
-        if y is None:
-            return math.nan
-        if q % 2 == 0:
-            g_end, k = g0, q // 2
-        else:
-            g_end, k = (g0 + math.pi) % (2.0 * math.pi), (q + 1) // 2
-        self.evaluations += 1
+    def halves(self, ls: NDArray[np.float64], g0: float, p: int, q: int
+               ) -> NDArray[np.float64]:
+        """:meth:`half` at every start ``ls``: the seeds and half orbits not computed yet in
+        one call each (an engine batch, on SIMD lanes when there are enough), cached as
+        :meth:`half` caches them."""
+        todo = [x for x in ls.tolist() if (x, g0, p, q) not in self._halves]
+        if todo:
+            for x, v in zip(todo, self._halves_of(np.array(todo), g0, p, q), strict=True):
+                self._halves[(x, g0, p, q)] = v
+        return np.array([self._halves[(x, g0, p, q)] for x in ls.tolist()])
+
+    def _halves_of(self, ls: NDArray[np.float64], g0: float, p: int, q: int
+                   ) -> list[float]:
+        ys = self.seeds(ls, g0)
+        ok = [i for i, y in enumerate(ys) if y is not None]
+        out = [math.nan] * ls.size
+        if not ok:
+            return out
+        g_end, k = self._end(g0, q)
+        y0 = np.array([ys[i] for i in ok])
         try:
-            cr = self.engine.crossings(y[None], self.body.engine_params,
-                                       Section("g", g_end, 1), k, self.t_max(k),
-                                       self.tol)
-        except FloatingPointError:
-            return math.nan
-        if int(cr.count[0]) < k:
-            return math.nan
-        mom = np.vstack([y[:3], cr.y[0, :, :3]])
-        return abs(self.advance(mom)) - math.pi * p
+            cr = self.engine.crossings(y0, self.body.engine_params, Section("g", g_end, 1), k,
+                                       self.t_max(k), self.tol)
+        except FloatingPointError:      # an orbit failed: NaN alone, or each on its own
+            if ls.size == 1:
+                return out
+            return [self._halves_of(np.array([l0]), g0, p, q)[0] for l0 in ls.tolist()]
+        self.evaluations += len(ok)
+        for j, i in enumerate(ok):
+            if int(cr.count[j]) == k:
+                mom = np.vstack([y0[j, :3], cr.y[j, :, :3]])
+                out[i] = abs(self.advance(mom)) - math.pi * p
+        return out
+
+    @staticmethod
+    def _end(g0: float, q: int) -> tuple[float, int]:
+        """The section and the crossing where a half orbit from the line ``g0`` ends
+        (G3): the ``q/2``-th return to ``g0`` (``q`` even), the ``(q + 1)/2``-th crossing
+        of ``g0 + pi`` (``q`` odd)."""
+        if q % 2 == 0:
+            return g0, q // 2
+        return (g0 + math.pi) % (2.0 * math.pi), (q + 1) // 2
 
     def orbit(self, p: int, q: int, g0: float, side: int,
               near: float | None = None) -> _Orbit | None:
@@ -359,7 +382,7 @@ class _Level:
             root = self._local(near, g0, p, q, ls)
             if root is not None:
                 return self._closed(root, g0, p, q)
-        f = np.array([self.half(float(x), g0, p, q) for x in ls])
+        f = self.halves(ls, g0, p, q)
         ok = np.isfinite(f[:-1]) & np.isfinite(f[1:])
         # every sign change: a jump of the winding (F by 2 pi) is no root, and Brent's
         # answer there is refused by the size of F (:meth:`_brent`)
