@@ -57,6 +57,10 @@ __all__ = ["measure_island", "island_rotation_numbers", "ROUTES", "NAFF_LOCK"]
 _MAX_LOCATE = 8
 #: Orbits of the search for the stable periodic orbit inside the locked interval.
 _STABLE_EVALUATIONS = 45
+#: Its tolerance, relative to the locked interval: the slow angle's span is flat at its
+#: minimum, which it resolves to ~1e-6 half-widths (the seeds' round-off moves it 3e-7);
+#: a tighter one spends orbits on noise (benchmarks/NOTES.md#measure_island).
+_STABLE_XATOL = 1e-5
 
 
 def _parse_resonance(resonance: str) -> tuple[int, int]:
@@ -414,7 +418,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
 
         found = minimize_scalar(lambda x: float(probe.run(np.array([x]))[2][0]),
                                 bounds=(s_in, s_out), method="bounded",
-                                options={"xatol": 1e-7 * (s_out - s_in),
+                                options={"xatol": _STABLE_XATOL * (s_out - s_in),
                                          "maxiter": _STABLE_EVALUATIONS})
         stable_s, stable_span = float(found.x), float(found.fun)
     else:
