@@ -17,6 +17,7 @@ from andoyer.integrate.validated.taylor import (
     taylor_jets,
     validated_flow,
     validated_poincare,
+    variational_jets,
 )
 
 Y0 = [0.3, 0.8, 0.2, 0.6, 0.0, 0.8]
@@ -109,6 +110,48 @@ def test_jets_of_the_field_agree_with_the_symbolic_field():
         for i, e in enumerate(euler_poisson_field()):
             assert abs(float(Y[i][1].mid()) - float(sp.N(e.subs(vals)))) < 1e-15
     assert len(field_terms().terms) == 6
+
+
+def test_variational_jets_are_the_jets_of_the_state_derivative():
+    """``W = dY/dy0`` coefficient by coefficient, independently of the matrix recursion:
+    on a quadratic field ``d/dy0_c`` of the state's jets from ``y0`` is the state's jets
+    of the tangent vector e_c, taken here by forward-mode dual numbers (the jets of
+    ``y0 + eps e_c`` with ``eps^2 = 0``, term by term in Arb); from a box and from a
+    non-identity start matrix, each ball overlapping the other's."""
+    f = quadratic_field(RigidBody.paper())
+    order = 12
+    with working_precision(128):
+        y0 = [arb(v, 1e-9) for v in Y0]
+        V0 = [[arb(1 + i + 2 * j) / 7 if i != j else arb(1) for j in range(6)]
+              for i in range(6)]
+        Y, W = variational_jets(f, y0, V0, order)
+        for c in range(6):
+            # jets of (y, v) with v' = Df(y) v by the field's terms: d(c y_j y_l) =
+            # c (v_j y_l + y_j v_l), Cauchy products coefficient by coefficient
+            y = [[y0[i]] for i in range(6)]
+            v = [[V0[i][c]] for i in range(6)]
+            for k in range(order):
+                ny, nv = [], []
+                for i in range(6):
+                    sy, sv = arb(0), arb(0)
+                    for cf, j in f.linear[i]:
+                        sy += cf * y[j][k]
+                        sv += cf * v[j][k]
+                    for cf, j, l_ in f.quadratic[i]:
+                        for m in range(k + 1):
+                            sy += cf * y[j][m] * y[l_][k - m]
+                            sv += cf * (v[j][m] * y[l_][k - m] + y[j][m] * v[l_][k - m])
+                    ny.append(sy / (k + 1))
+                    nv.append(sv / (k + 1))
+                for i in range(6):
+                    y[i].append(ny[i])
+                    v[i].append(nv[i])
+            for i in range(6):
+                for k in range(order + 1):
+                    assert W[i][c][k].overlaps(v[i][k]), (i, c, k)
+                    assert Y[i][k].overlaps(y[i][k])
+        assert any(abs(float(W[i][c][order].mid())) > 1e-12 for i in range(6)
+                   for c in range(6))
 
 
 def test_poincare_crossing_is_certified_and_holds_the_float_crossing():

@@ -208,20 +208,27 @@ def variational_jets(f: QuadraticField, y0: Vector, V0: list[Vector], order: int
     n = f.n
     Y = taylor_jets(f, y0, order)
     ncol = len(V0[0])
-    W = [[[V0[i][c]] for c in range(ncol)] for i in range(n)]
-    for k in range(order):
-        new = [[arb(0)] * ncol for _ in range(n)]
-        for i in range(n):
-            for c in range(ncol):
-                s: Any = arb(0)
+    # V' = Df(y(t)) V with Df(y(t)) = sum_m A_m t^m: V_{k+1} = sum_{m <= k} A_m V_{k-m} / (k+1),
+    # each term one Arb matrix product in C (FLINT's dot products), not Python's loops.
+    A = []
+    for m in range(order):
+        rows = [[arb(0)] * n for _ in range(n)]
+        if m == 0:
+            for i in range(n):
                 for cf, j in f.linear[i]:
-                    s += cf * W[j][c][k]
-                for cf, j, l_ in f.quadratic[i]:
-                    s += cf * (_cauchy(Y[l_], W[j][c], k) + _cauchy(Y[j], W[l_][c], k))
-                new[i][c] = s / (k + 1)
+                    rows[i][j] += cf
         for i in range(n):
-            for c in range(ncol):
-                W[i][c].append(new[i][c])
+            for cf, j, l_ in f.quadratic[i]:
+                rows[i][j] += cf * Y[l_][m]
+                rows[i][l_] += cf * Y[j][m]
+        A.append(arb_mat(rows))
+    V = [arb_mat(V0)]
+    for k in range(order):
+        s = A[0] * V[k]
+        for m in range(1, k + 1):
+            s += A[m] * V[k - m]
+        V.append(s / (k + 1))
+    W = [[[V[k][i, c] for k in range(order + 1)] for c in range(ncol)] for i in range(n)]
     return Y, W
 
 
