@@ -251,3 +251,33 @@ def test_two_processes_adding_signatures_at_once_both_land(tmp_path: Path) -> No
     assert json.loads(run.stdout.strip().splitlines()[-1]) == {
         "values": [6.0, 1.5], "hits": 2, "misses": 0}
     assert len(list((tmp_path / "cache").rglob("tiny.thrice-*.nbc"))) == 2
+
+
+def test_nafflib_is_compiled_once_then_loaded(tmp_path: Path) -> None:
+    """A library's uncached Numba functions (nafflib's) are cached as andoyer's kernels:
+    the first process compiles and writes them under ``libraries``, the second loads
+    them (a cache hit, no miss), and the lines found are the same."""
+    script = textwrap.dedent("""
+        import json
+        import numpy as np
+        from andoyer.analysis.chaos.frequency import naff
+        r = naff(np.exp(0.3j * 0.1 * np.arange(2000)), 0.1, 1)
+        import nafflib.optimize as o
+        s = o.expArray.stats
+        print(json.dumps({"path": s.cache_path, "hits": sum(s.cache_hits.values()),
+                          "misses": sum(s.cache_misses.values()),
+                          "omega": float(r.frequency[0])}))
+    """)
+    env = dict(os.environ, ANDOYER_CACHE_DIR=str(tmp_path))
+    env.pop("NUMBA_CACHE_DIR", None)
+    runs = []
+    for _ in range(2):
+        run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                             env=env, timeout=300)
+        assert run.returncode == 0, run.stderr
+        runs.append(json.loads(run.stdout.strip().splitlines()[-1]))
+    first, second = runs
+    assert Path(first["path"]).is_relative_to(tmp_path / "numba" / "libraries")
+    assert (first["hits"], first["misses"]) == (0, 1)
+    assert (second["hits"], second["misses"]) == (1, 0)
+    assert first["omega"] == second["omega"] and abs(first["omega"] - 0.3) < 1e-9

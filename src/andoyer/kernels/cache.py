@@ -70,8 +70,8 @@ import platformdirs
 
 from andoyer.errors import DamagedCacheWarning, NoCacheWarning
 
-__all__ = ["cache_folder", "cached_njit", "sources_stamp", "writable", "warn_no_cache",
-           "warn_damaged_cache", "CACHE_ENV"]
+__all__ = ["cache_folder", "cached_njit", "cache_library_kernels", "sources_stamp", "writable",
+           "warn_no_cache", "warn_damaged_cache", "CACHE_ENV"]
 
 #: Environment variable that moves andoyer's caches (Numba's under ``<dir>/numba``).
 CACHE_ENV = "ANDOYER_CACHE_DIR"
@@ -227,6 +227,58 @@ def cached_njit(**options: Any) -> Callable[[Callable[..., Any]], Any]:
             config.CACHE_DIR = previous
 
     return decorate
+
+
+def cache_library_kernels(package: str) -> None:
+    """Cache the Numba functions of a library compiled without ``cache=True`` as
+    andoyer's own are (:func:`cached_njit`): in ``cache_folder() / "libraries"``, with the
+    same one-writer lock and damaged-entry rule.
+
+    nafflib's ``numba.jit`` functions compile in every process that calls them (2.2 s
+    on the report's border item); cached, a second process loads them. Numba keys each
+    entry on the library file's path, size and time stamp, so another version of the
+    library compiles its own. Functions their library caches already, and those of
+    modules not imported yet, are left alone; where no folder is writable they stay
+    uncached (the library's own behaviour). Call it once the package is imported and
+    before its first call.
+
+    Parameters
+    ----------
+    package : str
+        The library's import name, e.g. ``"nafflib"``: every imported module of it.
+
+    Examples
+    --------
+    >>> import nafflib
+    >>> cache_library_kernels("nafflib")
+    >>> from numba.core.caching import NullCache
+    >>> isinstance(nafflib.optimize.expArray._cache, NullCache)
+    False
+    """
+    import sys
+
+    import numba
+    from numba.core.caching import NullCache
+    from numba.core.dispatcher import Dispatcher
+
+    config: Any = numba.config  # untyped module: its settings are set at import
+    modules = [m for name, m in list(sys.modules.items())
+               if m is not None and (name == package or name.startswith(package + "."))]
+    for module in modules:
+        for value in list(vars(module).values()):
+            if not (isinstance(value, Dispatcher)
+                    and isinstance(getattr(value, "_cache", None), NullCache)):
+                continue
+            dispatcher: Any = value
+            previous = config.CACHE_DIR
+            config.CACHE_DIR = str(cache_folder() / "libraries")
+            try:
+                dispatcher._cache = _rebuilding_cache()(dispatcher.py_func)
+            except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
+                if "no locator" not in str(exc):
+                    raise
+            finally:
+                config.CACHE_DIR = previous
 
 
 def writable(folder: str | os.PathLike[str]) -> bool:

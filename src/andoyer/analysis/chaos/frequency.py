@@ -136,6 +136,9 @@ def naff(z: ArrayLike, dt: float, n_freq: int = 1, *, window: int = 2) -> Lines:
     """
     import nafflib
 
+    from andoyer.kernels.cache import cache_library_kernels
+
+    cache_library_kernels("nafflib")    # its Numba functions, else compiled per process
     zz = _signal(z)
     n = zz.size
     dt = positive("dt", dt)
