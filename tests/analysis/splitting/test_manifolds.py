@@ -196,7 +196,7 @@ def test_paper_body_splitting_is_converged_in_delta_tolerance_and_precision():
     h = rotation_energy(body)
     phases = [0.0, 0.7, 2.0]
     values = []
-    for kw in ({}, {"delta": 3e-6}, {"tol": 1e-13}, {"tol": 1e-18, "long_double": True}):
+    for kw in ({}, {"delta": 3e-6}, {"tol": 1e-13}, {"tol": 1e-16, "long_double": True}):
         wu = grow_manifold(manifold_branch(body, h, "unstable", "theta1=4phi0", **kw))
         ws = grow_manifold(manifold_branch(body, h, "stable", "theta1=4phi0", **kw))
         values.append([splitting_at(wu, ws, g)["Delta_G"] for g in phases])
