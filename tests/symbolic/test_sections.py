@@ -58,19 +58,28 @@ def test_every_section_table_is_derived_from_the_one_table():
     assert set(table) == set(SECTION_KINDS) | set(EXTRA_SECTION_KINDS)
 
 
-def test_the_g_section_at_zero_is_f_over_its_factor_G() -> None:
-    from andoyer.symbolic.sections import _G, cv, section_function_at_zero
+def test_the_g_sections_on_the_axes_are_f_without_the_square_root() -> None:
+    """Where sin(value) = 0 the reduced f of g times |G| is f, where cos(value) = 0 it is f:
+    polynomials, no square root (f has one)."""
+    from andoyer.symbolic.sections import _G, cv, section_function_reduced
 
-    q = section_function_at_zero("g")
-    assert q is not None and q.is_polynomial(*S.y) and not q.has(sp.sqrt)
-    f = section_function("g")[0].subs({value: 0, cv: 1, sv: 0})
-    assert sp.simplify(f - _G * q) == 0
+    f = section_function("g")[0]
+    assert f.has(_G)
+    at_pi = section_function_reduced("g", "sin")
+    at_half_pi = section_function_reduced("g", "cos")
+    for q in (at_pi, at_half_pi):
+        assert q is not None and q.is_polynomial(*S.y) and not q.has(_G)
+    assert sp.simplify(f.subs(sv, 0) - _G * at_pi) == 0
+    assert sp.simplify(f.subs(cv, 0) - at_half_pi) == 0
+    with pytest.raises(ValueError, match="vanishing"):
+        section_function_reduced("g", "tan")
 
 
+@pytest.mark.parametrize("vanishing", ["sin", "cos"])
 @pytest.mark.parametrize("coord", sorted(SECTION_COORDINATES))
-def test_only_angles_with_the_factor_G_have_a_function_at_zero(coord: str) -> None:
-    from andoyer.symbolic.sections import section_function_at_zero
+def test_only_g_has_a_reduced_section_function(coord: str, vanishing: str) -> None:
+    from andoyer.symbolic.sections import section_function_reduced
 
-    # theta2's f at 0 mixes g's pair with the rotation by phi0: no factor |G| to take out;
+    # theta2's f keeps g's square root mixed with the rotation by phi0 on both axes;
     # l, theta1, psi have no square root to save; the smooth coordinates are not angles.
-    assert (section_function_at_zero(coord) is not None) == (coord == "g")
+    assert (section_function_reduced(coord, vanishing) is not None) == (coord == "g")

@@ -35,12 +35,15 @@ polynomial identity of the truncated series; the tapes' ``DOT`` and ``SCALE`` ro
 the pair of ``l + phi0``, linear in ``(G1, G2)``, so ``f = S_g c - C_g s`` takes two
 products of the state's polynomials where rotating the product pair takes four.
 
-At ``value = 0`` an angle's ``f`` is its ``S``; where ``S`` is ``|G|`` times a
-polynomial (``g``: ``S_g = |G| (G2 gamma1 - G1 gamma2)``), that polynomial has the same
-zeros and signs on the regular states (``|G| > 0``) and no square root
-(:func:`section_function_at_zero`): the Taylor kernels' section of ``g = 0`` takes its
-jet from two products instead of seven and a square root (measured:
-benchmarks/NOTES.md#scalar-angle-section).
+Where ``sin(value)`` vanishes (``value = 0, pi``) an angle's ``f`` is ``S cos(value)``,
+where ``cos(value)`` does (``value = +-pi/2``) ``-C sin(value)``
+(:func:`section_function_reduced`). For ``g`` both lose their square root:
+``S_g = |G| (G2 gamma1 - G1 gamma2)`` is ``|G|`` times a polynomial, which has the same zeros
+and signs on the regular states (``|G| > 0``), and ``C_g`` is a polynomial. The Taylor
+kernels' sections ``g = 0, pi/2, pi, 3 pi/2`` take their jets from these, two products
+(three and a product by ``M``) instead of seven and a square root (measured:
+benchmarks/NOTES.md#scalar-angle-section). The float nearest such a value differs from it
+by half an ulp: the dropped term moves a crossing by less than round-off.
 """
 
 from __future__ import annotations
@@ -53,7 +56,7 @@ from andoyer.notation import SECTION_ANGLES, SECTION_COORDINATES
 from andoyer.symbolic.hamiltonian import S
 
 __all__ = ["SMOOTH", "ANGLES", "EXTRA_ANGLES", "SECTION_ARGS", "AREA", "section_function",
-           "angle_pair", "section_function_at_zero"]
+           "angle_pair", "section_function_reduced", "VANISHING"]
 
 value, cv, sv = sp.symbols("value cv sv", real=True)
 #: Arguments of every generated section function: state, phi0, value, cos/sin(value).
@@ -97,32 +100,48 @@ def angle_pair(name: str) -> tuple[sp.Expr, sp.Expr]:
     raise ValueError(f"{name!r} is not a section angle; angles: {ANGLES + EXTRA_ANGLES}")
 
 
+#: Where the reduced section functions hold: ``"sin"``, values with ``sin(value) = 0``
+#: (``0``, ``pi``); ``"cos"``, values with ``cos(value) = 0`` (``pi/2``, ``3 pi/2``).
+VANISHING = ("sin", "cos")
+
+
 @cache
-def section_function_at_zero(coord: str) -> sp.Expr | None:
-    """``f`` of the angle section ``coord = 0`` divided by its factor ``|G| > 0``, a
-    polynomial in the state with the same zeros and signs on the regular states; ``None``
-    where ``f`` at ``value = 0`` has no such factor (or no square root to save) and for
-    the smooth coordinates.
+def section_function_reduced(coord: str, vanishing: str) -> sp.Expr | None:
+    """``f`` of the angle section ``coord = value`` where ``sin(value)`` (``vanishing =
+    "sin"``) or ``cos(value)`` (``"cos"``) is zero, over its positive factor ``|G|`` if it
+    has one: a polynomial in the state (and ``cos(value)``, ``sin(value)``) with the same
+    zeros and signs as ``f`` on the regular states; ``None`` where ``f`` there keeps a
+    square root (or had none to save) and for the smooth coordinates.
 
     Parameters
     ----------
     coord : str
         The section coordinate (a section kind's name).
+    vanishing : {"sin", "cos"}
+        Which of ``sin(value)``, ``cos(value)`` is zero (:data:`VANISHING`).
 
     Examples
     --------
-    >>> section_function_at_zero("g")
-    -G1*gamma2 + G2*gamma1
-    >>> section_function_at_zero("theta2") is None
+    >>> section_function_reduced("g", "sin")
+    cv*(-G1*gamma2 + G2*gamma1)
+    >>> section_function_reduced("g", "cos")
+    -sv*(G3*(G1*gamma1 + G2*gamma2 + G3*gamma3) - gamma3*(G1**2 + G2**2 + G3**2))
+    >>> section_function_reduced("theta2", "sin") is None
     True
     """
+    if vanishing not in VANISHING:
+        raise ValueError(f"vanishing must be one of {VANISHING}, got {vanishing!r}")
     if coord not in ANGLES and coord not in EXTRA_ANGLES:
         return None
-    f = section_function(coord)[0].subs({value: 0, cv: 1, sv: 0})
-    if not f.has(_G):
+    f = section_function(coord)[0]
+    if not f.has(_G):           # no square root to save
         return None
-    q = sp.expand(sp.cancel(f / _G))
-    return q if q.is_polynomial(*S.y) and q.free_symbols & set(S.y) else None
+    f = f.subs(sv if vanishing == "sin" else cv, 0)
+    if f.has(_G):               # its factor |G| > 0 goes
+        f = sp.factor_terms(sp.expand(sp.cancel(f / _G)))
+    roots = any(not p.exp.is_integer for p in f.atoms(sp.Pow))
+    ok = not roots and f.is_polynomial(*S.y) and bool(f.free_symbols & set(S.y))
+    return f if ok else None
 
 
 def section_function(coord: str) -> tuple[sp.Expr, sp.Expr]:

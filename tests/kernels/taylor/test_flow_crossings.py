@@ -238,10 +238,12 @@ def test_max_steps_and_non_finite_states_end_the_section_search() -> None:
     assert info[1, 0] == common.STEP_TOO_SMALL and count[1] == 0 and info[0, 0] == common.SUCCESS
 
 
-def test_the_g_section_at_zero_crosses_as_its_full_section_function() -> None:
-    """The tape f / |G| of g = 0 (what the engine runs) against the full tape of f on the
-    same orbits: the same crossings, within the integrations' difference at the tolerance
-    (different steps: the section's jet enters the step size)."""
+@pytest.mark.parametrize("value", [0.0, np.pi / 2, np.pi, 3 * np.pi / 2])
+def test_the_g_sections_on_the_axes_cross_as_their_full_section_function(value) -> None:
+    """The reduced tapes of g = 0, pi/2, pi, 3 pi/2 (what the engine runs) against the
+    full tape of f on the same orbits: the same crossings, within the integrations'
+    difference at the tolerance (different steps: the section's jet enters the step
+    size)."""
     from andoyer.kernels.generated import recurrences
     from andoyer.kernels.generated.equations import SECTION_KINDS
     from andoyer.kernels.taylor import flow
@@ -251,10 +253,11 @@ def test_the_g_section_at_zero_crosses_as_its_full_section_function() -> None:
     p = np.asarray(body.engine_params, dtype=float)
     z0 = np.array([[0.3, 0.2, 0.25, 0.6, 0.0, 0.8], [-0.1, 0.45, 0.3, 0.0, 0.6, 0.8]])
     kind, n, tol = SECTION_KINDS.index("g"), 40, 1e-12
-    tc, zc, count, info = flow.locate_crossings(z0, p, kind, 0.0, 1, n, 1e4, tol, 10**7)
+    tc, zc, count, info = flow.locate_crossings(z0, p, kind, value, 1, n, 1e4, tol, 10**7)
     full = np.array(recurrences.SECTION_TAPES[kind], dtype=np.int64)
-    fC = np.array(recurrences.section_constants(kind, p[7], 0.0, 1.0, 0.0))
-    wt, wC = section_tape(kind, p[7], 0.0, margin=True)
+    fC = np.array(recurrences.section_constants(kind, p[7], value, np.cos(value),
+                                                np.sin(value)))
+    wt, wC = section_tape(kind, p[7], value, margin=True)
     tf = np.full_like(tc, np.nan)
     zf = np.full_like(zc, np.nan)
     cf = np.zeros_like(count)
@@ -264,4 +267,5 @@ def test_the_g_section_at_zero_crosses_as_its_full_section_function() -> None:
     assert np.array_equal(count, cf) and np.all(count == n)
     assert np.all(info[:, 0] == 0) and np.all(inf[:, 0] == 0)
     assert np.max(np.abs(tc - tf)) < 1e-9 and np.max(np.abs(zc - zf)) < 1e-9
-    assert info[:, 3].sum() < inf[:, 3].sum()  # fewer jets: fewer shortened steps
+    if np.sin(value) ** 2 < 0.5:  # f / |G|: a shorter jet, fewer shortened steps
+        assert info[:, 3].sum() < inf[:, 3].sum()

@@ -9,6 +9,8 @@ angle, both directions' values, to round-off."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -186,23 +188,32 @@ def test_the_area_integral_leaves_the_jets_of_a_solution_unchanged(name: str) ->
                                                     scale)
 
 
-def test_the_g_section_at_zero_takes_the_tape_without_the_square_root() -> None:
-    """At g = 0 the tape is f / |G| (two products): the same signs as f, and the full
-    tape's value equals |G| times it on random states; at any other value the full tape."""
+@pytest.mark.parametrize("value, vanishing", [
+    (0.0, "sin"), (np.pi, "sin"), (-np.pi, "sin"), (2 * np.pi, "sin"),
+    (np.pi / 2, "cos"), (3 * np.pi / 2, "cos"), (-np.pi / 2, "cos")])
+def test_the_g_sections_on_the_axes_take_the_tape_without_the_square_root(value, vanishing
+                                                                          ) -> None:
+    """At g = 0, pi (the float nearest it) the tape is f / |G| (two products), at
+    +-pi/2 it is f without its cos(value) term: on random states the same signs as
+    the full tape of f and its value (times |G| where sin vanishes) within round-off; a
+    value 4 ulps off takes the full tape."""
     from andoyer.kernels.generated.equations import SECTION_KINDS
     from andoyer.kernels.taylor.sections import SQRT
 
     kind = SECTION_KINDS.index("g")
-    zero, Cz = section_tape(kind, 0.3, 0.0)
+    reduced, Cr = section_tape(kind, 0.3, value)
     full = np.array(recurrences.SECTION_TAPES[kind], dtype=np.int64)
-    Cf = np.array(recurrences.section_constants(kind, 0.3, 0.0, 1.0, 0.0))
-    assert zero.shape[0] < full.shape[0] and SQRT not in zero[:, 0] and SQRT in full[:, 0]
-    other, _ = section_tape(kind, 0.3, 1e-300)
+    Cf = np.array(recurrences.section_constants(kind, 0.3, value, np.cos(value),
+                                                np.sin(value)))
+    assert reduced.shape[0] < full.shape[0] and SQRT not in reduced[:, 0]
+    assert SQRT in full[:, 0]
+    other, _ = section_tape(kind, 0.3, value + 4 * math.ulp(value) if value else 1e-300)
     assert np.array_equal(other, full)
     states = _states(np.random.default_rng(3), 300)[3:]
     u = np.empty((recurrences.TAPE_NODES, 1))
-    fz = _values(zero, Cz, states, u)[:, 0]
+    fr = _values(reduced, Cr, states, u)[:, 0]
     ff = _values(full, Cf, states, u)[:, 0]
     G = np.linalg.norm(states[:, :3], axis=1)
-    assert np.allclose(ff, G * fz, rtol=1e-13, atol=1e-15)
-    assert np.array_equal(np.sign(ff), np.sign(fz))
+    factor = G if vanishing == "sin" else 1.0
+    assert np.allclose(ff, factor * fr, rtol=1e-13, atol=1e-15 * G.max() ** 3)
+    assert np.array_equal(np.sign(ff), np.sign(fr))

@@ -543,9 +543,9 @@ def margin_constants(kind, phi0, value, cv, sv):
     raise ValueError(f'no section kind {kind}')
 
 
-#: Section functions f at value 0 over their factor ``|G|`` (empty: the kind's f), one tape per section kind: rows (op, a, b, ca, cb, cc), ops
+#: Section functions f where sin(value) = 0, over their factor ``|G|`` (empty: the kind's f), one tape per section kind: rows (op, a, b, ca, cb, cc), ops
 #: VAR, LIN, MUL, SQRT, DOT, SCALE = 0 .. 5 (see andoyer.symbolic.taylor_codegen).
-AT_ZERO_TAPES = (
+SIN_ZERO_TAPES = (
     (),  # G1
     (),  # G2
     (),  # G3
@@ -564,7 +564,8 @@ AT_ZERO_TAPES = (
         (0, 0, -1, -1, -1, -1),
         (0, 4, -1, -1, -1, -1),
         (2, 3, 4, -1, -1, -1),
-        (1, 2, 5, 0, 1, -1),
+        (1, 2, 5, 0, 2, -1),
+        (1, 6, -1, 1, -1, -1),
     ),
     (),  # theta1
     (),  # theta2
@@ -572,8 +573,8 @@ AT_ZERO_TAPES = (
 )
 
 
-def at_zero_constants(kind, phi0, value, cv, sv):
-    """The constants ``C`` of the tape of AT_ZERO_TAPES[kind]."""
+def sin_zero_constants(kind, phi0, value, cv, sv):
+    """The constants ``C`` of the tape of SIN_ZERO_TAPES[kind]."""
     if kind == 0:  # G1
         return ()
     elif kind == 1:  # G2
@@ -597,7 +598,78 @@ def at_zero_constants(kind, phi0, value, cv, sv):
     elif kind == 10:  # l
         return ()
     elif kind == 11:  # g
-        return (1.0, -1.0, )
+        return (1.0, cv, -1.0, )
+    elif kind == 12:  # theta1
+        return ()
+    elif kind == 13:  # theta2
+        return ()
+    elif kind == 14:  # psi
+        return ()
+    raise ValueError(f'no section kind {kind}')
+
+
+#: Section functions f where cos(value) = 0 (empty: the kind's f), one tape per section kind: rows (op, a, b, ca, cb, cc), ops
+#: VAR, LIN, MUL, SQRT, DOT, SCALE = 0 .. 5 (see andoyer.symbolic.taylor_codegen).
+COS_ZERO_TAPES = (
+    (),  # G1
+    (),  # G2
+    (),  # G3
+    (),  # gamma1
+    (),  # gamma2
+    (),  # gamma3
+    (),  # L
+    (),  # G
+    (),  # J1
+    (),  # J2
+    (),  # l
+    (  # g
+        (0, 2, -1, -1, -1, -1),
+        (4, 0, 3, -1, -1, -1),
+        (5, 1, 0, -1, -1, -1),
+        (0, 5, -1, -1, -1, -1),
+        (0, 0, -1, -1, -1, -1),
+        (2, 4, 4, -1, -1, -1),
+        (0, 1, -1, -1, -1, -1),
+        (2, 6, 6, -1, -1, -1),
+        (2, 0, 0, -1, -1, -1),
+        (1, 5, 7, 0, 0, -1),
+        (1, 9, 8, 0, 0, -1),
+        (2, 3, 10, -1, -1, -1),
+        (1, 2, 11, 0, 2, -1),
+        (1, 12, -1, 1, -1, -1),
+    ),
+    (),  # theta1
+    (),  # theta2
+    (),  # psi
+)
+
+
+def cos_zero_constants(kind, phi0, value, cv, sv):
+    """The constants ``C`` of the tape of COS_ZERO_TAPES[kind]."""
+    if kind == 0:  # G1
+        return ()
+    elif kind == 1:  # G2
+        return ()
+    elif kind == 2:  # G3
+        return ()
+    elif kind == 3:  # gamma1
+        return ()
+    elif kind == 4:  # gamma2
+        return ()
+    elif kind == 5:  # gamma3
+        return ()
+    elif kind == 6:  # L
+        return ()
+    elif kind == 7:  # G
+        return ()
+    elif kind == 8:  # J1
+        return ()
+    elif kind == 9:  # J2
+        return ()
+    elif kind == 10:  # l
+        return ()
+    elif kind == 11:  # g
+        return (1.0, -sv, -1.0, )
     elif kind == 12:  # theta1
         return ()
     elif kind == 13:  # theta2

@@ -519,10 +519,11 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     """The tape (int rows) and constants of the section function ``f`` of ``kind = value``
     (its margin ``w`` if ``margin``): the generated
     :data:`~andoyer.kernels.generated.recurrences.SECTION_TAPES` and ``section_constants``
-    (``MARGIN_TAPES``, ``margin_constants``); at ``value = 0``, where the kind has one,
-    ``f`` over its factor ``|G|`` (``AT_ZERO_TAPES``,
-    :func:`andoyer.symbolic.sections.section_function_at_zero`: the same crossings, no
-    square root; ``g = 0`` about 1.8x faster, measured:
+    (``MARGIN_TAPES``, ``margin_constants``); where ``sin(value)`` or ``cos(value)`` is zero
+    (the float nearest ``0``, ``pi``; ``+-pi/2``: within an ulp of ``value``) and the kind
+    has one, the reduced ``f`` (``SIN_ZERO_TAPES``, ``COS_ZERO_TAPES``,
+    :func:`andoyer.symbolic.sections.section_function_reduced`: the same crossings within
+    round-off, no square root; ``g = 0`` about 1.8x faster, measured:
     benchmarks/NOTES.md#scalar-angle-section).
 
     Parameters
@@ -539,10 +540,13 @@ def section_tape(kind: int, phi0: float, value: float, *, margin: bool = False
     g = recurrences
     tapes: Any
     constants: Any
+    # the float nearest k pi / 2 has |sin| or |cos| of at most half its ulp
     if margin:
         tapes, constants = g.MARGIN_TAPES, g.margin_constants
-    elif value == 0.0 and g.AT_ZERO_TAPES[kind]:
-        tapes, constants = g.AT_ZERO_TAPES, g.at_zero_constants
+    elif abs(math.sin(value)) <= math.ulp(value) and g.SIN_ZERO_TAPES[kind]:
+        tapes, constants = g.SIN_ZERO_TAPES, g.sin_zero_constants
+    elif abs(math.cos(value)) <= math.ulp(value) and g.COS_ZERO_TAPES[kind]:
+        tapes, constants = g.COS_ZERO_TAPES, g.cos_zero_constants
     else:
         tapes, constants = g.SECTION_TAPES, g.section_constants
     tape = np.array(tapes[kind], dtype=np.int64)
