@@ -64,7 +64,7 @@ from andoyer.integrate.validated.arithmetic import (
     precision,
     working_precision,
 )
-from andoyer.integrate.validated.taylor import quadratic_field, validated_poincare
+from andoyer.integrate.validated.taylor import validated_poincare
 from andoyer.validation import integer
 
 __all__ = ["LocalManifold", "local_unstable_manifold", "mu_interval",
@@ -437,39 +437,18 @@ def mu_interval(body: dict[str, Any]) -> tuple[str, str]:
 
 
 # ----------------------------------------------------------------------------- search
-def _float_flow(spec: BodySpec, bits: int) -> Any:
-    """The field (1) in floats (the search only: nothing proved rests on it)."""
-    f = quadratic_field(spec, bits)
-    lin = [[(float(c.mid()), j) for c, j in comp] for comp in f.linear]
-    quad = [[(float(c.mid()), j, k) for c, j, k in comp] for comp in f.quadratic]
+def _float_crossing(engine: Any, body: Any, y0: np.ndarray, sign: int,
+                    t_max: float = 500.0) -> np.ndarray:
+    """The first crossing of ``G3 = 0`` away from ``sign`` (floats: the search only,
+    nothing proved rests on it), by the numba engine's DOP853 with its crossings in the
+    compiled loop (a Python field under ``solve_ivp`` cost 2 s of the proof)."""
+    from andoyer.integrate.engines.base import Section, Tolerance
 
-    def rhs(_t: float, y: np.ndarray) -> np.ndarray:
-        out = np.zeros(6)
-        for i in range(6):
-            s = 0.0
-            for c, j in lin[i]:
-                s += c * y[j]
-            for c, j, k in quad[i]:
-                s += c * y[j] * y[k]
-            out[i] = s
-        return out
-    return rhs
-
-
-def _float_crossing(rhs: Any, y0: np.ndarray, sign: int, t_max: float = 500.0
-                    ) -> np.ndarray:
-    """The first crossing of ``G3 = 0`` away from ``sign`` (floats)."""
-    from scipy.integrate import solve_ivp
-
-    def event(_t: float, y: np.ndarray) -> float:
-        return float(y[2])
-    event.terminal = True  # type: ignore[attr-defined]
-    event.direction = -sign  # type: ignore[attr-defined]
-    sol = solve_ivp(rhs, (0.0, t_max), y0, method="DOP853", rtol=1e-13, atol=1e-15,
-                    events=event)
-    if not sol.t_events[0].size:
+    cr = engine.crossings(y0[None], body.engine_params, Section("G3", 0.0, -sign), 1, t_max,
+                          Tolerance(1e-13, 1e-15))
+    if int(cr.count[0]) < 1:
         raise ArithmeticError("the float search found no crossing of L = 0")
-    return np.asarray(sol.y_events[0][0])
+    return np.asarray(cr.y[0, 0])
 
 
 def _float_zero(spec: BodySpec, st: _Setting, E: np.ndarray, side: int, lam: float,
@@ -478,7 +457,11 @@ def _float_zero(spec: BodySpec, st: _Setting, E: np.ndarray, side: int, lam: flo
     ``v = 0`` (the ``which``-th sign change in ``u`` in ``[radius / lam, radius]``)."""
     from scipy.optimize import brentq
 
-    rhs = _float_flow(spec, st.bits)
+    from andoyer.integrate.engines import resolve_engine
+    from andoyer.integrate.engines.base import Capability
+
+    engine = resolve_engine("numba", Capability.CROSSINGS)
+    body = spec.body()
     a, b, c, mu, e1, h = (float(x.mid()) for x in (st.a, st.b, st.c, st.mu, st.e1, st.h))
 
     def chart(u: float) -> np.ndarray:
@@ -489,7 +472,7 @@ def _float_zero(spec: BodySpec, st: _Setting, E: np.ndarray, side: int, lam: flo
         return np.array([-G3 * g3 / g1, G2, G3, g1, 0.0, g3])
 
     def gamma3(u: float) -> float:
-        return float(_float_crossing(rhs, chart(u), st.sign)[5])
+        return float(_float_crossing(engine, body, chart(u), st.sign)[5])
 
     grid = np.geomspace(radius / lam, radius, 25)
     vals = [gamma3(float(u)) for u in grid]
