@@ -58,6 +58,7 @@ import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from decimal import Decimal
 from functools import cache
 from typing import Any
 
@@ -523,7 +524,7 @@ def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = DEFAULT_BRAN
         # M = 0 identically on the Hess line of a Hess body: the closed form's factor
         # sin(theta1/2 + epsilon) at theta1 = 0 (mod 2 pi), epsilon = 0 (the floats' 4e-21
         # on one sheet is round-off): no digits to reach
-        hess_line = branch == DEFAULT_BRANCH and float(spec.epsilon) == 0.0
+        hess_line = branch == DEFAULT_BRANCH and Decimal(spec.epsilon) == 0
         identically_zero = (amp_f == 0.0 or hess_line) and amp.contains(0)
         dig = 0.0 if identically_zero else correct_digits(amp)
         if not identically_zero and dig < digits:
