@@ -342,7 +342,7 @@ def block_starts(n: int, threads: int) -> list[int]:
     >>> starts = block_starts(1024, 2)
     >>> starts[:4], 1024 - starts[-1] <= 2 * LANES
     ([0, 256, 448, 592], True)
-    >>> block_starts(10, 2) == [0, 2 * LANES]
+    >>> block_starts(3 * LANES, 2) == [0, 2 * LANES]    # short blocks: two orbits a lane
     True
     """
     m, starts, i = max(1, int(threads)), [], 0
