@@ -60,6 +60,7 @@ import functools
 import glob
 import hashlib
 import os
+import threading
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -83,6 +84,9 @@ _WARNED_ENV = "ANDOYER_NO_CACHE_WARNED"
 #: Longest wait (s) for another process's write of the same entry (a few ms each); past
 #: it the kernel runs compiled but not cached in this process.
 _WRITE_WAIT = 60.0
+
+#: Held while :func:`cache_library_kernels` swaps Numba's process-wide cache setting.
+_LIBRARY_LOCK = threading.Lock()
 
 
 def cache_folder() -> Path:
@@ -264,21 +268,24 @@ def cache_library_kernels(package: str) -> None:
     config: Any = numba.config  # untyped module: its settings are set at import
     modules = [m for name, m in list(sys.modules.items())
                if m is not None and (name == package or name.startswith(package + "."))]
-    for module in modules:
-        for value in list(vars(module).values()):
-            if not (isinstance(value, Dispatcher)
-                    and isinstance(getattr(value, "_cache", None), NullCache)):
-                continue
-            dispatcher: Any = value
-            previous = config.CACHE_DIR
-            config.CACHE_DIR = str(cache_folder() / "libraries")
-            try:
-                dispatcher._cache = _rebuilding_cache()(dispatcher.py_func)
-            except RuntimeError as exc:  # Numba's "cannot cache ...: no locator available"
-                if "no locator" not in str(exc):
-                    raise
-            finally:
-                config.CACHE_DIR = previous
+    # one thread at a time: the report's items call NAFF from threads, and Numba's
+    # setting is process-wide (two threads' save and restore could leave it changed)
+    with _LIBRARY_LOCK:
+        for module in modules:
+            for value in list(vars(module).values()):
+                if not (isinstance(value, Dispatcher)
+                        and isinstance(getattr(value, "_cache", None), NullCache)):
+                    continue
+                dispatcher: Any = value
+                previous = config.CACHE_DIR
+                config.CACHE_DIR = str(cache_folder() / "libraries")
+                try:
+                    dispatcher._cache = _rebuilding_cache()(dispatcher.py_func)
+                except RuntimeError as exc:  # Numba's "cannot cache ...: no locator"
+                    if "no locator" not in str(exc):
+                        raise
+                finally:
+                    config.CACHE_DIR = previous
 
 
 def writable(folder: str | os.PathLike[str]) -> bool:
