@@ -40,10 +40,11 @@ where ``cos(value)`` does (``value = +-pi/2``) ``-C sin(value)``
 (:func:`section_function_reduced`). For ``g`` both lose their square root:
 ``S_g = |G| (G2 gamma1 - G1 gamma2)`` is ``|G|`` times a polynomial, which has the same zeros
 and signs on the regular states (``|G| > 0``), and ``C_g`` is a polynomial. The Taylor
-kernels' sections ``g = 0, pi/2, pi, 3 pi/2`` take their jets from these, two products
-(three and a product by ``M``) instead of seven and a square root (measured:
+kernels' sections ``g = 0, pi/2, pi, 3 pi/2`` take their jets from these: two products
+where ``sin(value) = 0``, four and a scaling by ``M`` where ``cos(value) = 0``, instead of
+seven and a square root (measured:
 benchmarks/NOTES.md#scalar-angle-section). The float nearest such a value differs from it
-by half an ulp: the dropped term moves a crossing by less than round-off.
+by at most half an ulp: the dropped term moves a crossing by less than round-off.
 """
 
 from __future__ import annotations
