@@ -93,12 +93,13 @@ class QuadraticField:
                               tuple(tuple((-c, j, k) for c, j, k in comp)
                                     for comp in self.quadratic), self.bits)
 
-    def jacobian(self, y: Vector) -> arb_mat:
-        """``Df(y)`` as an Arb matrix."""
+    def jacobian(self, y: Vector, linear: bool = True) -> arb_mat:
+        """``Df(y)`` as an Arb matrix (without its constant linear part if not ``linear``:
+        the Taylor coefficients of ``Df(y(t))`` beyond order 0)."""
         n = self.n
         rows = [[arb(0)] * n for _ in range(n)]
         for i in range(n):
-            for c, j in self.linear[i]:
+            for c, j in self.linear[i] if linear else ():
                 rows[i][j] += c
             for c, j, k in self.quadratic[i]:
                 rows[i][j] += c * y[k]
@@ -210,18 +211,7 @@ def variational_jets(f: QuadraticField, y0: Vector, V0: list[Vector], order: int
     ncol = len(V0[0])
     # V' = Df(y(t)) V with Df(y(t)) = sum_m A_m t^m: V_{k+1} = sum_{m <= k} A_m V_{k-m} / (k+1),
     # each term one Arb matrix product in C (FLINT's dot products), not Python's loops.
-    A = []
-    for m in range(order):
-        rows = [[arb(0)] * n for _ in range(n)]
-        if m == 0:
-            for i in range(n):
-                for cf, j in f.linear[i]:
-                    rows[i][j] += cf
-        for i in range(n):
-            for cf, j, l_ in f.quadratic[i]:
-                rows[i][j] += cf * Y[l_][m]
-                rows[i][l_] += cf * Y[j][m]
-        A.append(arb_mat(rows))
+    A = [f.jacobian([Y[i][m] for i in range(n)], linear=m == 0) for m in range(order)]
     V = [arb_mat(V0)]
     for k in range(order):
         s = A[0] * V[k]
