@@ -87,6 +87,8 @@ _WRITE_WAIT = 60.0
 
 #: Held while :func:`cache_library_kernels` swaps Numba's process-wide cache setting.
 _LIBRARY_LOCK = threading.Lock()
+#: The packages :func:`cache_library_kernels` has seen to in this process.
+_CACHED_LIBRARIES: set[str] = set()
 
 
 def cache_folder() -> Path:
@@ -243,8 +245,9 @@ def cache_library_kernels(package: str) -> None:
     entry on the library file's path, size and time stamp, so another version of the
     library compiles its own. Functions their library caches already, and those of
     modules not imported yet, are left alone; where no folder is writable they stay
-    uncached (the library's own behaviour). Call it once the package is imported and
-    before its first call.
+    uncached (the library's own behaviour). It acts once per package and process (later
+    calls return at once): call it once the package is imported and before its first
+    call.
 
     Parameters
     ----------
@@ -265,12 +268,16 @@ def cache_library_kernels(package: str) -> None:
     from numba.core.caching import NullCache
     from numba.core.dispatcher import Dispatcher
 
+    if package in _CACHED_LIBRARIES:    # once per process: NAFF calls it on every signal
+        return
     config: Any = numba.config  # untyped module: its settings are set at import
-    modules = [m for name, m in list(sys.modules.items())
-               if m is not None and (name == package or name.startswith(package + "."))]
     # one thread at a time: the report's items call NAFF from threads, and Numba's
     # setting is process-wide (two threads' save and restore could leave it changed)
     with _LIBRARY_LOCK:
+        if package in _CACHED_LIBRARIES:
+            return
+        modules = [m for name, m in list(sys.modules.items())
+                   if m is not None and (name == package or name.startswith(package + "."))]
         for module in modules:
             for value in list(vars(module).values()):
                 if not (isinstance(value, Dispatcher)
@@ -286,6 +293,7 @@ def cache_library_kernels(package: str) -> None:
                         raise
                 finally:
                     config.CACHE_DIR = previous
+        _CACHED_LIBRARIES.add(package)
 
 
 def writable(folder: str | os.PathLike[str]) -> bool:
