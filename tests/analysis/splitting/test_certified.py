@@ -81,6 +81,13 @@ def test_hess_branch_of_a_hess_body_vanishes_identically(sheet):
     assert arb(res.amplitude).contains(0) and arb(res.amplitude).rad() < 1e-35
 
 
+def test_an_underflowing_amplitude_is_no_identical_zero():
+    """epsilon = 1e-400 is not the Hess body: its M is not identically zero, and the
+    digits cannot be reached from a float amplitude of 0 (no false zero)."""
+    with pytest.raises(ArithmeticError, match="underflows"):
+        certified_melnikov(BodySpec("2.5", "2.0", "2.2", epsilon="1e-400"), digits=10)
+
+
 def test_the_integral_is_independent_of_the_closed_form():
     """A wrong closed form (factor 2) would not overlap the certified integral."""
     Z, Zc, _ = melnikov_coefficient(BodySpec("2.5", "2.0", "2.2"), branch="theta1=4phi0", bits=128)

@@ -521,14 +521,17 @@ def certified_melnikov(body: RigidBody | BodySpec, *, branch: str = DEFAULT_BRAN
                                   f"{Zc} do not overlap")
         amp = abs(Z)
         vals = [_M(Z, arb(p)) for p in th]
-        # M = 0 identically on the Hess line of a Hess body: the closed form's factor
-        # sin(theta1/2 + epsilon) at theta1 = 0 (mod 2 pi), epsilon = 0 (the floats' 4e-21
-        # on one sheet is round-off): no digits to reach
+        # M = 0 identically on the Hess line of a Hess body and only there: the closed
+        # form's factor sin(theta1/2 + epsilon) at theta1 = 0 (mod 2 pi), epsilon = 0 (the
+        # floats' 0 or 4e-21 there are round-off, and a float 0 elsewhere is an underflow)
         hess_line = branch == DEFAULT_BRANCH and Decimal(spec.epsilon) == 0
-        identically_zero = (amp_f == 0.0 or hess_line) and amp.contains(0)
+        identically_zero = hess_line and amp.contains(0)
         dig = 0.0 if identically_zero else correct_digits(amp)
         if not identically_zero and dig < digits:
-            raise ArithmeticError(f"only {dig:.1f} digits reached, {digits} asked")
+            why = (" (the float amplitude the precision is sized by underflows to 0)"
+                   if amp_f == 0.0 else "")
+            raise ArithmeticError(f"only {max(dig, 0.0):.1f} digits reached, {digits} "
+                                  f"asked{why}")
         zeros: list[MelnikovZero] = []
         complete = False
         if not amp.contains(0):
