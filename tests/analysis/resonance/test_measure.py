@@ -123,3 +123,37 @@ def test_second_order_chain_measured_against_its_prediction():
     assert abs(meas - pred) < 0.01 * pred + 2 * float(m.edge_uncertainty)
     # the second-order stable point (-9.70e-5) lies inside the island, near its centre
     assert abs(float(m.predicted_stable_s_2) - float(m.centre_offset)) < 0.05 * meas
+
+
+def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less():
+    # Hess(3, 1, 2), 3:1 about x, mu = 1e-3 (half-width 2.56e-3): seeds inside the chain
+    # and beyond its edge, 600 returns; the screening pass follows every orbit for 100
+    # returns first, and only those whose slow angle has not spanned 2 pi yet go on
+    import andoyer.analysis.resonance.measure as measure
+
+    row = [r for r in resonant_rows(HESS, 1.0, 0.0, 4)
+           if (r["p"], r["q"], r["axis"], r["sign"]) == (1, 3, 1, 1)][0]
+    chain = ResonantChain(HESS, 1.0, 0.0, row, Section("g", 0.0, 1))
+    probe = _Probe(chain, 1.0, 0.0, 0.0, 600, "numba", 1e-11)
+    s = np.array([0.0, 1e-3, -1e-3, 8e-3, -8e-3, 2e-2, -2e-2])
+    whole = probe.orbits(s)
+    returns = []
+    real = measure.poincare
+
+    def counted(body, y, section, n, **kw):
+        returns.append(n * y.shape[0])
+        return real(body, y, section, n, **kw)
+
+    measure.poincare = counted
+    try:
+        screened = probe.orbits(s, screen=True)
+    finally:
+        measure.poincare = real
+    assert np.array_equal(screened["locked"], whole["locked"])
+    assert whole["locked"][:3].all() and not whole["locked"][3:].any()
+    inside = whole["locked"]
+    assert np.array_equal(screened["span"][inside], whole["span"][inside])
+    assert np.array_equal(screened["drift"][inside], whole["drift"][inside])
+    # the circulating orbits' verdicts came from the screen: 7 x 100 + 3 x 600 returns
+    assert returns == [7 * 100, 3 * 600]
+    assert np.all(screened["span"][~inside] >= 2 * math.pi)

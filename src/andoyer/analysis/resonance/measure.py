@@ -19,7 +19,10 @@ seed is locked, the next is placed where the drift, fitted linearly through the 
 vanishes (the first-order centre is off by ``O(mu)``, more than the width of a thin
 chain). Then both
 edges of the locked interval are bracketed and narrowed by rounds of ``n_seeds`` seeds
-inside each bracket. The result: the edges ``s_inner``, ``s_outer`` with their
+inside each bracket. The marching and bracketing orbits are screened: each runs a sixth
+of ``n_crossings`` first, and only those whose ``psi`` has not yet spanned ``2 pi`` (still
+locked) run the whole ``n_crossings`` (the same verdicts; about a fifth less work on the
+report's chains). The result: the edges ``s_inner``, ``s_outer`` with their
 uncertainties, the measured half-width ``(s_outer - s_inner) / 2`` and centre offset.
 An orbit starting within a thin chaotic layer along the separatrix counts as
 circulating (its ``psi`` crosses ``2 pi``); the edges are the layer's, which is what a
@@ -61,6 +64,12 @@ _STABLE_EVALUATIONS = 45
 #: minimum, which it resolves to ~1e-6 half-widths (the seeds' round-off moves it 3e-7);
 #: a tighter one spends orbits on noise (benchmarks/NOTES.md#measure_island).
 _STABLE_XATOL = 1e-5
+#: The screening pass of the edges' orbits, a fraction of ``n_crossings`` (``2 / Omega``
+#: of the default ``12 / Omega``): the circulating orbits of the report's chains spanned
+#: ``2 pi`` within ``0.1-1.6 / Omega`` returns (benchmarks/NOTES.md#measure_island).
+_SCREEN_FRACTION = 1.0 / 6.0
+#: Fewest screening returns worth a second engine call.
+_SCREEN_MIN = 100
 
 
 def _parse_resonance(resonance: str) -> tuple[int, int]:
@@ -122,32 +131,56 @@ class _Probe:
                 y[i] = from_andoyer([l[i], self.g_star, L[i], G, self.M])
         return y
 
-    def orbits(self, s: NDArray[np.float64]) -> dict[str, NDArray[Any]]:
+    def orbits(self, s: NDArray[np.float64], screen: bool = False) -> dict[str, NDArray[Any]]:
         """Every measure of the orbits seeded at ``s`` (one engine batch): ``locked`` (by
         the route), ``drift`` and ``span`` of the slow angle, ``rotation`` (NAFF: the line
         of ``exp(i phi1_n)`` nearest ``p/q``, turns per return; NaN on the slow-angle
-        route) and ``psi_locked`` (the slow angle's verdict)."""
-        y = self.seeds(s)
-        ok = np.all(np.isfinite(y), axis=1)
+        route) and ``psi_locked`` (the slow angle's verdict).
+
+        ``screen`` (the slow-angle route only): the orbits first run
+        :data:`_SCREEN_FRACTION` of ``n_crossings``; one whose slow angle already spans
+        ``2 pi`` circulates (a longer run only widens the span), and only the others run
+        the whole ``n_crossings``. The verdicts are the same; a screened-out orbit's
+        ``drift`` and ``span`` are over its screening returns."""
         out = {"locked": np.zeros(s.size, bool), "psi_locked": np.zeros(s.size, bool),
                "drift": np.full(s.size, np.nan), "span": np.full(s.size, np.inf),
                "rotation": np.full(s.size, np.nan)}
-        if not ok.any():
-            return out
+        y = self.seeds(s)
+        ok = np.all(np.isfinite(y), axis=1)
+        n_screen = math.ceil(_SCREEN_FRACTION * self.n_crossings)
+        if screen and self.route == "slow_angle" and n_screen >= _SCREEN_MIN:
+            idx = np.nonzero(ok)[0]
+            if idx.size:
+                self._measure(y[idx], idx, n_screen, out)
+                span = out["span"][idx]   # inf: the screen did not finish (undecided)
+                ok[idx[np.isfinite(span) & (span >= 2 * math.pi)]] = False
+        if ok.any():
+            self._measure(y[ok], np.nonzero(ok)[0], self.n_crossings, out)
+        if self.route == "naff":
+            target = (self.c.p / self.c.q) % 1.0
+            out["locked"] = np.abs(out["rotation"] - target) < NAFF_LOCK * abs(self.Omega)
+        else:
+            out["locked"] = out["psi_locked"].copy()
+        return out
+
+    def _measure(self, y: NDArray[np.float64], idx: NDArray[np.intp], n_crossings: int,
+                 out: dict[str, NDArray[Any]]) -> None:
+        """The slow angle (and NAFF lines) of the orbits seeded at ``y`` over
+        ``n_crossings`` returns, into the rows ``idx`` of ``out``."""
         c = self.c
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = poincare(c.body, y[ok], self.section, self.n_crossings, engine=self.engine,
+            ds = poincare(c.body, y, self.section, n_crossings, engine=self.engine,
                           rtol=self.tol, atol=self.tol,
-                          t_max=2.0 * self.n_crossings * 2 * math.pi / c.torus.omega_g)
+                          t_max=2.0 * n_crossings * 2 * math.pi / c.torus.omega_g)
         G = np.stack([ds.G1.values, ds.G2.values, ds.G3.values], axis=-1)
-        idx = np.nonzero(ok)[0]
         T = c.torus
         target = (c.p / c.q) % 1.0
         for j, i in enumerate(idx):
             mom = G[j]
             good = np.all(np.isfinite(mom), axis=1)
-            if good.sum() < self.n_crossings:
+            out["span"][i], out["drift"][i], out["psi_locked"][i] = np.inf, np.nan, False
+            if good.sum() < n_crossings:
                 continue   # left the section's reach: not in the chain
             phi1 = free_top_phase(c.body, mom)
             rho = trig_interpolate(T, T.rho, phi1)
@@ -165,11 +198,6 @@ class _Probe:
                 gap = (lines - target + 0.5) % 1.0 - 0.5
                 k = int(np.argmin(np.abs(gap)))
                 out["rotation"][i] = target + float(gap[k])
-        if self.route == "naff":
-            out["locked"] = np.abs(out["rotation"] - target) < NAFF_LOCK * abs(self.Omega)
-        else:
-            out["locked"] = out["psi_locked"].copy()
-        return out
 
     def run(self, s: NDArray[np.float64]
             ) -> tuple[NDArray[np.bool_], NDArray[np.float64], NDArray[np.float64]]:
@@ -346,8 +374,8 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     log_d: list[float] = []
     log_w: list[float] = []
 
-    def run(s: NDArray[np.float64]) -> NDArray[np.bool_]:
-        o = probe.orbits(s)
+    def run(s: NDArray[np.float64], screen: bool = False) -> NDArray[np.bool_]:
+        o = probe.orbits(s, screen)
         log_s.extend(s.tolist())
         log_l.extend(o["locked"].tolist())
         log_d.extend(o["drift"].tolist())
@@ -382,7 +410,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
         if not marching:
             break
         trial = np.array([inside[d] + d * step[d] for d in marching])
-        lk = run(trial)
+        lk = run(trial, screen=True)
         for d, t, locked in zip(list(marching), trial, lk, strict=True):
             if locked:
                 inside[d] = float(t)
@@ -398,7 +426,7 @@ def measure_island(body: RigidBody, h: float, M: float, resonance: str, *,
     frac = np.arange(1, n_seeds + 1) / (n_seeds + 1)
     for _ in range(n_rounds):
         s = np.concatenate([lo + (hi - lo) * frac for lo, hi in bracket.values()])
-        lk_all = run(s)
+        lk_all = run(s, screen=True)
         for j, d in enumerate((-1.0, 1.0)):
             lo, hi = bracket[d]
             part = s[j * n_seeds:(j + 1) * n_seeds]
@@ -498,7 +526,8 @@ _VARIABLES = {
                                  "1", "(R12)"),
     "seed_s": ("s", "seed position on the line (G units)", "1", ""),
     "seed_locked": ("", "the orbit librates in the chain", "1", ""),
-    "seed_drift": ("", "mean change of psi per return", "rad", ""),
+    "seed_drift": ("", "mean change of psi per return (over the screening returns for an "
+                   "orbit that circulated within them)", "rad", ""),
     "seed_rotation": ("W", "NAFF line of exp(i phi1_n) nearest p/q, turns per return (naff "
                       "route; NaN otherwise)", "1", ""),
 }
