@@ -107,3 +107,30 @@ def test_failed_write_leaves_old_file_and_no_temporary(tmp_path, monkeypatch):
         save_figure(ax.figure, target)
     assert target.read_bytes() == b"old"
     assert [p.name for p in tmp_path.iterdir()] == ["s.png"]
+
+
+def test_pdf_has_the_pngs_layout_and_the_figure_keeps_its_engine(tmp_path, monkeypatch):
+    # constrained layout: the PNG lays the figure out, the PDF takes that layout (one pass
+    # fewer); a colorbar needs the engine back as it was
+    from matplotlib.figure import Figure
+
+    fig = Figure(layout="constrained")
+    ax = fig.subplots()
+    fig.colorbar(ax.imshow(np.arange(12.0).reshape(3, 4)), ax=ax, label="FLI")
+    ax.set_title("a title long enough to move the axes")
+    engine = fig.get_layout_engine()
+    seen = []
+    real = fig.savefig
+
+    def savefig(tmp, **kwargs):
+        real(tmp, **kwargs)
+        seen.append((kwargs["format"], fig.get_layout_engine() is engine,
+                     [a.get_position().bounds for a in fig.axes]))
+
+    monkeypatch.setattr(fig, "savefig", savefig)
+    written = save_figure(fig, tmp_path / "map", pdf=True)
+    assert [p.name for p in written] == ["map.png", "map.pdf"]
+    (png, png_engine, png_axes), (pdf, pdf_engine, pdf_axes) = seen
+    assert (png, png_engine, pdf, pdf_engine) == ("png", True, "pdf", False)
+    assert pdf_axes == png_axes
+    assert fig.get_layout_engine() is engine
