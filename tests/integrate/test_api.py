@@ -141,3 +141,25 @@ def test_integrate_canonical_stops_at_singularity():
 def test_get_engine_unknown():
     with pytest.raises(ValueError, match="unknown engine"):
         get_engine("euler")
+
+
+@pytest.mark.parametrize("section", ["g=0.7", "theta2=0", "L=0.2", "G3=0"])
+def test_poincare_derives_no_chart_until_one_is_read(section, monkeypatch):
+    # section_residual comes from the crossings' own check: building the dataset maps no
+    # chart, and the residual equals the definition on the mapped coordinate
+    import andoyer.integrate.results as results
+    from andoyer.notation import storage_name
+
+    calls = []
+    real = results.derived_values
+    monkeypatch.setattr(results, "derived_values",
+                        lambda *a, **k: calls.append(1) or real(*a, **k))
+    ds = poincare(BODY, from_andoyer(X0), section, 6, engine="numba", t_max=400.0)
+    assert calls == []
+    sec = Section.parse(section)
+    var = ds[storage_name(sec.coord)].values
+    want = np.sin(var - sec.value) if sec.is_angle else var - sec.value
+    assert int(ds.crossings_found.sum()) > 0
+    np.testing.assert_array_equal(ds.section_residual.values, want)
+    assert np.all(np.isfinite(ds.H.values) == np.isfinite(ds.t.values))
+    assert calls == [1]   # once, at the first derived variable read

@@ -443,6 +443,7 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
     T = np.concatenate([p[0].t for p in parts], axis=0)
     Y = np.concatenate([p[0].y for p in parts], axis=0)
     count = np.concatenate([p[0].count for p in parts], axis=0)
+    residual = np.concatenate([p[2] for p in parts], axis=0)
     passages = [tp for p in parts for tp in p[1]]
     n_pass = np.array([len(tp) for tp in passages], dtype=np.int64)
     P = np.full((len(passages), int(n_pass.max(initial=0))), np.nan)
@@ -460,7 +461,11 @@ def poincare(body: RigidBody, y0: ArrayLike, section: Section | str, n_crossings
                "singular_passages": (("orbit",), n_pass),
                # The passage dimension exists only where there were passages.
                **({"singular_passage_t": (("orbit", "passage"), P)} if P.size else {})})
-    ds["section_residual"] = _section_residual(ds, sec)
+    # the residual section_crossings computed: reading the chart here would compute every
+    # lazy derived variable of every crossing (a fifth of a long 7:1 orbit's Python time)
+    ds["section_residual"] = (("orbit", "crossing"), residual)
+    ds.section_residual.attrs.update(
+        long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing", units="1")
     ds.t.attrs.update(long_name="time of the crossing", units="body time units")
     ds.momentum_scale.attrs.update(
         long_name="largest |G| on the orbit's energy level (scale of G = 0)", units="1")
@@ -485,9 +490,11 @@ def _passage_message(sec: Section, n_pass: NDArray[np.int64]) -> str:
 
 def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.float64],
                        params: Params, sec: Section, n: int, t_end: float, rtol: float,
-                       atol: float, body: RigidBody) -> tuple[Crossings, list[list[float]]]:
-    """The first ``n`` crossings of each orbit where ``sec`` is defined, and the times of
-    the roots where it is not (singular passages).
+                       atol: float, body: RigidBody
+                       ) -> tuple[Crossings, list[list[float]], NDArray[np.float64]]:
+    """The first ``n`` crossings of each orbit where ``sec`` is defined, the times of
+    the roots where it is not (singular passages), and the section equation's residual at
+    each crossing (``sin(angle - value)`` or ``coord - value``; NaN padding).
 
     An engine reports every root of the section function, and for an angle that
     includes the passages through the angle's singular set, where the function's scale
@@ -521,9 +528,13 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
     m = y.shape[0]
     tolerance = Tolerance(rtol, atol)
     if not sec.is_angle:  # smooth coordinates: every root is a crossing
-        return eng.crossings(y, params, sec, n, t_end, tolerance), [[] for _ in range(m)]
+        cr = eng.crossings(y, params, sec, n, t_end, tolerance)
+        found = np.isfinite(cr.t)
+        res = _residual_values(sec, body, np.where(found[..., None], cr.y, _DUMMY_STATE))
+        return cr, [[] for _ in range(m)], np.where(found, res, np.nan)
     T = np.full((m, n), np.nan)
     Y = np.full((m, n, 6), np.nan)
+    R = np.full((m, n), np.nan)
     count = np.zeros(m, dtype=np.int64)
     passages: list[list[float]] = [[] for _ in range(m)]
     start_y, start_t = y.copy(), np.zeros(m)
@@ -541,13 +552,15 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         yy = np.where(valid[..., None], cr.y, _DUMMY_STATE)
         good = valid & (sec.defined_distance(yy, scale[active][:, None])
                         > SECTION_SINGULAR_RTOL)
-        good &= np.abs(_residual_values(sec, body, yy)) <= RESIDUAL_BOUND
+        res = _residual_values(sec, body, yy)
+        good &= np.abs(res) <= RESIDUAL_BOUND
         still = []
         for j, i in enumerate(active):
             k = int(cr.count[j])
             take = np.flatnonzero(good[j])[:n - count[i]]
             T[i, count[i]:count[i] + take.size] = tt[j, take]
             Y[i, count[i]:count[i] + take.size] = cr.y[j, take]
+            R[i, count[i]:count[i] + take.size] = res[j, take]
             count[i] += take.size
             # Passages before the last crossing kept (all of them if more are needed).
             limit = take[-1] if count[i] == n and take.size else k
@@ -564,7 +577,7 @@ def section_crossings(eng: Engine, y: NDArray[np.float64], scale: NDArray[np.flo
         warnings.warn(f"poincare: {active.size} orbits still lacked crossings after "
                       f"{_MAX_ROUNDS} rounds of continuation past singular passages; "
                       "they are NaN-padded", SingularPassageWarning, stacklevel=3)
-    return Crossings(T, Y, count), passages
+    return Crossings(T, Y, count), passages, R
 
 
 def _residual_values(sec: Section, body: RigidBody, y: NDArray[np.float64]
@@ -577,14 +590,6 @@ def _residual_values(sec: Section, body: RigidBody, y: NDArray[np.float64]
          "euler_poisson": lambda: y}[chart]()
     v = x[..., coordinates(chart).index(sec.coord)]
     return np.sin(v - sec.value) if sec.is_angle else v - sec.value
-
-
-def _section_residual(ds: xr.Dataset, sec: Section) -> xr.DataArray:
-    var = ds[storage_name(sec.coord)]
-    res = xr.DataArray(np.sin(var - sec.value)) if sec.is_angle else var - sec.value
-    res.attrs.update(long_name=f"section equation {sec.coord} = {sec.value:g} at the crossing",
-                     units="1")
-    return res
 
 
 # ---------------------------------------------------------------------- canonical charts
