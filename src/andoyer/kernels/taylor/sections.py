@@ -437,7 +437,10 @@ def poly_d(a, order, s):
 @kernel_jit
 def solve_root(a, order, lo, hi, flo):
     """The root of ``P = sum a[k] s^k`` in ``[lo, hi]`` where ``P`` changes sign once
-    (``flo`` its sign at ``lo``): Newton steps kept inside the bracket, else bisection."""
+    (``flo`` its sign at ``lo``): Newton steps kept inside the bracket, else bisection,
+    until the bracket is 4 eps wide or a Newton step no longer moves ``s`` (converged:
+    ``s`` is then an end of the bracket, and taking that step for one leaving it would
+    bisect the whole bracket again, 20-50 evaluations instead of 4-6)."""
     s = 0.5 * (lo + hi)
     up = flo < 0.0
     for _ in range(ROOT_MAXITER):
@@ -451,10 +454,10 @@ def solve_root(a, order, lo, hi, flo):
         if hi - lo <= _ROOT_XTOL * max(1.0, abs(s)):
             break
         nxt = s - v / d if d != 0.0 else 0.5 * (lo + hi)
-        if not (lo < nxt < hi):
-            nxt = 0.5 * (lo + hi)
         if nxt == s:
             break
+        if not (lo < nxt < hi):
+            nxt = 0.5 * (lo + hi)
         s = nxt
     return s
 
