@@ -157,3 +157,13 @@ def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less(
     # the circulating orbits' verdicts came from the screen: 7 x 100 + 3 x 600 returns
     assert returns == [7 * 100, 3 * 600]
     assert np.all(screened["span"][~inside] >= 2 * math.pi)
+    # the NAFF route's verdict needs every return: no screen there
+    naff = _Probe(chain, 1.0, 0.0, 0.0, 600, "numba", 1e-11, route="naff")
+    returns.clear()
+    measure.poincare = counted
+    try:
+        lines = naff.orbits(s, screen=True)
+    finally:
+        measure.poincare = real
+    assert returns == [7 * 600]
+    assert np.array_equal(lines["locked"], whole["locked"])
