@@ -125,7 +125,8 @@ def test_second_order_chain_measured_against_its_prediction():
     assert abs(float(m.predicted_stable_s_2) - float(m.centre_offset)) < 0.05 * meas
 
 
-def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less():
+def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less(
+        monkeypatch):
     # Hess(3, 1, 2), 3:1 about x, mu = 1e-3 (half-width 2.56e-3): seeds inside the chain
     # and beyond its edge, 600 returns; the screening pass follows every orbit for 100
     # returns first, and only those whose slow angle has not spanned 2 pi yet go on
@@ -144,11 +145,8 @@ def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less(
         returns.append(n * y.shape[0])
         return real(body, y, section, n, **kw)
 
-    measure.poincare = counted
-    try:
-        screened = probe.orbits(s, screen=True)
-    finally:
-        measure.poincare = real
+    monkeypatch.setattr(measure, "poincare", counted)
+    screened = probe.orbits(s, screen=True)
     assert np.array_equal(screened["locked"], whole["locked"])
     assert whole["locked"][:3].all() and not whole["locked"][3:].any()
     inside = whole["locked"]
@@ -160,10 +158,6 @@ def test_screening_pass_keeps_every_verdict_and_follows_circulating_orbits_less(
     # the NAFF route's verdict needs every return: no screen there
     naff = _Probe(chain, 1.0, 0.0, 0.0, 600, "numba", 1e-11, route="naff")
     returns.clear()
-    measure.poincare = counted
-    try:
-        lines = naff.orbits(s, screen=True)
-    finally:
-        measure.poincare = real
+    lines = naff.orbits(s, screen=True)
     assert returns == [7 * 600]
     assert np.array_equal(lines["locked"], whole["locked"])

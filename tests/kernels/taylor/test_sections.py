@@ -248,10 +248,10 @@ def test_solve_root_stops_where_newton_has_converged():
     A[:, 0] = -np.array([np.polyval(a[::-1], x) for a, x in zip(A, r, strict=True)])
     flo = A[:, 0]
     got = _roots(A, flo)
-    mpmath.mp.dps = 40
     far = 0
-    for a, s in zip(A, got, strict=True):
-        coeffs = [mpmath.mpf(float(c)) for c in a[::-1]]
-        exact = mpmath.findroot(lambda x, c=coeffs: mpmath.polyval(c, x), mpmath.mpf(s))
-        far += abs(float(exact) - s) > 2 * math.ulp(float(exact))
+    with mpmath.workdps(40):   # not mpmath.mp.dps: that would last into later tests
+        for a, s in zip(A, got, strict=True):
+            coeffs = [mpmath.mpf(float(c)) for c in a[::-1]]
+            exact = mpmath.findroot(lambda x, c=coeffs: mpmath.polyval(c, x), mpmath.mpf(s))
+            far += abs(float(exact) - s) > 2 * math.ulp(float(exact))
     assert far == 0, far

@@ -118,6 +118,8 @@ class _Probe:
         dl, dL = chain.normal(mom)
         self.dl, self.dL = float(dl[0]), float(dL[0])
         self.section = Section("g", g_star, 1)
+        #: ``p/q`` in turns per return, mod 1: where a locked orbit's NAFF line sits.
+        self.target = (chain.p / chain.q) % 1.0
 
     def seeds(self, s: NDArray[np.float64]) -> NDArray[np.float64]:
         body, c = self.c.body, self.c
@@ -157,8 +159,8 @@ class _Probe:
         if ok.any():
             self._measure(y[ok], np.nonzero(ok)[0], self.n_crossings, out)
         if self.route == "naff":
-            target = (self.c.p / self.c.q) % 1.0
-            out["locked"] = np.abs(out["rotation"] - target) < NAFF_LOCK * abs(self.Omega)
+            out["locked"] = (np.abs(out["rotation"] - self.target)
+                             < NAFF_LOCK * abs(self.Omega))
         else:
             out["locked"] = out["psi_locked"].copy()
         return out
@@ -175,7 +177,7 @@ class _Probe:
                           t_max=2.0 * n_crossings * 2 * math.pi / c.torus.omega_g)
         G = np.stack([ds.G1.values, ds.G2.values, ds.G3.values], axis=-1)
         T = c.torus
-        target = (c.p / c.q) % 1.0
+        target = self.target
         for j, i in enumerate(idx):
             mom = G[j]
             good = np.all(np.isfinite(mom), axis=1)
