@@ -227,10 +227,8 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
 
     Parameters
     ----------
-    m : ndarray, shape (rows, LANES) or (order + 1, rows, LANES)
-        The products (C-contiguous): ``m[r]``, or ``m[k, r]`` of a three-dimensional
-        ``m`` (a section tape's lane jets, :mod:`andoyer.kernels.taylor.lane_sections`:
-        ``m`` may be ``u``, its row ``(k, r)`` read by none of the products).
+    m : ndarray, shape (rows, LANES)
+        The products (C-contiguous): ``m[r]``.
     u, v : ndarray, shape (order + 1, 6, LANES)
         Lane jets (C-contiguous; may be the same array).
     k : int
@@ -248,13 +246,12 @@ def cauchy(m: Any, u: Any, v: Any, k: int, products: tuple[int, ...]) -> None:
     >>> float(m[0, 0]), float(m[1, LANES - 1])
     (3.0, 3.0)
     """
-    out = m[k] if m.ndim == 3 else m
     for i in range(0, len(products), 3):
         r, a, b = products[i:i + 3]
         s = u[0, a] * v[k, b]
         for j in range(1, k + 1):
             s = s + u[j, a] * v[k - j, b]
-        out[r] = s
+        m[r] = s
 
 
 def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any) -> Any:
@@ -299,8 +296,7 @@ def _cauchy_typer(typingctx: Any, m: Any, u: Any, v: Any, k: Any, products: Any)
                 builder.store(builder.call(fma, [load(pu), load(pv), builder.load(accs[p])]),
                               accs[p])
         for p in range(n):
-            at = [k_i, triple[3 * p], zero] if mt.ndim == 3 else [triple[3 * p], zero]
-            pm = pointer(mt, m_, at)
+            pm = pointer(mt, m_, [triple[3 * p], zero])
             builder.store(builder.load(accs[p]), builder.bitcast(pm, vec.as_pointer()), align=8)
         return context.get_dummy_value()
 

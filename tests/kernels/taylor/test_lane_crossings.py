@@ -154,15 +154,17 @@ def test_singular_passages_on_lanes_are_the_scalar_kernels(
     assert calls[0] == y0.shape[0] and spied[0] == spied[1] > 0  # only the first on lanes
     lanes, scalar = runs
     np.testing.assert_array_equal(lanes.crossings_found, scalar.crossings_found)
-    np.testing.assert_array_equal(lanes.singular_passages, scalar.singular_passages)
-    assert (lanes.singular_passages.values[:3] >= 6).all()
+    for run in runs:
+        assert (run.singular_passages.values[:3] >= 6).all()
+        assert (run.singular_passages.values[3:] == 0).all()
     assert (lanes.crossings_found.values[:3] == 0).all()
     assert (lanes.crossings_found.values[3:] == 6).all()
     np.testing.assert_allclose(lanes.t, scalar.t, atol=1e-11)
     # Whether a passage through G = 0 is a root of the section function at all depends
-    # on round-off (the function's scale vanishes there), and its time is ill-conditioned
-    # (1e-5 apart between the kernels): most passages are found by both, at the same
-    # places.
+    # on round-off (the function's scale vanishes there, and the square root's jet
+    # divides by it), and its time is ill-conditioned (1e-5 apart between the kernels):
+    # their counts may differ (8 and 12 on these librations to t = 600, passing G = 0
+    # every 49.8), but most passages are found by both, at the same places.
     for i in range(3):
         a = lanes.singular_passage_t.values[i]
         b = scalar.singular_passage_t.values[i]

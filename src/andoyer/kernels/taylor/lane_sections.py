@@ -17,10 +17,10 @@ does, every node's orders in one vector loop:
 * a first integral (``DOT``: the area ``M = G . gamma``) is its value at order 0, a
   product with it (``SCALE``) one multiplication per order and lane;
 * the square root's recurrence ``r^[k] = (a^[k] - sum_{0<j<k} r^[j] r^[k-j]) / (2 r^[0])``
-  takes its sum from the lanes' Cauchy product of order ``k``
-  (:func:`andoyer.kernels.simd.cauchy`) with ``r^[k]`` zero while it is summed (the
-  terms ``j = 0, k`` vanish), then one multiplication per lane by ``1 / (2 r^[0])``
-  (computed once, as the scalar interpreter does).
+  sums each pair of equal terms once, the newest pair last, in the scalar
+  interpreter's order (:func:`~andoyer.kernels.taylor.sections.tape_jet`: the orders'
+  chain one multiply-add long), then one multiplication per lane by
+  ``1 / (2 r^[0])`` (computed once, as the scalar interpreter does).
 
 Each lane's operations are the scalar interpreter's up to the contraction of sums into
 fused multiply-adds, so a lane's section jet is the scalar one to round-off. The step of
@@ -88,16 +88,23 @@ def lane_tape_jet(tape, C, x, order, U):
                     U[k, n, lane] = U[0, a, lane] * U[k, b, lane]
         elif order > 0:  # SQRT
             inv = np.empty(_L)
+            v = np.empty(_L)
             for lane in range(_L):  # an idle lane's zero state: NaN, unused
                 r = math.sqrt(U[0, a, lane])
                 U[0, n, lane] = r
                 inv[lane] = 1.0 / (2.0 * r) if r != 0.0 else np.nan
-            for k in range(1, order + 1):
+            for k in range(1, order + 1):  # sections.tape_jet's sum, lane by lane
+                m = k // 2
                 for lane in range(_L):
-                    U[k, n, lane] = 0.0  # so that the terms j = 0, k of the sum vanish
-                simd.cauchy(U, U, U, k, (n, n, n))
+                    v[lane] = 0.5 * U[m, n, lane] * U[m, n, lane] if k % 2 == 0 else 0.0
+                for j in range((k - 1) // 2, 1, -1):
+                    for lane in range(_L):
+                        v[lane] += U[j, n, lane] * U[k - j, n, lane]
+                if k >= 3:
+                    for lane in range(_L):
+                        v[lane] += U[1, n, lane] * U[k - 1, n, lane]
                 for lane in range(_L):
-                    U[k, n, lane] = (U[k, a, lane] - U[k, n, lane]) * inv[lane]
+                    U[k, n, lane] = (U[k, a, lane] - 2.0 * v[lane]) * inv[lane]
         else:
             for lane in range(_L):
                 U[0, n, lane] = math.sqrt(U[0, a, lane])
