@@ -207,10 +207,10 @@ def crossings_on_lanes(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max
     n_crossings = tc.shape[1]
     n = order + 1
     comp, ca, cc = linear_component(ftape, fC)
-    X = np.zeros((1, n, _N, _L))
-    m = np.empty((recurrences.LANE_PRODUCTS, _L))
+    X = aligned(n * _N * _L).reshape((1, n, _N, _L))
+    m = aligned(recurrences.LANE_PRODUCTS * _L).reshape((recurrences.LANE_PRODUCTS, _L))
     h = np.empty(_L)
-    hs = np.zeros(_L)
+    hs = aligned(_L)
     a1 = np.empty(_L)
     a2 = np.empty(_L)
     tot = np.empty(_L)
