@@ -18,6 +18,7 @@ import pytest
 from andoyer.kernels.common import fast_jit
 from andoyer.kernels.generated import recurrences
 from andoyer.kernels.taylor.sections import (
+    pair_jet,
     section_jet,
     section_tape,
     solve_root,
@@ -219,6 +220,48 @@ def test_the_g_sections_on_the_axes_take_the_tape_without_the_square_root(value,
     factor = G if vanishing == "sin" else 1.0
     assert np.allclose(ff, factor * fr, rtol=1e-13, atol=1e-15 * G.max() ** 3)
     assert np.array_equal(np.sign(ff), np.sign(fr))
+
+
+@fast_jit
+def _both_jets(tape, C, x, order, pair):  # type: ignore[no-untyped-def]
+    """(tape_jet's rows, pair_jet's rows) of one state jet."""
+    u1 = np.zeros((tape.shape[0], order + 1))
+    u2 = np.zeros((tape.shape[0], order + 1))
+    tape_jet(tape, C, x, order, u1)
+    pair_jet(tape, C, x, order, u2, pair[0], pair[1], pair[2], pair[3])
+    return u1, u2
+
+
+@pytest.mark.parametrize("order", [14, 15, 5, 2])
+def test_pair_jet_is_the_tapes_jet_for_the_g_axes_and_no_other_tape(order: int) -> None:
+    """The reduced g = 0, pi tapes are of ``product_pair``'s form (``G2 gamma1``,
+    ``G1 gamma2``); ``pair_jet`` gives their rows 2, 5, 6, 7 within round-off of the
+    interpreter (1e-15 of the jet's scale: LLVM's reassociation may sum a product's
+    terms in another order). Every other section tape, function or margin, is not of
+    that form."""
+    from andoyer.kernels.generated.equations import EXTRA_SECTION_KINDS, SECTION_KINDS
+    from andoyer.kernels.taylor.sections import product_pair
+
+    test = getattr(product_pair, "py_func", product_pair)
+    kind = SECTION_KINDS.index("g")
+    rng = np.random.default_rng(11)
+    r = 0.5 ** np.arange(order + 1)
+    for value in (0.0, np.pi, -np.pi):
+        tape, C = section_tape(kind, rng.uniform(-3, 3), value)
+        pair = test(tape, C)
+        assert tuple(int(v) for v in pair) == (1, 3, 0, 4)
+        x = rng.normal(size=(order + 1, 6)) * r[:, None]
+        u1, u2 = _both_jets(tape, C, x, order, np.array(pair, dtype=np.int64))
+        for row in (2, 5, 6, 7):
+            scale = float(np.max(np.abs(u1[row]) * r))
+            assert np.max(np.abs(u1[row] - u2[row]) * r) <= 1e-15 * scale, (value, row)
+    for k in range(len(recurrences.SECTION_TAPES)):
+        for value in (0.0, 0.4, np.pi / 2):
+            for margin in (False, True):
+                tape, C = section_tape(k, 0.3, value, margin=margin)
+                name = (SECTION_KINDS + EXTRA_SECTION_KINDS)[k]
+                axes = name == "g" and value == 0.0 and not margin
+                assert (test(tape, C)[0] >= 0) == axes, (name, value, margin)
 
 
 @fast_jit

@@ -120,7 +120,9 @@ from andoyer.kernels.taylor.sections import (
     jet_polynomial,
     linear_component,
     may_cross,
+    pair_jet,
     poly_d,
+    product_pair,
     section_tape,
     tape_jet,
     tape_value,
@@ -252,6 +254,16 @@ def make_orbits(jets: Any) -> Orbits:
         return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
     @kernel_jit
+    def take_pair_step(t, t_end, X, order, q, info, ftape, fC, u, pair):
+        """:func:`take_section_step` of a tape of
+        :func:`~andoyer.kernels.taylor.sections.product_pair`'s form (its products
+        ``pair``): the same jets by :func:`~andoyer.kernels.taylor.sections.pair_jet`."""
+        jets(X, order, q)
+        info[3] += 1
+        pair_jet(ftape, fC, X[0], order, u, pair[0], pair[1], pair[2], pair[3])
+        return step_to(t, t_end, section_step_size(X, order, ftape, u))
+
+    @kernel_jit
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
         """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
         k = t_out.shape[0]
@@ -332,12 +344,16 @@ def make_orbits(jets: Any) -> Orbits:
         stack, lo_s, hi_s, left, roots = isolation_space(order)
         W = bernstein_weights(order)
         component, ca, cc = linear_component(ftape, fC)
+        pair = product_pair(ftape, fC)
         while count < n_crossings and t < t_max:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS
                 return count
             if component >= 0:  # |f^[k]| <= the state's: the state's step (as below)
                 status, t1, h = take_step(t, t_max, X, order, q, info)
+            elif pair[0] >= 0:
+                status, t1, h = take_pair_step(t, t_max, X, order, q, info, ftape, fC, u,
+                                               pair)
             else:
                 status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, u)
             if status != SUCCESS:
