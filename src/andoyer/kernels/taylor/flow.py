@@ -101,6 +101,7 @@ from andoyer.kernels.generated import recurrences
 from andoyer.kernels.taylor import jets, sections
 from andoyer.kernels.taylor.jets import (
     advance,
+    advance_to,
     attitude_jets,
     block_at,
     fill_constants,
@@ -341,6 +342,7 @@ def make_orbits(jets: Any) -> Orbits:
         ytmp = np.empty(X.shape[0] * _N)
         P = np.empty((X.shape[0], 2, _N))
         Y = np.empty((1, _N))
+        E = np.empty(_N)  # the state at the step's end (a tape section's f_b there)
         stack, lo_s, hi_s, left, roots = isolation_space(order)
         W = bernstein_weights(order)
         component, ca, cc = linear_component(ftape, fC)
@@ -366,6 +368,7 @@ def make_orbits(jets: Any) -> Orbits:
                 y_end = block_at(X[0], order, h)
                 for i in range(_N):
                     Y[0, i] = y_end[i]
+                    E[i] = y_end[i]
                 fb = tape_value(ftape, fC, Y, u)
             if may_cross(fa, fb, a[0], a[1] * h, bound):
                 found = isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left,
@@ -374,7 +377,10 @@ def make_orbits(jets: Any) -> Orbits:
                     if count < n_crossings:
                         count = record(X, order, q, t, h, roots[r], ftape, fC, wtape, wC, a,
                                        tc, zc, count, ytmp, P, Y, u)
-            advance(X, order, h)
+            if component >= 0:
+                advance(X, order, h)
+            else:  # the state's end is E already
+                advance_to(X, order, h, E)
             info[1] += 1
             fa = fb
             t = t1

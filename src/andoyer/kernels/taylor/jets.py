@@ -27,7 +27,7 @@ from andoyer.kernels.simd import root
 __all__ = ["fill_constants", "state_jets", "tangent_jets", "attitude_jets",
            "radius", "step_size", "step_to", "section_step_size", "section_scale",
            "section_norms", "SECTION_STEP_FLOOR", "block_at",
-           "horner", "advance", "load"]
+           "horner", "advance", "advance_to", "load"]
 
 #: Least fraction of the state's step that a section function's jet may leave
 #: (:func:`section_step_size`): near ``G = 0`` an angle's section function has jets
@@ -243,6 +243,18 @@ def horner(X, order, tau, out):
 def advance(X, order, h):
     """Replace rows 0 of the jets by the values at ``t0 + h`` (the next step's start)."""
     for b in range(X.shape[0]):
+        v = block_at(X[b], order, h)
+        for i in range(N_STATE):
+            X[b, 0, i] = v[i]
+
+
+@kernel_jit
+def advance_to(X, order, h, y):
+    """:func:`advance` with the state block's value at ``t0 + h`` already known (``y``,
+    the six floats :func:`block_at` gave): the other blocks are evaluated."""
+    for i in range(N_STATE):
+        X[0, 0, i] = y[i]
+    for b in range(1, X.shape[0]):
         v = block_at(X[b], order, h)
         for i in range(N_STATE):
             X[b, 0, i] = v[i]
