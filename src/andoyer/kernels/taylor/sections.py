@@ -198,7 +198,7 @@ def pair_jet(tape, C, x, order, u, i, j, k, l):
     the products as :func:`cauchy`'s, four orders at a time, both in one loop, read from
     the state's jet (no copy of the variables), then the linear rows' own expressions,
     with no dispatch per row. On the 7:1 orbit of the report (``g = 0``, order 14) the
-    section's step about 7 % faster than with the interpreter (measured:
+    section's step 7-14 % faster than with the interpreter (measured:
     benchmarks/NOTES.md#pair-jet)."""
     k0 = 0
     while k0 + 3 <= order:
