@@ -248,7 +248,7 @@ def test_pair_jet_is_the_tapes_jet_for_the_g_axes_and_no_other_tape(order: int) 
     r = 0.5 ** np.arange(order + 1)
     for value in (0.0, np.pi, -np.pi):
         tape, C = section_tape(kind, rng.uniform(-3, 3), value)
-        pair = test(tape, C)
+        pair = test(tape)
         assert tuple(int(v) for v in pair) == (1, 3, 0, 4)
         x = rng.normal(size=(order + 1, 6)) * r[:, None]
         u1, u2 = _both_jets(tape, C, x, order, np.array(pair, dtype=np.int64))
@@ -261,7 +261,7 @@ def test_pair_jet_is_the_tapes_jet_for_the_g_axes_and_no_other_tape(order: int) 
                 tape, C = section_tape(k, 0.3, value, margin=margin)
                 name = (SECTION_KINDS + EXTRA_SECTION_KINDS)[k]
                 axes = name == "g" and value == 0.0 and not margin
-                assert (test(tape, C)[0] >= 0) == axes, (name, value, margin)
+                assert (test(tape)[0] >= 0) == axes, (name, value, margin)
 
 
 @fast_jit

@@ -346,7 +346,7 @@ def make_orbits(jets: Any) -> Orbits:
         stack, lo_s, hi_s, left, roots = isolation_space(order)
         W = bernstein_weights(order)
         component, ca, cc = linear_component(ftape, fC)
-        pair = product_pair(ftape, fC)
+        pair = product_pair(ftape)
         while count < n_crossings and t < t_max:
             if info[1] >= max_steps:
                 info[0] = MAX_STEPS

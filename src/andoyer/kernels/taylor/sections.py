@@ -23,7 +23,9 @@ counted once: at a step's start it belongs to the previous step, at its end to t
   (:func:`scale_polynomial`), so the section function along the orbit is one continuous
   piecewise polynomial.
 * Any other section takes its jet from one pass of the tape (:func:`tape_jet`, which
-  the step size uses too), and ``f_b`` is the tape at the step's end state (order 0).
+  the step size uses too; a tape of :func:`product_pair`'s form, the ``g = 0, pi``
+  sections', from :func:`pair_jet`'s one loop with the same rows), and ``f_b`` is the
+  tape at the step's end state (order 0).
   ``P(h)`` is not reliable there: the series of ``f`` (a square root of ``|G|^2`` for
   the angles and ``|G|``) need not converge on a step sized by the state's jets (carried
   over, such a ``P(h)`` added a theta2 crossing; measured:
@@ -48,7 +50,7 @@ from andoyer.kernels.common import exact_jit, kernel_jit
 from andoyer.kernels.generated import recurrences
 
 __all__ = ["VAR", "LIN", "MUL", "SQRT", "DOT", "SCALE", "state_dot",
-           "ROOT_MAXITER", "tape_jet", "PAIR_ROWS", "product_pair", "pair_jet",
+           "ROOT_MAXITER", "tape_jet", "product_pair", "pair_jet",
            "linear_component", "end_and_bound", "may_cross",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
            "bernstein_weights", "step_bernstein", "scaled_bernstein", "monotonic",
@@ -170,17 +172,17 @@ def tape_jet(tape, C, x, order, u):
 #: The rows of a tape whose function is a scaled sum of two products of state
 #: components, ``c_s (c_a y_i y_j + c_b y_k y_l)`` (:func:`product_pair`): the reduced
 #: ``g = 0, pi`` function ``cos(value) (G2 gamma1 - G1 gamma2)``.
-PAIR_ROWS = 8
+_PAIR_ROWS = 8
 
 
 @kernel_jit
-def product_pair(tape, C):
+def product_pair(tape):
     """``(i, j, k, l)`` when the tape's function is ``c_s (c_a y_i y_j + c_b y_k y_l)``
     (rows: the four variables, the two products, their linear sum and its scaling, the
     form of the reduced ``g = 0, pi`` tapes, ``SIN_ZERO_TAPES``), else ``(-1, -1, -1,
     -1)``. Its jet is :func:`pair_jet`'s one loop instead of a pass of the tape
     interpreter."""
-    ok = (tape.shape[0] == PAIR_ROWS and tape[0, 0] == VAR and tape[1, 0] == VAR
+    ok = (tape.shape[0] == _PAIR_ROWS and tape[0, 0] == VAR and tape[1, 0] == VAR
           and tape[2, 0] == MUL and tape[2, 1] == 0 and tape[2, 2] == 1
           and tape[3, 0] == VAR and tape[4, 0] == VAR
           and tape[5, 0] == MUL and tape[5, 1] == 3 and tape[5, 2] == 4
