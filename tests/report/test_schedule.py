@@ -176,3 +176,28 @@ def test_progress_bar_in_a_terminal(tmp_path):
     screen = [re.sub(r"\x1b\[[0-9;]*[A-Za-z]", "", line).rsplit("\r", 1)[-1].strip()
               for line in text.replace("\r\n", "\n").split("\n")]
     assert "" not in screen[:-1], screen
+
+
+def test_items_build_with_blas_on_one_thread():
+    """An item runs with BLAS on one thread (the report shares the cores out itself), and
+    the caller's BLAS threads are its own again afterwards."""
+    import dataclasses
+
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from andoyer.body import RigidBody
+    from andoyer.report import schedule
+    from andoyer.report.base import Context
+
+    def blas_threads() -> set[int]:
+        return {p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"}
+
+    if not blas_threads():
+        pytest.skip("NumPy's BLAS is not visible to threadpoolctl")
+    seen: list[set[int]] = []
+    item = dataclasses.replace(next(i for i in ITEMS if i.key == "fig2"),
+                               build=lambda ctx: seen.append(blas_threads()))
+    with threadpool_limits(limits=3, user_api="blas"):
+        schedule._build_item(item, Context(Path("."), RigidBody.paper()))
+        assert blas_threads() == {3}
+    assert seen == [{1}]

@@ -113,9 +113,14 @@ class Announcer:
 
 
 def _build_item(item: Item, ctx: Context) -> tuple[Result, float]:
-    """Build one item (its own progress bars hidden: the report has one)."""
+    """Build one item (its own progress bars hidden: the report has one), with BLAS on
+    one thread: the report shares the cores out itself (processes, then each item's
+    threads), and an idle OpenBLAS thread spins about 0.1 s of CPU after every call
+    (benchmarks/NOTES.md#blas-one-thread)."""
+    from threadpoolctl import threadpool_limits
+
     t0 = time.perf_counter()
-    with silenced():
+    with silenced(), threadpool_limits(limits=1, user_api="blas"):
         res = item.build(ctx)
     return res, time.perf_counter() - t0
 
