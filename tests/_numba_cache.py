@@ -13,8 +13,9 @@ def fresh_process_cache_stats(module: str, calls: dict[str, str]) -> dict[str, o
     ``"propagate(z0, t, p)"`` after ``setup`` names) and return the seconds taken and
     the cache hits and misses of each entry point named by the keys of ``calls``.
 
-    ``calls`` maps an entry point's name to the statement that runs it; a statement may
-    use ``np`` and ``m``.
+    ``calls`` maps an entry point's name in ``m`` (an attribute, or an expression on one
+    such as ``BLOCKS[0]``) to the statement that runs it; a statement may use ``np`` and
+    ``m``.
     """
     names = list(calls)
     body = "\n".join(calls.values())
@@ -25,7 +26,7 @@ def fresh_process_cache_stats(module: str, calls: dict[str, str]) -> dict[str, o
         t0 = time.perf_counter()
     """).format(module=module) + body + textwrap.dedent(f"""
         seconds = time.perf_counter() - t0
-        stats = [getattr(m, name).stats for name in {names!r}]
+        stats = [eval('m.' + name).stats for name in {names!r}]
         print(json.dumps({{"seconds": seconds,
                           "hits": [sum(s.cache_hits.values()) for s in stats],
                           "misses": [sum(s.cache_misses.values()) for s in stats]}}))

@@ -291,8 +291,9 @@ def test_second_process_loads_from_the_cache() -> None:
     out = fresh_process_cache_stats("andoyer.kernels.taylor.flow", {
         "propagate_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
                            f"1e-12, {MAX_STEPS})",
-        "locate_crossings_block": f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, "
-                                  f"1, 1, 50.0, 1e-12, {MAX_STEPS})"})
+        # G3 (kind 2): the component family's entry point
+        "CROSSINGS_BLOCKS[(False, 0)]": f"m.locate_crossings(np.array({y}), np.array({p}), 2, "
+                                        f"0.0, 1, 1, 50.0, 1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
 
 
@@ -314,6 +315,26 @@ def test_a_second_process_compiles_nothing() -> None:
     # changes with each process, a helper compiled on its own.
     exec(W4_CALLS, {"np": np})  # this process warms the cache (or already has)
     assert fresh_process_compiles(W4_CALLS) == []
+
+
+def test_a_cold_component_section_compiles_its_family_only(tmp_path) -> None:
+    # Each family of section tapes has its own loop and entry point: a G3 section on an
+    # empty cache compiles the component loop and none of the angle sections' jets.
+    import os
+
+    env = {**os.environ, "ANDOYER_CACHE_DIR": str(tmp_path)}
+    env.pop("NUMBA_CACHE_DIR", None)
+    p = params(RigidBody.paper()).tolist()
+    names = fresh_process_compiles(
+        "from andoyer.kernels.taylor import flow as m\n"
+        f"m.locate_crossings(np.array([{state(Y0).tolist()}]), np.array({p}), "
+        f"{KIND['G3']}, 0.0, 1, 2, 50.0, 1e-12, {MAX_STEPS})\n", env=env)
+    assert any(n.endswith("section_loops.<locals>.crossings_from") for n in names), names
+    assert "linear_component" in names
+    for other in ("pair_jet", "product_pair", "tape_jet", "section_step_size"):
+        assert other not in names, other
+    assert T.CROSSINGS_BLOCKS.keys() == {(t, f) for t in (False, True)
+                                         for f in sections.FAMILIES}
 
 
 def test_kernel_helpers_compile_once_and_refuse_python_calls() -> None:

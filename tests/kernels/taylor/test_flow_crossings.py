@@ -247,7 +247,7 @@ def test_the_g_sections_on_the_axes_cross_as_their_full_section_function(value) 
     from andoyer.kernels.generated import recurrences
     from andoyer.kernels.generated.equations import SECTION_KINDS
     from andoyer.kernels.taylor import flow
-    from andoyer.kernels.taylor.sections import section_tape
+    from andoyer.kernels.taylor.sections import section_family, section_tape
 
     body = RigidBody.paper(0.01)
     p = np.asarray(body.engine_params, dtype=float)
@@ -262,8 +262,8 @@ def test_the_g_sections_on_the_axes_cross_as_their_full_section_function(value) 
     zf = np.full_like(zc, np.nan)
     cf = np.zeros_like(count)
     inf = np.zeros_like(info)
-    flow.locate_crossings_block(z0, p, flow.order_for(tol), full, fC, wt, wC, 1, 1e4, 10**7,
-                                tf, zf, cf, inf)
+    block = flow.CROSSINGS_BLOCKS[(False, section_family(full, fC))]
+    block(z0, p, flow.order_for(tol), full, fC, wt, wC, 1, 1e4, 10**7, tf, zf, cf, inf)
     assert np.array_equal(count, cf) and np.all(count == n)
     assert np.all(info[:, 0] == 0) and np.all(inf[:, 0] == 0)
     assert np.max(np.abs(tc - tf)) < 1e-9 and np.max(np.abs(zc - zf)) < 1e-9

@@ -114,6 +114,9 @@ from andoyer.kernels.taylor.jets import (
     tangent_jets,
 )
 from andoyer.kernels.taylor.sections import (
+    COMPONENT,
+    FAMILIES,
+    PAIR,
     bernstein_weights,
     column_polynomial,
     isolate,
@@ -124,6 +127,7 @@ from andoyer.kernels.taylor.sections import (
     pair_jet,
     poly_d,
     product_pair,
+    section_family,
     section_tape,
     tape_jet,
     tape_value,
@@ -141,9 +145,8 @@ __all__ = [
     "locate_crossings",
     "propagate_block",
     "attitude_propagate_block",
-    "locate_crossings_block",
+    "CROSSINGS_BLOCKS",
     "tangent_propagate_block",
-    "tangent_crossings_block",
     "make_orbits",
     "Orbits",
     "STATE",
@@ -214,9 +217,10 @@ class Orbits(NamedTuple):
         One orbit to the output times (dense output from the step's polynomial).
     record : numba function
         Stores a state at an output time.
-    crossings_orbit : numba function
-        One orbit's section crossings (roots on each step's polynomial).
-    crossings_from : numba function
+    crossings_orbit : tuple of numba functions
+        One orbit's section crossings (roots on each step's polynomial), one loop per
+        section family (indexed by :data:`~andoyer.kernels.taylor.sections.FAMILIES`).
+    crossings_from : tuple of numba functions
         :attr:`crossings_orbit` on from a state at a time, its crossings so far given.
     """
 
@@ -329,80 +333,93 @@ def make_orbits(jets: Any) -> Orbits:
         return count
 
 
-    @kernel_jit
-    def crossings_from(X, t, fa, count, q, order, ftape, fC, wtape, wC, direction, t_max,
-                       max_steps, tc, zc, info):
-        """:func:`crossings_orbit` on from the state in ``X`` (order 0) at time ``t``, where
-        the section function is ``fa`` and ``count`` crossings are in ``tc, zc``; returns
-        the count."""
-        n_crossings = tc.shape[0]
-        n = order + 1
-        a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
-        u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
-        ytmp = np.empty(X.shape[0] * _N)
-        P = np.empty((X.shape[0], 2, _N))
-        Y = np.empty((1, _N))
-        E = np.empty(_N)  # the state at the step's end (a tape section's f_b there)
-        stack, lo_s, hi_s, left, roots = isolation_space(order)
-        W = bernstein_weights(order)
-        component, ca, cc = linear_component(ftape, fC)
-        pair = product_pair(ftape)
-        while count < n_crossings and t < t_max:
-            if info[1] >= max_steps:
-                info[0] = MAX_STEPS
-                return count
-            if component >= 0:  # |f^[k]| <= the state's: the state's step (as below)
-                status, t1, h = take_step(t, t_max, X, order, q, info)
-            elif pair[0] >= 0:
-                status, t1, h = take_pair_step(t, t_max, X, order, q, info, ftape, fC, u,
-                                               pair)
-            else:
-                status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC, u)
-            if status != SUCCESS:
-                info[0] = status
-                return count
-            if component >= 0:  # fb: f at the end (the next fa); bound: of P's terms k >= 2
-                fb, bound = column_polynomial(X[0], component, ca, cc, order, h, a)
-            else:  # the tape's jet (in u); fb = f at the step's end state, not P(h)
-                fb, bound = jet_polynomial(u[ftape.shape[0] - 1], order, h, a)
-                y_end = block_at(X[0], order, h)
-                for i in range(_N):
-                    Y[0, i] = y_end[i]
-                    E[i] = y_end[i]
-                fb = tape_value(ftape, fC, Y, u)
-            if may_cross(fa, fb, a[0], a[1] * h, bound):
-                found = isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left,
-                                roots)
-                for r in range(found):
-                    if count < n_crossings:
-                        count = record(X, order, q, t, h, roots[r], ftape, fC, wtape, wC, a,
-                                       tc, zc, count, ytmp, P, Y, u)
-            if component >= 0:
-                advance(X, order, h)
-            else:  # the state's end is E already
-                advance_to(X, order, h, E)
-            info[1] += 1
-            fa = fb
-            t = t1
-        return count
+    def section_loops(family: int) -> tuple[Any, Any]:
+        """``(crossings_orbit, crossings_from)`` of the sections of one family
+        (:data:`~andoyer.kernels.taylor.sections.FAMILIES`): ``family`` is a constant of
+        the closure, so Numba prunes the other families' branches and compiles only this
+        one's jets."""
 
-    @kernel_jit
-    def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps, X, tc,
-                        zc, info):
-        """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
-        of tapes ``ftape, fC`` (function) and ``wtape, wC`` (margin); returns their number
-        (see the module notes)."""
-        if tc.shape[0] == 0 or t_max <= 0.0:
-            return 0
-        u = np.empty((max(ftape.shape[0], wtape.shape[0]), order + 1))
-        Y = np.empty((1, _N))
-        load(X, z0)
-        for i in range(_N):
-            Y[0, i] = z0[i]
-        return crossings_from(X, 0.0, tape_value(ftape, fC, Y, u), _ZERO, q, order, ftape, fC,
-                              wtape, wC, direction, t_max, max_steps, tc, zc, info)
+        @kernel_jit
+        def crossings_from(X, t, fa, count, q, order, ftape, fC, wtape, wC, direction,
+                           t_max, max_steps, tc, zc, info):
+            """:func:`crossings_orbit` on from the state in ``X`` (order 0) at time ``t``,
+            where the section function is ``fa`` and ``count`` crossings are in ``tc, zc``;
+            returns the count."""
+            n_crossings = tc.shape[0]
+            n = order + 1
+            a = np.empty(n)  # the section's jet scaled to the step: P(sigma), sigma in [0, 1]
+            u = np.empty((max(ftape.shape[0], wtape.shape[0]), n))
+            ytmp = np.empty(X.shape[0] * _N)
+            P = np.empty((X.shape[0], 2, _N))
+            Y = np.empty((1, _N))
+            E = np.empty(_N)  # the state at the step's end (a tape section's f_b there)
+            stack, lo_s, hi_s, left, roots = isolation_space(order)
+            W = bernstein_weights(order)
+            if family == COMPONENT:
+                component, ca, cc = linear_component(ftape, fC)
+            if family == PAIR:
+                pair = product_pair(ftape)
+            while count < n_crossings and t < t_max:
+                if info[1] >= max_steps:
+                    info[0] = MAX_STEPS
+                    return count
+                if family == COMPONENT:  # |f^[k]| <= the state's: the state's step (as below)
+                    status, t1, h = take_step(t, t_max, X, order, q, info)
+                elif family == PAIR:
+                    status, t1, h = take_pair_step(t, t_max, X, order, q, info, ftape, fC, u,
+                                                   pair)
+                else:
+                    status, t1, h = take_section_step(t, t_max, X, order, q, info, ftape, fC,
+                                                      u)
+                if status != SUCCESS:
+                    info[0] = status
+                    return count
+                if family == COMPONENT:  # fb: f at the end (the next fa); bound: P's k >= 2
+                    fb, bound = column_polynomial(X[0], component, ca, cc, order, h, a)
+                else:  # the tape's jet (in u); fb = f at the step's end state, not P(h)
+                    fb, bound = jet_polynomial(u[ftape.shape[0] - 1], order, h, a)
+                    y_end = block_at(X[0], order, h)
+                    for i in range(_N):
+                        Y[0, i] = y_end[i]
+                        E[i] = y_end[i]
+                    fb = tape_value(ftape, fC, Y, u)
+                if may_cross(fa, fb, a[0], a[1] * h, bound):
+                    found = isolate(a, order, h, W, fa, fb, direction, stack, lo_s, hi_s, left,
+                                    roots)
+                    for r in range(found):
+                        if count < n_crossings:
+                            count = record(X, order, q, t, h, roots[r], ftape, fC, wtape, wC,
+                                           a, tc, zc, count, ytmp, P, Y, u)
+                if family == COMPONENT:
+                    advance(X, order, h)
+                else:  # the state's end is E already
+                    advance_to(X, order, h, E)
+                info[1] += 1
+                fa = fb
+                t = t1
+            return count
 
-    return Orbits(take_step, propagate_orbit, record, crossings_orbit, crossings_from)
+        @kernel_jit
+        def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
+                            X, tc, zc, info):
+            """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
+            of tapes ``ftape, fC`` (function) and ``wtape, wC`` (margin); returns their
+            number (see the module notes)."""
+            if tc.shape[0] == 0 or t_max <= 0.0:
+                return 0
+            u = np.empty((max(ftape.shape[0], wtape.shape[0]), order + 1))
+            Y = np.empty((1, _N))
+            load(X, z0)
+            for i in range(_N):
+                Y[0, i] = z0[i]
+            return crossings_from(X, 0.0, tape_value(ftape, fC, Y, u), _ZERO, q, order, ftape,
+                                  fC, wtape, wC, direction, t_max, max_steps, tc, zc, info)
+
+        return crossings_orbit, crossings_from
+
+    loops = [section_loops(family) for family in FAMILIES]
+    return Orbits(take_step, propagate_orbit, record, tuple(o for o, _ in loops),
+                  tuple(f for _, f in loops))
 
 
 #: Orbits of the state alone, and of the state with tangent vectors.
@@ -412,12 +429,12 @@ TANGENT = make_orbits(tangent_jets)
 ATTITUDE = make_orbits(attitude_jets)
 _attitude_propagate = ATTITUDE.propagate_orbit
 _state_propagate = STATE.propagate_orbit
-_state_crossings = STATE.crossings_orbit
+_state_component, _state_pair, _state_tape = STATE.crossings_orbit
 _tangent_propagate = TANGENT.propagate_orbit
-_tangent_crossings = TANGENT.crossings_orbit
+_tangent_component, _tangent_pair, _tangent_tape = TANGENT.crossings_orbit
 
 
-def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
+def _build(stamp: str) -> tuple[Any, Any, dict[tuple[bool, int], Any], Any]:
     """The cached entry points (the closure over ``stamp`` keys the cache, as in
     :mod:`andoyer.kernels.dop853.flow`). They call the orbit loops as module globals: a
     compiled function in a closure cell would change the cache key in every process."""
@@ -442,29 +459,37 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         for i in range(z0.shape[0]):
             _tangent_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    @exact_jit
-    def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
-                               max_steps, tc, zc, count, info):
-        """:func:`locate_crossings` of a block of orbits (states alone)."""
-        _ = len(stamp)  # keys the cache
-        q = np.empty(recurrences.N_CONSTANTS)
-        fill_constants(p, q)
-        X = np.empty((1, order + 1, _N))
-        for i in range(z0.shape[0]):
-            count[i] = _state_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
-                                        t_max, max_steps, X, tc[i], zc[i], info[i])
+    def crossings_block(tangent: bool, family: int) -> Any:
+        """The entry point of the sections of one family (states alone, or with tangent
+        vectors): ``tangent`` and ``family`` are constants of its closure, so it compiles
+        one orbit loop; its cache key is stable (no compiled function in the closure)."""
 
-    @exact_jit
-    def tangent_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
-                                max_steps, tc, zc, count, info):
-        """:func:`locate_crossings` of a block of orbits with tangent vectors."""
-        _ = len(stamp)  # keys the cache
-        q = np.empty(recurrences.N_CONSTANTS)
-        fill_constants(p, q)
-        X = np.empty((z0.shape[1] // _N, order + 1, _N))
-        for i in range(z0.shape[0]):
-            count[i] = _tangent_crossings(z0[i], q, order, ftape, fC, wtape, wC, direction,
-                                          t_max, max_steps, X, tc[i], zc[i], info[i])
+        @exact_jit
+        def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
+                                   max_steps, tc, zc, count, info):
+            """:func:`locate_crossings` of a block of orbits."""
+            _ = len(stamp)  # keys the cache
+            q = np.empty(recurrences.N_CONSTANTS)
+            fill_constants(p, q)
+            X = np.empty((z0.shape[1] // _N, order + 1, _N))
+            for i in range(z0.shape[0]):
+                args = (z0[i], q, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
+                        X, tc[i], zc[i], info[i])
+                if tangent:
+                    if family == COMPONENT:
+                        count[i] = _tangent_component(*args)
+                    elif family == PAIR:
+                        count[i] = _tangent_pair(*args)
+                    else:
+                        count[i] = _tangent_tape(*args)
+                elif family == COMPONENT:
+                    count[i] = _state_component(*args)
+                elif family == PAIR:
+                    count[i] = _state_pair(*args)
+                else:
+                    count[i] = _state_tape(*args)
+
+        return locate_crossings_block
 
     @exact_jit
     def attitude_propagate_block(z0, t, p, order, max_steps, out, info):
@@ -476,12 +501,15 @@ def _build(stamp: str) -> tuple[Any, Any, Any, Any, Any]:
         for i in range(z0.shape[0]):
             _attitude_propagate(z0[i], t, q, order, max_steps, X, out[i], info[i])
 
-    return (propagate_block, tangent_propagate_block, locate_crossings_block,
-            tangent_crossings_block, attitude_propagate_block)
+    blocks = {(tangent, family): crossings_block(tangent, family)
+              for tangent in (False, True) for family in FAMILIES}
+    return propagate_block, tangent_propagate_block, blocks, attitude_propagate_block
 
 
-(propagate_block, tangent_propagate_block, locate_crossings_block,
- tangent_crossings_block, attitude_propagate_block) = _build(TAYLOR_STAMP)
+#: ``CROSSINGS_BLOCKS[(tangent, family)]``: :func:`locate_crossings` of a block of orbits
+#: (with tangent vectors or not) on a section of one family.
+(propagate_block, tangent_propagate_block, CROSSINGS_BLOCKS,
+ attitude_propagate_block) = _build(TAYLOR_STAMP)
 
 
 @exact_jit
@@ -615,7 +643,7 @@ def locate_crossings(z0: np.ndarray, p: np.ndarray, kind: int, value: float, dir
     info = np.zeros((n, len(INFO)), dtype=np.int64)
     ftape, fC = section_tape(int(kind), float(p[7]), float(value))
     wtape, wC = section_tape(int(kind), float(p[7]), float(value), margin=True)
-    kernel = locate_crossings_block if z0.shape[1] == _N else tangent_crossings_block
+    kernel = CROSSINGS_BLOCKS[(z0.shape[1] != _N, section_family(ftape, fC))]
     over_orbits(kernel, n, (z0,), (tc, zc, count, info),
                 (p, _order(tol), ftape, fC, wtape, wC, int(direction), float(t_max),
                  int(max_steps)), block=block, threads=threads)

@@ -47,8 +47,8 @@ orbits finish; from :data:`PILOT_FROM` crossings asked a pilot of every orbit's 
 the start in one block per thread, balanced, longest first (:func:`locate_crossings`).
 On a component section, once a block's queue is empty and at most :data:`TAIL_LANES`
 lanes are busy, the scalar kernel finishes their orbits from their lanes' states
-(``crossings_from`` of :data:`andoyer.kernels.taylor.flow.STATE`: the same steps, the
-crossings found so far kept); a tape section's lanes run to the block's end.
+(the component loop of :data:`andoyer.kernels.taylor.flow.STATE`'s ``crossings_from``: the
+same steps, the crossings found so far kept); a tape section's lanes run to the block's end.
 """
 
 from __future__ import annotations
@@ -96,7 +96,7 @@ __all__ = ["LANE_CROSSINGS_STAMP", "component", "locate_crossings", "lane_crossi
 _L = LANES
 _N = N_STATE
 _record = flow.STATE.record
-_crossings_from = flow.STATE.crossings_from
+_crossings_from = flow.STATE.crossings_from[sections.COMPONENT]
 #: Busy lanes at most, once the queue is empty, whose orbits the scalar kernel finishes
 #: (an orbit's scalar step costs about half a vector step of 4 lanes, a third of 8:
 #: benchmarks/NOTES.md#taylor-lane-schedule).

@@ -50,6 +50,7 @@ from andoyer.kernels.common import exact_jit, kernel_jit
 from andoyer.kernels.generated import recurrences
 
 __all__ = ["VAR", "LIN", "MUL", "SQRT", "DOT", "SCALE", "state_dot",
+           "COMPONENT", "PAIR", "TAPE", "FAMILIES", "section_family",
            "ROOT_MAXITER", "tape_jet", "product_pair", "pair_jet",
            "linear_component", "end_and_bound", "may_cross",
            "column_polynomial", "jet_polynomial", "scale_polynomial",
@@ -191,6 +192,34 @@ def product_pair(tape):
     if not ok:
         return -1, -1, -1, -1
     return tape[0, 1], tape[1, 1], tape[3, 1], tape[4, 1]
+
+
+#: The families of section tapes, each with its own compiled loop (a call compiles only
+#: its own: a cold G3 section no longer compiles the angle sections' jets): a state
+#: component (:func:`linear_component`), a tape of :func:`product_pair`'s form, any other.
+COMPONENT, PAIR, TAPE = 0, 1, 2
+FAMILIES = (COMPONENT, PAIR, TAPE)
+
+
+def section_family(tape: np.ndarray, C: np.ndarray) -> int:
+    """The family of the section of tape ``tape`` and constants ``C``: the kernels' own
+    recognisers (:func:`linear_component`, :func:`product_pair`), run in Python.
+
+    Parameters
+    ----------
+    tape, C : ndarray
+        A section's tape and constants (:func:`section_tape`).
+
+    Examples
+    --------
+    >>> [section_family(*section_tape(kind, 0.0, 0.0)) for kind in (2, 11, 13)]
+    [0, 1, 2]
+    """
+    if linear_component.py_func(tape, C)[0] >= 0:
+        return COMPONENT
+    if product_pair.py_func(tape)[0] >= 0:
+        return PAIR
+    return TAPE
 
 
 @kernel_jit
