@@ -25,6 +25,8 @@ from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Any
 
+from threadpoolctl import threadpool_limits
+
 from andoyer.processes import child_signals, children_ignore_interrupts
 from andoyer.progress import Progress, on_terminal, silenced
 from andoyer.report.base import Context, Item, Result
@@ -117,8 +119,6 @@ def _build_item(item: Item, ctx: Context) -> tuple[Result, float]:
     one thread: the report shares the cores out itself (processes, then each item's
     threads), and an idle OpenBLAS thread spins about 0.1 s of CPU after every call
     (benchmarks/NOTES.md#blas-one-thread)."""
-    from threadpoolctl import threadpool_limits
-
     t0 = time.perf_counter()
     with silenced(), threadpool_limits(limits=1, user_api="blas"):
         res = item.build(ctx)

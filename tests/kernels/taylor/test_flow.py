@@ -288,12 +288,12 @@ def test_second_process_loads_from_the_cache() -> None:
     T.propagate(y0, np.array([0.0, 1.0]), np.array(p), 1e-12, MAX_STEPS)
     T.locate_crossings(y0, np.array(p), 2, 0.0, 1, 1, 50.0, 1e-12, MAX_STEPS)
     y = y0.tolist()
+    g3_block = f"CROSSINGS_BLOCKS[(False, {sections.COMPONENT})]"  # G3 (kind 2)'s family
     out = fresh_process_cache_stats("andoyer.kernels.taylor.flow", {
         "propagate_block": f"m.propagate(np.array({y}), np.array([0.0, 1.0]), np.array({p}), "
                            f"1e-12, {MAX_STEPS})",
-        # G3 (kind 2): the component family's entry point
-        "CROSSINGS_BLOCKS[(False, 0)]": f"m.locate_crossings(np.array({y}), np.array({p}), 2, "
-                                        f"0.0, 1, 1, 50.0, 1e-12, {MAX_STEPS})"})
+        g3_block: f"m.locate_crossings(np.array({y}), np.array({p}), 2, 0.0, 1, 1, 50.0, "
+                  f"1e-12, {MAX_STEPS})"})
     assert out["misses"] == [0, 0] and out["hits"] == [1, 1]
 
 
@@ -333,8 +333,6 @@ def test_a_cold_component_section_compiles_its_family_only(tmp_path) -> None:
     assert "linear_component" in names
     for other in ("pair_jet", "product_pair", "tape_jet", "section_step_size"):
         assert other not in names, other
-    assert T.CROSSINGS_BLOCKS.keys() == {(t, f) for t in (False, True)
-                                         for f in sections.FAMILIES}
 
 
 def test_kernel_helpers_compile_once_and_refuse_python_calls() -> None:

@@ -194,9 +194,9 @@ def product_pair(tape):
     return tape[0, 1], tape[1, 1], tape[3, 1], tape[4, 1]
 
 
-#: The families of section tapes, each with its own compiled loop (a call compiles only
-#: its own: a cold G3 section no longer compiles the angle sections' jets): a state
-#: component (:func:`linear_component`), a tape of :func:`product_pair`'s form, any other.
+#: The families of section tapes, each with its own compiled loop, so that a call compiles
+#: only its own (a cold G3 section none of the angle sections' jets): a state component
+#: (:func:`linear_component`), a tape of :func:`product_pair`'s form, any other.
 COMPONENT, PAIR, TAPE = 0, 1, 2
 FAMILIES = (COMPONENT, PAIR, TAPE)
 
