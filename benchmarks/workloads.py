@@ -40,13 +40,14 @@ class Sizes:
     cost: tuple[int, int] = (16, 300)  # W6: orbits, theta2 crossings fixing the span
     lanes: tuple[int, int, float] = (256, 1000, 1000.0)  # W7: orbits, G3 crossings, t_end
     repeat: int = 5
+    w1_rounds: int = 31  # W1's runners, milliseconds each, timed in turn
     tol: float = 1e-12
 
 
 FULL = Sizes()
 QUICK = Sizes(w1_t_end=1e3, w1_points=101, w2_orbits=8, w2_crossings=50, scipy_orbits=1,
               w3_grid=8, w3_t_end=100.0, w3_big=0, w2_small=(4, 20), cost=(8, 20),
-              lanes=(16, 20, 50.0), repeat=3)
+              lanes=(16, 20, 50.0), repeat=3, w1_rounds=5)
 
 
 def body() -> RigidBody:

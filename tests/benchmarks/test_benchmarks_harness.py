@@ -120,6 +120,21 @@ def test_harness_end_to_end_on_a_tiny_problem(tmp_path, monkeypatch, heyoka_defa
     assert len(list((tmp_path / "reference").glob("crossing-G3-*.json"))) == 1
 
 
+def test_interleaved_timing_calls_the_runners_in_turn() -> None:
+    """One warm-up call each, then rounds of one call each in turn; every runner gets its
+    own walls (``repeat`` of them) and its last result."""
+    calls: list[str] = []
+
+    def runner(name: str):
+        return lambda: calls.append(name) or len(calls)
+
+    out = harness.timed_interleaved({"a": runner("a"), "b": runner("b")}, 3)
+    assert calls == ["a", "b"] * 4
+    assert [len(out[k][2]) for k in "ab"] == [3, 3]
+    assert (out["a"][3], out["b"][3]) == (7, 8)
+    assert all(out[k][0] >= 0.0 and out[k][0] in out[k][2] for k in "ab")
+
+
 def test_reference_is_cached_and_extended_precision(tmp_path, monkeypatch) -> None:
     monkeypatch.setattr(R, "CACHE", tmp_path)
     y0 = workloads.initial_states(1)[0]

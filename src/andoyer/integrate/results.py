@@ -333,11 +333,12 @@ def states_dataset(body: RigidBody, y: NDArray[np.float64], dims: Sequence[str],
     shape = y.shape[:-1]
     data: dict[str, Any] = {name: (dims, y[..., i]) for i, name in enumerate(STATE)}
     derived = _Derived(body, y, drifts)
+    whole = indexing.BasicIndexer((slice(None),) * len(shape))  # immutable: one for all
     for name in _derived_names(body, drifts):
         # Lazily indexed, then cached in memory at first read, as xarray's own backends
         # do: from then on ``.values`` is one array, and writes into it stay.
-        data[name] = xr.Variable(dims, indexing.MemoryCachedArray(
-            indexing.LazilyIndexedArray(_LazyColumn(derived, name, shape))), fastpath=True)
+        data[name] = xr.Variable(dims, indexing.MemoryCachedArray(indexing.LazilyIndexedArray(
+            _LazyColumn(derived, name, shape), whole)), fastpath=True)
     if extra:
         data.update({k: (tuple(d), v) for k, (d, v) in extra.items()})
     ds = describe_variables(_dataset(data, coords, attrs))
