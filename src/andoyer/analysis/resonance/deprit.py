@@ -94,11 +94,22 @@ class JetSpace:
         return self.mul(self.d_phi(f), self.d_x(g)) - self.mul(self.d_x(f), self.d_phi(g))
 
     def evaluate(self, f: Jet, x: float, phi: float, t: float) -> complex:
-        """``f`` at one point."""
+        """``f`` at one point: :meth:`at` of :meth:`rows`."""
+        return self.at(self.rows(f, phi, t), x)
+
+    def rows(self, f: Jet, phi: float, t: float) -> NDArray[np.complex128]:
+        """The Fourier sums of ``f`` at ``(phi, t)``, one per power of ``x``: what
+        :meth:`evaluate` needs of ``f`` whatever ``x`` (a Newton search in ``x`` at one
+        ``(phi, t)`` takes them once). ``f`` may be a stack of jets (leading axes): each
+        jet's sums are those it has alone."""
         e = np.outer(np.exp(1j * phi * self.k1[0, :, 0]), np.exp(1j * t * self.k2[0, 0, :]))
-        xs = x ** np.arange(self.D + 1)
         # elementwise, not a matrix product: BLAS threads cost more than these sums
-        return complex(np.sum(xs * np.sum(f.reshape(self.D + 1, -1) * e.ravel(), axis=1)))
+        return np.sum(f.reshape(*f.shape[:-2], -1) * e.ravel(), axis=-1)
+
+    def at(self, rows: NDArray[np.complex128], x: float) -> complex:
+        """The jet of :meth:`rows` at ``x``."""
+        xs = x ** np.arange(self.D + 1)
+        return complex(np.sum(xs * rows))
 
 
 def _jets(space: JetSpace, name: str, jets: object, *, minimum: int = 1) -> list[Jet]:

@@ -155,6 +155,10 @@ class SecondOrderChain:
         self.pHt = [self.space.d_phi(f) for f in self.Ht]
         self.X = transform(self.space, xj, self.Ws)
         self.P = transform(self.space, None, self.Ws)
+        # X's and P's jets of orders 1 .. order stacked, (X, P) x order: the Fourier sums
+        # of all at a point in one pass (JetSpace.rows), the same numbers as one by one
+        self._XP = np.stack([np.stack(self.X[1:self.order + 1]),
+                             np.stack(self.P[1:self.order + 1])])
 
     def _reduce(self, chain: ResonantChain, order: int) -> None:
         """(S1)-(S2): the jets of ``K_1 .. K_order`` and of ``omega`` about ``I1*``."""
@@ -218,17 +222,34 @@ class SecondOrderChain:
         self.G_poly = inv @ Gs                    # G0(I1* + x)
 
     # ------------------------------------------------------------------ series
-    def _series(self, parts: list[Any], x: float, phi: float, t: float) -> float:
+    def _series(self, which: int, x: float, phi: float, t: float) -> float:
+        """The change (D4) at new ``(x, phi, t)``: ``x_old - x`` (``which`` 0) or
+        ``phi - phi_old`` (1)."""
+        return self._sum(self.space.rows(self._XP[which], phi, t), x)
+
+    def _series_both(self, x: float, phi: float, t: float) -> tuple[float, float]:
+        """:meth:`_series` 0 and 1 at once."""
+        rows = self.space.rows(self._XP, phi, t)
+        return self._sum(rows[0], x), self._sum(rows[1], x)
+
+    def _sum(self, rows: NDArray[np.complex128], x: float) -> float:
+        """``sum_n mu^n / n! f_n`` at ``x`` of the Fourier sums ``rows[n - 1]`` of ``f_n``."""
         mu, sp = self.chain.body.mu, self.space
-        return sum(mu**n / math.factorial(n) * sp.evaluate(parts[n], x, phi, t).real
+        return sum(mu**n / math.factorial(n) * sp.at(rows[n - 1], x).real
                    for n in range(1, self.order + 1))
 
-    def _dKt(self, x: float, phi: float, t: float) -> float:
-        """``dKt/dJ`` of the normal form at new ``(x, phi, t)``."""
+    def _dKt_rows(self, phi: float, t: float) -> list[NDArray[np.complex128]]:
+        """:meth:`JetSpace.rows` of the jets of :meth:`_dKt` at ``(phi, t)``."""
+        return [self.space.rows(self.dHt[n - 1], phi, t) for n in range(1, self.order + 1)]
+
+    def _dKt(self, x: float, phi: float, t: float,
+             rows: list[NDArray[np.complex128]] | None = None) -> float:
+        """``dKt/dJ`` of the normal form at new ``(x, phi, t)`` (``rows``:
+        :meth:`_dKt_rows` at ``(phi, t)``, for several ``x`` there)."""
         mu, sp = self.chain.body.mu, self.space
+        rows = self._dKt_rows(phi, t) if rows is None else rows
         w = sum(c * x**j for j, c in enumerate(self.omega))
-        return w + sum(mu**n / math.factorial(n)
-                       * sp.evaluate(self.dHt[n - 1], x, phi, t).real
+        return w + sum(mu**n / math.factorial(n) * sp.at(rows[n - 1], x).real
                        for n in range(1, self.order + 1))
 
     def centre(self, phi_old: float, t: float) -> tuple[float, float]:
@@ -239,17 +260,19 @@ class SecondOrderChain:
         x_new, phi_new = 0.0, phi_old
         for _ in range(30):
             # Newton in x on dKt/dJ = p/q (numerical derivative), then the new phase
-            f = self._dKt(x_new, phi_new, t) - target
+            rows = self._dKt_rows(phi_new, t)
+            f = self._dKt(x_new, phi_new, t, rows) - target
             h = 1e-6 * (abs(x_new) + 1e-6)
-            df = (self._dKt(x_new + h, phi_new, t) - self._dKt(x_new - h, phi_new, t)) / (2 * h)
+            df = (self._dKt(x_new + h, phi_new, t, rows)
+                  - self._dKt(x_new - h, phi_new, t, rows)) / (2 * h)
             x_step = f / df
             x_new -= x_step
-            phi_next = phi_old - self._series(self.P, x_new, phi_new, t)
+            phi_next = phi_old - self._series(1, x_new, phi_new, t)
             done = abs(x_step) < 1e-15 and abs(phi_next - phi_new) < 1e-14
             phi_new = phi_next
             if done:
                 break
-        x_old = x_new + self._series(self.X, x_new, phi_new, t)
+        x_old = x_new + self._series(0, x_new, phi_new, t)
         mu, sp = c.body.mu, self.space
         G0 = float(sum(g * x_old**j for j, g in enumerate(self.G_poly)))
         G = G0 - sum(mu**n * sp.evaluate(k, x_old, phi_old, t).real
@@ -284,10 +307,11 @@ class SecondOrderChain:
         ``G = G0(x) - mu K1 - mu^2 K2`` (Newton), then (D4) inverted by iteration."""
         mu, sp = self.chain.body.mu, self.space
 
+        rows = [sp.rows(k, phi_old, t) for k in self.K]
+
         def G_of(x: float) -> float:
             out = float(sum(g * x**j for j, g in enumerate(self.G_poly)))
-            return out - sum(mu**n * sp.evaluate(k, x, phi_old, t).real
-                             for n, k in enumerate(self.K, 1))
+            return out - sum(mu**n * sp.at(r, x).real for n, r in enumerate(rows, 1))
 
         x = 0.0
         for _ in range(40):
@@ -299,8 +323,9 @@ class SecondOrderChain:
                 break
         x_new, phi_new = x, phi_old
         for _ in range(40):
-            x_next = x - self._series(self.X, x_new, phi_new, t)
-            phi_next = phi_old - self._series(self.P, x_new, phi_new, t)
+            dx, dphi = self._series_both(x_new, phi_new, t)
+            x_next = x - dx
+            phi_next = phi_old - dphi
             done = abs(x_next - x_new) < 1e-16 and abs(phi_next - phi_new) < 1e-15
             x_new, phi_new = x_next, phi_next
             if done:
@@ -380,11 +405,12 @@ class SecondOrderChain:
 
     def _x_at(self, phi: float, t: float) -> float:
         c = self.chain
+        rows = self._dKt_rows(phi, t)
         x = 0.0
         for _ in range(40):
-            f = self._dKt(x, phi, t) - c.p / c.q
+            f = self._dKt(x, phi, t, rows) - c.p / c.q
             h = 1e-6 * (abs(x) + 1e-6)
-            df = (self._dKt(x + h, phi, t) - self._dKt(x - h, phi, t)) / (2 * h)
+            df = (self._dKt(x + h, phi, t, rows) - self._dKt(x - h, phi, t, rows)) / (2 * h)
             step = f / df
             x -= step
             if abs(step) < 1e-16:
