@@ -166,22 +166,30 @@ def _quantity(label: str, value: Any, kind: str, body: Any, limit: float = MAX_M
             raise ValueError(f"{label} must be {'> 0' if math.isfinite(value) else 'finite'}"
                              f", got {_shown(value)}")
         return
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        return  # not numbers: the function's own check names it
-    if arr.size == 0:
-        return
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{label} must be finite, got {_shown(value)}")
-    big = float(np.max(np.abs(arr)))
+    scalar: float | None
+    if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
+        scalar = float(value)  # a number, the common case: its checks without NumPy
+        if not math.isfinite(scalar):
+            raise ValueError(f"{label} must be finite, got {_shown(value)}")
+        big = abs(scalar)
+    else:
+        try:
+            arr = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            return  # not numbers: the function's own check names it
+        if arr.size == 0:
+            return
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{label} must be finite, got {_shown(value)}")
+        big = float(np.max(np.abs(arr)))
+        scalar = float(arr) if arr.ndim == 0 else None
     if kind == "energy":
-        if arr.ndim == 0 and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
-            level(label, float(arr), body, limit)
+        if scalar is not None and all(hasattr(body, a) for a in ("a", "b", "c", "mu")):
+            level(label, scalar, body, limit)
         elif big > limit * limit:
             raise ValueError(f"{label} must be within +-{limit * limit:g}, got "
                              f"{_shown(value)}")
-    elif kind == "length" and arr.ndim == 0 and not arr >= 0.0:  # (G0 may be a vector G)
+    elif kind == "length" and scalar is not None and not scalar >= 0.0:  # (or a vector G)
         raise ValueError(f"{label} must be >= 0 (a length of the angular momentum), got "
                          f"{_shown(value)}")
     if kind in ("action", "length") and big > limit:
@@ -191,7 +199,8 @@ def _quantity(label: str, value: Any, kind: str, body: Any, limit: float = MAX_M
         raise ValueError(f"{label} must be within +-{limit:g} ({why}), got {_shown(value)}")
     elif kind == "scale" and big > MAX_ENERGY:
         raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_shown(value)}")
-    elif kind == "tolerance" and not np.all(arr > 0.0):
+    elif kind == "tolerance" and not (scalar > 0.0 if scalar is not None
+                                      else np.all(np.asarray(value, dtype=float) > 0.0)):
         raise ValueError(f"{label} must be > 0, got {_shown(value)}")
 
 
@@ -290,17 +299,34 @@ def _decorate(func: Callable[_P, _R], spec: ArgumentChecks) -> Callable[_P, _R]:
             raise TypeError(f"{where}: {name} is not an argument")
     limit = momentum_limit(spec.closed_form)
     labels = spec.labels
+    ordered = [(name, checks[name]) for name in sig.parameters if name in checks]
+    # Binding by hand where the signature has no *args, **kwargs or positional-only
+    # parameters (a few microseconds a call: Signature.bind costs more than the checks);
+    # anything else, and every call it cannot bind, goes through Signature.bind.
+    params = list(sig.parameters.values())
+    simple = all(p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) for p in params)
+    positional = tuple(p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD)
+    names = frozenset(sig.parameters)
+    required = frozenset(p.name for p in params if p.default is p.empty)
+
+    def bind(args: tuple[Any, ...], kwargs: dict[str, Any]) -> dict[str, Any]:
+        if simple and len(args) <= len(positional):
+            values = dict(zip(positional, args, strict=False))  # the rest: defaults
+            if kwargs.keys() <= names and not kwargs.keys() & values.keys():
+                values.update(kwargs)
+                if required <= values.keys():
+                    return values
+        try:
+            return sig.bind(*args, **kwargs).arguments
+        except TypeError as exc:
+            raise TypeError(f"{where}: {exc}") from None
 
     @functools.wraps(func)
     def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
-        try:
-            bound = sig.bind(*args, **kwargs)
-        except TypeError as exc:
-            raise TypeError(f"{where}: {exc}") from None
-        values = bound.arguments
-        for name, value in values.items():
-            if name in checks:
-                _check_scalar(labels.get(name, name), value, *checks[name])
+        values = bind(args, kwargs)
+        for name, typed in ordered:  # in the signature's order, as Signature.bind's
+            if name in values:
+                _check_scalar(labels.get(name, name), values[name], *typed)
         body = values.get(spec.body) if spec.body else None
         for name, kind in spec.ranges.items():
             value = values.get(name)
