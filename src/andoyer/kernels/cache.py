@@ -38,6 +38,13 @@ read as another signature's). :func:`cached_njit`'s caches hold an exclusive loc
 so each writer reads the index the one before it wrote. Readers take no lock: Numba
 replaces each file whole (a temporary file, then a rename).
 
+Numba names machine code after a function's qualified name and a counter of the process
+that compiled it, so two variants of one factory's function (the same name, other closure
+constants) cached by two processes can share a symbol, and a process loading both runs
+one body for both (numba/numba#10486; seen here: tangent crossings running the state's
+loop). Every factory-made kernel carries its variant in its name
+(:func:`andoyer.kernels.common.variant`).
+
 A damaged entry (an index or data file truncated by a full disk or a killed process,
 or overwritten) is taken for a missing one: its files are removed, the kernel compiled
 again and cached, and the run says so once, naming the folder

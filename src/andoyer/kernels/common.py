@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import Any
 
 __all__ = [
+    "variant",
     "T_START",
     "N_STATE",
     "INFO",
@@ -233,6 +234,41 @@ def exact_jit(function: Callable[..., Any]) -> Any:
     from andoyer.kernels.cache import cached_njit
 
     return cached_njit(nogil=True, fastmath=False, no_cfunc_wrapper=True)(function)
+
+
+def variant(tag: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Name a factory-made kernel after its variant: ``tag`` is appended to the function's
+    ``__qualname__`` before Numba compiles it.
+
+    Numba names a function's machine code after its qualified name and a counter of the
+    process that compiles it. Two variants of one factory's function (the same qualified
+    name, other closure constants: the state's or the tangent vectors' jets, a section
+    family) compiled in two processes can so get one symbol, and a process that loads both
+    from the on-disk cache runs one body for both (numba/numba#10486; seen here: tangent
+    crossings running the state's loop on a cache two test workers wrote). A tag per
+    variant keeps their names, and their cache entries, apart.
+
+    Parameters
+    ----------
+    tag : str
+        What tells the variant from the factory's others (letters, digits, ``_``).
+
+    Examples
+    --------
+    >>> @variant("tangent")
+    ... def step(x):
+    ...     return x
+    >>> step.__qualname__
+    'step__tangent'
+    """
+    if not tag.replace("_", "").isalnum():
+        raise ValueError(f"tag must be letters, digits and _, got {tag!r}")
+
+    def name(function: Callable[..., Any]) -> Callable[..., Any]:
+        function.__qualname__ = f"{function.__qualname__}__{tag}"
+        return function
+
+    return name
 
 
 def source_stamp(*files: str | Path | None) -> str:

@@ -329,7 +329,8 @@ def test_a_cold_component_section_compiles_its_family_only(tmp_path) -> None:
         "from andoyer.kernels.taylor import flow as m\n"
         f"m.locate_crossings(np.array([{state(Y0).tolist()}]), np.array({p}), "
         f"{KIND['G3']}, 0.0, 1, 2, 50.0, 1e-12, {MAX_STEPS})\n", env=env)
-    assert any(n.endswith("section_loops.<locals>.crossings_from") for n in names), names
+    assert any(n.endswith("section_loops.<locals>.crossings_from__state_jets_component")
+               for n in names), names
     assert "linear_component" in names
     for other in ("pair_jet", "product_pair", "tape_jet", "section_step_size"):
         assert other not in names, other

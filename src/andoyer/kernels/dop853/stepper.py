@@ -26,6 +26,7 @@ from andoyer.kernels.common import (
     SUCCESS,
     T_START,
     kernel_jit,
+    variant,
 )
 from andoyer.kernels.dop853.coefficients import (
     E3,
@@ -257,8 +258,10 @@ def make_stepper(field: Any) -> Stepper:
         leading dimension n; ``crossings_block`` writes the counts into ``count`` (n,)):
         what a module's cached entry points call (:class:`andoyer.kernels.dop853.flow.Flow`).
     """
+    kind = getattr(field, "py_func", field).__name__  # the variants' tag (common.variant)
 
     @kernel_jit
+    @variant(kind)
     def stages(t, y, h, p, K, ytmp, first, last):
         """Stages ``first .. last-1`` into ``K`` (``K[:first]`` known); ``ytmp`` ends as the
         argument of the last stage (``y + h sum_j B_j k_j`` = y1 when ``last = 13``)."""
@@ -295,6 +298,7 @@ def make_stepper(field: Any) -> Stepper:
             field(t + C[s] * h, ytmp, p, K[s])
 
     @kernel_jit
+    @variant(kind)
     def initial_step(t, y, f0, p, interval, rtol, atol, ytmp, f1):
         """Hairer's starting step (``hinit``; scipy's ``select_initial_step``, order 7)."""
         n = y.shape[0]
@@ -323,6 +327,7 @@ def make_stepper(field: Any) -> Stepper:
         return min(100.0 * h0, h1, interval)
 
     @kernel_jit
+    @variant(kind)
     def step(t, y, h_abs, t_end, p, rtol, atol, K, ytmp, y1, info):
         """One accepted step from ``(t, y)`` with ``K[0] = f(t, y)``, at most to ``t_end``.
 
@@ -362,6 +367,7 @@ def make_stepper(field: Any) -> Stepper:
             info[2] += 1
 
     @kernel_jit
+    @variant(kind)
     def dense_coefficients(t, y, y1, h, p, K, ytmp, F):
         """The 7 rows ``r_1 .. r_7`` of the dense output of the step ``y -> y1`` (size h)."""
         n = y.shape[0]
@@ -378,6 +384,7 @@ def make_stepper(field: Any) -> Stepper:
                 F[3 + r, i] = h * acc
 
     @kernel_jit
+    @variant(kind)
     def graze(y, y1, t, h, p, K, F, kind, value, cv, sv, direction, f0, tc, yc, count,
                ytmp, info):
         """Two roots inside one step (the orbit dips through the section and back): look
@@ -395,6 +402,7 @@ def make_stepper(field: Any) -> Stepper:
         return count
 
     @kernel_jit
+    @variant(kind)
     def propagate_orbit(y0, t_out, p, rtol, atol, max_steps, out, info):
         """One orbit of ``dy/dt = field(t, y)``: ``out[j] = y(t_out[j])`` (rows not reached
         stay as they are); ``info`` (4,) counts as the columns :data:`INFO`.
@@ -451,6 +459,7 @@ def make_stepper(field: Any) -> Stepper:
                 K[0, i] = K[N_STAGES, i]
 
     @kernel_jit
+    @variant(kind)
     def crossings_orbit(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
                         tc, yc, info):
         """One orbit of ``dy/dt = field(t, y)``: the first ``len(tc)`` crossings in
@@ -537,12 +546,14 @@ def make_stepper(field: Any) -> Stepper:
         return count
 
     @kernel_jit
+    @variant(kind)
     def propagate_block(y0, t_out, p, rtol, atol, max_steps, out, info):
         """:func:`propagate_orbit` for each orbit (row) of ``y0``."""
         for i in range(y0.shape[0]):
             propagate_orbit(y0[i], t_out, p, rtol, atol, max_steps, out[i], info[i])
 
     @kernel_jit
+    @variant(kind)
     def crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
                         yc, count, info):
         """:func:`crossings_orbit` for each orbit (row) of ``y0``; counts into ``count``."""

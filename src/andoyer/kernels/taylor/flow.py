@@ -96,6 +96,7 @@ from andoyer.kernels.common import (
     exact_jit,
     kernel_jit,
     source_stamp,
+    variant,
 )
 from andoyer.kernels.generated import recurrences
 from andoyer.kernels.taylor import jets, sections
@@ -116,6 +117,7 @@ from andoyer.kernels.taylor.jets import (
 from andoyer.kernels.taylor.sections import (
     COMPONENT,
     FAMILIES,
+    FAMILY_NAMES,
     PAIR,
     bernstein_weights,
     column_polynomial,
@@ -241,8 +243,10 @@ def make_orbits(jets: Any) -> Orbits:
     jets : numba function
         ``jets(X, order, q)``: the Taylor coefficients of the state.
     """
+    kind = getattr(jets, "py_func", jets).__name__  # the variants' tag (common.variant)
 
     @kernel_jit
+    @variant(kind)
     def take_step(t, t_end, X, order, q, info):
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
@@ -250,6 +254,7 @@ def make_orbits(jets: Any) -> Orbits:
         return step_to(t, t_end, step_size(X, order))
 
     @kernel_jit
+    @variant(kind)
     def take_section_step(t, t_end, X, order, q, info, ftape, fC, u):
         """:func:`take_step` with the section function's jets (left in ``u``) in the step
         size (:func:`~andoyer.kernels.taylor.jets.section_step_size`)."""
@@ -259,6 +264,7 @@ def make_orbits(jets: Any) -> Orbits:
         return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
     @kernel_jit
+    @variant(kind)
     def take_pair_step(t, t_end, X, order, q, info, ftape, fC, u, pair):
         """:func:`take_section_step` of a tape of
         :func:`~andoyer.kernels.taylor.sections.product_pair`'s form (its products
@@ -269,6 +275,7 @@ def make_orbits(jets: Any) -> Orbits:
         return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
     @kernel_jit
+    @variant(kind)
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
         """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
         k = t_out.shape[0]
@@ -301,6 +308,7 @@ def make_orbits(jets: Any) -> Orbits:
 
 
     @kernel_jit
+    @variant(kind)
     def record(X, order, q, t, h, s_root, ftape, fC, wtape, wC, a, tc, zc, count, ytmp, P, Y,
                 u):
         """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
@@ -340,6 +348,7 @@ def make_orbits(jets: Any) -> Orbits:
         one's jets."""
 
         @kernel_jit
+        @variant(f"{kind}_{FAMILY_NAMES[family]}")
         def crossings_from(X, t, fa, count, q, order, ftape, fC, wtape, wC, direction,
                            t_max, max_steps, tc, zc, info):
             """:func:`crossings_orbit` on from the state in ``X`` (order 0) at time ``t``,
@@ -400,6 +409,7 @@ def make_orbits(jets: Any) -> Orbits:
             return count
 
         @kernel_jit
+        @variant(f"{kind}_{FAMILY_NAMES[family]}")
         def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
                             X, tc, zc, info):
             """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
@@ -465,6 +475,7 @@ def _build(stamp: str) -> tuple[Any, Any, dict[tuple[bool, int], Any], Any]:
         one orbit loop; its cache key is stable (no compiled function in the closure)."""
 
         @exact_jit
+        @variant(f"{'tangent' if tangent else 'state'}_{FAMILY_NAMES[family]}")
         def locate_crossings_block(z0, p, order, ftape, fC, wtape, wC, direction, t_max,
                                    max_steps, tc, zc, count, info):
             """:func:`locate_crossings` of a block of orbits."""

@@ -199,6 +199,8 @@ def product_pair(tape):
 #: (:func:`linear_component`), a tape of :func:`product_pair`'s form, any other.
 COMPONENT, PAIR, TAPE = 0, 1, 2
 FAMILIES = (COMPONENT, PAIR, TAPE)
+#: Their names (the tags of their kernels: :func:`andoyer.kernels.common.variant`).
+FAMILY_NAMES = ("component", "pair", "tape")
 
 
 def section_family(tape: np.ndarray, C: np.ndarray) -> int:
