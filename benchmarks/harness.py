@@ -57,27 +57,19 @@ class Row:
 def timed(fn: Callable[[], Any], repeat: int, warm_up: bool = True
           ) -> tuple[float, float, list[float], Any]:
     """(median wall, median CPU, all walls, last result) of ``repeat`` calls."""
-    if warm_up:
-        fn()
-    walls, cpus, out = [], [], None
-    for _ in range(repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        out = fn()
-        walls.append(time.perf_counter() - t0)
-        cpus.append(time.process_time() - c0)
-    return statistics.median(walls), statistics.median(cpus), walls, out
+    return timed_interleaved({"": fn}, repeat, warm_up)[""]
 
 
-def timed_interleaved(fns: dict[str, Callable[[], Any]], repeat: int
+def timed_interleaved(fns: dict[str, Callable[[], Any]], repeat: int, warm_up: bool = True
                       ) -> dict[str, tuple[float, float, list[float], Any]]:
     """:func:`timed` of every ``fns`` in ``repeat`` rounds: each round calls each once,
     in turn, so a phase of the host (its load, its clock) falls on all of them alike and
-    their ratios hold; one warm-up call each first."""
-    for fn in fns.values():
+    their ratios hold; one warm-up call each first (``warm_up``)."""
+    for fn in fns.values() if warm_up else ():
         fn()
     walls: dict[str, list[float]] = {k: [] for k in fns}
     cpus: dict[str, list[float]] = {k: [] for k in fns}
-    outs: dict[str, Any] = {}
+    outs: dict[str, Any] = dict.fromkeys(fns)
     for _ in range(repeat):
         for name, fn in fns.items():
             c0, t0 = time.process_time(), time.perf_counter()

@@ -35,6 +35,7 @@ from typing import Any
 
 __all__ = [
     "variant",
+    "kernel_variant",
     "T_START",
     "N_STATE",
     "INFO",
@@ -269,6 +270,19 @@ def variant(tag: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
         return function
 
     return name
+
+
+def kernel_variant(tag: str) -> Callable[[Callable[..., Any]], Any]:
+    """:func:`kernel_jit` of a factory-made helper named after its variant
+    (:func:`variant`): the decorator of a factory's kernels.
+
+    Parameters
+    ----------
+    tag : str
+        The variant's tag (:func:`variant`).
+    """
+    name = variant(tag)
+    return lambda function: kernel_jit(name(function))
 
 
 def source_stamp(*files: str | Path | None) -> str:

@@ -200,7 +200,7 @@ def _quantity(label: str, value: Any, kind: str, body: Any, limit: float = MAX_M
     elif kind == "scale" and big > MAX_ENERGY:
         raise ValueError(f"{label} must be within +-{MAX_ENERGY:g}, got {_shown(value)}")
     elif kind == "tolerance" and not (scalar > 0.0 if scalar is not None
-                                      else np.all(np.asarray(value, dtype=float) > 0.0)):
+                                      else np.all(arr > 0.0)):
         raise ValueError(f"{label} must be > 0, got {_shown(value)}")
 
 

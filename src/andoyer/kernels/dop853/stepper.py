@@ -26,7 +26,7 @@ from andoyer.kernels.common import (
     SUCCESS,
     T_START,
     kernel_jit,
-    variant,
+    kernel_variant,
 )
 from andoyer.kernels.dop853.coefficients import (
     E3,
@@ -258,10 +258,10 @@ def make_stepper(field: Any) -> Stepper:
         leading dimension n; ``crossings_block`` writes the counts into ``count`` (n,)):
         what a module's cached entry points call (:class:`andoyer.kernels.dop853.flow.Flow`).
     """
-    kind = getattr(field, "py_func", field).__name__  # the variants' tag (common.variant)
+    tag = getattr(field, "py_func", field).__name__  # the variants' (common.variant)
+    kernel = kernel_variant(tag)
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def stages(t, y, h, p, K, ytmp, first, last):
         """Stages ``first .. last-1`` into ``K`` (``K[:first]`` known); ``ytmp`` ends as the
         argument of the last stage (``y + h sum_j B_j k_j`` = y1 when ``last = 13``)."""
@@ -297,8 +297,7 @@ def make_stepper(field: Any) -> Stepper:
                 ytmp[i] = y[i] + h * ytmp[i]
             field(t + C[s] * h, ytmp, p, K[s])
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def initial_step(t, y, f0, p, interval, rtol, atol, ytmp, f1):
         """Hairer's starting step (``hinit``; scipy's ``select_initial_step``, order 7)."""
         n = y.shape[0]
@@ -326,8 +325,7 @@ def make_stepper(field: Any) -> Stepper:
             h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
         return min(100.0 * h0, h1, interval)
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def step(t, y, h_abs, t_end, p, rtol, atol, K, ytmp, y1, info):
         """One accepted step from ``(t, y)`` with ``K[0] = f(t, y)``, at most to ``t_end``.
 
@@ -366,8 +364,7 @@ def make_stepper(field: Any) -> Stepper:
             rejected = True
             info[2] += 1
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def dense_coefficients(t, y, y1, h, p, K, ytmp, F):
         """The 7 rows ``r_1 .. r_7`` of the dense output of the step ``y -> y1`` (size h)."""
         n = y.shape[0]
@@ -383,8 +380,7 @@ def make_stepper(field: Any) -> Stepper:
                     acc += D[r, j] * K[j, i]
                 F[3 + r, i] = h * acc
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def graze(y, y1, t, h, p, K, F, kind, value, cv, sv, direction, f0, tc, yc, count,
                ytmp, info):
         """Two roots inside one step (the orbit dips through the section and back): look
@@ -401,8 +397,7 @@ def make_stepper(field: Any) -> Stepper:
                             f1, tc, yc, count, ytmp)
         return count
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def propagate_orbit(y0, t_out, p, rtol, atol, max_steps, out, info):
         """One orbit of ``dy/dt = field(t, y)``: ``out[j] = y(t_out[j])`` (rows not reached
         stay as they are); ``info`` (4,) counts as the columns :data:`INFO`.
@@ -458,8 +453,7 @@ def make_stepper(field: Any) -> Stepper:
                 y[i] = y1[i]
                 K[0, i] = K[N_STAGES, i]
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def crossings_orbit(y0, p, kind, value, direction, t_max, rtol, atol, max_steps,
                         tc, yc, info):
         """One orbit of ``dy/dt = field(t, y)``: the first ``len(tc)`` crossings in
@@ -545,15 +539,13 @@ def make_stepper(field: Any) -> Stepper:
                 K[0, i] = K_prev[N_STAGES, i]
         return count
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def propagate_block(y0, t_out, p, rtol, atol, max_steps, out, info):
         """:func:`propagate_orbit` for each orbit (row) of ``y0``."""
         for i in range(y0.shape[0]):
             propagate_orbit(y0[i], t_out, p, rtol, atol, max_steps, out[i], info[i])
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def crossings_block(y0, p, kind, value, direction, t_max, rtol, atol, max_steps, tc,
                         yc, count, info):
         """:func:`crossings_orbit` for each orbit (row) of ``y0``; counts into ``count``."""

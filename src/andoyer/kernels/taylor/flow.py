@@ -94,7 +94,7 @@ from andoyer.kernels.common import (
     SUCCESS,
     T_START,
     exact_jit,
-    kernel_jit,
+    kernel_variant,
     source_stamp,
     variant,
 )
@@ -243,18 +243,17 @@ def make_orbits(jets: Any) -> Orbits:
     jets : numba function
         ``jets(X, order, q)``: the Taylor coefficients of the state.
     """
-    kind = getattr(jets, "py_func", jets).__name__  # the variants' tag (common.variant)
+    tag = getattr(jets, "py_func", jets).__name__  # the variants' (common.variant)
+    kernel = kernel_variant(tag)
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def take_step(t, t_end, X, order, q, info):
         """Jets at ``t`` and the step to take: ``(status, t1, h)``; ``t1 <= t_end``."""
         jets(X, order, q)
         info[3] += 1
         return step_to(t, t_end, step_size(X, order))
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def take_section_step(t, t_end, X, order, q, info, ftape, fC, u):
         """:func:`take_step` with the section function's jets (left in ``u``) in the step
         size (:func:`~andoyer.kernels.taylor.jets.section_step_size`)."""
@@ -263,8 +262,7 @@ def make_orbits(jets: Any) -> Orbits:
         tape_jet(ftape, fC, X[0], order, u)
         return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def take_pair_step(t, t_end, X, order, q, info, ftape, fC, u, pair):
         """:func:`take_section_step` of a tape of
         :func:`~andoyer.kernels.taylor.sections.product_pair`'s form (its products
@@ -274,8 +272,7 @@ def make_orbits(jets: Any) -> Orbits:
         pair_jet(ftape, fC, X[0], order, u, pair[0], pair[1], pair[2], pair[3])
         return step_to(t, t_end, section_step_size(X, order, ftape, u))
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def propagate_orbit(z0, t_out, q, order, max_steps, X, out, info):
         """One orbit: ``out[j] = z(t_out[j])`` (rows not reached stay as they are)."""
         k = t_out.shape[0]
@@ -307,8 +304,7 @@ def make_orbits(jets: Any) -> Orbits:
             t = t1
 
 
-    @kernel_jit
-    @variant(kind)
+    @kernel
     def record(X, order, q, t, h, s_root, ftape, fC, wtape, wC, a, tc, zc, count, ytmp, P, Y,
                 u):
         """Append the crossing at ``t + s_root h`` (polished, see module notes) if ``w > 0``
@@ -347,8 +343,9 @@ def make_orbits(jets: Any) -> Orbits:
         the closure, so Numba prunes the other families' branches and compiles only this
         one's jets."""
 
-        @kernel_jit
-        @variant(f"{kind}_{FAMILY_NAMES[family]}")
+        family_kernel = kernel_variant(f"{tag}_{FAMILY_NAMES[family]}")
+
+        @family_kernel
         def crossings_from(X, t, fa, count, q, order, ftape, fC, wtape, wC, direction,
                            t_max, max_steps, tc, zc, info):
             """:func:`crossings_orbit` on from the state in ``X`` (order 0) at time ``t``,
@@ -408,8 +405,7 @@ def make_orbits(jets: Any) -> Orbits:
                 t = t1
             return count
 
-        @kernel_jit
-        @variant(f"{kind}_{FAMILY_NAMES[family]}")
+        @family_kernel
         def crossings_orbit(z0, q, order, ftape, fC, wtape, wC, direction, t_max, max_steps,
                             X, tc, zc, info):
             """One orbit: the first ``len(tc)`` crossings in ``(0, t_max]`` of the section
